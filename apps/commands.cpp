@@ -1,0 +1,199 @@
+#include "apps/commands.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "apps/simulate.hpp"
+#include "core/errors.hpp"
+#include "core/report.hpp"
+
+namespace imcol {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string data_dir() {
+  if (const char* d = std::getenv("IMCOL_DATA_DIR")) return d;
+  return IMCOL_DATA_DIR;
+}
+
+struct CommonOptions {
+  std::vector<std::string> sets;
+  std::string rtol, atol, integrator;
+  std::vector<Override> overrides() const {
+    std::vector<Override> o;
+    if (!rtol.empty()) o.push_back({"solver.rtol", rtol});
+    if (!atol.empty()) o.push_back({"solver.atol", atol});
+    if (!integrator.empty()) o.push_back({"solver.integrator", "\"" + integrator + "\""});
+    for (const auto& s : sets) o.push_back(parse_override(s));
+    return o;
+  }
+};
+
+void add_common(CLI::App* cmd, CommonOptions& c) {
+  cmd->add_option("--rtol", c.rtol, "relative tolerance (same as --set solver.rtol=R)");
+  cmd->add_option("--atol", c.atol, "dimensionless absolute tolerance (same as --set solver.atol=A)");
+  cmd->add_option("--integrator", c.integrator, "cvode | ida (same as --set solver.integrator=NAME)");
+  cmd->add_option("--set", c.sets, "override a scene key: dotted.key=value (TOML value syntax)");
+}
+
+std::string fixed(double v, int prec) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(prec) << v;
+  return os.str();
+}
+std::string json_num(const nlohmann::ordered_json& j, int prec) { return j.is_null() ? "n/a" : fixed(j.get<double>(), prec); }
+
+int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet) {
+  Scene sc = load_scene(scene_path, c.overrides());
+  RunResult r = simulate(sc);
+  fs::path dir = out.empty() ? fs::path("out") / sc.name : fs::path(out);
+  write_outputs(r, dir);
+  if (!quiet) std::cout << human_summary(r) << "  wrote " << (dir / "trajectory.csv").string() << " and " << (dir / "summary.json").string() << "\n";
+  return 0;
+}
+
+/// Runs the six Table 6.1 scenes and prints St_B and e beside the seed's values.
+int cmd_validate(const std::string& what, const std::string& out, const CommonOptions& c) {
+  if (what != "seed") throw InputError("validate", what, "unknown validation set (expected 'seed')");
+  const std::string table = data_dir() + "/reference/li_2010_table_6_1.csv";
+  std::ifstream in(table);
+  if (!in) throw InputError(table, "", "cannot open the reference table");
+  std::cout << "Seed Table 6.1 (Li 2010) vs imcol reduced-order model (no f_SIM; differences expected)\n";
+  std::cout << std::left << std::setw(5) << "run" << std::setw(13) << "pair" << std::right << std::setw(10) << "St_B seed"
+            << std::setw(10) << "St_B" << std::setw(8) << "e seed" << std::setw(8) << "e" << std::setw(10) << "Re seed"
+            << std::setw(8) << "Re" << std::setw(10) << "U_G mm/s" << std::setw(10) << "wall ms" << "\n";
+  std::ostringstream csv;
+  csv << "run,pair,St_B_seed,St_B,e_seed,e,e_instant,Re_seed,Re,group_velocity_m_s,steps,wall_time_s\n";
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("run,", 0) == 0) continue;
+    std::vector<std::string> cell;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) cell.push_back(x);
+    if (cell.size() < 9) throw InputError(table, "", "malformed row: " + line);
+    const std::string run = cell[0], pair = cell[8];
+    Scene sc = load_scene(data_dir() + "/scenes/seed_run" + run + ".toml", c.overrides());
+    RunResult r = simulate(sc);
+    const auto& s = r.summary;
+    std::cout << std::left << std::setw(5) << run << std::setw(13) << pair << std::right << std::setw(10) << cell[6]
+              << std::setw(10) << json_num(s["St"], 1) << std::setw(8) << cell[7] << std::setw(8) << json_num(s["e"], 3)
+              << std::setw(10) << cell[5] << std::setw(8) << json_num(s["Re"], 0) << std::setw(10)
+              << (s["group_velocity_m_s"].is_null() ? std::string("-") : fixed(1e3 * s["group_velocity_m_s"].get<double>(), 2))
+              << std::setw(10) << fixed(1e3 * s["wall_time_s"].get<double>(), 1) << "\n";
+    csv << run << "," << pair << "," << cell[6] << "," << s["St"] << "," << cell[7] << "," << s["e"] << ","
+        << s["e_instant"] << "," << cell[5] << "," << s["Re"] << "," << s["group_velocity_m_s"] << ","
+        << s["solver"]["steps"] << "," << s["wall_time_s"] << "\n";
+  }
+  fs::path dir = out.empty() ? fs::path("out") / "validate_seed" : fs::path(out);
+  write_file_atomic(dir / "validate_seed.csv", csv.str());
+  std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";
+  return 0;
+}
+
+/// What accuracy costs: e and wall time (median of repeats) at each rtol, against the tightest.
+int cmd_bench(const std::string& scene_path, const std::vector<double>& rtols, int repeat, const CommonOptions& c) {
+  if (repeat < 1) throw InputError("--repeat", "repeat", "must be >= 1");
+  if (rtols.empty()) throw InputError("--rtols", "rtols", "give at least one tolerance");
+  struct Row { double rtol, e, ms; long steps, rhs; };
+  std::vector<Row> rows;
+  std::string name;
+  for (double rt : rtols) {
+    auto ov = c.overrides();
+    std::ostringstream v;
+    v << std::setprecision(17) << rt;
+    ov.push_back({"solver.rtol", v.str()});
+    Scene sc = load_scene(scene_path, ov);
+    name = sc.name;
+    std::vector<double> times;
+    RunResult r;
+    for (int k = 0; k < repeat; ++k) {
+      r = simulate(sc);
+      times.push_back(r.summary["wall_time_s"].get<double>());
+    }
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    const auto& s = r.summary;
+    rows.push_back({rt, s["e"].is_null() ? NAN : s["e"].get<double>(), 1e3 * times[times.size() / 2],
+                    s["solver"]["steps"].get<long>(), s["solver"]["rhs_evals"].get<long>()});
+  }
+  const auto tight = *std::min_element(rows.begin(), rows.end(), [](auto& a, auto& b) { return a.rtol < b.rtol; });
+  const double base = rows.front().ms;
+  std::cout << "scene " << name << ": median of " << repeat << " runs; error against rtol " << tight.rtol
+            << "; time ratio against rtol " << rows.front().rtol << "\n";
+  std::cout << std::setw(10) << "rtol" << std::setw(14) << "e" << std::setw(12) << "|e - e_ref|" << std::setw(8) << "steps"
+            << std::setw(8) << "rhs" << std::setw(11) << "median ms" << std::setw(8) << "ratio" << "\n";
+  for (const auto& r : rows) {
+    std::cout << std::setw(10) << std::setprecision(2) << std::scientific << r.rtol << std::setw(14) << std::fixed
+              << std::setprecision(9) << r.e << std::setw(12) << std::scientific << std::setprecision(1)
+              << std::abs(r.e - tight.e) << std::setw(8) << r.steps << std::setw(8) << r.rhs << std::setw(11) << std::fixed
+              << std::setprecision(3) << r.ms << std::setw(8) << std::setprecision(2) << r.ms / base << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"imcol: head-on collisions of spheres immersed in a viscous liquid"};
+  app.require_subcommand(1);
+
+  CommonOptions run_opt, val_opt, bench_opt;
+  std::string scene, out;
+  bool quiet = false;
+  auto* run = app.add_subcommand("run", "simulate one scene; writes DIR/trajectory.csv and DIR/summary.json");
+  run->add_option("scene", scene, "scene file (TOML)")->required();
+  run->add_option("--out", out, "output directory (default out/<scene name>)");
+  run->add_flag("--quiet", quiet, "print nothing on success");
+  add_common(run, run_opt);
+
+  std::string what, vout;
+  auto* val = app.add_subcommand("validate", "run a validation set and compare with its reference ('seed': Table 6.1)");
+  val->add_option("set", what, "validation set: seed")->required();
+  val->add_option("--out", vout, "output directory (default out/validate_seed)");
+  add_common(val, val_opt);
+
+  std::string bscene;
+  std::vector<double> rtols = {1e-6, 1e-8, 1e-10};
+  int repeat = 5;
+  auto* bench = app.add_subcommand("bench", "what accuracy costs: e and median wall time at several rtol");
+  bench->add_option("scene", bscene, "scene file (TOML)")->required();
+  bench->add_option("--rtols", rtols, "relative tolerances to compare")->delimiter(',');
+  bench->add_option("--repeat", repeat, "runs per tolerance (median reported)");
+  add_common(bench, bench_opt);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+
+  try {
+    if (*run) return cmd_run(scene, out, run_opt, quiet);
+    if (*val) return cmd_validate(what, vout, val_opt);
+    if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
+  } catch (const InputError& e) {
+    std::cerr << "imcol: error: " << e.what() << "\n";
+    return 2;
+  } catch (const SolverError& e) {
+    std::cerr << "imcol: solver failure: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "imcol: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 1;
+}
+
+}  // namespace imcol

@@ -1,0 +1,249 @@
+#include "apps/simulate.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "contact/collision_model.hpp"
+#include "core/measure.hpp"
+#include "core/report.hpp"
+#include "integrators/integrator.hpp"
+
+namespace imcol {
+
+namespace {
+
+using contact::CollisionModel;
+using contact::Evaluation;
+
+/// Samples the solution into trajectory rows, evaluating the force terms with the phase in force.
+class Recorder : public Observer {
+ public:
+  Recorder(const CollisionModel& model, const Scene& sc) : model_(model), sc_(sc) {
+    const bool pair = model.n_spheres() == 2;
+    columns_ = {"t", "z1", "u1"};
+    if (model.has_target()) columns_.push_back("gap");
+    if (pair) {
+      columns_.push_back("z2");
+      columns_.push_back("u2");
+    }
+    if (model.has_target()) columns_.push_back("u_rel");
+    for (int m = 1; m <= static_cast<int>(model.n_spheres()); ++m) {
+      const std::string k = std::to_string(m);
+      if (sc.has(Effect::drag)) columns_.push_back("f_drag" + k);
+      if (sc.has(Effect::lubrication)) columns_.push_back("f_lub" + k);
+      if (sc.has(Effect::added_mass)) columns_.push_back("f_am" + k);
+      if (sc.has(Effect::elastic)) columns_.push_back("f_contact" + k);
+      if (sc.has(Effect::gravity)) columns_.push_back("f_grav" + k);
+      columns_.push_back("a" + k);
+    }
+    columns_.push_back("event");
+  }
+
+  void sample(double t, std::span<const double> y, bool at_event) override {
+    const Evaluation ev = model_.evaluate(t, y);
+    std::vector<double> r = {t, ev.z[0], ev.u[0]};
+    const bool pair = model_.n_spheres() == 2;
+    if (model_.has_target()) r.push_back(ev.gap);
+    if (pair) {
+      r.push_back(ev.z[1]);
+      r.push_back(ev.u[1]);
+    }
+    if (model_.has_target()) r.push_back(ev.u_rel);
+    for (std::size_t m = 0; m < model_.n_spheres(); ++m) {
+      const auto& f = ev.f[m];
+      if (sc_.has(Effect::drag)) r.push_back(f.drag);
+      if (sc_.has(Effect::lubrication)) r.push_back(f.lubrication);
+      if (sc_.has(Effect::added_mass)) r.push_back(f.added_mass);
+      if (sc_.has(Effect::elastic)) r.push_back(f.contact);
+      if (sc_.has(Effect::gravity)) r.push_back(f.gravity);
+      r.push_back(f.accel);
+    }
+    r.push_back(at_event ? 1.0 : 0.0);
+    rows_.push_back(std::move(r));
+    if (model_.has_target()) {
+      min_gap_ = std::min(min_gap_, ev.gap);
+      max_force_ = std::max(max_force_, std::abs(ev.f[0].contact));
+    }
+  }
+
+  std::vector<std::string> columns_;
+  std::vector<std::vector<double>> rows_;
+  double min_gap_ = INFINITY, max_force_ = 0;
+
+ private:
+  const CollisionModel& model_;
+  const Scene& sc_;
+};
+
+nlohmann::ordered_json or_null(const std::optional<double>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+RunResult simulate(const Scene& sc) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  CollisionModel model(sc);
+  Recorder rec(model, sc);
+  IntegratorSettings st;
+  st.method = sc.solver.integrator;
+  st.rtol = sc.solver.rtol;
+  st.atol = sc.solver.atol;
+  st.output_dt = sc.output.dt;
+  st.max_steps = sc.solver.max_steps;
+  const SolverStats stats = integrate(model, st, rec);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  RunResult res;
+  res.scene = sc;
+  res.columns = rec.columns_;
+  res.rows = std::move(rec.rows_);
+
+  // Columns for the fits.
+  std::vector<double> t, z1, z2;
+  const bool pair = model.n_spheres() == 2;
+  for (const auto& r : res.rows) {
+    t.push_back(r[0]);
+    z1.push_back(r[1]);
+    z2.push_back(pair ? r[4] : 0.0);
+  }
+  const double t_final = t.empty() ? 0.0 : t.back();
+  const double W = sc.measure.window;
+  std::vector<std::string> warnings;
+
+  auto& s = res.summary;
+  s["scene"] = sc.name;
+  s["scene_file"] = sc.path;
+  s["configuration"] = !model.has_target() ? "free sphere" : (model.has_wall() ? "sphere-wall" : "sphere-sphere");
+
+  std::optional<double> e, e_inst, St, St_62, Re, U_G;
+  std::optional<double> u_i1, u_i2, u_r1, u_r2;
+  bool separated = model.t_separation().has_value();
+  if (model.has_target()) {
+    // Approach window ends at the first δ_SS crossing (or closest approach, or the end).
+    const double t_ref = model.t_contact().value_or(model.t_closest().value_or(t_final));
+    if (t_ref - W < 0) warnings.push_back("the approach lasted less than the fit window; the approach fit uses [0, t_contact]");
+    auto f1 = fit_line(t, z1, std::max(0.0, t_ref - W), t_ref);
+    auto f2 = pair ? fit_line(t, z2, std::max(0.0, t_ref - W), t_ref) : std::optional<LineFit>(LineFit{});
+    if (f1 && f2) {
+      u_i1 = f1->slope;
+      u_i2 = f2->slope;
+    }
+    // Post window: after separation, or the last window of the run.
+    const double t_post = separated ? *model.t_separation() : std::max(t_ref, t_final - W);
+    auto g1 = fit_line(t, z1, t_post, t_post + W);
+    auto g2 = pair ? fit_line(t, z2, t_post, t_post + W) : std::optional<LineFit>(LineFit{});
+    if (g1 && g2) {
+      u_r1 = g1->slope;
+      u_r2 = g2->slope;
+    }
+    if (separated && t_final < *model.t_separation() + W * (1 - 1e-9))
+      warnings.push_back("t_end cut the rebound fit window short");
+    if (u_i1 && u_r1) {
+      if (separated) e = restitution(*u_i1, *u_i2, *u_r1, *u_r2);
+      else {
+        e = 0.0;  // never separated
+        if (pair) U_G = 0.5 * (*u_r1 + *u_r2);
+      }
+      if (sc.fluid) {
+        const double u_rel = *u_i1 - *u_i2;
+        St_62 = stokes_number(model.m_star(), u_rel, sc.fluid->viscosity, model.a_star());
+        St = pair ? *St_62 / 2 : *St_62;
+        Re = sc.fluid->density * 2 * model.radius(0) * u_rel / sc.fluid->viscosity;
+      }
+    }
+    if (model.u_rel_instant_in()) {
+      if (model.u_rel_instant_out()) e_inst = -*model.u_rel_instant_out() / *model.u_rel_instant_in();
+      else if (!separated) e_inst = 0.0;
+    }
+  }
+
+  s["e"] = or_null(e);
+  s["e_instant"] = or_null(e_inst);
+  s["e_instant_gap_m"] = sc.measure.instant_gap * 2 * model.radius(0);
+  s["St"] = or_null(St);
+  if (pair) {
+    s["St_convention"] = "seed Table 6.1: half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
+    s["St_B_eq_6_2"] = or_null(St_62);
+  } else {
+    s["St_convention"] = "m U / (6 pi mu a^2)";
+  }
+  s["Re"] = or_null(Re);
+  s["separated"] = separated;
+  s["contacts"] = model.contacts();
+  s["velocities_m_s"] = {{"U_i1", or_null(u_i1)}, {"U_i2", or_null(u_i2)}, {"U_r1", or_null(u_r1)}, {"U_r2", or_null(u_r2)}};
+  s["fit_window_s"] = W;
+  s["min_gap_m"] = model.has_target() ? nlohmann::ordered_json(rec.min_gap_) : nlohmann::ordered_json(nullptr);
+  s["max_contact_force_N"] = rec.max_force_;
+  s["group_velocity_m_s"] = or_null(U_G);
+  if (model.has_target() && sc.has(Effect::elastic)) {
+    s["contact"] = {{"t_contact_s", or_null(model.t_contact())},
+                    {"t_separation_s", or_null(model.t_separation())},
+                    {"impact_speed_m_s", model.t_contact() ? nlohmann::ordered_json(model.impact_speed()) : nullptr},
+                    {"W_o_N", model.t_contact() ? nlohmann::ordered_json(model.W_o()) : nullptr},
+                    {"beta", model.t_contact() ? nlohmann::ordered_json(model.beta()) : nullptr},
+                    {"e_dry", model.e_dry()},
+                    {"delta_ss_m", model.delta_ss_m()}};
+  }
+  nlohmann::ordered_json eff = nlohmann::ordered_json::array();
+  for (Effect x : sc.effects) eff.push_back(to_string(x));
+  s["effects"] = eff;
+  nlohmann::ordered_json mod = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : model.choices()) mod[k] = v;
+  s["model"] = mod;
+  nlohmann::ordered_json sol = {{"integrator", st.method}, {"rtol", st.rtol}, {"atol", st.atol},
+                                {"absolute_tolerances", model.absolute_tolerances(st.atol)},
+                                {"state", model.component_names()}, {"max_step_s", model.max_step()},
+                                {"t_final_s", t_final}};
+  for (const auto& [k, v] : stats.as_map()) sol[k] = v;
+  s["solver"] = sol;
+  nlohmann::ordered_json ev = nlohmann::ordered_json::array();
+  for (const auto& x : model.events()) ev.push_back({{"t", x.t}, {"event", x.name}, {"gap_m", x.gap}, {"u_rel_m_s", x.u_rel}});
+  s["events"] = ev;
+  s["warnings"] = warnings;
+  s["wall_time_s"] = wall;
+  return res;
+}
+
+void write_outputs(const RunResult& r, const std::filesystem::path& dir) {
+  std::ostringstream csv;
+  csv << std::setprecision(12);
+  for (std::size_t i = 0; i < r.columns.size(); ++i) csv << (i ? "," : "") << r.columns[i];
+  csv << "\n";
+  for (const auto& row : r.rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) csv << (i ? "," : "") << row[i];
+    csv << "\n";
+  }
+  write_file_atomic(dir / "trajectory.csv", csv.str());
+  write_file_atomic(dir / "summary.json", r.summary.dump(2) + "\n");
+}
+
+std::string human_summary(const RunResult& r) {
+  const auto& s = r.summary;
+  std::ostringstream os;
+  auto num = [](const nlohmann::ordered_json& j, int prec = 4) {
+    if (j.is_null()) return std::string("n/a");
+    std::ostringstream o;
+    o << std::setprecision(prec) << j.get<double>();
+    return o.str();
+  };
+  os << "scene " << s["scene"].get<std::string>() << " (" << s["configuration"].get<std::string>() << ")\n";
+  os << "  e = " << num(s["e"]) << "   e_instant = " << num(s["e_instant"]) << "   St = " << num(s["St"])
+     << "   Re = " << num(s["Re"]) << "\n";
+  if (!s["group_velocity_m_s"].is_null()) os << "  group velocity = " << num(s["group_velocity_m_s"]) << " m/s (no separation)\n";
+  if (!s["min_gap_m"].is_null()) os << "  min gap = " << num(s["min_gap_m"]) << " m, max contact force = " << num(s["max_contact_force_N"]) << " N\n";
+  std::string eff;
+  for (const auto& x : s["effects"]) eff += (eff.empty() ? "" : ", ") + x.get<std::string>();
+  os << "  effects: " << eff << "\n";
+  const auto& sol = s["solver"];
+  os << "  " << sol["integrator"].get<std::string>() << " rtol " << sol["rtol"].get<double>() << ": "
+     << sol["steps"].get<long>() << " steps, " << sol["rhs_evals"].get<long>() << " rhs evals, "
+     << sol["root_events"].get<long>() << " events, " << sol["error_test_fails"].get<long>() << " error-test fails; "
+     << std::setprecision(3) << s["wall_time_s"].get<double>() * 1e3 << " ms\n";
+  for (const auto& w : s["warnings"]) os << "  warning: " << w.get<std::string>() << "\n";
+  return os.str();
+}
+
+}  // namespace imcol

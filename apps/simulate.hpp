@@ -1,0 +1,28 @@
+#pragma once
+// One collision run: build the model the scene calls for, integrate, measure, report.
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace imcol {
+
+struct RunResult {
+  Scene scene;
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> rows;  // trajectory samples
+  nlohmann::ordered_json summary;
+};
+
+/// Runs one scene. Throws InputError (bad scene), SolverError (integration failed).
+RunResult simulate(const Scene& scene);
+
+/// DIR/trajectory.csv and DIR/summary.json, each written completely or not at all.
+void write_outputs(const RunResult& r, const std::filesystem::path& dir);
+
+/// A short human-readable summary.
+std::string human_summary(const RunResult& r);
+
+}  // namespace imcol

@@ -1,0 +1,380 @@
+#include "contact/collision_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace imcol::contact {
+
+const char* to_string(Phase p) {
+  switch (p) {
+    case Phase::approach: return "approach";
+    case Phase::loading: return "loading";
+    case Phase::unloading: return "unloading";
+    case Phase::separated: return "separated";
+  }
+  return "?";
+}
+
+namespace {
+double sphere_volume(double a) { return 4.0 / 3.0 * pi * a * a * a; }
+}  // namespace
+
+CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
+  target_ = sc.two_spheres() ? Target::sphere : (sc.wall ? Target::wall : Target::none);
+  n_spheres_ = sc.spheres.size();
+  if (sc.fluid) {
+    mu_ = sc.fluid->viscosity;
+    rho_f_ = sc.fluid->density;
+  }
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    a_[m] = 0.5 * sc.spheres[m].diameter;
+    mp_[m] = sc.spheres[m].density * sphere_volume(a_[m]);
+    mf_[m] = rho_f_ * sphere_volume(a_[m]);
+  }
+  D_ = 2 * a_[0];
+  const auto& s1 = sc.spheres[0];
+  const double inf = std::numeric_limits<double>::infinity();
+  if (target_ == Target::sphere) {
+    const auto& s2 = sc.spheres[1];
+    a_star_ = reduced(a_[0], a_[1]);
+    m_star_ = reduced(mp_[0], mp_[1]);
+    E_star_ = effective_modulus(s1.youngs_modulus, s1.poisson_ratio, s2.youngs_modulus, s2.poisson_ratio);
+    c_log_ = lubrication_log_coefficient(a_[0], a_[1]);
+  } else {
+    a_star_ = a_[0];
+    m_star_ = mp_[0];
+    if (sc.wall) E_star_ = effective_modulus(s1.youngs_modulus, s1.poisson_ratio, sc.wall->youngs_modulus, sc.wall->poisson_ratio);
+    c_log_ = lubrication_log_coefficient(a_[0], inf);
+  }
+  // Dry restitution of the pair (choice): the scene's contact.e_dry, else the smaller of the two materials' values.
+  if (sc.contact.e_dry >= 0) {
+    e_dry_ = sc.contact.e_dry;
+  } else {
+    double e = 1.0;
+    bool any = false;
+    auto take = [&](const std::optional<double>& v) { if (v) { e = any ? std::min(e, *v) : *v; any = true; } };
+    take(s1.e_dry);
+    if (target_ == Target::sphere) take(sc.spheres[1].e_dry);
+    if (sc.wall) take(sc.wall->e_dry);
+    e_dry_ = e;
+  }
+  delta_ss_m_ = sc.contact.delta_ss * D_;
+  instant_gap_m_ = sc.measure.instant_gap * D_;
+  h_min_ = sc.lubrication.cutoff * D_;
+  h_c_ = sc.lubrication.h_c * a_star_;
+  dw_floor_ = sc.added_mass.dw_floor > 0 ? sc.added_mass.dw_floor : delta_ss_m_ / a_star_;
+  drag_law_ = drag_law_from_string(sc.drag.law);
+  brenner_ = sc.lubrication.model == "brenner";
+
+  u_ref_ = std::max({std::abs(s1.velocity), n_spheres_ > 1 ? std::abs(sc.spheres[1].velocity) : 0.0, 1e-3});
+  // Cap the step so that the contact zone cannot be crossed (in and out) inside one step.
+  const double u_scale = std::max(u_ref_, 1e-3);
+  max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step
+                                     : (has_target() ? 0.25 * delta_ss_m_ / u_scale : sc.solver.t_end / 100);
+  stop_time_ = sc.solver.t_end;
+  arm();
+}
+
+std::vector<std::string> CollisionModel::component_names() const {
+  if (target_ == Target::none) return {"z1", "u1"};
+  if (target_ == Target::wall) return {"gap", "u1"};
+  return {"gap", "u1", "z2", "u2"};
+}
+
+std::vector<double> CollisionModel::absolute_tolerances(double atol) const {
+  std::vector<double> t;
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    t.push_back(atol * D_);
+    t.push_back(atol * u_ref_);
+  }
+  return t;
+}
+
+void CollisionModel::initial_state(std::span<double> y) const {
+  const auto& s = scene_.spheres;
+  y[1] = s[0].velocity;
+  if (target_ == Target::none) y[0] = s[0].position;
+  else if (target_ == Target::wall) y[0] = scene_.wall->position - s[0].position - a_[0];
+  else {
+    y[0] = s[1].position - s[0].position - a_[0] - a_[1];
+    y[2] = s[1].position;
+    y[3] = s[1].velocity;
+  }
+}
+
+double CollisionModel::gap_of(std::span<const double> y) const { return target_ == Target::none ? 0.0 : y[0]; }
+
+void CollisionModel::kinematics(std::span<const double> y, Evaluation& ev) const {
+  ev.u[0] = y[1];
+  if (target_ == Target::none) {
+    ev.z[0] = y[0];
+    ev.gap = std::numeric_limits<double>::infinity();
+    ev.u_rel = 0;
+    return;
+  }
+  ev.gap = y[0];
+  if (target_ == Target::wall) {
+    ev.z[0] = scene_.wall->position - a_[0] - y[0];
+    ev.u_rel = y[1];
+  } else {
+    ev.z[1] = y[2];
+    ev.u[1] = y[3];
+    ev.z[0] = y[2] - a_[0] - a_[1] - y[0];
+    ev.u_rel = y[1] - y[3];
+  }
+}
+
+double CollisionModel::contact_force(double gap) const {
+  if (phase_ == Phase::approach || W_now_ == 0) return 0.0;
+  return factor_ * W_now_ * ramp_F(gap / delta_ss_m_, beta_now_);
+}
+
+void CollisionModel::forces(Evaluation& ev) const {
+  const auto& sc = scene_;
+  const bool pair = target_ == Target::sphere;
+  const double six_pi_mu = 6 * pi * mu_;
+  // Added-mass wall function at δ** = h/a*; dW/dδ is bounded below dw_floor (it diverges like ln δ).
+  double W = 0, dW = 0;
+  const bool am = sc.has(Effect::added_mass) && has_target();
+  if (am) {
+    const double d = std::max(ev.gap, 0.0) / a_star_;
+    W = added_mass_W(d);
+    dW = added_mass_dW(std::max(d, dw_floor_));
+  }
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    auto& f = ev.f[m];
+    f = SphereForces{};
+    if (sc.has(Effect::drag)) {
+      const double Re = rho_f_ * 2 * a_[m] * std::abs(ev.u[m]) / mu_;
+      f.drag = -six_pi_mu * a_[m] * ev.u[m] * drag_factor(drag_law_, Re);
+    }
+    if (sc.has(Effect::gravity)) f.gravity = (mp_[m] - mf_[m]) * sc.gravity;
+    ev.m_eff[m] = mp_[m];
+    if (sc.has(Effect::added_mass)) {
+      const double W_self = has_target() ? W : 0.0;
+      ev.m_eff[m] += 0.5 * mf_[m] * (1 + 3 * W_self);
+      if (am) f.added_mass = 0.75 * mf_[m] * ev.u[m] * (ev.u_rel / a_star_) * dW;  // velocity part (6.8)
+    }
+  }
+  if (sc.has(Effect::lubrication)) {
+    const double h = regularised_gap(ev.gap, h_min_);
+    const double R = brenner_ ? a_[0] * (brenner_lambda(h / a_[0]) - 1.0) : asymptotic_resistance(h, a_star_, c_log_, h_c_);
+    const double f = -six_pi_mu * R * ev.u_rel;
+    ev.f[0].lubrication = f;
+    if (pair) ev.f[1].lubrication = -f;
+  }
+  if (sc.has(Effect::elastic)) {
+    const double f = contact_force(ev.gap);
+    ev.f[0].contact = -f;
+    if (pair) ev.f[1].contact = f;
+  }
+}
+
+Evaluation CollisionModel::evaluate(double, std::span<const double> y) const {
+  Evaluation ev;
+  kinematics(y, ev);
+  forces(ev);
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    auto& f = ev.f[m];
+    const double rest = f.drag + f.lubrication + f.added_mass + f.contact + f.gravity;
+    f.accel = rest / ev.m_eff[m];
+    // Report the full added-mass force, including its acceleration part −½ m_f (1+3W) dU/dt.
+    f.added_mass -= (ev.m_eff[m] - mp_[m]) * f.accel;
+  }
+  return ev;
+}
+
+void CollisionModel::rhs(double t, std::span<const double> y, std::span<double> ydot) {
+  Evaluation ev;
+  kinematics(y, ev);
+  forces(ev);
+  (void)t;
+  std::array<double, 2> acc{};
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    const auto& f = ev.f[m];
+    acc[m] = (f.drag + f.lubrication + f.added_mass + f.contact + f.gravity) / ev.m_eff[m];
+  }
+  if (target_ == Target::none) ydot[0] = ev.u[0];
+  else ydot[0] = -ev.u_rel;
+  ydot[1] = acc[0];
+  if (target_ == Target::sphere) {
+    ydot[2] = ev.u[1];
+    ydot[3] = acc[1];
+  }
+}
+
+void CollisionModel::mass_and_forcing(double, std::span<const double> y, std::span<double> m, std::span<double> g) {
+  Evaluation ev;
+  kinematics(y, ev);
+  forces(ev);
+  m[0] = 1.0;
+  g[0] = target_ == Target::none ? ev.u[0] : -ev.u_rel;
+  m[1] = ev.m_eff[0];
+  const auto& f0 = ev.f[0];
+  g[1] = f0.drag + f0.lubrication + f0.added_mass + f0.contact + f0.gravity;
+  if (target_ == Target::sphere) {
+    m[2] = 1.0;
+    g[2] = ev.u[1];
+    m[3] = ev.m_eff[1];
+    const auto& f1 = ev.f[1];
+    g[3] = f1.drag + f1.lubrication + f1.added_mass + f1.contact + f1.gravity;
+  }
+}
+
+// ---------- Events (MODEL.md §3) ----------
+void CollisionModel::arm() {
+  armed_.clear();
+  armed_kind_.clear();
+  if (!has_target()) return;
+  auto add = [&](RootKind k, const char* name, int dir) {
+    armed_.push_back({name, dir});
+    armed_kind_.push_back(k);
+  };
+  const bool elastic = scene_.has(Effect::elastic);
+  const bool before_first_contact = !t_contact_.has_value();
+  switch (phase_) {
+    case Phase::approach:
+    case Phase::separated:
+      if (elastic) add(RootKind::contact_in, "gap=delta_ss (in)", -1);
+      if (before_first_contact && closest_armed_) add(RootKind::closest, "u_rel=0 (closest approach)", -1);
+      break;
+    case Phase::loading:
+      add(RootKind::unload, "u_rel=0 (loading->unloading)", -1);
+      add(RootKind::touch, "gap=0", -1);
+      add(RootKind::contact_out, "gap=delta_ss (out)", +1);
+      break;
+    case Phase::unloading:
+      add(RootKind::contact_out, "gap=delta_ss (out)", +1);
+      break;
+  }
+  if (before_first_contact && instant_in_armed_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
+  if (t_contact_ && !t_separation_ && !u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
+  if (scene_.has(Effect::lubrication) && !brenner_) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
+}
+
+void CollisionModel::root_values(double, std::span<const double> y, std::span<double> g) {
+  const double gap = gap_of(y);
+  const double u_rel = target_ == Target::wall ? y[1] : (target_ == Target::sphere ? y[1] - y[3] : 0.0);
+  for (std::size_t i = 0; i < armed_kind_.size(); ++i) {
+    switch (armed_kind_[i]) {
+      case RootKind::contact_in:
+      case RootKind::contact_out: g[i] = gap - delta_ss_m_; break;
+      case RootKind::touch: g[i] = gap; break;
+      case RootKind::unload:
+      case RootKind::closest: g[i] = u_rel; break;
+      case RootKind::instant_in:
+      case RootKind::instant_out: g[i] = gap - instant_gap_m_; break;
+      case RootKind::lub_edge: g[i] = gap - h_c_; break;
+    }
+  }
+}
+
+void CollisionModel::record(double t, const std::string& name, std::span<const double> y) {
+  Evaluation ev;
+  kinematics(y, ev);
+  events_.push_back({t, name, ev.gap, ev.u_rel});
+}
+
+void CollisionModel::freeze_contact(double t, double u_rel) {
+  // W_o and β frozen at the relative speed U_c of the δ_SS crossing (MODEL.md §2.4).
+  const double eps_max = hertz_max_indentation(m_star_, u_rel, E_star_, a_star_);
+  W_now_ = hertz_force(E_star_, a_star_, eps_max);
+  beta_now_ = scene_.contact.beta > 0 ? scene_.contact.beta : energy_consistent_beta(delta_ss_m_, eps_max);
+  factor_ = 1.0;
+  if (contacts_ == 0) {
+    W_o_ = W_now_;
+    beta_ = beta_now_;
+    U_c_ = u_rel;
+    t_contact_ = t;
+  }
+  ++contacts_;
+}
+
+void CollisionModel::handle(RootKind kind, const std::string& name, double t, std::span<const double> y) {
+  record(t, name, y);
+  Evaluation ev;
+  kinematics(y, ev);
+  const double window = scene_.measure.window;
+  switch (kind) {
+    case RootKind::contact_in:
+      freeze_contact(t, ev.u_rel);
+      phase_ = Phase::loading;
+      if (t_closest_ && !t_separation_) stop_time_ = scene_.solver.t_end;  // a contact after all
+      break;
+    case RootKind::unload:
+      factor_ = e_dry_ * e_dry_;
+      phase_ = Phase::unloading;
+      break;
+    case RootKind::contact_out:
+      phase_ = Phase::separated;
+      if (!t_separation_) {
+        t_separation_ = t;
+        stop_time_ = std::min(stop_time_, t + window);
+      }
+      break;
+    case RootKind::closest:
+      closest_armed_ = false;
+      t_closest_ = t;
+      stop_time_ = std::min(stop_time_, t + window);
+      break;
+    case RootKind::instant_in:
+      instant_in_armed_ = false;
+      u_in_ = ev.u_rel;
+      break;
+    case RootKind::instant_out:
+      u_out_ = ev.u_rel;
+      break;
+    case RootKind::touch:
+    case RootKind::lub_edge:
+      break;
+  }
+}
+
+EventAction CollisionModel::on_roots(std::span<const std::size_t> found, double t, std::span<double> y) {
+  // Handle in a fixed order so that coincident roots (e.g. instant_gap == delta_ss) are deterministic.
+  const auto kinds = armed_kind_;
+  const auto specs = armed_;
+  bool changed = false;
+  for (std::size_t i : found) {
+    handle(kinds.at(i), specs.at(i).name, t, y);
+    changed = changed || kinds[i] != RootKind::touch;
+  }
+  if (t >= stop_time_) return EventAction::stop;
+  if (!changed) return EventAction::proceed;
+  // The force law or the armed roots changed: restart the integrator here.
+  arm();
+  return EventAction::reinit;
+}
+
+std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const {
+  std::vector<std::pair<std::string, std::string>> c;
+  auto num = [](double v) {
+    std::ostringstream os;
+    os.precision(6);
+    os << v;
+    return os.str();
+  };
+  const auto& sc = scene_;
+  if (sc.has(Effect::drag)) c.push_back({"drag.law", sc.drag.law});
+  if (sc.has(Effect::lubrication)) {
+    c.push_back({"lubrication.model", sc.lubrication.model});
+    c.push_back({"lubrication.cutoff_m", num(h_min_)});
+    if (!brenner_) c.push_back({"lubrication.h_c_m", num(h_c_)});
+  }
+  if (sc.has(Effect::added_mass)) c.push_back({"added_mass.dW_floor_delta_star", num(dw_floor_)});
+  if (sc.has(Effect::elastic)) {
+    c.push_back({"contact.ramp", "F(x) = (exp(beta(1-x))-1)/(exp(beta)-1)"});
+    c.push_back({"contact.beta", sc.contact.beta > 0 ? num(sc.contact.beta) : "energy-consistent"});
+    c.push_back({"contact.dissipation", "e_dry^2 on unloading"});
+    c.push_back({"contact.e_dry", num(e_dry_)});
+    c.push_back({"contact.delta_ss_m", num(delta_ss_m_)});
+  }
+  c.push_back({"blend.H", "1 (reduced-order: no f_SIM)"});
+  return c;
+}
+
+}  // namespace imcol::contact

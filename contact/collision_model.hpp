@@ -1,0 +1,129 @@
+#pragma once
+// Reduced-order model of one head-on collision (MODEL.md §2, §3 with H ≡ 1, no f_SIM):
+//   m_p,m dU_m/dt = f_D,m + f_lub,m + f_AM,m + f_SS,m + (m_p,m − m_f,m) g        (seed 6.4, 6.10)
+// The added-mass acceleration term is moved to the left: m_eff,m = m_p,m + ½ m_f,m (1 + 3W).
+// Only the effects the scene lists are built.
+//
+// State (SI): wall   [gap, u1]; pair [gap, u1, z2, u2]; free sphere [z1, u1].
+// The gap, not z1, is a state so that the error control acts on it relative to its own size:
+// a contact happens over micrometres while z1 is centimetres.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/formulas.hpp"
+#include "core/scene.hpp"
+#include "core/system.hpp"
+
+namespace imcol::contact {
+
+struct SphereForces {
+  double drag = 0, lubrication = 0, added_mass = 0, contact = 0, gravity = 0;  // N along z
+  double accel = 0;  // m/s^2
+};
+
+struct Evaluation {
+  double gap = 0;    // m
+  double u_rel = 0;  // m/s, U1 − U2 (> 0 approaching)
+  std::array<double, 2> z{}, u{}, m_eff{};
+  std::array<SphereForces, 2> f{};
+};
+
+/// A discrete event in the run, for the summary.
+struct EventRecord {
+  double t;
+  std::string name;
+  double gap;
+  double u_rel;
+};
+
+enum class Phase { approach, loading, unloading, separated };
+const char* to_string(Phase p);
+
+class CollisionModel : public DynamicalSystem {
+ public:
+  explicit CollisionModel(const Scene& scene);
+
+  // ---- DynamicalSystem ----
+  std::size_t size() const override { return n_spheres_ * 2; }
+  std::vector<std::string> component_names() const override;
+  std::vector<double> absolute_tolerances(double atol) const override;
+  void initial_state(std::span<double> y) const override;
+  void rhs(double t, std::span<const double> y, std::span<double> ydot) override;
+  void mass_and_forcing(double t, std::span<const double> y, std::span<double> m, std::span<double> g) override;
+  std::vector<RootSpec> roots() const override { return armed_; }
+  void root_values(double t, std::span<const double> y, std::span<double> g) override;
+  EventAction on_roots(std::span<const std::size_t> found, double t, std::span<double> y) override;
+  double stop_time() const override { return stop_time_; }
+  double max_step() const override { return max_step_; }
+
+  // ---- Physics, for reporting ----
+  Evaluation evaluate(double t, std::span<const double> y) const;
+  std::size_t n_spheres() const { return n_spheres_; }
+  bool has_target() const { return target_ != Target::none; }
+  bool has_wall() const { return target_ == Target::wall; }
+
+  // Pair properties
+  double a_star() const { return a_star_; }
+  double m_star() const { return m_star_; }
+  double E_star() const { return E_star_; }
+  double e_dry() const { return e_dry_; }
+  double delta_ss_m() const { return delta_ss_m_; }
+  double radius(int m) const { return a_[m]; }
+  double mass(int m) const { return mp_[m]; }
+  double fluid_mass(int m) const { return mf_[m]; }
+
+  // What happened
+  Phase phase() const { return phase_; }
+  const std::vector<EventRecord>& events() const { return events_; }
+  int contacts() const { return contacts_; }
+  std::optional<double> t_contact() const { return t_contact_; }       // first δ_SS crossing inward
+  std::optional<double> t_separation() const { return t_separation_; } // first δ_SS crossing outward after contact
+  std::optional<double> t_closest() const { return t_closest_; }       // U_rel = 0 without contact
+  std::optional<double> u_rel_instant_in() const { return u_in_; }
+  std::optional<double> u_rel_instant_out() const { return u_out_; }
+  double W_o() const { return W_o_; }             // first contact's frozen peak force, N
+  double impact_speed() const { return U_c_; }    // U_rel at the first δ_SS crossing, m/s
+  double beta() const { return beta_; }
+  double max_contact_force() const { return max_contact_force_; }
+  /// Model choices that ran, name → value.
+  std::vector<std::pair<std::string, std::string>> choices() const;
+
+ private:
+  enum class Target { none, wall, sphere };
+  enum class RootKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge };
+
+  void arm();
+  double gap_of(std::span<const double> y) const;
+  void kinematics(std::span<const double> y, Evaluation& ev) const;
+  /// Forces without the added-mass acceleration term; fills ev.f and ev.m_eff.
+  void forces(Evaluation& ev) const;
+  double contact_force(double gap) const;  // magnitude, pushes the pair apart
+  void freeze_contact(double t, double u_rel);
+  void handle(RootKind kind, const std::string& name, double t, std::span<const double> y);
+  void record(double t, const std::string& name, std::span<const double> y);
+
+  const Scene scene_;
+  Target target_;
+  std::size_t n_spheres_;
+  std::array<double, 2> a_{}, mp_{}, mf_{};
+  double D_ = 0, a_star_ = 0, m_star_ = 0, E_star_ = 0, e_dry_ = 1, c_log_ = 0;
+  double mu_ = 0, rho_f_ = 0;
+  double delta_ss_m_ = 0, instant_gap_m_ = 0, h_min_ = 0, h_c_ = 0, dw_floor_ = 0, u_ref_ = 0;
+  DragLaw drag_law_ = DragLaw::stokes;
+  bool brenner_ = false;
+
+  Phase phase_ = Phase::approach;
+  double W_o_ = 0, beta_ = 0, U_c_ = 0, W_now_ = 0, beta_now_ = 0, factor_ = 1;
+  double max_contact_force_ = 0;
+  int contacts_ = 0;
+  bool closest_armed_ = true, instant_in_armed_ = true;
+  std::optional<double> t_contact_, t_separation_, t_closest_, u_in_, u_out_;
+  std::vector<RootSpec> armed_;
+  std::vector<RootKind> armed_kind_;
+  std::vector<EventRecord> events_;
+  double stop_time_ = 0, max_step_ = 0;
+};
+
+}  // namespace imcol::contact

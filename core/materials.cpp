@@ -1,0 +1,79 @@
+#include "core/materials.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "core/errors.hpp"
+
+namespace imcol {
+
+namespace {
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(cell);
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+double number(const std::string& cell, const std::string& where, const std::string& col) {
+  try {
+    std::size_t used = 0;
+    double v = std::stod(cell, &used);
+    if (used != cell.size()) throw std::invalid_argument(cell);
+    return v;
+  } catch (const std::exception&) {
+    throw InputError(where, col, "not a number: '" + cell + "'");
+  }
+}
+}  // namespace
+
+MaterialTable MaterialTable::load(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open the material table");
+  MaterialTable table;
+  std::string line;
+  int lineno = 0;
+  bool header_seen = false;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (line.empty() || line[0] == '#') continue;
+    if (!header_seen) {
+      header_seen = true;
+      if (line.rfind("material,", 0) != 0) throw InputError(path + ":" + std::to_string(lineno), "", "expected a header starting with 'material,'");
+      continue;
+    }
+    const std::string where = path + ":" + std::to_string(lineno);
+    auto c = split(line);
+    if (c.size() < 4) throw InputError(where, "", "expected at least 4 columns");
+    Material m;
+    m.name = c[0];
+    m.density = number(c[1], where, "density_kg_m3");
+    m.youngs_modulus = number(c[2], where, "youngs_modulus_Pa");
+    m.poisson_ratio = number(c[3], where, "poisson_ratio");
+    if (c.size() > 4 && !c[4].empty()) m.e_dry = number(c[4], where, "e_dry");
+    if (c.size() > 5 && !c[5].empty()) m.roughness = number(c[5], where, "roughness_m");
+    table.by_name_[m.name] = m;
+  }
+  return table;
+}
+
+const MaterialTable& MaterialTable::builtin() {
+  static const MaterialTable t = load(std::string(IMCOL_DATA_DIR) + "/materials.csv");
+  return t;
+}
+
+const Material* MaterialTable::find(const std::string& name) const {
+  auto it = by_name_.find(name);
+  return it == by_name_.end() ? nullptr : &it->second;
+}
+
+std::string MaterialTable::names() const {
+  std::string s;
+  for (const auto& [k, v] : by_name_) s += (s.empty() ? "" : ", ") + k;
+  return s;
+}
+
+}  // namespace imcol

@@ -1,0 +1,33 @@
+#pragma once
+// Material database: data/materials.csv (SI units: kg/m^3, Pa, -, -, m).
+#include <map>
+#include <optional>
+#include <string>
+
+namespace imcol {
+
+struct Material {
+  std::string name;
+  double density = 0;          // kg/m^3
+  double youngs_modulus = 0;   // Pa
+  double poisson_ratio = 0;    // -
+  std::optional<double> e_dry; // dry restitution against a hard target
+  std::optional<double> roughness;  // m
+};
+
+class MaterialTable {
+ public:
+  /// Reads a CSV with header material,density_kg_m3,youngs_modulus_Pa,poisson_ratio,e_dry,roughness_m.
+  /// Lines starting with '#' are comments. Throws InputError naming file and line.
+  static MaterialTable load(const std::string& path);
+  /// The table shipped in data/materials.csv.
+  static const MaterialTable& builtin();
+
+  const Material* find(const std::string& name) const;
+  std::string names() const;  // comma-separated, for error messages
+
+ private:
+  std::map<std::string, Material> by_name_;
+};
+
+}  // namespace imcol

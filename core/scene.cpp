@@ -1,0 +1,412 @@
+#include "core/scene.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "core/materials.hpp"
+
+namespace imcol {
+
+const char* to_string(Effect e) {
+  switch (e) {
+    case Effect::drag: return "drag";
+    case Effect::lubrication: return "lubrication";
+    case Effect::added_mass: return "added_mass";
+    case Effect::elastic: return "elastic";
+    case Effect::gravity: return "gravity";
+    case Effect::history: return "history";
+    case Effect::flow: return "flow";
+  }
+  return "?";
+}
+
+std::optional<Effect> effect_from_string(const std::string& s) {
+  for (Effect e : {Effect::drag, Effect::lubrication, Effect::added_mass, Effect::elastic, Effect::gravity,
+                   Effect::history, Effect::flow})
+    if (s == to_string(e)) return e;
+  return std::nullopt;
+}
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+/// Reads one TOML table, remembering which keys were used so that unknown keys can be reported.
+class Reader {
+ public:
+  Reader(const toml::table& t, std::string prefix, const std::string& file)
+      : t_(t), prefix_(std::move(prefix)), file_(file) {}
+
+  std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+
+  std::string where(const toml::node* n) const {
+    const toml::node* at = n ? n : &t_;
+    auto line = at->source().begin.line;
+    if (line == 0) return n ? "--set" : file_;
+    return file_ + ":" + std::to_string(line);
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw InputError(where(t_.get(key)), full(key), problem);
+  }
+
+  const toml::node* node(const std::string& key) {
+    used_.insert(key);
+    return t_.get(key);
+  }
+  bool has(const std::string& key) const { return t_.contains(key); }
+
+  std::optional<double> number(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (auto v = n->value<double>(); v && n->is_number()) {
+      if (!std::isfinite(*v)) fail(key, "must be a finite number");
+      return *v;
+    }
+    fail(key, "must be a number");
+  }
+  double number(const std::string& key, double fallback) { return number(key).value_or(fallback); }
+  double required_number(const std::string& key) {
+    auto v = number(key);
+    if (!v) throw InputError(where(nullptr), full(key), "missing (required)");
+    return *v;
+  }
+  std::optional<std::string> string(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (auto v = n->value<std::string>(); v && n->is_string()) return *v;
+    fail(key, "must be a string");
+  }
+  std::optional<long> integer(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (n->is_integer()) return static_cast<long>(*n->value<int64_t>());
+    fail(key, "must be an integer");
+  }
+  const toml::table* table(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(key, "must be a table");
+    return n->as_table();
+  }
+  void finish() const {
+    for (auto&& [k, v] : t_) {
+      std::string key(k.str());
+      if (!used_.count(key)) throw InputError(where(&v), full(key), "unknown key");
+    }
+  }
+
+  // Checks
+  void positive(const std::string& key, double v) const {
+    if (!(v > 0)) fail(key, "must be > 0 (got " + fmt(v) + ")");
+  }
+  void in_range(const std::string& key, double v, double lo, double hi, bool lo_open, bool hi_open) const {
+    bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+    if (!ok)
+      fail(key, "must be in " + std::string(lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]") +
+                    " (got " + fmt(v) + ")");
+  }
+  void one_of(const std::string& key, const std::string& v, std::initializer_list<const char*> options) const {
+    std::string list;
+    for (auto o : options) {
+      if (v == o) return;
+      list += (list.empty() ? "" : " | ") + std::string(o);
+    }
+    fail(key, "unknown choice '" + v + "' (expected " + list + ")");
+  }
+
+ private:
+  const toml::table& t_;
+  std::string prefix_;
+  const std::string& file_;
+  std::set<std::string> used_;
+};
+
+/// Material properties: either `material = "name"` or inline values; inline values override the material.
+void read_solid(Reader& r, Solid& s, bool need_density) {
+  if (auto name = r.string("material")) {
+    const Material* m = MaterialTable::builtin().find(*name);
+    if (!m) r.fail("material", "unknown material '" + *name + "' (known: " + MaterialTable::builtin().names() + ")");
+    s.material = *name;
+    s.density = m->density;
+    s.youngs_modulus = m->youngs_modulus;
+    s.poisson_ratio = m->poisson_ratio;
+    s.e_dry = m->e_dry;
+  }
+  const bool have_material = !s.material.empty();
+  auto prop = [&](const char* key, double& field) {
+    if (auto v = r.number(key)) field = *v;
+    else if (!have_material) r.fail(key, "missing (give `material` or inline properties)");
+  };
+  if (need_density) prop("density", s.density);
+  prop("youngs_modulus", s.youngs_modulus);
+  prop("poisson_ratio", s.poisson_ratio);
+  if (auto v = r.number("e_dry")) s.e_dry = *v;
+  if (need_density) r.positive("density", s.density);
+  r.positive("youngs_modulus", s.youngs_modulus);
+  r.in_range("poisson_ratio", s.poisson_ratio, -1.0, 0.5, true, false);
+  if (s.e_dry) r.in_range("e_dry", *s.e_dry, 0.0, 1.0, false, false);
+}
+
+toml::array* array_at(toml::node* n) { return n ? n->as_array() : nullptr; }
+
+void apply_override(toml::table& root, const Override& ov) {
+  // Split "a.b[1].c" or "a.b.1.c" into segments.
+  std::vector<std::string> seg;
+  std::string cur;
+  for (char ch : ov.key) {
+    if (ch == '.' || ch == '[' || ch == ']') {
+      if (!cur.empty()) seg.push_back(cur);
+      cur.clear();
+    } else {
+      cur += ch;
+    }
+  }
+  if (!cur.empty()) seg.push_back(cur);
+  if (seg.empty()) throw InputError("--set", ov.key, "empty key");
+
+  toml::table parsed;
+  try {
+    parsed = toml::parse("v = " + ov.value);
+  } catch (const toml::parse_error&) {
+    parsed = toml::table{{"v", ov.value}};  // a bare word is a string
+  }
+
+  toml::node* here = &root;
+  for (std::size_t i = 0; i + 1 < seg.size(); ++i) {
+    const std::string& s = seg[i];
+    if (auto* arr = array_at(here)) {
+      char* end = nullptr;
+      long idx = std::strtol(s.c_str(), &end, 10);
+      if (*end != '\0' || idx < 0 || static_cast<std::size_t>(idx) >= arr->size())
+        throw InputError("--set", ov.key, "no element '" + s + "' in this array");
+      here = arr->get(static_cast<std::size_t>(idx));
+    } else if (auto* tbl = here->as_table()) {
+      if (!tbl->contains(s)) tbl->insert(s, toml::table{});
+      here = tbl->get(s);
+    } else {
+      throw InputError("--set", ov.key, "'" + s + "' is not a table");
+    }
+  }
+  auto* tbl = here->as_table();
+  if (!tbl) throw InputError("--set", ov.key, "cannot set a value inside a non-table");
+  parsed["v"].node()->visit([&](auto&& value) { tbl->insert_or_assign(seg.back(), value); });
+}
+
+}  // namespace
+
+Override parse_override(const std::string& text) {
+  auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError("--set", text, "expected key=value");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open the scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), path, overrides);
+}
+
+Scene parse_scene(const std::string& text, const std::string& path, const std::vector<Override>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path + ":" + std::to_string(e.source().begin.line), "",
+                     "TOML syntax error: " + std::string(e.description()));
+  }
+  for (const auto& ov : overrides) apply_override(root, ov);
+
+  Scene sc;
+  sc.path = path;
+  sc.name = std::filesystem::path(path).stem().string();
+  Reader top(root, "", path);
+  if (auto v = top.string("name")) sc.name = *v;
+  if (auto v = top.string("description")) sc.description = *v;
+
+  if (const auto* f = top.table("fluid")) {
+    Reader r(*f, "fluid", path);
+    FluidSpec fl;
+    fl.density = r.required_number("density");
+    fl.viscosity = r.required_number("viscosity");
+    r.positive("density", fl.density);
+    r.positive("viscosity", fl.viscosity);
+    r.finish();
+    sc.fluid = fl;
+  }
+
+  const toml::node* sph = top.node("sphere");
+  if (!sph) throw InputError(path, "sphere", "missing (give one or two [[sphere]] tables)");
+  const toml::array* arr = sph->as_array();
+  if (!arr || !arr->is_array_of_tables()) top.fail("sphere", "must be an array of tables ([[sphere]])");
+  if (arr->empty() || arr->size() > 2) top.fail("sphere", "give one or two spheres (got " + std::to_string(arr->size()) + ")");
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    Reader r(*arr->get(i)->as_table(), "sphere[" + std::to_string(i) + "]", path);
+    SphereSpec s;
+    read_solid(r, s, true);
+    s.diameter = r.required_number("diameter");
+    r.positive("diameter", s.diameter);
+    s.position = r.required_number("position");
+    s.velocity = r.number("velocity", 0.0);
+    r.finish();
+    sc.spheres.push_back(s);
+  }
+
+  if (const auto* w = top.table("wall")) {
+    if (sc.two_spheres()) top.fail("wall", "a scene has either a target sphere or a wall, not both");
+    Reader r(*w, "wall", path);
+    WallSpec wall;
+    read_solid(r, wall, false);
+    wall.position = r.required_number("position");
+    r.finish();
+    sc.wall = wall;
+  }
+
+  if (auto g = top.number("gravity")) sc.gravity = *g;
+
+  // Effects: explicit list, or everything that applies to the scene.
+  if (const toml::node* n = top.node("effects")) {
+    const toml::array* ea = n->as_array();
+    if (!ea) top.fail("effects", "must be an array of names");
+    for (const auto& item : *ea) {
+      auto name = item.value<std::string>();
+      if (!name) top.fail("effects", "must be an array of strings");
+      auto e = effect_from_string(*name);
+      if (!e) top.fail("effects", "unknown effect '" + *name + "' (expected drag, lubrication, added_mass, elastic, gravity, history, flow)");
+      sc.effects.insert(*e);
+    }
+  } else {
+    sc.effects.insert(Effect::elastic);
+    if (sc.fluid) {
+      sc.effects.insert(Effect::drag);
+      sc.effects.insert(Effect::lubrication);
+      sc.effects.insert(Effect::added_mass);
+    }
+    if (top.has("gravity")) sc.effects.insert(Effect::gravity);
+  }
+  for (Effect e : {Effect::drag, Effect::lubrication, Effect::added_mass, Effect::history, Effect::flow})
+    if (sc.has(e) && !sc.fluid)
+      top.fail("effects", std::string("effect '") + to_string(e) + "' needs a [fluid] table");
+  for (Effect e : {Effect::history, Effect::flow})
+    if (sc.has(e))
+      top.fail("effects", std::string("effect '") + to_string(e) + "' is not implemented in this version");
+  if ((sc.has(Effect::lubrication) || sc.has(Effect::elastic)) && !sc.has_target())
+    top.fail("effects", "lubrication and elastic need a target sphere or a [wall]");
+
+  if (const auto* t = top.table("drag")) {
+    Reader r(*t, "drag", path);
+    if (auto v = r.string("law")) sc.drag.law = *v;
+    r.one_of("law", sc.drag.law, {"stokes", "schiller-naumann"});
+    r.finish();
+  }
+
+  sc.lubrication.model = sc.wall ? "brenner" : "asymptotic";
+  if (const auto* t = top.table("lubrication")) {
+    Reader r(*t, "lubrication", path);
+    if (auto v = r.string("model")) sc.lubrication.model = *v;
+    r.one_of("model", sc.lubrication.model, {"brenner", "asymptotic"});
+    if (sc.lubrication.model == "brenner" && sc.two_spheres())
+      r.fail("model", "'brenner' is the sphere-wall series; use 'asymptotic' for two spheres");
+    sc.lubrication.cutoff = r.number("cutoff", sc.lubrication.cutoff);
+    r.positive("cutoff", sc.lubrication.cutoff);
+    sc.lubrication.h_c = r.number("h_c", sc.lubrication.h_c);
+    r.positive("h_c", sc.lubrication.h_c);
+    r.finish();
+  }
+
+  if (const auto* t = top.table("added_mass")) {
+    Reader r(*t, "added_mass", path);
+    sc.added_mass.dw_floor = r.number("dw_floor", sc.added_mass.dw_floor);
+    if (r.has("dw_floor")) r.positive("dw_floor", sc.added_mass.dw_floor);
+    r.finish();
+  }
+
+  sc.contact.delta_ss = sc.wall ? 0.017 : 0.024;
+  if (const auto* t = top.table("contact")) {
+    Reader r(*t, "contact", path);
+    sc.contact.delta_ss = r.number("delta_ss", sc.contact.delta_ss);
+    r.in_range("delta_ss", sc.contact.delta_ss, 0.0, 1.0, true, false);
+    sc.contact.delta_sl = r.number("delta_sl", sc.contact.delta_sl);
+    r.positive("delta_sl", sc.contact.delta_sl);
+    sc.contact.e_dry = r.number("e_dry", -1.0);
+    if (r.has("e_dry")) r.in_range("e_dry", sc.contact.e_dry, 0.0, 1.0, false, false);
+    sc.contact.beta = r.number("beta", 0.0);
+    if (r.has("beta")) r.positive("beta", sc.contact.beta);
+    r.finish();
+  }
+
+  if (const auto* t = top.table("solver")) {
+    Reader r(*t, "solver", path);
+    if (auto v = r.string("integrator")) sc.solver.integrator = *v;
+    r.one_of("integrator", sc.solver.integrator, {"cvode", "ida"});
+    sc.solver.rtol = r.number("rtol", sc.solver.rtol);
+    sc.solver.atol = r.number("atol", sc.solver.atol);
+    sc.solver.t_end = r.number("t_end", sc.solver.t_end);
+    r.positive("t_end", sc.solver.t_end);
+    sc.solver.max_step = r.number("max_step", sc.solver.max_step);
+    if (r.has("max_step")) r.positive("max_step", sc.solver.max_step);
+    if (auto v = r.integer("max_steps")) sc.solver.max_steps = *v;
+    if (sc.solver.max_steps < 1) r.fail("max_steps", "must be >= 1");
+    // Tolerances: rtol must be positive and above what double precision can deliver.
+    r.in_range("rtol", sc.solver.rtol, 1e-14, 1.0, false, true);
+    r.in_range("atol", sc.solver.atol, 0.0, 1.0, true, true);
+    r.finish();
+  }
+
+  if (const auto* t = top.table("measure")) {
+    Reader r(*t, "measure", path);
+    sc.measure.window = r.number("window", sc.measure.window);
+    r.positive("window", sc.measure.window);
+    sc.measure.instant_gap = r.number("instant_gap", -1.0);
+    if (r.has("instant_gap")) r.positive("instant_gap", sc.measure.instant_gap);
+    r.finish();
+  }
+  if (sc.measure.instant_gap < 0) sc.measure.instant_gap = sc.contact.delta_ss;
+
+  if (const auto* t = top.table("output")) {
+    Reader r(*t, "output", path);
+    sc.output.dt = r.number("dt", 0.0);
+    if (r.has("dt")) r.positive("dt", sc.output.dt);
+    r.finish();
+  }
+  if (sc.output.dt == 0) sc.output.dt = sc.measure.window / 100.0;
+
+  top.finish();
+
+  // Geometry: the target must be ahead of the impact sphere and not touching it.
+  const auto& s1 = sc.spheres[0];
+  const double D = s1.diameter;
+  if (sc.two_spheres()) {
+    const auto& s2 = sc.spheres[1];
+    double gap = s2.position - s1.position - 0.5 * (s1.diameter + s2.diameter);
+    if (gap <= 0)
+      throw InputError(path, "sphere[1].position", "spheres overlap or touch (gap " + fmt(gap) + " m); the target must lie at larger z");
+    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D)
+      throw InputError(path, "sphere[1].position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m");
+  } else if (sc.wall) {
+    double gap = sc.wall->position - s1.position - 0.5 * D;
+    if (gap <= 0)
+      throw InputError(path, "wall.position", "sphere overlaps or touches the wall (gap " + fmt(gap) + " m); the wall must lie at larger z");
+    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D)
+      throw InputError(path, "wall.position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m");
+  }
+  if (sc.has(Effect::elastic)) {
+    bool any = sc.contact.e_dry >= 0 || s1.e_dry || (sc.two_spheres() && sc.spheres[1].e_dry) || (sc.wall && sc.wall->e_dry);
+    if (!any) throw InputError(path, "contact.e_dry", "missing: no material in the scene gives a dry restitution");
+  }
+  return sc;
+}
+
+}  // namespace imcol

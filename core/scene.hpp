@@ -1,0 +1,92 @@
+#pragma once
+// Scene description (MODEL.md §1) and its TOML parser. All quantities SI unless noted.
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace imcol {
+
+enum class Effect { drag, lubrication, added_mass, elastic, gravity, history, flow };
+const char* to_string(Effect e);
+std::optional<Effect> effect_from_string(const std::string& s);
+
+struct Solid {
+  std::string material;          // name in data/materials.csv, or "" for inline properties
+  double density = 0;            // kg/m^3 (unused for a wall)
+  double youngs_modulus = 0;     // Pa
+  double poisson_ratio = 0;      // -
+  std::optional<double> e_dry;   // dry restitution of the material
+};
+
+struct SphereSpec : Solid {
+  double diameter = 0;  // m
+  double position = 0;  // z of the centre, m
+  double velocity = 0;  // m/s along z (+ is toward the target)
+};
+
+struct WallSpec : Solid {
+  double position = 0;  // z of the wall plane, m
+};
+
+struct FluidSpec {
+  double density = 0;    // kg/m^3
+  double viscosity = 0;  // Pa s
+};
+
+struct Scene {
+  std::string path;  // file it came from
+  std::string name;  // file stem unless `name` is given
+  std::string description;
+
+  std::optional<FluidSpec> fluid;    // none = dry collision
+  std::vector<SphereSpec> spheres;   // impact sphere first, optional target second
+  std::optional<WallSpec> wall;      // instead of a target sphere
+  double gravity = -9.81;            // m/s^2 along z, used only with the `gravity` effect
+  std::set<Effect> effects;
+
+  struct Drag { std::string law = "stokes"; } drag;                     // stokes | schiller-naumann
+  struct Lubrication {
+    std::string model;        // brenner (wall only) | asymptotic; default: brenner for a wall
+    double cutoff = 1e-4;     // smallest effective gap, units of D (impact sphere)
+    double h_c = 1.0;         // asymptotic model acts for h < h_c, units of a*
+  } lubrication;
+  struct AddedMass { double dw_floor = -1; } added_mass;  // units of a*; <0: use delta_ss
+  struct Contact {
+    double delta_ss = 0;      // units of D; default 0.024 (sphere) / 0.017 (wall)
+    double delta_sl = 0.1;    // units of D
+    double e_dry = -1;        // <0: from the materials
+    double beta = 0;          // F(x) steepness; 0 = energy-consistent (MODEL.md §2.4)
+  } contact;
+  struct Solver {
+    std::string integrator = "cvode";  // cvode | ida
+    double rtol = 1e-8;
+    double atol = 1e-10;      // dimensionless; scaled per component (see integrators/)
+    double t_end = 1.0;       // s
+    double max_step = 0;      // s; 0 = automatic (a fraction of the contact-zone crossing time)
+    long max_steps = 100000;  // internal steps between two outputs or events
+  } solver;
+  struct Measure {
+    double window = 0.010;    // s, least-squares windows before and after contact
+    double instant_gap = -1;  // units of D, gap at which e_instant is taken; <0: delta_ss
+  } measure;
+  struct Output { double dt = 0; } output;  // s, trajectory sampling; 0 = window/100
+
+  bool has(Effect e) const { return effects.count(e) != 0; }
+  bool two_spheres() const { return spheres.size() == 2; }
+  bool has_target() const { return two_spheres() || wall.has_value(); }
+};
+
+/// One command-line override "dotted.key=value" (value in TOML syntax; bare words are strings).
+struct Override {
+  std::string key;
+  std::string value;
+};
+Override parse_override(const std::string& text);  // throws InputError
+
+/// Parses, applies overrides, validates. Throws InputError naming the file, line and key.
+Scene load_scene(const std::string& path, const std::vector<Override>& overrides = {});
+Scene parse_scene(const std::string& toml_text, const std::string& path,
+                  const std::vector<Override>& overrides = {});
+
+}  // namespace imcol

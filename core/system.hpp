@@ -1,0 +1,59 @@
+#pragma once
+// The abstract ODE/DAE system that the integrators drive (Cantera-style "function evaluator").
+// Physics implements it; integrators/ wraps it in SUNDIALS. No SUNDIALS types appear here.
+//
+// ODE form:      y' = f(t, y)
+// Residual form: F(t, y, y') = M(t, y) y' - g(t, y) = 0  (M diagonal: the added mass sits on y')
+#include <span>
+#include <string>
+#include <vector>
+
+namespace imcol {
+
+/// One root function g(t, y) = 0 armed in the current phase.
+struct RootSpec {
+  std::string name;
+  int direction = 0;  // +1 rising only, -1 falling only, 0 both
+};
+
+enum class EventAction {
+  proceed,   // diagnostic only: the right-hand side did not change
+  reinit,    // the right-hand side or the root set changed: re-initialise the integrator here
+  stop       // the run is complete
+};
+
+class DynamicalSystem {
+ public:
+  virtual ~DynamicalSystem() = default;
+
+  virtual std::size_t size() const = 0;
+  virtual std::vector<std::string> component_names() const = 0;
+  /// Per-component absolute tolerance for a dimensionless atol (atol times the component's scale).
+  virtual std::vector<double> absolute_tolerances(double atol) const = 0;
+  virtual void initial_state(std::span<double> y) const = 0;
+
+  virtual void rhs(double t, std::span<const double> y, std::span<double> ydot) = 0;
+  /// Diagonal of M(t, y) and g(t, y) for the residual form.
+  virtual void mass_and_forcing(double t, std::span<const double> y, std::span<double> m, std::span<double> g) = 0;
+
+  /// Roots armed in the current phase; the list may change after an event that returns reinit.
+  virtual std::vector<RootSpec> roots() const = 0;
+  virtual void root_values(double t, std::span<const double> y, std::span<double> g) = 0;
+  /// Called once per root return with the indices (into roots()) of all roots found at t.
+  /// May modify y and re-arm the roots (then it returns reinit).
+  virtual EventAction on_roots(std::span<const std::size_t> found, double t, std::span<double> y) = 0;
+
+  /// Latest time to integrate to in the current phase (t_end, or an earlier stop once measurements are complete).
+  virtual double stop_time() const = 0;
+  /// Largest internal step allowed (so that no root can hide inside one step).
+  virtual double max_step() const = 0;
+};
+
+/// Receives the solution: at every output time and at every event.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void sample(double t, std::span<const double> y, bool at_event) = 0;
+};
+
+}  // namespace imcol

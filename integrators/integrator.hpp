@@ -1,0 +1,39 @@
+#pragma once
+// Time integration of a DynamicalSystem with SUNDIALS CVODE (BDF) or IDA (residual form),
+// root finding, re-initialisation after events and statistics summed over re-initialisations.
+#include <map>
+#include <string>
+
+#include "core/system.hpp"
+
+namespace imcol {
+
+struct IntegratorSettings {
+  std::string method = "cvode";  // cvode | ida
+  double rtol = 1e-8;
+  double atol = 1e-10;           // dimensionless, see DynamicalSystem::absolute_tolerances
+  double output_dt = 1e-4;       // s, sampling interval passed to the observer
+  long max_steps = 1000000;      // internal steps allowed between two outputs or events
+  int max_order = 5;
+};
+
+struct SolverStats {
+  long steps = 0;
+  long rhs_evals = 0;          // right-hand side (CVODE) or residual (IDA) evaluations, incl. finite-difference Jacobians
+  long jac_evals = 0;
+  long nonlin_iters = 0;
+  long nonlin_conv_fails = 0;
+  long error_test_fails = 0;
+  long root_fn_evals = 0;
+  long root_events = 0;        // roots found
+  long reinits = 0;
+  int last_order = 0;
+  double last_step = 0;
+  std::map<std::string, long> as_map() const;
+};
+
+/// Integrates from t = 0 until the system's stop_time(). Throws SolverError on failure,
+/// naming the SUNDIALS flag, the time and the state components with the largest weighted error.
+SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& settings, Observer& observer);
+
+}  // namespace imcol
