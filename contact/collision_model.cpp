@@ -76,6 +76,9 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step
                                      : (has_target() ? 0.25 * delta_ss_m_ / u_scale : sc.solver.t_end / 100);
   stop_time_ = sc.solver.t_end;
+  // Build the lookup tables now, not inside the first right-hand side.
+  if (sc.has(Effect::added_mass) && has_target()) added_mass_W(1.0);
+  if (sc.has(Effect::lubrication) && brenner_) brenner_lambda(1.0);
   arm();
 }
 

@@ -43,7 +43,7 @@ double ramp_F(double x, double beta) {
   return 1.0 + slope0 * x;
 }
 
-double ramp_F_integral(double beta) { return 1.0 / beta - 1.0 / std::expm1(beta); }
+double ramp_F_integral(double beta) { return 1.0 / beta - std::exp(-beta) / -std::expm1(-beta); }
 
 double energy_consistent_beta(double delta_ss, double eps_max) {
   // Solve δ_SS (1/β − 1/(e^β − 1)) = (2/5) ε_max for β by Newton from the large-β estimate.
@@ -52,9 +52,9 @@ double energy_consistent_beta(double delta_ss, double eps_max) {
     throw std::domain_error("energy_consistent_beta: the Hertz indentation exceeds what the ramp can store (eps_max >= 1.25 delta_ss)");
   double b = 1.0 / target;
   for (int it = 0; it < 100; ++it) {
-    const double em1 = std::expm1(b);
-    const double f = 1.0 / b - 1.0 / em1 - target;
-    const double df = -1.0 / (b * b) + (em1 + 1.0) / (em1 * em1);
+    const double q = std::exp(-b), one_m_q = -std::expm1(-b);  // 1/(e^b − 1) = q/(1 − q), no overflow
+    const double f = 1.0 / b - q / one_m_q - target;
+    const double df = -1.0 / (b * b) + q / (one_m_q * one_m_q);
     const double step = f / df;
     b = std::max(b - step, 0.5 * b);
     if (std::abs(step) < 1e-15 * b) break;
@@ -106,14 +106,14 @@ const LogTable& brenner_table() {
         const double h = 1e-5 * x;
         return (brenner_lambda_series(x + h) - brenner_lambda_series(x - h)) / (2 * h);
       },
-      brenner_min, brenner_max, 321);
+      brenner_min, brenner_max, 641);
   return t;
 }
 double brenner_asymptote(double d) { return 1.0 / d + 0.2 * std::log(1.0 / d); }
 
 constexpr double w_min = 1e-6, w_max = 1e3;
 const LogTable& w_table() {
-  static const LogTable t(added_mass_W_series, added_mass_dW_series, w_min, w_max, 361);
+  static const LogTable t(added_mass_W_series, added_mass_dW_series, w_min, w_max, 721);
   return t;
 }
 }  // namespace
