@@ -1,0 +1,103 @@
+// The command line: exit status 2 and a one-line message naming key and file for bad input;
+// complete outputs for good input.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+struct Result {
+  int status;
+  std::string err;
+};
+
+Result imcol(const std::string& args) {
+  const fs::path errf = fs::temp_directory_path() / ("imcol_cli_err_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(IMCOL_BINARY) + " " + args + " >/dev/null 2>" + errf.string();
+  const int raw = std::system(cmd.c_str());
+  std::ifstream in(errf);
+  std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  fs::remove(errf);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, err};
+}
+
+fs::path write_scene(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / ("imcol_cli_" + name + ".toml");
+  std::ofstream(p) << text;
+  return p;
+}
+
+const std::string kScene = R"([fluid]
+density = 1000.0
+viscosity = 0.01
+[[sphere]]
+material = "steel"
+diameter = 0.0127
+position = -0.02
+velocity = 0.2
+[wall]
+material = "glass"
+position = 0.0
+)";
+
+void expect_input_error(const std::string& name, const std::string& text, const std::string& key, const std::string& extra = "") {
+  const fs::path p = write_scene(name, text);
+  const Result r = imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_out").string() + " " + extra);
+  EXPECT_EQ(r.status, 2) << name << ": " << r.err;
+  EXPECT_NE(r.err.find(key), std::string::npos) << name << ": " << r.err;
+  if (extra.empty()) {
+    EXPECT_NE(r.err.find(p.string()), std::string::npos) << name << ": " << r.err;
+  }
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << name << ": " << r.err;
+}
+
+std::string with(std::string s, const std::string& from, const std::string& to) { return s.replace(s.find(from), from.size(), to); }
+}  // namespace
+
+TEST(Cli, BadInputGivesExitStatusTwoAndNamesTheKey) {
+  expect_input_error("missing", with(kScene, "viscosity = 0.01\n", ""), "fluid.viscosity");
+  expect_input_error("unknown", with(kScene, "viscosity = 0.01", "viscosity = 0.01\nsurface_tension = 0.07"), "fluid.surface_tension");
+  expect_input_error("negvisc", with(kScene, "viscosity = 0.01", "viscosity = -0.01"), "fluid.viscosity");
+  expect_input_error("negdens", with(kScene, "density = 1000.0", "density = -1000.0"), "fluid.density");
+  expect_input_error("overlap", with(kScene, "position = -0.02", "position = -0.005"), "wall.position");
+  expect_input_error("material", with(kScene, "\"steel\"", "\"kryptonite\""), "sphere[0].material");
+  expect_input_error("rtol", kScene + "[solver]\nrtol = 0\n", "solver.rtol");
+  expect_input_error("rtolcli", kScene, "solver.rtol", "--rtol -1e-8");
+  const Result r = imcol("run /nonexistent/scene.toml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("/nonexistent/scene.toml"), std::string::npos);
+  EXPECT_EQ(imcol("run").status, 2);
+  EXPECT_EQ(imcol("frobnicate").status, 2);
+}
+
+TEST(Cli, RunWritesCompleteOutputs) {
+  const fs::path p = write_scene("good", kScene);
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_good_out";
+  fs::remove_all(out);
+  const Result r = imcol("run " + p.string() + " --out " + out.string() + " --rtol 1e-9 --set sphere[0].velocity=0.25");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream js(out / "summary.json");
+  const auto s = nlohmann::json::parse(js);
+  for (const char* k : {"e", "e_instant", "St", "Re", "min_gap_m", "max_contact_force_N", "group_velocity_m_s", "effects",
+                        "model", "solver", "wall_time_s"})
+    EXPECT_TRUE(s.contains(k)) << k;
+  EXPECT_DOUBLE_EQ(s["solver"]["rtol"].get<double>(), 1e-9);
+  for (const char* k : {"integrator", "steps", "rhs_evals", "root_events", "error_test_fails"}) EXPECT_TRUE(s["solver"].contains(k)) << k;
+  std::ifstream csv(out / "trajectory.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("t,z1,u1,gap", 0), 0u) << header;
+  // No temporary files left behind.
+  for (const auto& f : fs::directory_iterator(out)) EXPECT_EQ(f.path().string().find(".tmp"), std::string::npos);
+  // Velocity override took effect: the first row's u1.
+  std::string row;
+  std::getline(csv, row);
+  EXPECT_NE(row.find(",0.25,"), std::string::npos) << row;
+}

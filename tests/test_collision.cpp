@@ -1,0 +1,144 @@
+// Layers 2-4: exact dry solutions, conservation, integrator agreement, convergence, physical trends.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "apps/simulate.hpp"
+#include "core/scene.hpp"
+
+using namespace imcol;
+
+namespace {
+
+std::string pair_scene(const std::string& fluid, double u1, double u2, const std::string& extra = "") {
+  return fluid + R"(
+[[sphere]]
+material = "steel"
+diameter = 0.0127
+position = 0.0
+velocity = )" + std::to_string(u1) + R"(
+[[sphere]]
+material = "glass"
+diameter = 0.010
+position = 0.0140
+velocity = )" + std::to_string(u2) + "\n" + extra;
+}
+
+std::string wall_scene(const std::string& fluid, double u, const std::string& extra = "") {
+  return fluid + R"(
+[[sphere]]
+material = "steel"
+diameter = 0.0127
+position = -0.0127
+velocity = )" + std::to_string(u) + R"(
+[wall]
+material = "zerodur"
+position = 0.0
+[contact]
+e_dry = 0.9
+)" + extra;
+}
+
+RunResult run(const std::string& toml, std::vector<Override> ov = {}) {
+  return simulate(parse_scene(toml, "test.toml", ov));
+}
+double e_of(const RunResult& r) { return r.summary["e"].get<double>(); }
+
+std::string fluid(double mu, double rho = 1000.0) {
+  return "[fluid]\ndensity = " + std::to_string(rho) + "\nviscosity = " + std::to_string(mu) + "\n";
+}
+
+}  // namespace
+
+class DryCollision : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(DryCollision, WallReturnsDryRestitution) {
+  auto r = run(wall_scene("", 0.2, "[solver]\nrtol = 1e-10\n"), {{"solver.integrator", "\"" + GetParam() + "\""}});
+  EXPECT_NEAR(e_of(r), 0.9, 1e-6);
+  EXPECT_NEAR(r.summary["e_instant"].get<double>(), 0.9, 1e-6);
+  EXPECT_TRUE(r.summary["separated"].get<bool>());
+  EXPECT_TRUE(r.summary["St"].is_null());
+}
+
+TEST_P(DryCollision, PairReturnsDryRestitutionAndConservesMomentum) {
+  // Both spheres moving, unequal sizes and materials: e = min(e_steel, e_glass) = 0.97.
+  auto r = run(pair_scene("", 0.15, -0.05, "[solver]\nrtol = 1e-10\n"), {{"solver.integrator", "\"" + GetParam() + "\""}});
+  EXPECT_NEAR(e_of(r), 0.97, 1e-6);
+  // Momentum m1 u1 + m2 u2 at every sample equals the initial one.
+  const double pi = 3.141592653589793;
+  const double m1 = 7780 * pi / 6 * std::pow(0.0127, 3), m2 = 2540 * pi / 6 * std::pow(0.010, 3);
+  const double p0 = m1 * 0.15 + m2 * -0.05;
+  double worst = 0;
+  for (const auto& row : r.rows) worst = std::max(worst, std::abs(m1 * row[2] + m2 * row[5] - p0) / std::abs(p0));
+  EXPECT_LT(worst, 1e-9);
+  // The contact force rose to the frozen Hertz peak W_o.
+  EXPECT_NEAR(r.summary["max_contact_force_N"].get<double>() / r.summary["contact"]["W_o_N"].get<double>(), 1.0, 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, DryCollision, ::testing::Values("cvode", "ida"));
+
+TEST(ImmersedCollision, CvodeAndIdaAgree) {
+  for (const std::string& scene : {wall_scene(fluid(0.02), 0.3), pair_scene(fluid(0.01), 0.2, 0.0)}) {
+    auto a = run(scene, {{"solver.rtol", "1e-10"}});
+    auto b = run(scene, {{"solver.rtol", "1e-10"}, {"solver.integrator", "\"ida\""}});
+    EXPECT_NEAR(e_of(a), e_of(b), 1e-6);
+    EXPECT_NEAR(a.summary["min_gap_m"].get<double>(), b.summary["min_gap_m"].get<double>(), 1e-9);
+    EXPECT_NEAR(a.summary["St"].get<double>() / b.summary["St"].get<double>(), 1.0, 1e-7);
+  }
+}
+
+TEST(ImmersedCollision, RestitutionConvergesAsRtolTightens) {
+  const std::string scene = wall_scene(fluid(0.02), 0.3);
+  const double ref = e_of(run(scene, {{"solver.rtol", "1e-12"}}));
+  double prev = 1;
+  for (const char* rt : {"1e-6", "1e-8", "1e-10"}) {
+    const double err = std::abs(e_of(run(scene, {{"solver.rtol", rt}})) - ref);
+    EXPECT_LT(err, prev) << "rtol " << rt;
+    prev = err;
+  }
+  EXPECT_LT(prev, 1e-7);
+}
+
+TEST(ImmersedCollision, RestitutionRisesWithStokesAndStaysBelowDry) {
+  // Sweep the viscosity at fixed impact speed: St falls as mu rises.
+  double prev_e = -1, prev_st = 0;
+  for (double mu : {2.0, 0.5, 0.2, 0.08, 0.03, 0.01, 0.003}) {
+    auto r = run(wall_scene(fluid(mu, 1200), 0.3, "[solver]\nt_end = 0.3\n"));
+    const double e = e_of(r);
+    const double st = r.summary["St"].get<double>();
+    EXPECT_GE(e, 0.0);
+    EXPECT_LE(e, 0.9);
+    EXPECT_GE(e, prev_e) << "mu " << mu << " St " << st;
+    EXPECT_GT(st, prev_st);
+    if (st < 5) EXPECT_EQ(e, 0.0) << "St " << st;
+    prev_e = e;
+    prev_st = st;
+  }
+  EXPECT_GT(prev_e, 0.8);  // St ~ 1000: close to dry
+}
+
+TEST(ImmersedCollision, SeedGroupMotionCaseBNeverTouches) {
+  auto sc = load_scene(std::string(IMCOL_SOURCE_DIR) + "/data/scenes/group_b.toml");
+  auto r = simulate(sc);
+  const auto& s = r.summary;
+  EXPECT_EQ(s["contacts"].get<int>(), 0);
+  EXPECT_GT(s["min_gap_m"].get<double>(), sc.contact.delta_ss * 0.0127);
+  EXPECT_EQ(s["e"].get<double>(), 0.0);
+  ASSERT_FALSE(s["group_velocity_m_s"].is_null());
+  EXPECT_GT(s["group_velocity_m_s"].get<double>(), 0.0);
+  EXPECT_LT(s["group_velocity_m_s"].get<double>(), 0.0689);
+}
+
+TEST(ImmersedCollision, OnlyTheListedEffectsRun) {
+  auto r = run("effects = [\"drag\", \"elastic\"]\n" + wall_scene(fluid(0.02), 0.3));
+  const auto& cols = r.columns;
+  auto has = [&](const std::string& c) { return std::find(cols.begin(), cols.end(), c) != cols.end(); };
+  EXPECT_TRUE(has("f_drag1"));
+  EXPECT_FALSE(has("f_lub1"));
+  EXPECT_FALSE(has("f_am1"));
+  EXPECT_EQ(r.summary["effects"].size(), 2u);
+  EXPECT_FALSE(r.summary["model"].contains("lubrication.model"));
+  // Without lubrication and added mass, less is dissipated.
+  EXPECT_GT(e_of(r), e_of(run(wall_scene(fluid(0.02), 0.3))));
+}

@@ -1,0 +1,136 @@
+// Scene parsing and validation: every bad input names its key and place.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/errors.hpp"
+#include "core/scene.hpp"
+
+using namespace imcol;
+
+namespace {
+const char* kWall = R"(
+[fluid]
+density = 1000.0
+viscosity = 0.01
+
+[[sphere]]
+material = "steel"
+diameter = 0.0127
+position = -0.02
+velocity = 0.2
+
+[wall]
+material = "glass"
+position = 0.0
+)";
+
+/// Parses `text` and expects an InputError whose message contains every fragment.
+void expect_error(const std::string& text, std::initializer_list<const char*> fragments, const std::vector<Override>& ov = {}) {
+  try {
+    parse_scene(text, "bad.toml", ov);
+    FAIL() << "no error for:\n" << text;
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    for (const char* f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' missing in: " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << "message must be one line: " << msg;
+  }
+}
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  return s.replace(p, from.size(), to);
+}
+}  // namespace
+
+TEST(Scene, ParsesWallSceneWithDefaults) {
+  Scene sc = parse_scene(kWall, "wall.toml");
+  EXPECT_EQ(sc.name, "wall");
+  ASSERT_TRUE(sc.fluid);
+  EXPECT_DOUBLE_EQ(sc.fluid->viscosity, 0.01);
+  ASSERT_EQ(sc.spheres.size(), 1u);
+  EXPECT_DOUBLE_EQ(sc.spheres[0].density, 7780);
+  EXPECT_TRUE(sc.wall);
+  EXPECT_DOUBLE_EQ(sc.contact.delta_ss, 0.017);  // wall default
+  EXPECT_EQ(sc.lubrication.model, "brenner");
+  EXPECT_TRUE(sc.has(Effect::drag) && sc.has(Effect::lubrication) && sc.has(Effect::added_mass) && sc.has(Effect::elastic));
+  EXPECT_FALSE(sc.has(Effect::gravity));
+  EXPECT_EQ(sc.solver.integrator, "cvode");
+}
+
+TEST(Scene, OverridesFromTheCommandLine) {
+  Scene sc = parse_scene(kWall, "wall.toml",
+                         {parse_override("solver.rtol=1e-9"), parse_override("sphere[0].velocity=0.5"),
+                          parse_override("solver.integrator=ida"), parse_override("contact.delta_ss=0.02")});
+  EXPECT_DOUBLE_EQ(sc.solver.rtol, 1e-9);
+  EXPECT_DOUBLE_EQ(sc.spheres[0].velocity, 0.5);
+  EXPECT_EQ(sc.solver.integrator, "ida");
+  EXPECT_DOUBLE_EQ(sc.contact.delta_ss, 0.02);
+  EXPECT_THROW(parse_override("novalue"), InputError);
+  expect_error(kWall, {"--set", "sphere[3]"}, {parse_override("sphere[3].velocity=1")});
+  expect_error(kWall, {"--set", "solver.bogus", "unknown key"}, {parse_override("solver.bogus=1")});
+}
+
+TEST(Scene, InlineMaterialAndExplicitEffects) {
+  std::string t = replace(kWall, "material = \"steel\"", "density = 2000.0\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\ne_dry = 0.8");
+  t = "effects = [\"drag\", \"elastic\"]\n" + t;
+  Scene sc = parse_scene(t, "x.toml");
+  EXPECT_DOUBLE_EQ(sc.spheres[0].density, 2000);
+  EXPECT_TRUE(sc.has(Effect::drag));
+  EXPECT_FALSE(sc.has(Effect::lubrication));
+}
+
+TEST(Scene, RejectsBadInput) {
+  expect_error(replace(kWall, "viscosity = 0.01", "viscosity = -0.01"), {"bad.toml:4", "fluid.viscosity", "> 0"});
+  expect_error(replace(kWall, "density = 1000.0", "density = -1.0"), {"bad.toml:3", "fluid.density"});
+  expect_error(replace(kWall, "viscosity = 0.01", "viscosity = 0.01\ncolour = 3"), {"bad.toml:5", "fluid.colour", "unknown key"});
+  expect_error(replace(kWall, "viscosity = 0.01", ""), {"fluid.viscosity", "missing"});
+  expect_error(replace(kWall, "diameter = 0.0127\n", ""), {"sphere[0].diameter", "missing"});
+  expect_error(replace(kWall, "\"steel\"", "\"unobtainium\""), {"sphere[0].material", "unknown material", "steel"});
+  expect_error(replace(kWall, "position = -0.02", "position = -0.001"), {"wall.position", "overlap"});
+  expect_error(std::string(kWall) + "[solver]\nrtol = 0.0\n", {"solver.rtol", "bad.toml:16"});
+  expect_error(std::string(kWall) + "[solver]\nrtol = -1e-6\n", {"solver.rtol"});
+  expect_error(std::string(kWall) + "[solver]\nrtol = 1e-20\n", {"solver.rtol"});
+  expect_error(std::string(kWall) + "[solver]\nintegrator = \"rk4\"\n", {"solver.integrator", "cvode | ida"});
+  expect_error("effects = [\"magic\"]\n" + std::string(kWall), {"bad.toml:1", "effects", "unknown effect"});
+  expect_error(std::string(kWall) + "effects = [\"drag\"]\n", {"wall.effects", "unknown key"});
+  expect_error(std::string(kWall) + "[drag]\nlaw = \"newton\"\n", {"drag.law"});
+  expect_error("[[sphere]\n", {"bad.toml:1", "TOML"});
+}
+
+TEST(Scene, RejectsOverlappingSpheresAndWrongLubrication) {
+  const char* pair = R"(
+[fluid]
+density = 1000.0
+viscosity = 0.01
+[[sphere]]
+material = "glass"
+diameter = 0.0127
+position = 0.0
+velocity = 0.1
+[[sphere]]
+material = "glass"
+diameter = 0.0127
+position = 0.02
+)";
+  EXPECT_NO_THROW(parse_scene(pair, "pair.toml"));
+  expect_error(replace(pair, "position = 0.02", "position = 0.01"), {"sphere[1].position", "overlap"});
+  expect_error(replace(pair, "position = 0.02", "position = 0.0128"), {"sphere[1].position", "contact zone"});
+  expect_error(std::string(pair) + "[lubrication]\nmodel = \"brenner\"\n", {"lubrication.model", "asymptotic"});
+  expect_error(std::string(pair) + "[wall]\nmaterial = \"glass\"\nposition = 1.0\n", {"wall", "not both"});
+}
+
+TEST(Scene, DryScenesRejectFluidEffects) {
+  const char* dry = R"(
+effects = ["elastic", "drag"]
+[[sphere]]
+material = "steel"
+diameter = 0.0127
+position = 0.0
+velocity = 0.1
+[wall]
+material = "steel"
+position = 0.02
+)";
+  expect_error(dry, {"effects", "drag", "[fluid]"});
+}
