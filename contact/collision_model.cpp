@@ -286,7 +286,16 @@ void CollisionModel::freeze_contact(double t, double u_rel) {
   // W_o and β frozen at the relative speed U_c of the δ_SS crossing (MODEL.md §2.4).
   const double eps_max = hertz_max_indentation(m_star_, u_rel, E_star_, a_star_);
   W_now_ = hertz_force(E_star_, a_star_, eps_max);
-  beta_now_ = scene_.contact.beta > 0 ? scene_.contact.beta : energy_consistent_beta(delta_ss_m_, eps_max);
+  if (scene_.contact.beta > 0) {
+    beta_now_ = scene_.contact.beta;
+  } else if (eps_max < 1.25 * delta_ss_m_) {
+    beta_now_ = energy_consistent_beta(delta_ss_m_, eps_max);
+  } else {
+    std::ostringstream os;
+    os << "at t = " << t << " s the Hertz indentation " << eps_max << " m for U_c = " << u_rel
+       << " m/s cannot be stored by the ramp over delta_ss*D = " << delta_ss_m_ << " m; increase delta_ss";
+    throw InputError(scene_.path, "contact.delta_ss", os.str());
+  }
   factor_ = 1.0;
   if (contacts_ == 0) {
     W_o_ = W_now_;

@@ -101,3 +101,22 @@ TEST(Cli, RunWritesCompleteOutputs) {
   std::getline(csv, row);
   EXPECT_NE(row.find(",0.25,"), std::string::npos) << row;
 }
+
+TEST(Cli, SolverFailureIsReportedWithItsCause) {
+  const fs::path p = write_scene("fail", kScene);
+  const Result r = imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_fail").string() +
+                         " --set solver.max_steps=3");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("CV_TOO_MUCH_WORK"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("gap="), std::string::npos) << r.err;  // names the state components
+  EXPECT_NE(r.err.find("t = "), std::string::npos) << r.err;
+}
+
+TEST(Cli, ContactZoneTooThinForTheImpactIsAnInputError) {
+  // A soft sphere at high speed: the Hertz indentation exceeds delta_ss*D.
+  const fs::path p = write_scene("soft", with(with(kScene, "material = \"steel\"", "density = 1000.0\nyoungs_modulus = 1e5\npoisson_ratio = 0.45\ne_dry = 0.5"), "velocity = 0.2", "velocity = 5.0"));
+  const Result r = imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_soft").string() +
+                         " --set contact.delta_ss=0.001");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("contact.delta_ss"), std::string::npos) << r.err;
+}
