@@ -127,16 +127,16 @@ RunResult simulate(const Scene& sc) {
     // Approach window ends at the first δ_SS crossing (or closest approach, or the end).
     const double t_ref = model.t_contact().value_or(model.t_closest().value_or(t_final));
     if (t_ref - W < 0) warnings.push_back("the approach lasted less than the fit window; the approach fit uses [0, t_contact]");
-    auto f1 = fit_line(t, z1, std::max(0.0, t_ref - W), t_ref);
-    auto f2 = pair ? fit_line(t, z2, std::max(0.0, t_ref - W), t_ref) : std::optional<LineFit>(LineFit{});
+    auto f1 = fit_line_continuous(t, z1, std::max(0.0, t_ref - W), t_ref);
+    auto f2 = pair ? fit_line_continuous(t, z2, std::max(0.0, t_ref - W), t_ref) : std::optional<LineFit>(LineFit{});
     if (f1 && f2) {
       u_i1 = f1->slope;
       u_i2 = f2->slope;
     }
     // Post window: after separation, or the last window of the run.
     const double t_post = separated ? *model.t_separation() : std::max(0.0, t_final - W);
-    auto g1 = fit_line(t, z1, t_post, t_post + W);
-    auto g2 = pair ? fit_line(t, z2, t_post, t_post + W) : std::optional<LineFit>(LineFit{});
+    auto g1 = fit_line_continuous(t, z1, t_post, t_post + W);
+    auto g2 = pair ? fit_line_continuous(t, z2, t_post, t_post + W) : std::optional<LineFit>(LineFit{});
     if (g1 && g2) {
       u_r1 = g1->slope;
       u_r2 = g2->slope;

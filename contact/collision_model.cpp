@@ -71,6 +71,15 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   brenner_ = sc.lubrication.model == "brenner";
 
   u_ref_ = std::max({std::abs(s1.velocity), n_spheres_ > 1 ? std::abs(sc.spheres[1].velocity) : 0.0, 1e-3});
+  // The gap matters on the scale of the contact, not of the sphere: use the Hertz indentation at
+  // the initial approach speed (or the lubrication cutoff if smaller), so that atol does not limit
+  // the accuracy of e.
+  gap_scale_ = D_;
+  if (has_target()) {
+    const double u0 = std::abs(s1.velocity - (n_spheres_ > 1 ? sc.spheres[1].velocity : 0.0));
+    if (sc.has(Effect::lubrication)) gap_scale_ = std::min(gap_scale_, h_min_);
+    if (sc.has(Effect::elastic) && u0 > 0) gap_scale_ = std::min(gap_scale_, hertz_max_indentation(m_star_, u0, E_star_, a_star_));
+  }
   // Cap the step so that the contact zone cannot be crossed (in and out) inside one step.
   const double u_scale = std::max(u_ref_, 1e-3);
   max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step
@@ -91,7 +100,7 @@ std::vector<std::string> CollisionModel::component_names() const {
 std::vector<double> CollisionModel::absolute_tolerances(double atol) const {
   std::vector<double> t;
   for (std::size_t m = 0; m < n_spheres_; ++m) {
-    t.push_back(atol * D_);
+    t.push_back(atol * (m == 0 && has_target() ? gap_scale_ : D_));
     t.push_back(atol * u_ref_);
   }
   return t;

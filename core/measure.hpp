@@ -14,6 +14,11 @@ struct LineFit {
 /// Least-squares line z ≈ slope t + intercept over the samples with t0 ≤ t ≤ t1 (needs ≥ 2 samples).
 std::optional<LineFit> fit_line(std::span<const double> t, std::span<const double> z, double t0, double t1);
 
+/// Least-squares line fitted to the piecewise-linear interpolant of the samples over [t0, t1]
+/// (continuous least squares): unlike the discrete fit it varies smoothly as the window moves.
+/// Samples must be sorted in t and cover [t0, t1].
+std::optional<LineFit> fit_line_continuous(std::span<const double> t, std::span<const double> z, double t0, double t1);
+
 /// e = −(U_r1 − U_r2)/(U_i1 − U_i2)  (seed eq. 6.1)
 double restitution(double u_i1, double u_i2, double u_r1, double u_r2);
 
