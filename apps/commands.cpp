@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "apps/simulate.hpp"
@@ -140,6 +141,39 @@ int cmd_bench(const std::string& scene_path, const std::vector<double>& rtols, i
   return 0;
 }
 
+/// Which effect does what: the scene with all its effects, then without each one in turn.
+int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
+  const Scene full = load_scene(scene_path, c.overrides());
+  std::vector<std::pair<std::string, std::set<Effect>>> variants = {{"all", full.effects}};
+  for (Effect e : full.effects) {
+    auto fewer = full.effects;
+    fewer.erase(e);
+    variants.push_back({std::string("without ") + to_string(e), fewer});
+  }
+  std::cout << "scene " << full.name << ": each effect removed in turn\n";
+  std::cout << std::left << std::setw(24) << "effects" << std::right << std::setw(10) << "e" << std::setw(10) << "de"
+            << std::setw(10) << "St" << std::setw(13) << "min gap um" << std::setw(13) << "max F_c N" << std::setw(8)
+            << "steps" << "\n";
+  double e_all = NAN;
+  for (const auto& [label, effects] : variants) {
+    std::string list = "[";
+    for (Effect e : effects) list += std::string(list.size() > 1 ? ", " : "") + "\"" + to_string(e) + "\"";
+    list += "]";
+    auto ov = c.overrides();
+    ov.push_back({"effects", list});
+    const RunResult r = simulate(load_scene(scene_path, ov));
+    const auto& s = r.summary;
+    const double e = s["e"].is_null() ? NAN : s["e"].get<double>();
+    if (label == "all") e_all = e;
+    std::cout << std::left << std::setw(24) << label << std::right << std::setw(10) << fixed(e, 4) << std::setw(10)
+              << (label == "all" ? std::string("-") : fixed(e - e_all, 4)) << std::setw(10) << json_num(s["St"], 1)
+              << std::setw(13) << (s["min_gap_m"].is_null() ? std::string("n/a") : fixed(1e6 * s["min_gap_m"].get<double>(), 3))
+              << std::setw(13) << fixed(s["max_contact_force_N"].get<double>(), 3) << std::setw(8)
+              << s["solver"]["steps"].get<long>() << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -170,6 +204,12 @@ int run_cli(int argc, char** argv) {
   bench->add_option("--repeat", repeat, "runs per tolerance (median reported)");
   add_common(bench, bench_opt);
 
+  std::string escene;
+  CommonOptions eff_opt;
+  auto* effects = app.add_subcommand("effects", "which effect does what: rerun the scene without each of its effects");
+  effects->add_option("scene", escene, "scene file (TOML)")->required();
+  add_common(effects, eff_opt);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -183,6 +223,7 @@ int run_cli(int argc, char** argv) {
     if (*run) return cmd_run(scene, out, run_opt, quiet);
     if (*val) return cmd_validate(what, vout, val_opt);
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
+    if (*effects) return cmd_effects(escene, eff_opt);
   } catch (const InputError& e) {
     std::cerr << "imcol: error: " << e.what() << "\n";
     return 2;

@@ -1,0 +1,65 @@
+#!/usr/bin/python3
+"""Plot one imcol run: positions, velocities and force terms against time.
+
+Usage: /usr/bin/python3 scripts/plot_run.py OUT_DIR   (writes OUT_DIR/trajectory.png)
+Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
+"""
+import csv
+import json
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    out = Path(sys.argv[1])
+    with open(out / "trajectory.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    summary = json.loads((out / "summary.json").read_text())
+    col = {k: [float(r[k]) for r in rows] for k in rows[0]}
+    t_ms = [1e3 * x for x in col["t"]]
+
+    fig, ax = plt.subplots(3, 1, figsize=(8, 10), sharex=True)
+    for k in ("z1", "z2"):
+        if k in col:
+            ax[0].plot(t_ms, [1e3 * v for v in col[k]], label=k)
+    ax[0].set_ylabel("centre position (mm)")
+    ax[1].plot(t_ms, col["u1"], label="u1")
+    if "u2" in col:
+        ax[1].plot(t_ms, col["u2"], label="u2")
+    ax[1].set_ylabel("velocity (m/s)")
+    for k in col:
+        if k.startswith("f_"):
+            ax[2].plot(t_ms, col[k], label=k)
+    ax[2].set_yscale("symlog", linthresh=1e-4)
+    ax[2].set_ylabel("force (N)")
+    ax[2].set_xlabel("t (ms)")
+    contact = summary.get("contact") or {}
+    for key in ("t_contact_s", "t_separation_s"):
+        if contact.get(key) is not None:
+            for a in ax:
+                a.axvline(1e3 * contact[key], color="grey", lw=0.8, ls=":")
+    for a in ax:
+        a.legend(fontsize=8)
+        a.grid(alpha=0.3)
+    e = summary.get("e")
+    st = summary.get("St")
+    title = f"{summary['scene']}: e = {e:.3f}" if e is not None else summary["scene"]
+    if st is not None:
+        title += f", St = {st:.1f}"
+    ax[0].set_title(title + "   effects: " + ", ".join(summary["effects"]))
+    fig.tight_layout()
+    fig.savefig(out / "trajectory.png", dpi=100)
+    print(f"wrote {out / 'trajectory.png'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
