@@ -52,7 +52,7 @@ class Reader {
   std::string where(const toml::node* n) const {
     const toml::node* at = n ? n : &t_;
     auto line = at->source().begin.line;
-    if (line == 0) return n ? "--set" : file_;
+    if (line == 0) return n ? "command line (--set/--rtol/--atol/--integrator)" : file_;
     return file_ + ":" + std::to_string(line);
   }
 
