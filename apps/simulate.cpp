@@ -160,6 +160,8 @@ RunResult simulate(const Scene& sc) {
       if (model.u_rel_instant_out()) e_inst = -*model.u_rel_instant_out() / *model.u_rel_instant_in();
       else if (!separated) e_inst = 0.0;
     }
+    if (!e_inst && (model.t_contact() || separated))
+      warnings.push_back("e_instant: the gap did not cross measure.instant_gap inward and outward before t_end");
   }
 
   s["e"] = or_null(e);

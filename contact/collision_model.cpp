@@ -263,8 +263,9 @@ void CollisionModel::arm() {
       add(RootKind::contact_out, "gap=delta_ss (out)", +1);
       break;
   }
-  if (before_first_contact && instant_in_armed_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
-  if (t_contact_ && !t_separation_ && !u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
+  // e_instant: the first inward crossing of instant_gap, then the next outward one (either side of δ_SS).
+  if (!u_in_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
+  else if (!u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
   if (scene_.has(Effect::lubrication) && !brenner_) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
 }
 
@@ -334,7 +335,8 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
       phase_ = Phase::separated;
       if (!t_separation_) {
         t_separation_ = t;
-        stop_time_ = std::min(stop_time_, t + window);
+        // Stop once the rebound window is complete and e_instant's gap has been passed (or at t_end).
+        if (u_out_ || !u_in_) stop_time_ = std::min(stop_time_, t + window);
       }
       break;
     case RootKind::closest:
@@ -343,11 +345,11 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
       stop_time_ = std::min(stop_time_, t + window);
       break;
     case RootKind::instant_in:
-      instant_in_armed_ = false;
       u_in_ = ev.u_rel;
       break;
     case RootKind::instant_out:
       u_out_ = ev.u_rel;
+      if (t_separation_) stop_time_ = std::min(scene_.solver.t_end, std::max(t, *t_separation_ + window));
       break;
     case RootKind::touch:
     case RootKind::lub_edge:

@@ -118,7 +118,7 @@ class CollisionModel : public DynamicalSystem {
   double W_o_ = 0, beta_ = 0, U_c_ = 0, W_now_ = 0, beta_now_ = 0, factor_ = 1;
   double max_contact_force_ = 0;
   int contacts_ = 0;
-  bool closest_armed_ = true, instant_in_armed_ = true;
+  bool closest_armed_ = true;
   std::optional<double> t_contact_, t_separation_, t_closest_, u_in_, u_out_;
   std::vector<RootSpec> armed_;
   std::vector<RootKind> armed_kind_;

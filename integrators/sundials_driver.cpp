@@ -320,7 +320,9 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
   double next_out = st.output_dt;
   while (true) {
     const double tstop = sys.stop_time();
-    if (t >= tstop) break;
+    if (t >= tstop - 1e-12 * std::max(1.0, std::abs(t))) break;
+    // The next output time must lie strictly ahead (an event may have landed on it).
+    while (next_out <= t + 1e-12 * std::max(1.0, std::abs(t))) next_out += st.output_dt;
     const double tout = std::min(next_out, tstop);
     int flag = be->solve(tout, tstop, y.get(), t);
     if (flag < 0) fail(flag);
@@ -344,7 +346,6 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
       continue;
     }
     observer.sample(t, view(y.get()), false);
-    while (next_out <= t * (1 + 1e-12)) next_out += st.output_dt;
   }
   be->add_stats(stats);
   return stats;

@@ -59,6 +59,11 @@ TEST_P(DryCollision, WallReturnsDryRestitution) {
   EXPECT_NEAR(r.summary["e_instant"].get<double>(), 0.9, 1e-6);
   EXPECT_TRUE(r.summary["separated"].get<bool>());
   EXPECT_TRUE(r.summary["St"].is_null());
+  // e_instant at a gap outside the contact zone (the rebound must run on until it is reached).
+  auto far = run(wall_scene("", 0.2, "[solver]\nrtol = 1e-10\n[measure]\ninstant_gap = 0.3\n"),
+                 {{"solver.integrator", "\"" + GetParam() + "\""}});
+  EXPECT_NEAR(far.summary["e_instant"].get<double>(), 0.9, 1e-6);
+  EXPECT_NEAR(e_of(far), 0.9, 1e-6);
 }
 
 TEST_P(DryCollision, PairReturnsDryRestitutionAndConservesMomentum) {
