@@ -122,21 +122,25 @@ RunResult simulate(const Scene& sc) {
 
   std::optional<double> e, e_inst, St, St_62, Re, U_G;
   std::optional<double> u_i1, u_i2, u_r1, u_r2;
+  double fit_window = W;
   bool separated = model.t_separation().has_value();
   if (model.has_target()) {
     // Approach window ends at the first δ_SS crossing (or closest approach, or the end).
     const double t_ref = model.t_contact().value_or(model.t_closest().value_or(t_final));
-    if (t_ref - W < 0) warnings.push_back("the approach lasted less than the fit window; the approach fit uses [0, t_contact]");
-    auto f1 = fit_line_continuous(t, z1, std::max(0.0, t_ref - W), t_ref);
-    auto f2 = pair ? fit_line_continuous(t, z2, std::max(0.0, t_ref - W), t_ref) : std::optional<LineFit>(LineFit{});
+    // A short approach shortens both windows alike, so that they stay symmetric in time.
+    const double Wfit = std::min(W, t_ref);
+    if (Wfit < W) warnings.push_back("the approach lasted less than the fit window: both fits use windows of the approach's length");
+    auto f1 = fit_line_continuous(t, z1, t_ref - Wfit, t_ref);
+    auto f2 = pair ? fit_line_continuous(t, z2, t_ref - Wfit, t_ref) : std::optional<LineFit>(LineFit{});
     if (f1 && f2) {
       u_i1 = f1->slope;
       u_i2 = f2->slope;
     }
     // Post window: after separation, or the last window of the run.
-    const double t_post = separated ? *model.t_separation() : std::max(0.0, t_final - W);
-    auto g1 = fit_line_continuous(t, z1, t_post, t_post + W);
-    auto g2 = pair ? fit_line_continuous(t, z2, t_post, t_post + W) : std::optional<LineFit>(LineFit{});
+    const double t_post = separated ? *model.t_separation() : std::max(0.0, t_final - Wfit);
+    auto g1 = fit_line_continuous(t, z1, t_post, t_post + Wfit);
+    auto g2 = pair ? fit_line_continuous(t, z2, t_post, t_post + Wfit) : std::optional<LineFit>(LineFit{});
+    fit_window = Wfit;
     if (g1 && g2) {
       u_r1 = g1->slope;
       u_r2 = g2->slope;
@@ -178,7 +182,7 @@ RunResult simulate(const Scene& sc) {
   s["separated"] = separated;
   s["contacts"] = model.contacts();
   s["velocities_m_s"] = {{"U_i1", or_null(u_i1)}, {"U_i2", or_null(u_i2)}, {"U_r1", or_null(u_r1)}, {"U_r2", or_null(u_r2)}};
-  s["fit_window_s"] = W;
+  s["fit_window_s"] = fit_window;
   s["min_gap_m"] = model.has_target() ? nlohmann::ordered_json(rec.min_gap_) : nlohmann::ordered_json(nullptr);
   s["max_contact_force_N"] = rec.max_force_;
   s["group_velocity_m_s"] = or_null(U_G);

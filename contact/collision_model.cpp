@@ -86,7 +86,10 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
                                      : (has_target() ? 0.25 * delta_ss_m_ / u_scale : sc.solver.t_end / 100);
   stop_time_ = sc.solver.t_end;
   // Build the lookup tables now, not inside the first right-hand side.
-  if (sc.has(Effect::added_mass) && has_target()) added_mass_W(1.0);
+  if (sc.has(Effect::added_mass) && has_target()) {
+    w_floor_ = added_mass_W(dw_floor_);
+    dw_slope_ = added_mass_dW(dw_floor_);
+  }
   if (sc.has(Effect::lubrication) && brenner_) brenner_lambda(1.0);
   arm();
 }
@@ -149,13 +152,21 @@ void CollisionModel::forces(Evaluation& ev) const {
   const auto& sc = scene_;
   const bool pair = target_ == Target::sphere;
   const double six_pi_mu = 6 * pi * mu_;
-  // Added-mass wall function at δ** = h/a*; dW/dδ is bounded below dw_floor (it diverges like ln δ).
+  // Added-mass wall function at δ** = h/a*. dW/dδ diverges like ln δ at contact: below dw_floor, W is
+  // continued linearly with the slope it has there. dW/dδ is then bounded and still the derivative of
+  // the W used in the mass, so the added-mass forces stay conservative (½ m_a(δ) U² is conserved in
+  // an ideal fluid; bounding dW/dδ alone would create energy on approach).
   double W = 0, dW = 0;
   const bool am = sc.has(Effect::added_mass) && has_target();
   if (am) {
-    const double d = std::max(ev.gap, 0.0) / a_star_;
-    W = added_mass_W(d);
-    dW = added_mass_dW(std::max(d, dw_floor_));
+    const double d = ev.gap / a_star_;
+    if (d >= dw_floor_) {
+      W = added_mass_W(d);
+      dW = added_mass_dW(d);
+    } else {
+      dW = dw_slope_;
+      W = w_floor_ + dW * (d - dw_floor_);
+    }
   }
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     auto& f = ev.f[m];

@@ -111,6 +111,7 @@ class CollisionModel : public DynamicalSystem {
   double D_ = 0, a_star_ = 0, m_star_ = 0, E_star_ = 0, e_dry_ = 1, c_log_ = 0;
   double mu_ = 0, rho_f_ = 0;
   double delta_ss_m_ = 0, instant_gap_m_ = 0, h_min_ = 0, h_c_ = 0, dw_floor_ = 0, u_ref_ = 0, gap_scale_ = 0;
+  double w_floor_ = 0, dw_slope_ = 0;  // W and dW/dδ at dw_floor
   DragLaw drag_law_ = DragLaw::stokes;
   bool brenner_ = false;
 

@@ -83,6 +83,17 @@ TEST_P(DryCollision, PairReturnsDryRestitutionAndConservesMomentum) {
 
 INSTANTIATE_TEST_SUITE_P(Integrators, DryCollision, ::testing::Values("cvode", "ida"));
 
+TEST(ImmersedCollision, AddedMassForcesAreConservative) {
+  // Ideal fluid limit (added mass only): ½ m_a(δ) U² is conserved outside the contact, so the
+  // relative speed at any gap comes back multiplied by exactly e_d.
+  for (double gap : {0.017, 0.05, 0.3}) {
+    auto r = run("effects = [\"added_mass\", \"elastic\"]\n" + wall_scene(fluid(0.01, 1200), 0.5),
+                 {{"solver.rtol", "1e-10"}, {"measure.instant_gap", std::to_string(gap)}});
+    EXPECT_NEAR(r.summary["e_instant"].get<double>(), 0.9, 1e-6) << "gap " << gap;
+    EXPECT_LE(e_of(r), 0.9 + 1e-9);
+  }
+}
+
 TEST(ImmersedCollision, CvodeAndIdaAgree) {
   for (const std::string& scene : {wall_scene(fluid(0.02), 0.3), pair_scene(fluid(0.01), 0.2, 0.0)}) {
     auto a = run(scene, {{"solver.rtol", "1e-10"}});
