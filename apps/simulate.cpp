@@ -179,6 +179,11 @@ RunResult simulate(const Scene& sc) {
     s["St_convention"] = "m U / (6 pi mu a^2)";
   }
   s["Re"] = or_null(Re);
+  if (sc.fluid && model.has_target()) {  // nominal value from the initial velocities, same convention as St
+    const double u0 = sc.spheres[0].velocity - (pair ? sc.spheres[1].velocity : 0.0);
+    const double st0 = stokes_number(model.m_star(), u0, sc.fluid->viscosity, model.a_star());
+    s["St_initial"] = pair ? st0 / 2 : st0;
+  }
   s["separated"] = separated;
   s["contacts"] = model.contacts();
   s["velocities_m_s"] = {{"U_i1", or_null(u_i1)}, {"U_i2", or_null(u_i2)}, {"U_r1", or_null(u_r1)}, {"U_r2", or_null(u_r2)}};

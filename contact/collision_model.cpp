@@ -69,6 +69,8 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   dw_floor_ = sc.added_mass.dw_floor > 0 ? sc.added_mass.dw_floor : delta_ss_m_ / a_star_;
   drag_law_ = drag_law_from_string(sc.drag.law);
   brenner_ = sc.lubrication.model == "brenner";
+  lagrangian_am_ = sc.added_mass.model == "lagrangian";
+  mf_star_ = target_ == Target::sphere ? reduced(mf_[0], mf_[1]) : mf_[0];
 
   u_ref_ = std::max({std::abs(s1.velocity), n_spheres_ > 1 ? std::abs(sc.spheres[1].velocity) : 0.0, 1e-3});
   // The gap matters on the scale of the contact, not of the sphere: use the Hertz indentation at
@@ -168,6 +170,7 @@ void CollisionModel::forces(Evaluation& ev) const {
       W = w_floor_ + dW * (d - dw_floor_);
     }
   }
+  ev.m_couple = 0;
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     auto& f = ev.f[m];
     f = SphereForces{};
@@ -178,10 +181,23 @@ void CollisionModel::forces(Evaluation& ev) const {
     if (sc.has(Effect::gravity)) f.gravity = (mp_[m] - mf_[m]) * sc.gravity;
     ev.m_eff[m] = mp_[m];
     if (sc.has(Effect::added_mass)) {
-      const double W_self = has_target() ? W : 0.0;
-      ev.m_eff[m] += 0.5 * mf_[m] * (1 + 3 * W_self);
-      if (am) f.added_mass = 0.75 * mf_[m] * ev.u[m] * (ev.u_rel / a_star_) * dW;  // velocity part (6.8)
+      if (lagrangian_am_ && pair) {
+        ev.m_eff[m] += 0.5 * mf_[m];  // free-space part; the gap part A is added below
+      } else {
+        ev.m_eff[m] += 0.5 * mf_[m] * (1 + 3 * W);
+        if (am) f.added_mass = 0.75 * mf_[m] * ev.u[m] * (ev.u_rel / a_star_) * dW;  // velocity part (6.8)
+      }
     }
+  }
+  if (am && lagrangian_am_ && pair) {
+    // T = Σ ½ M_m U_m² + ½ A U_rel²: mass matrix [[M1+A, −A], [−A, M2+A]], forces ±½ A' U_rel²/a*.
+    const double A = 1.5 * mf_star_ * W, dA = 1.5 * mf_star_ * dW;
+    ev.m_eff[0] += A;
+    ev.m_eff[1] += A;
+    ev.m_couple = -A;
+    const double f = 0.5 * dA * ev.u_rel * ev.u_rel / a_star_;
+    ev.f[0].added_mass = f;
+    ev.f[1].added_mass = -f;
   }
   if (sc.has(Effect::lubrication)) {
     const double h = regularised_gap(ev.gap, h_min_);
@@ -197,32 +213,41 @@ void CollisionModel::forces(Evaluation& ev) const {
   }
 }
 
+std::array<double, 2> Evaluation::accelerations(const std::array<double, 2>& g, std::size_t n) const {
+  if (n == 1) return {g[0] / m_eff[0], 0.0};
+  const double det = m_eff[0] * m_eff[1] - m_couple * m_couple;
+  return {(m_eff[1] * g[0] - m_couple * g[1]) / det, (m_eff[0] * g[1] - m_couple * g[0]) / det};
+}
+
+std::array<double, 2> CollisionModel::total_forces(const Evaluation& ev) const {
+  std::array<double, 2> g{};
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    const auto& f = ev.f[m];
+    g[m] = f.drag + f.lubrication + f.added_mass + f.contact + f.gravity;
+  }
+  return g;
+}
+
 Evaluation CollisionModel::evaluate(double, std::span<const double> y) const {
   Evaluation ev;
   kinematics(y, ev);
   forces(ev);
+  const auto acc = ev.accelerations(total_forces(ev), n_spheres_);
+  for (std::size_t m = 0; m < n_spheres_; ++m) ev.f[m].accel = acc[m];
+  // Report the full added-mass force, including its acceleration part (the mass matrix beyond m_p).
   for (std::size_t m = 0; m < n_spheres_; ++m) {
-    auto& f = ev.f[m];
-    const double rest = f.drag + f.lubrication + f.added_mass + f.contact + f.gravity;
-    f.accel = rest / ev.m_eff[m];
-    // Report the full added-mass force, including its acceleration part −½ m_f (1+3W) dU/dt.
-    f.added_mass -= (ev.m_eff[m] - mp_[m]) * f.accel;
+    const double other = n_spheres_ == 2 ? ev.m_couple * acc[1 - m] : 0.0;
+    ev.f[m].added_mass -= (ev.m_eff[m] - mp_[m]) * acc[m] + other;
   }
   return ev;
 }
 
-void CollisionModel::rhs(double t, std::span<const double> y, std::span<double> ydot) {
+void CollisionModel::rhs(double, std::span<const double> y, std::span<double> ydot) {
   Evaluation ev;
   kinematics(y, ev);
   forces(ev);
-  (void)t;
-  std::array<double, 2> acc{};
-  for (std::size_t m = 0; m < n_spheres_; ++m) {
-    const auto& f = ev.f[m];
-    acc[m] = (f.drag + f.lubrication + f.added_mass + f.contact + f.gravity) / ev.m_eff[m];
-  }
-  if (target_ == Target::none) ydot[0] = ev.u[0];
-  else ydot[0] = -ev.u_rel;
+  const auto acc = ev.accelerations(total_forces(ev), n_spheres_);
+  ydot[0] = target_ == Target::none ? ev.u[0] : -ev.u_rel;
   ydot[1] = acc[0];
   if (target_ == Target::sphere) {
     ydot[2] = ev.u[1];
@@ -230,22 +255,19 @@ void CollisionModel::rhs(double t, std::span<const double> y, std::span<double> 
   }
 }
 
-void CollisionModel::mass_and_forcing(double, std::span<const double> y, std::span<double> m, std::span<double> g) {
+void CollisionModel::residual(double, std::span<const double> y, std::span<const double> yp, std::span<double> r) {
   Evaluation ev;
   kinematics(y, ev);
   forces(ev);
-  m[0] = 1.0;
-  g[0] = target_ == Target::none ? ev.u[0] : -ev.u_rel;
-  m[1] = ev.m_eff[0];
-  const auto& f0 = ev.f[0];
-  g[1] = f0.drag + f0.lubrication + f0.added_mass + f0.contact + f0.gravity;
-  if (target_ == Target::sphere) {
-    m[2] = 1.0;
-    g[2] = ev.u[1];
-    m[3] = ev.m_eff[1];
-    const auto& f1 = ev.f[1];
-    g[3] = f1.drag + f1.lubrication + f1.added_mass + f1.contact + f1.gravity;
+  const auto g = total_forces(ev);
+  r[0] = yp[0] - (target_ == Target::none ? ev.u[0] : -ev.u_rel);
+  if (target_ != Target::sphere) {
+    r[1] = ev.m_eff[0] * yp[1] - g[0];
+    return;
   }
+  r[1] = ev.m_eff[0] * yp[1] + ev.m_couple * yp[3] - g[0];
+  r[2] = yp[2] - ev.u[1];
+  r[3] = ev.m_couple * yp[1] + ev.m_eff[1] * yp[3] - g[1];
 }
 
 // ---------- Events (MODEL.md §3) ----------
@@ -399,7 +421,10 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
     c.push_back({"lubrication.cutoff_m", num(h_min_)});
     if (!brenner_) c.push_back({"lubrication.h_c_m", num(h_c_)});
   }
-  if (sc.has(Effect::added_mass)) c.push_back({"added_mass.dW_floor_delta_star", num(dw_floor_)});
+  if (sc.has(Effect::added_mass)) {
+    c.push_back({"added_mass.model", sc.added_mass.model});
+    c.push_back({"added_mass.dw_floor", num(dw_floor_)});
+  }
   if (sc.has(Effect::elastic)) {
     c.push_back({"contact.ramp", "F(x) = (exp(beta(1-x))-1)/(exp(beta)-1)"});
     c.push_back({"contact.beta", sc.contact.beta > 0 ? num(sc.contact.beta) : "energy-consistent"});

@@ -1,7 +1,11 @@
 #pragma once
 // Reduced-order model of one head-on collision (MODEL.md §2, §3 with H ≡ 1, no f_SIM):
 //   m_p,m dU_m/dt = f_D,m + f_lub,m + f_AM,m + f_SS,m + (m_p,m − m_f,m) g        (seed 6.4, 6.10)
-// The added-mass acceleration term is moved to the left: m_eff,m = m_p,m + ½ m_f,m (1 + 3W).
+// The added-mass acceleration terms are moved to the left-hand side (a mass matrix on the velocities):
+//   `seed`        (6.8) per sphere: m_p,m + ½ m_f,m (1 + 3W) on its own dU_m/dt (diagonal);
+//   `lagrangian`  (choice) kinetic energy T = Σ ½ (m_p,m + ½ m_f,m) U_m² + ½ A(δ) U_rel²,
+//                 A = (3/2) m_f* W(δ**), m_f* = (1/m_f,1 + 1/m_f,2)⁻¹: the same as (6.8) for a wall,
+//                 and for a pair it conserves momentum and, in an ideal fluid, the relative energy.
 // Only the effects the scene lists are built.
 //
 // State (SI): wall   [gap, u1]; pair [gap, u1, z2, u2]; free sphere [z1, u1].
@@ -26,7 +30,11 @@ struct SphereForces {
 struct Evaluation {
   double gap = 0;    // m
   double u_rel = 0;  // m/s, U1 − U2 (> 0 approaching)
-  std::array<double, 2> z{}, u{}, m_eff{};
+  std::array<double, 2> z{}, u{};
+  std::array<double, 2> m_eff{};  // diagonal of the velocity mass matrix, kg
+  double m_couple = 0;            // its off-diagonal entry (lagrangian pair added mass), kg
+  /// Solves the 2×2 mass system for the accelerations given the forces g.
+  std::array<double, 2> accelerations(const std::array<double, 2>& g, std::size_t n) const;
   std::array<SphereForces, 2> f{};
 };
 
@@ -51,7 +59,7 @@ class CollisionModel : public DynamicalSystem {
   std::vector<double> absolute_tolerances(double atol) const override;
   void initial_state(std::span<double> y) const override;
   void rhs(double t, std::span<const double> y, std::span<double> ydot) override;
-  void mass_and_forcing(double t, std::span<const double> y, std::span<double> m, std::span<double> g) override;
+  void residual(double t, std::span<const double> y, std::span<const double> yp, std::span<double> r) override;
   std::vector<RootSpec> roots() const override { return armed_; }
   void root_values(double t, std::span<const double> y, std::span<double> g) override;
   EventAction on_roots(std::span<const std::size_t> found, double t, std::span<double> y) override;
@@ -97,7 +105,8 @@ class CollisionModel : public DynamicalSystem {
   void arm();
   double gap_of(std::span<const double> y) const;
   void kinematics(std::span<const double> y, Evaluation& ev) const;
-  /// Forces without the added-mass acceleration term; fills ev.f and ev.m_eff.
+  std::array<double, 2> total_forces(const Evaluation& ev) const;
+  /// Forces without the added-mass acceleration terms; fills ev.f, ev.m_eff and ev.m_couple.
   void forces(Evaluation& ev) const;
   double contact_force(double gap) const;  // magnitude, pushes the pair apart
   void freeze_contact(double t, double u_rel);
@@ -114,6 +123,8 @@ class CollisionModel : public DynamicalSystem {
   double w_floor_ = 0, dw_slope_ = 0;  // W and dW/dδ at dw_floor
   DragLaw drag_law_ = DragLaw::stokes;
   bool brenner_ = false;
+  bool lagrangian_am_ = false;
+  double mf_star_ = 0;  // reduced fluid mass for the lagrangian pair added mass
 
   Phase phase_ = Phase::approach;
   double W_o_ = 0, beta_ = 0, U_c_ = 0, W_now_ = 0, beta_now_ = 0, factor_ = 1;

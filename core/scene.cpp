@@ -328,6 +328,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
 
   if (const auto* t = top.table("added_mass")) {
     Reader r(*t, "added_mass", path);
+    if (auto v = r.string("model")) sc.added_mass.model = *v;
+    r.one_of("model", sc.added_mass.model, {"seed", "lagrangian"});
     sc.added_mass.dw_floor = r.number("dw_floor", sc.added_mass.dw_floor);
     if (r.has("dw_floor")) r.positive("dw_floor", sc.added_mass.dw_floor);
     r.finish();

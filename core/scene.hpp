@@ -51,7 +51,10 @@ struct Scene {
     double cutoff = 1e-4;     // smallest effective gap, units of D (impact sphere)
     double h_c = 1.0;         // asymptotic model acts for h < h_c, units of a*
   } lubrication;
-  struct AddedMass { double dw_floor = -1; } added_mass;  // units of a*; <0: use delta_ss
+  struct AddedMass {
+    std::string model = "seed";  // seed (6.8, per sphere) | lagrangian (pair kinetic energy; same for a wall)
+    double dw_floor = -1;        // units of a*; <0: delta_ss
+  } added_mass;
   struct Contact {
     double delta_ss = 0;      // units of D; default 0.024 (sphere) / 0.017 (wall)
     double delta_sl = 0.1;    // units of D

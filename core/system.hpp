@@ -3,7 +3,7 @@
 // Physics implements it; integrators/ wraps it in SUNDIALS. No SUNDIALS types appear here.
 //
 // ODE form:      y' = f(t, y)
-// Residual form: F(t, y, y') = M(t, y) y' - g(t, y) = 0  (M diagonal: the added mass sits on y')
+// Residual form: F(t, y, y') = M(t, y) y' - g(t, y) = 0  (M: the added mass sits on y')
 #include <span>
 #include <string>
 #include <vector>
@@ -33,8 +33,8 @@ class DynamicalSystem {
   virtual void initial_state(std::span<double> y) const = 0;
 
   virtual void rhs(double t, std::span<const double> y, std::span<double> ydot) = 0;
-  /// Diagonal of M(t, y) and g(t, y) for the residual form.
-  virtual void mass_and_forcing(double t, std::span<const double> y, std::span<double> m, std::span<double> g) = 0;
+  /// Residual F(t, y, y') = M(t, y) y' − g(t, y) of the implicit form (same model as rhs).
+  virtual void residual(double t, std::span<const double> y, std::span<const double> yp, std::span<double> r) = 0;
 
   /// Roots armed in the current phase; the list may change after an event that returns reinit.
   virtual std::vector<RootSpec> roots() const = 0;

@@ -45,7 +45,6 @@ struct Callback {
   std::size_t nroots = 0;  // roots armed now
   std::exception_ptr error;
   std::string last_message;
-  std::vector<double> m, g;  // scratch for the residual form
 
   template <class F>
   int guard(F&& f) {
@@ -76,12 +75,7 @@ int cv_root(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
 }
 int ida_res(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, void* data) {
   auto* cb = static_cast<Callback*>(data);
-  return cb->guard([&] {
-    cb->sys->mass_and_forcing(t, view(y), cb->m, cb->g);
-    auto yps = view(yp);
-    auto rs = mview(r);
-    for (std::size_t i = 0; i < rs.size(); ++i) rs[i] = cb->m[i] * yps[i] - cb->g[i];
-  });
+  return cb->guard([&] { cb->sys->residual(t, view(y), view(yp), mview(r)); });
 }
 int ida_root(sunrealtype t, N_Vector y, N_Vector, sunrealtype* g, void* data) {
   auto* cb = static_cast<Callback*>(data);
@@ -287,7 +281,7 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
   auto tol = sys.absolute_tolerances(st.atol);
   std::copy(tol.begin(), tol.end(), mview(abstol.get()).begin());
 
-  Callback cb{&sys, 0, nullptr, {}, std::vector<double>(sys.size()), std::vector<double>(sys.size())};
+  Callback cb{&sys, 0, nullptr, {}};
   std::unique_ptr<Backend> be;
   if (st.method == "cvode") be = std::make_unique<CvodeBackend>(ctx.get(), cb, st, y.get(), abstol.get());
   else if (st.method == "ida") be = std::make_unique<IdaBackend>(ctx.get(), cb, st, y.get(), abstol.get());
