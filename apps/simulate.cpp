@@ -185,6 +185,7 @@ RunResult simulate(const Scene& sc) {
     s["St_initial"] = pair ? st0 / 2 : st0;
   }
   s["separated"] = separated;
+  if (model.has_target()) s["final_phase"] = contact::to_string(model.phase());
   s["contacts"] = model.contacts();
   s["velocities_m_s"] = {{"U_i1", or_null(u_i1)}, {"U_i2", or_null(u_i2)}, {"U_r1", or_null(u_r1)}, {"U_r2", or_null(u_r2)}};
   s["fit_window_s"] = fit_window;

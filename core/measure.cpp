@@ -4,37 +4,10 @@
 
 namespace imcol {
 
-std::optional<LineFit> fit_line(std::span<const double> t, std::span<const double> z, double t0, double t1) {
-  // Centred sums for accuracy.
-  double st = 0, sz = 0;
-  int n = 0;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] >= t0 && t[i] <= t1) {
-      st += t[i];
-      sz += z[i];
-      ++n;
-    }
-  if (n < 2) return std::nullopt;
-  const double tm = st / n, zm = sz / n;
-  double stt = 0, stz = 0;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] >= t0 && t[i] <= t1) {
-      stt += (t[i] - tm) * (t[i] - tm);
-      stz += (t[i] - tm) * (z[i] - zm);
-    }
-  if (stt <= 0) return std::nullopt;
-  LineFit f;
-  f.slope = stz / stt;
-  f.intercept = zm - f.slope * tm;
-  f.samples = n;
-  return f;
-}
-
 std::optional<LineFit> fit_line_continuous(std::span<const double> t, std::span<const double> z, double t0, double t1) {
   if (!(t1 > t0) || t.size() < 2 || t.front() > t0 || t.back() < t1) return std::nullopt;
   const double tm = 0.5 * (t0 + t1), T = t1 - t0;
   double iz = 0, iuz = 0;  // ∫ z dt and ∫ (t − tm) z dt over the window
-  int n = 0;
   for (std::size_t i = 0; i + 1 < t.size(); ++i) {
     const double a = std::max(t[i], t0), b = std::min(t[i + 1], t1);
     if (!(b > a) || !(t[i + 1] > t[i])) continue;
@@ -43,12 +16,10 @@ std::optional<LineFit> fit_line_continuous(std::span<const double> t, std::span<
     const double A = a - tm, B = b - tm;
     iz += q * (B - A) + s * (B * B - A * A) / 2;
     iuz += q * (B * B - A * A) / 2 + s * (B * B * B - A * A * A) / 3;
-    ++n;
   }
   LineFit f;
   f.slope = iuz / (T * T * T / 12);
   f.intercept = iz / T - f.slope * tm;
-  f.samples = n + 1;
   return f;
 }
 

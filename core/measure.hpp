@@ -8,11 +8,7 @@ namespace imcol {
 struct LineFit {
   double slope = 0;      // m/s
   double intercept = 0;  // m
-  int samples = 0;
 };
-
-/// Least-squares line z ≈ slope t + intercept over the samples with t0 ≤ t ≤ t1 (needs ≥ 2 samples).
-std::optional<LineFit> fit_line(std::span<const double> t, std::span<const double> z, double t0, double t1);
 
 /// Least-squares line fitted to the piecewise-linear interpolant of the samples over [t0, t1]
 /// (continuous least squares): unlike the discrete fit it varies smoothly as the window moves.

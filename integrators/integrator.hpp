@@ -27,8 +27,6 @@ struct SolverStats {
   long root_fn_evals = 0;
   long root_events = 0;        // roots found
   long reinits = 0;
-  int last_order = 0;
-  double last_step = 0;
   std::map<std::string, long> as_map() const;
 };
 

@@ -150,10 +150,6 @@ class CvodeBackend : public Backend {
     CVodeGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails += v;
     CVodeGetNumErrTestFails(mem_, &v); s.error_test_fails += v;
     CVodeGetNumGEvals(mem_, &v); s.root_fn_evals += v;
-    int q = 0;
-    CVodeGetLastOrder(mem_, &q); s.last_order = q;
-    double h = 0;
-    CVodeGetLastStep(mem_, &h); s.last_step = h;
   }
   std::string flag_name(int flag) override {
     char* name = CVodeGetReturnFlagName(flag);
@@ -230,10 +226,6 @@ class IdaBackend : public Backend {
     IDAGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails += v;
     IDAGetNumErrTestFails(mem_, &v); s.error_test_fails += v;
     IDAGetNumGEvals(mem_, &v); s.root_fn_evals += v;
-    int q = 0;
-    IDAGetLastOrder(mem_, &q); s.last_order = q;
-    double h = 0;
-    IDAGetLastStep(mem_, &h); s.last_step = h;
   }
   std::string flag_name(int flag) override {
     char* name = IDAGetReturnFlagName(flag);
