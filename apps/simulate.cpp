@@ -152,6 +152,13 @@ RunResult simulate(const Scene& sc) {
       else {
         e = 0.0;  // never separated
         if (pair) U_G = 0.5 * (*u_r1 + *u_r2);
+        const double receding = *u_r2 - *u_r1;  // > 0: the gap was growing over the last window
+        if (model.t_contact() && receding > 1e-3 * std::abs(*u_i1 - *u_i2)) {
+          std::ostringstream os;
+          os << "no separation by t_end, but the gap was growing at " << receding
+             << " m/s over the last window (e = 0 by definition; a longer solver.t_end may show a rebound)";
+          warnings.push_back(os.str());
+        }
       }
       if (sc.fluid) {
         const double u_rel = *u_i1 - *u_i2;
