@@ -14,6 +14,7 @@
 
 #include "apps/simulate.hpp"
 #include "core/errors.hpp"
+#include "core/materials.hpp"
 #include "core/report.hpp"
 
 namespace imcol {
@@ -21,11 +22,6 @@ namespace imcol {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string data_dir() {
-  if (const char* d = std::getenv("IMCOL_DATA_DIR")) return d;
-  return IMCOL_DATA_DIR;
-}
 
 struct CommonOptions {
   std::vector<std::string> sets;
@@ -146,6 +142,7 @@ int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
   const Scene full = load_scene(scene_path, c.overrides());
   std::vector<std::pair<std::string, std::set<Effect>>> variants = {{"all", full.effects}};
   for (Effect e : full.effects) {
+    if (e == Effect::elastic && full.has_target()) continue;  // required: the solids would pass through
     auto fewer = full.effects;
     fewer.erase(e);
     variants.push_back({std::string("without ") + to_string(e), fewer});

@@ -124,9 +124,12 @@ RunResult simulate(const Scene& sc) {
   std::optional<double> u_i1, u_i2, u_r1, u_r2;
   double fit_window = W;
   bool separated = model.t_separation().has_value();
-  if (model.has_target()) {
-    // Approach window ends at the first δ_SS crossing (or closest approach, or the end).
-    const double t_ref = model.t_contact().value_or(model.t_closest().value_or(t_final));
+  const bool collided = model.t_contact() || model.t_closest();  // reached contact or a closest approach
+  if (model.has_target() && !collided)
+    warnings.push_back("no collision by t_end: the gap never reached delta_ss and the approach never stopped; e is undefined");
+  if (model.has_target() && collided) {
+    // Approach window ends at the first δ_SS crossing, or at the closest approach without contact.
+    const double t_ref = model.t_contact().value_or(*model.t_closest());
     // A short approach shortens both windows alike, so that they stay symmetric in time.
     const double Wfit = std::min(W, t_ref);
     if (Wfit < W) warnings.push_back("the approach lasted less than the fit window: both fits use windows of the approach's length");
@@ -136,8 +139,8 @@ RunResult simulate(const Scene& sc) {
       u_i1 = f1->slope;
       u_i2 = f2->slope;
     }
-    // Post window: after separation, or the last window of the run.
-    const double t_post = separated ? *model.t_separation() : std::max(0.0, t_final - Wfit);
+    // Rebound window: from the separation, or the last window of the run.
+    const double t_post = separated ? *model.t_separation() : std::max(t_ref, t_final - Wfit);
     auto g1 = fit_line_continuous(t, z1, t_post, t_post + Wfit);
     auto g2 = pair ? fit_line_continuous(t, z2, t_post, t_post + Wfit) : std::optional<LineFit>(LineFit{});
     fit_window = Wfit;
@@ -151,11 +154,22 @@ RunResult simulate(const Scene& sc) {
       if (separated) e = restitution(*u_i1, *u_i2, *u_r1, *u_r2);
       else {
         e = 0.0;  // never separated
-        if (pair) U_G = 0.5 * (*u_r1 + *u_r2);
-        const double receding = *u_r2 - *u_r1;  // > 0: the gap was growing over the last window
-        if (model.t_contact() && receding > 1e-3 * std::abs(*u_i1 - *u_i2)) {
+        const double closing = *u_r1 - *u_r2;  // > 0: still approaching over the last window
+        if (pair) {
+          // Group velocity: the pair's centre-of-mass velocity, when the two move together.
+          const double m1 = model.mass(0), m2 = model.mass(1);
+          const double ug = (m1 * *u_r1 + m2 * *u_r2) / (m1 + m2);
+          if (std::abs(closing) <= 0.1 * std::abs(ug)) U_G = ug;
+          else {
+            std::ostringstream os;
+            os << "no group velocity: the spheres' velocities still differ by " << closing
+               << " m/s over the last window (centre-of-mass velocity " << ug << " m/s)";
+            warnings.push_back(os.str());
+          }
+        }
+        if (model.t_contact() && -closing > 1e-3 * std::abs(*u_i1 - *u_i2)) {
           std::ostringstream os;
-          os << "no separation by t_end, but the gap was growing at " << receding
+          os << "no separation by t_end, but the gap was growing at " << -closing
              << " m/s over the last window (e = 0 by definition; a longer solver.t_end may show a rebound)";
           warnings.push_back(os.str());
         }

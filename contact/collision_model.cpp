@@ -87,6 +87,7 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step
                                      : (has_target() ? 0.25 * delta_ss_m_ / u_scale : sc.solver.t_end / 100);
   stop_time_ = sc.solver.t_end;
+  stall_speed_ = sc.measure.stall_fraction * std::max(0.0, s1.velocity - (n_spheres_ > 1 ? sc.spheres[1].velocity : 0.0));
   // Build the lookup tables now, not inside the first right-hand side.
   if (sc.has(Effect::added_mass) && has_target()) {
     w_floor_ = added_mass_W(dw_floor_);
@@ -285,7 +286,7 @@ void CollisionModel::arm() {
     case Phase::approach:
     case Phase::separated:
       if (elastic) add(RootKind::contact_in, "gap=delta_ss (in)", -1);
-      if (before_first_contact && closest_armed_) add(RootKind::closest, "u_rel=0 (closest approach)", -1);
+      if (before_first_contact && closest_armed_) add(RootKind::closest, "u_rel=stall_fraction*U_rel0 (approach stopped)", -1);
       break;
     case Phase::loading:
       add(RootKind::unload, "u_rel=0 (loading->unloading)", -1);
@@ -310,11 +311,11 @@ void CollisionModel::root_values(double, std::span<const double> y, std::span<do
       case RootKind::contact_in:
       case RootKind::contact_out: g[i] = gap - delta_ss_m_; break;
       case RootKind::touch: g[i] = gap; break;
-      case RootKind::unload:
-      case RootKind::closest: g[i] = u_rel; break;
+      case RootKind::unload: g[i] = u_rel; break;
+      case RootKind::closest: g[i] = u_rel - stall_speed_; break;
       case RootKind::instant_in:
       case RootKind::instant_out: g[i] = gap - instant_gap_m_; break;
-      case RootKind::lub_edge: g[i] = gap - h_c_; break;
+      case RootKind::lub_edge: g[i] = regularised_gap(gap, h_min_) - h_c_; break;
     }
   }
 }

@@ -88,7 +88,7 @@ class CollisionModel : public DynamicalSystem {
   int contacts() const { return contacts_; }
   std::optional<double> t_contact() const { return t_contact_; }       // first δ_SS crossing inward
   std::optional<double> t_separation() const { return t_separation_; } // first δ_SS crossing outward after contact
-  std::optional<double> t_closest() const { return t_closest_; }       // U_rel = 0 without contact
+  std::optional<double> t_closest() const { return t_closest_; }       // approach stopped without contact
   std::optional<double> u_rel_instant_in() const { return u_in_; }
   std::optional<double> u_rel_instant_out() const { return u_out_; }
   double W_o() const { return W_o_; }             // first contact's frozen peak force, N
@@ -120,7 +120,8 @@ class CollisionModel : public DynamicalSystem {
   double D_ = 0, a_star_ = 0, m_star_ = 0, E_star_ = 0, e_dry_ = 1, c_log_ = 0;
   double mu_ = 0, rho_f_ = 0;
   double delta_ss_m_ = 0, instant_gap_m_ = 0, h_min_ = 0, h_c_ = 0, dw_floor_ = 0, u_ref_ = 0, gap_scale_ = 0;
-  double w_floor_ = 0, dw_slope_ = 0;  // W and dW/dδ at dw_floor
+  double w_floor_ = 0, dw_slope_ = 0;
+  double stall_speed_ = 0;  // U_rel below which an approach without contact counts as stopped  // W and dW/dδ at dw_floor
   DragLaw drag_law_ = DragLaw::stokes;
   bool brenner_ = false;
   bool lagrangian_am_ = false;

@@ -138,7 +138,10 @@ double asymptotic_resistance(double h, double a_star, double c_log, double h_c) 
   return a_star * a_star * (1.0 / h - 1.0 / h_c) + c_log * std::log(h_c / h);
 }
 
-double regularised_gap(double h, double h_min) { return 0.5 * (h + std::sqrt(h * h + 4 * h_min * h_min)); }
+double regularised_gap(double h, double h_min) {
+  const double r = std::sqrt(h * h + 4 * h_min * h_min);
+  return h >= 0 ? 0.5 * (h + r) : 2 * h_min * h_min / (r - h);  // same value, no cancellation for h < 0
+}
 
 // ----- Added mass image series -----
 namespace {

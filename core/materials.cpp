@@ -1,5 +1,6 @@
 #include "core/materials.hpp"
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -60,8 +61,13 @@ MaterialTable MaterialTable::load(const std::string& path) {
   return table;
 }
 
+std::string data_dir() {
+  if (const char* d = std::getenv("IMCOL_DATA_DIR"); d && *d) return d;
+  return IMCOL_DATA_DIR;
+}
+
 const MaterialTable& MaterialTable::builtin() {
-  static const MaterialTable t = load(std::string(IMCOL_DATA_DIR) + "/materials.csv");
+  static const MaterialTable t = load(data_dir() + "/materials.csv");
   return t;
 }
 

@@ -6,6 +6,9 @@
 
 namespace imcol {
 
+/// Directory of the shipped data (materials, scenes, references): $IMCOL_DATA_DIR, else the source tree's data/.
+std::string data_dir();
+
 struct Material {
   std::string name;
   double density = 0;          // kg/m^3

@@ -70,7 +70,7 @@ class Reader {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;
     if (auto v = n->value<double>(); v && n->is_number()) {
-      if (!std::isfinite(*v)) fail(key, "must be a finite number");
+      if (!std::isfinite(*v) || std::abs(*v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
       return *v;
     }
     fail(key, "must be a number");
@@ -109,6 +109,7 @@ class Reader {
   // Checks
   void positive(const std::string& key, double v) const {
     if (!(v > 0)) fail(key, "must be > 0 (got " + fmt(v) + ")");
+    if (v < 1e-30) fail(key, "must be at least 1e-30 (got " + fmt(v) + ")");
   }
   void in_range(const std::string& key, double v, double lo, double hi, bool lo_open, bool hi_open) const {
     bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
@@ -233,7 +234,11 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   sc.path = path;
   sc.name = std::filesystem::path(path).stem().string();
   Reader top(root, "", path);
-  if (auto v = top.string("name")) sc.name = *v;
+  if (auto v = top.string("name")) {
+    if (v->empty() || v->find_first_of("/\\") != std::string::npos || *v == "." || *v == "..")
+      top.fail("name", "must be a plain file name (it names the default output directory)");
+    sc.name = *v;
+  }
   if (auto v = top.string("description")) sc.description = *v;
 
   if (const auto* f = top.table("fluid")) {
@@ -260,6 +265,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     r.positive("diameter", s.diameter);
     s.position = r.required_number("position");
     s.velocity = r.number("velocity", 0.0);
+    const double mass = s.density * std::pow(s.diameter, 3) * 3.141592653589793 / 6;
+    if (!(mass > 0) || !std::isfinite(mass)) r.fail("diameter", "gives a sphere mass that double precision cannot hold");
     r.finish();
     sc.spheres.push_back(s);
   }
@@ -304,6 +311,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
       top.fail("effects", std::string("effect '") + to_string(e) + "' is not implemented in this version");
   if ((sc.has(Effect::lubrication) || sc.has(Effect::elastic)) && !sc.has_target())
     top.fail("effects", "lubrication and elastic need a target sphere or a [wall]");
+  if (sc.has_target() && !sc.has(Effect::elastic))
+    top.fail("effects", "a target sphere or wall needs 'elastic' (without it the solids would pass through each other)");
 
   if (const auto* t = top.table("drag")) {
     Reader r(*t, "drag", path);
@@ -373,9 +382,13 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     r.positive("window", sc.measure.window);
     sc.measure.instant_gap = r.number("instant_gap", -1.0);
     if (r.has("instant_gap")) r.positive("instant_gap", sc.measure.instant_gap);
+    sc.measure.stall_fraction = r.number("stall_fraction", sc.measure.stall_fraction);
+    r.in_range("stall_fraction", sc.measure.stall_fraction, 0.0, 1.0, false, true);
     r.finish();
   }
   if (sc.measure.instant_gap < 0) sc.measure.instant_gap = sc.contact.delta_ss;
+  if (sc.has(Effect::lubrication) && sc.lubrication.cutoff >= sc.contact.delta_ss)
+    throw InputError(path, "lubrication.cutoff", "must be smaller than contact.delta_ss (" + fmt(sc.contact.delta_ss) + " D)");
 
   if (const auto* t = top.table("output")) {
     Reader r(*t, "output", path);
@@ -384,6 +397,10 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     r.finish();
   }
   if (sc.output.dt == 0) sc.output.dt = sc.measure.window / 100.0;
+  if (sc.solver.t_end / sc.output.dt > 1e7)
+    throw InputError(path, top.has("output") ? "output.dt" : "measure.window",
+                     "t_end / output.dt = " + fmt(sc.solver.t_end / sc.output.dt) +
+                         " samples exceeds 1e7: raise output.dt (default window/100) or lower solver.t_end");
 
   top.finish();
 

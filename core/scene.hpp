@@ -72,6 +72,7 @@ struct Scene {
   struct Measure {
     double window = 0.010;    // s, least-squares windows before and after contact
     double instant_gap = -1;  // units of D, gap at which e_instant is taken; <0: delta_ss
+    double stall_fraction = 0.01;  // an approach without contact has stopped when U_rel < this × U_rel(0)
   } measure;
   struct Output { double dt = 0; } output;  // s, trajectory sampling; 0 = window/100
 

@@ -286,8 +286,23 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
   observer.sample(t, view(y.get()), true);
 
   const auto names = sys.component_names();
+  // An exception from the model: input and solver errors pass through, anything else becomes a
+  // SolverError that says where it happened.
+  auto rethrow_model_error = [&] {
+    try {
+      std::rethrow_exception(cb.error);
+    } catch (const InputError&) {
+      throw;
+    } catch (const SolverError&) {
+      throw;
+    } catch (const std::exception& e) {
+      std::ostringstream os;
+      os << st.method << ": the model failed near t = " << t << " s: " << e.what();
+      throw SolverError(os.str());
+    }
+  };
   auto fail = [&](int flag) {
-    if (cb.error) std::rethrow_exception(cb.error);
+    if (cb.error) rethrow_model_error();
     std::ostringstream os;
     os << st.method << " failed at t = " << t << " s with " << be->flag_name(flag);
     if (!cb.last_message.empty()) os << " [" << cb.last_message << "]";
@@ -303,16 +318,17 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
     throw SolverError(os.str());
   };
 
-  double next_out = st.output_dt;
+  long k_out = 1;  // output times k·dt, counted so that they cannot stop advancing
   while (true) {
     const double tstop = sys.stop_time();
     if (t >= tstop - 1e-12 * std::max(1.0, std::abs(t))) break;
     // The next output time must lie strictly ahead (an event may have landed on it).
-    while (next_out <= t + 1e-12 * std::max(1.0, std::abs(t))) next_out += st.output_dt;
+    while (k_out * st.output_dt <= t + 1e-12 * std::max(1.0, std::abs(t))) ++k_out;
+    const double next_out = k_out * st.output_dt;
     const double tout = std::min(next_out, tstop);
     int flag = be->solve(tout, tstop, y.get(), t);
     if (flag < 0) fail(flag);
-    if (cb.error) std::rethrow_exception(cb.error);
+    if (cb.error) rethrow_model_error();
     if (flag > 0) {
       std::vector<int> flags(sys.roots().size(), 0);
       be->root_info(flags.data());

@@ -73,6 +73,11 @@ TEST(Cli, BadInputGivesExitStatusTwoAndNamesTheKey) {
   const Result r = imcol("run /nonexistent/scene.toml");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/nonexistent/scene.toml"), std::string::npos);
+  expect_input_error("noelastic", "effects = [\"drag\"]\n" + kScene, "effects");
+  expect_input_error("tiny", with(kScene, "diameter = 0.0127", "diameter = 1e-200"), "sphere[0].diameter");
+  expect_input_error("huge", with(kScene, "velocity = 0.2", "velocity = 1e300"), "sphere[0].velocity");
+  expect_input_error("samples", kScene + "[output]\ndt = 1e-12\n", "output.dt");
+  expect_input_error("path", "name = \"../escaped\"\n" + kScene, "name");
   EXPECT_EQ(imcol("run").status, 2);
   EXPECT_EQ(imcol("frobnicate").status, 2);
 }
