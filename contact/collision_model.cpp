@@ -73,21 +73,22 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   mf_star_ = target_ == Target::sphere ? reduced(mf_[0], mf_[1]) : mf_[0];
 
   u_ref_ = std::max({std::abs(s1.velocity), n_spheres_ > 1 ? std::abs(sc.spheres[1].velocity) : 0.0, 1e-3});
+  const double u_rel0 = s1.velocity - (n_spheres_ > 1 ? sc.spheres[1].velocity : 0.0);  // > 0: approaching
   // The gap matters on the scale of the contact, not of the sphere: use the Hertz indentation at
   // the initial approach speed (or the lubrication cutoff if smaller), so that atol does not limit
   // the accuracy of e.
   gap_scale_ = D_;
   if (has_target()) {
-    const double u0 = std::abs(s1.velocity - (n_spheres_ > 1 ? sc.spheres[1].velocity : 0.0));
     if (sc.has(Effect::lubrication)) gap_scale_ = std::min(gap_scale_, h_min_);
-    if (sc.has(Effect::elastic) && u0 > 0) gap_scale_ = std::min(gap_scale_, hertz_max_indentation(m_star_, u0, E_star_, a_star_));
+    if (sc.has(Effect::elastic) && u_rel0 != 0)
+      gap_scale_ = std::min(gap_scale_, hertz_max_indentation(m_star_, std::abs(u_rel0), E_star_, a_star_));
   }
   // Cap the step so that the contact zone cannot be crossed (in and out) inside one step.
   const double u_scale = std::max(u_ref_, 1e-3);
   max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step
                                      : (has_target() ? 0.25 * delta_ss_m_ / u_scale : sc.solver.t_end / 100);
   stop_time_ = sc.solver.t_end;
-  stall_speed_ = sc.measure.stall_fraction * std::max(0.0, s1.velocity - (n_spheres_ > 1 ? sc.spheres[1].velocity : 0.0));
+  stall_speed_ = sc.measure.stall_fraction * std::max(0.0, u_rel0);
   // Build the lookup tables now, not inside the first right-hand side.
   if (sc.has(Effect::added_mass) && has_target()) {
     w_floor_ = added_mass_W(dw_floor_);
