@@ -73,22 +73,21 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   mf_star_ = target_ == Target::sphere ? reduced(mf_[0], mf_[1]) : mf_[0];
 
   u_ref_ = std::max({std::abs(s1.velocity), n_spheres_ > 1 ? std::abs(sc.spheres[1].velocity) : 0.0, 1e-3});
-  const double u_rel0 = s1.velocity - (n_spheres_ > 1 ? sc.spheres[1].velocity : 0.0);  // > 0: approaching
+  u_rel0_ = has_target() ? s1.velocity - (n_spheres_ > 1 ? sc.spheres[1].velocity : 0.0) : 0.0;
   // The gap matters on the scale of the contact, not of the sphere: use the Hertz indentation at
   // the initial approach speed (or the lubrication cutoff if smaller), so that atol does not limit
   // the accuracy of e.
   gap_scale_ = D_;
   if (has_target()) {
     if (sc.has(Effect::lubrication)) gap_scale_ = std::min(gap_scale_, h_min_);
-    if (sc.has(Effect::elastic) && u_rel0 != 0)
-      gap_scale_ = std::min(gap_scale_, hertz_max_indentation(m_star_, std::abs(u_rel0), E_star_, a_star_));
+    if (sc.has(Effect::elastic) && u_rel0_ != 0)
+      gap_scale_ = std::min(gap_scale_, hertz_max_indentation(m_star_, std::abs(u_rel0_), E_star_, a_star_));
   }
   // Cap the step so that the contact zone cannot be crossed (in and out) inside one step.
-  const double u_scale = std::max(u_ref_, 1e-3);
   max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step
-                                     : (has_target() ? 0.25 * delta_ss_m_ / u_scale : sc.solver.t_end / 100);
+                                     : (has_target() ? 0.25 * delta_ss_m_ / u_ref_ : sc.solver.t_end / 100);
   stop_time_ = sc.solver.t_end;
-  stall_speed_ = sc.measure.stall_fraction * std::max(0.0, u_rel0);
+  stall_speed_ = sc.measure.stall_fraction * std::max(0.0, u_rel0_);
   // Build the lookup tables now, not inside the first right-hand side.
   if (sc.has(Effect::added_mass) && has_target()) {
     w_floor_ = added_mass_W(dw_floor_);
@@ -124,8 +123,6 @@ void CollisionModel::initial_state(std::span<double> y) const {
     y[3] = s[1].velocity;
   }
 }
-
-double CollisionModel::gap_of(std::span<const double> y) const { return target_ == Target::none ? 0.0 : y[0]; }
 
 void CollisionModel::kinematics(std::span<const double> y, Evaluation& ev) const {
   ev.u[0] = y[1];
@@ -287,7 +284,7 @@ void CollisionModel::arm() {
     case Phase::approach:
     case Phase::separated:
       if (elastic) add(RootKind::contact_in, "gap=delta_ss (in)", -1);
-      if (before_first_contact && closest_armed_) add(RootKind::closest, "u_rel=stall_fraction*U_rel0 (approach stopped)", -1);
+      if (before_first_contact && !t_closest_) add(RootKind::closest, "u_rel=stall_fraction*U_rel0 (approach stopped)", -1);
       break;
     case Phase::loading:
       add(RootKind::unload, "u_rel=0 (loading->unloading)", -1);
@@ -305,8 +302,9 @@ void CollisionModel::arm() {
 }
 
 void CollisionModel::root_values(double, std::span<const double> y, std::span<double> g) {
-  const double gap = gap_of(y);
-  const double u_rel = target_ == Target::wall ? y[1] : (target_ == Target::sphere ? y[1] - y[3] : 0.0);
+  Evaluation ev;
+  kinematics(y, ev);
+  const double gap = ev.gap, u_rel = ev.u_rel;
   for (std::size_t i = 0; i < armed_kind_.size(); ++i) {
     switch (armed_kind_[i]) {
       case RootKind::contact_in:
@@ -375,7 +373,6 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
       }
       break;
     case RootKind::closest:
-      closest_armed_ = false;
       t_closest_ = t;
       stop_time_ = std::min(stop_time_, t + window);
       break;

@@ -93,6 +93,7 @@ class CollisionModel : public DynamicalSystem {
   std::optional<double> u_rel_instant_out() const { return u_out_; }
   double W_o() const { return W_o_; }             // first contact's frozen peak force, N
   double impact_speed() const { return U_c_; }    // U_rel at the first δ_SS crossing, m/s
+  double initial_u_rel() const { return u_rel0_; }  // U1 − U2 at t = 0, m/s
   double beta() const { return beta_; }
   double max_contact_force() const { return max_contact_force_; }
   /// Model choices that ran, name → value.
@@ -103,7 +104,6 @@ class CollisionModel : public DynamicalSystem {
   enum class RootKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge };
 
   void arm();
-  double gap_of(std::span<const double> y) const;
   void kinematics(std::span<const double> y, Evaluation& ev) const;
   std::array<double, 2> total_forces(const Evaluation& ev) const;
   /// Forces without the added-mass acceleration terms; fills ev.f, ev.m_eff and ev.m_couple.
@@ -120,8 +120,9 @@ class CollisionModel : public DynamicalSystem {
   double D_ = 0, a_star_ = 0, m_star_ = 0, E_star_ = 0, e_dry_ = 1, c_log_ = 0;
   double mu_ = 0, rho_f_ = 0;
   double delta_ss_m_ = 0, instant_gap_m_ = 0, h_min_ = 0, h_c_ = 0, dw_floor_ = 0, u_ref_ = 0, gap_scale_ = 0;
-  double w_floor_ = 0, dw_slope_ = 0;
-  double stall_speed_ = 0;  // U_rel below which an approach without contact counts as stopped  // W and dW/dδ at dw_floor
+  double w_floor_ = 0, dw_slope_ = 0;  // W and dW/dδ at dw_floor
+  double u_rel0_ = 0;       // initial U1 − U2, m/s (> 0: approaching)
+  double stall_speed_ = 0;  // U_rel below which an approach without contact counts as stopped
   DragLaw drag_law_ = DragLaw::stokes;
   bool brenner_ = false;
   bool lagrangian_am_ = false;
@@ -131,7 +132,6 @@ class CollisionModel : public DynamicalSystem {
   double W_o_ = 0, beta_ = 0, U_c_ = 0, W_now_ = 0, beta_now_ = 0, factor_ = 1;
   double max_contact_force_ = 0;
   int contacts_ = 0;
-  bool closest_armed_ = true;
   std::optional<double> t_contact_, t_separation_, t_closest_, u_in_, u_out_;
   std::vector<RootSpec> armed_;
   std::vector<RootKind> armed_kind_;

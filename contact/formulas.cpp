@@ -43,7 +43,7 @@ double ramp_F(double x, double beta) {
   return 1.0 + slope0 * x;
 }
 
-double ramp_F_integral(double beta) { return 1.0 / beta - std::exp(-beta) / -std::expm1(-beta); }
+double ramp_F_integral(double beta) { return 1.0 / beta - std::exp(-beta) / -std::expm1(-beta); }  // 1/(e^β − 1) without overflow
 
 double energy_consistent_beta(double delta_ss, double eps_max) {
   // Solve δ_SS (1/β − 1/(e^β − 1)) = (2/5) ε_max for β by Newton from the large-β estimate.
@@ -52,8 +52,8 @@ double energy_consistent_beta(double delta_ss, double eps_max) {
     throw std::domain_error("energy_consistent_beta: the Hertz indentation exceeds what the ramp can store (eps_max >= 1.25 delta_ss)");
   double b = 1.0 / target;
   for (int it = 0; it < 100; ++it) {
-    const double q = std::exp(-b), one_m_q = -std::expm1(-b);  // 1/(e^b − 1) = q/(1 − q), no overflow
-    const double f = 1.0 / b - q / one_m_q - target;
+    const double q = std::exp(-b), one_m_q = -std::expm1(-b);  // e^b/(e^b − 1)² = q/(1 − q)², no overflow
+    const double f = ramp_F_integral(b) - target;
     const double df = -1.0 / (b * b) + q / (one_m_q * one_m_q);
     const double step = f / df;
     b = std::max(b - step, 0.5 * b);

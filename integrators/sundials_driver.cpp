@@ -320,10 +320,11 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
 
   long k_out = 1;  // output times k·dt, counted so that they cannot stop advancing
   while (true) {
+    const double t_eps = 1e-12 * std::max(1.0, std::abs(t));  // times closer than this count as reached
     const double tstop = sys.stop_time();
-    if (t >= tstop - 1e-12 * std::max(1.0, std::abs(t))) break;
+    if (t >= tstop - t_eps) break;
     // The next output time must lie strictly ahead (an event may have landed on it).
-    while (k_out * st.output_dt <= t + 1e-12 * std::max(1.0, std::abs(t))) ++k_out;
+    while (k_out * st.output_dt <= t + t_eps) ++k_out;
     const double next_out = k_out * st.output_dt;
     const double tout = std::min(next_out, tstop);
     int flag = be->solve(tout, tstop, y.get(), t);
