@@ -10,6 +10,8 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "tests/scene_text.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -18,7 +20,7 @@ struct Result {
   std::string err;
 };
 
-Result imcol(const std::string& args) {
+Result run_imcol(const std::string& args) {
   const fs::path errf = fs::temp_directory_path() / ("imcol_cli_err_" + std::to_string(::getpid()));
   const std::string cmd = std::string(IMCOL_BINARY) + " " + args + " >/dev/null 2>" + errf.string();
   const int raw = std::system(cmd.c_str());
@@ -34,22 +36,11 @@ fs::path write_scene(const std::string& name, const std::string& text) {
   return p;
 }
 
-const std::string kScene = R"([fluid]
-density = 1000.0
-viscosity = 0.01
-[[sphere]]
-material = "steel"
-diameter = 0.0127
-position = -0.02
-velocity = 0.2
-[wall]
-material = "glass"
-position = 0.0
-)";
+const std::string kScene = imcol::test::basic_wall_scene();
 
 void expect_input_error(const std::string& name, const std::string& text, const std::string& key, const std::string& extra = "") {
   const fs::path p = write_scene(name, text);
-  const Result r = imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_out").string() + " " + extra);
+  const Result r = run_imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_out").string() + " " + extra);
   EXPECT_EQ(r.status, 2) << name << ": " << r.err;
   EXPECT_NE(r.err.find(key), std::string::npos) << name << ": " << r.err;
   if (extra.empty()) {
@@ -58,35 +49,34 @@ void expect_input_error(const std::string& name, const std::string& text, const 
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << name << ": " << r.err;
 }
 
-std::string with(std::string s, const std::string& from, const std::string& to) { return s.replace(s.find(from), from.size(), to); }
 }  // namespace
 
 TEST(Cli, BadInputGivesExitStatusTwoAndNamesTheKey) {
-  expect_input_error("missing", with(kScene, "viscosity = 0.01\n", ""), "fluid.viscosity");
-  expect_input_error("unknown", with(kScene, "viscosity = 0.01", "viscosity = 0.01\nsurface_tension = 0.07"), "fluid.surface_tension");
-  expect_input_error("negvisc", with(kScene, "viscosity = 0.01", "viscosity = -0.01"), "fluid.viscosity");
-  expect_input_error("negdens", with(kScene, "density = 1000.0", "density = -1000.0"), "fluid.density");
-  expect_input_error("overlap", with(kScene, "position = -0.02", "position = -0.005"), "wall.position");
-  expect_input_error("material", with(kScene, "\"steel\"", "\"kryptonite\""), "sphere[0].material");
+  expect_input_error("missing", imcol::test::edit(kScene, "viscosity = 0.01\n", ""), "fluid.viscosity");
+  expect_input_error("unknown", imcol::test::edit(kScene, "viscosity = 0.01", "viscosity = 0.01\nsurface_tension = 0.07"), "fluid.surface_tension");
+  expect_input_error("negvisc", imcol::test::edit(kScene, "viscosity = 0.01", "viscosity = -0.01"), "fluid.viscosity");
+  expect_input_error("negdens", imcol::test::edit(kScene, "density = 1000.0", "density = -1000.0"), "fluid.density");
+  expect_input_error("overlap", imcol::test::edit(kScene, "position = -0.02", "position = -0.005"), "wall.position");
+  expect_input_error("material", imcol::test::edit(kScene, "\"steel\"", "\"kryptonite\""), "sphere[0].material");
   expect_input_error("rtol", kScene + "[solver]\nrtol = 0\n", "solver.rtol");
   expect_input_error("rtolcli", kScene, "solver.rtol", "--rtol -1e-8");
-  const Result r = imcol("run /nonexistent/scene.toml");
+  const Result r = run_imcol("run /nonexistent/scene.toml");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/nonexistent/scene.toml"), std::string::npos);
   expect_input_error("noelastic", "effects = [\"drag\"]\n" + kScene, "effects");
-  expect_input_error("tiny", with(kScene, "diameter = 0.0127", "diameter = 1e-200"), "sphere[0].diameter");
-  expect_input_error("huge", with(kScene, "velocity = 0.2", "velocity = 1e300"), "sphere[0].velocity");
+  expect_input_error("tiny", imcol::test::edit(kScene, "diameter = 0.0127", "diameter = 1e-200"), "sphere[0].diameter");
+  expect_input_error("huge", imcol::test::edit(kScene, "velocity = 0.2", "velocity = 1e300"), "sphere[0].velocity");
   expect_input_error("samples", kScene + "[output]\ndt = 1e-12\n", "output.dt");
   expect_input_error("path", "name = \"../escaped\"\n" + kScene, "name");
-  EXPECT_EQ(imcol("run").status, 2);
-  EXPECT_EQ(imcol("frobnicate").status, 2);
+  EXPECT_EQ(run_imcol("run").status, 2);
+  EXPECT_EQ(run_imcol("frobnicate").status, 2);
 }
 
 TEST(Cli, RunWritesCompleteOutputs) {
   const fs::path p = write_scene("good", kScene);
   const fs::path out = fs::temp_directory_path() / "imcol_cli_good_out";
   fs::remove_all(out);
-  const Result r = imcol("run " + p.string() + " --out " + out.string() + " --rtol 1e-9 --set sphere[0].velocity=0.25");
+  const Result r = run_imcol("run " + p.string() + " --out " + out.string() + " --rtol 1e-9 --set sphere[0].velocity=0.25");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream js(out / "summary.json");
   const auto s = nlohmann::json::parse(js);
@@ -109,7 +99,7 @@ TEST(Cli, RunWritesCompleteOutputs) {
 
 TEST(Cli, SolverFailureIsReportedWithItsCause) {
   const fs::path p = write_scene("fail", kScene);
-  const Result r = imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_fail").string() +
+  const Result r = run_imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_fail").string() +
                          " --set solver.max_steps=3");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("CV_TOO_MUCH_WORK"), std::string::npos) << r.err;
@@ -119,8 +109,8 @@ TEST(Cli, SolverFailureIsReportedWithItsCause) {
 
 TEST(Cli, ContactZoneTooThinForTheImpactIsAnInputError) {
   // A soft sphere at high speed: the Hertz indentation exceeds delta_ss*D.
-  const fs::path p = write_scene("soft", with(with(kScene, "material = \"steel\"", "density = 1000.0\nyoungs_modulus = 1e5\npoisson_ratio = 0.45\ne_dry = 0.5"), "velocity = 0.2", "velocity = 5.0"));
-  const Result r = imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_soft").string() +
+  const fs::path p = write_scene("soft", imcol::test::edit(imcol::test::edit(kScene, "material = \"steel\"", "density = 1000.0\nyoungs_modulus = 1e5\npoisson_ratio = 0.45\ne_dry = 0.5"), "velocity = 0.2", "velocity = 5.0"));
+  const Result r = run_imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_soft").string() +
                          " --set contact.delta_ss=0.001");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("contact.delta_ss"), std::string::npos) << r.err;

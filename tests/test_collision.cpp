@@ -5,39 +5,20 @@
 #include <string>
 
 #include "apps/simulate.hpp"
+#include "core/materials.hpp"
 #include "core/scene.hpp"
+#include "tests/scene_text.hpp"
 
 using namespace imcol;
 
 namespace {
 
 std::string pair_scene(const std::string& fluid, double u1, double u2, const std::string& extra = "") {
-  return fluid + R"(
-[[sphere]]
-material = "steel"
-diameter = 0.0127
-position = 0.0
-velocity = )" + std::to_string(u1) + R"(
-[[sphere]]
-material = "glass"
-diameter = 0.010
-position = 0.0140
-velocity = )" + std::to_string(u2) + "\n" + extra;
+  return fluid + test::sphere("steel", 0.0127, 0.0, u1) + test::sphere("glass", 0.010, 0.014, u2) + extra;
 }
 
 std::string wall_scene(const std::string& fluid, double u, const std::string& extra = "") {
-  return fluid + R"(
-[[sphere]]
-material = "steel"
-diameter = 0.0127
-position = -0.0127
-velocity = )" + std::to_string(u) + R"(
-[wall]
-material = "zerodur"
-position = 0.0
-[contact]
-e_dry = 0.9
-)" + extra;
+  return fluid + test::sphere("steel", 0.0127, -0.0127, u) + test::wall("zerodur", 0.0) + "[contact]\ne_dry = 0.9\n" + extra;
 }
 
 RunResult run(const std::string& toml, std::vector<Override> ov = {}) {
@@ -45,9 +26,7 @@ RunResult run(const std::string& toml, std::vector<Override> ov = {}) {
 }
 double e_of(const RunResult& r) { return r.summary["e"].get<double>(); }
 
-std::string fluid(double mu, double rho = 1000.0) {
-  return "[fluid]\ndensity = " + std::to_string(rho) + "\nviscosity = " + std::to_string(mu) + "\n";
-}
+using test::fluid;
 
 }  // namespace
 
@@ -96,17 +75,7 @@ TEST(ImmersedCollision, AddedMassForcesAreConservative) {
 
 TEST(AddedMassModels, LagrangianEqualsSeedForEqualSpheres) {
   // (For a wall both names run the same code: A(δ) U_rel² reduces to the (6.8) terms.)
-  const std::string equal = fluid(0.01) + R"(
-[[sphere]]
-material = "glass"
-diameter = 0.0127
-position = 0.0
-velocity = 0.1
-[[sphere]]
-material = "glass"
-diameter = 0.0127
-position = 0.016
-)";
+  const std::string equal = fluid(0.01) + test::sphere("glass", 0.0127, 0.0, 0.1) + test::sphere("glass", 0.0127, 0.016, 0.0);
   // Same relative motion: the pair's relative kinetic energy is ½ (m_p + ½ m_f (1 + 3W)) U_rel² / 2 in both.
   EXPECT_NEAR(e_of(run(equal, {{"added_mass.model", "lagrangian"}, {"solver.rtol", "1e-10"}})),
               e_of(run(equal, {{"solver.rtol", "1e-10"}})), 1e-6);
@@ -201,7 +170,7 @@ TEST(ImmersedCollision, ApproachStoppedByTheFluidGivesZeroRestitution) {
 TEST(ImmersedCollision, SeedGroupMotionCaseBNeverTouches) {
   // Seed Fig. 6.9(b): the target is pushed through the liquid film, the spheres never touch, the gap
   // settles near 0.07 D and the pair moves on together.
-  auto sc = load_scene(std::string(IMCOL_SOURCE_DIR) + "/data/scenes/group_b.toml");
+  auto sc = load_scene(data_dir() + "/scenes/group_b.toml");
   auto r = simulate(sc);
   const auto& s = r.summary;
   EXPECT_EQ(s["contacts"].get<int>(), 0);

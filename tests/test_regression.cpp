@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/simulate.hpp"
+#include "core/materials.hpp"
 
 using namespace imcol;
 
@@ -18,7 +19,7 @@ struct Row {
 };
 
 std::vector<Row> load() {
-  std::ifstream in(std::string(IMCOL_SOURCE_DIR) + "/data/reference/imcol_regression.csv");
+  std::ifstream in(data_dir() + "/reference/imcol_regression.csv");
   std::vector<Row> rows;
   std::string line;
   auto opt = [](const std::string& s) { return s.empty() ? std::nullopt : std::optional<double>(std::stod(s)); };
@@ -39,7 +40,7 @@ TEST(Regression, ShippedScenesReproduceStoredResults) {
   ASSERT_GE(rows.size(), 10u);
   for (const auto& row : rows) {
     SCOPED_TRACE(row.scene);
-    const Scene sc = load_scene(std::string(IMCOL_SOURCE_DIR) + "/data/scenes/" + row.scene + ".toml", {{"solver.rtol", "1e-10"}});
+    const Scene sc = load_scene(data_dir() + "/scenes/" + row.scene + ".toml", {{"solver.rtol", "1e-10"}});
     const auto s = simulate(sc).summary;
     ASSERT_EQ(s["e"].is_null(), !row.e.has_value());
     if (row.e) EXPECT_NEAR(s["e"].get<double>(), *row.e, 1e-6);

@@ -5,25 +5,12 @@
 
 #include "core/errors.hpp"
 #include "core/scene.hpp"
+#include "tests/scene_text.hpp"
 
 using namespace imcol;
 
 namespace {
-const char* kWall = R"(
-[fluid]
-density = 1000.0
-viscosity = 0.01
-
-[[sphere]]
-material = "steel"
-diameter = 0.0127
-position = -0.02
-velocity = 0.2
-
-[wall]
-material = "glass"
-position = 0.0
-)";
+const std::string kWall = test::basic_wall_scene();
 
 /// Parses `text` and expects an InputError whose message contains every fragment.
 void expect_error(const std::string& text, std::initializer_list<const char*> fragments, const std::vector<Override>& ov = {}) {
@@ -35,11 +22,6 @@ void expect_error(const std::string& text, std::initializer_list<const char*> fr
     for (const char* f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' missing in: " << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << "message must be one line: " << msg;
   }
-}
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  auto p = s.find(from);
-  EXPECT_NE(p, std::string::npos) << from;
-  return s.replace(p, from.size(), to);
 }
 }  // namespace
 
@@ -72,7 +54,7 @@ TEST(Scene, OverridesFromTheCommandLine) {
 }
 
 TEST(Scene, InlineMaterialAndExplicitEffects) {
-  std::string t = replace(kWall, "material = \"steel\"", "density = 2000.0\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\ne_dry = 0.8");
+  std::string t = test::edit(kWall, "material = \"steel\"", "density = 2000.0\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\ne_dry = 0.8");
   t = "effects = [\"drag\", \"elastic\"]\n" + t;
   Scene sc = parse_scene(t, "x.toml");
   EXPECT_DOUBLE_EQ(sc.spheres[0].density, 2000);
@@ -81,43 +63,30 @@ TEST(Scene, InlineMaterialAndExplicitEffects) {
 }
 
 TEST(Scene, RejectsBadInput) {
-  expect_error(replace(kWall, "viscosity = 0.01", "viscosity = -0.01"), {"bad.toml:4", "fluid.viscosity", "> 0"});
-  expect_error(replace(kWall, "density = 1000.0", "density = -1.0"), {"bad.toml:3", "fluid.density"});
-  expect_error(replace(kWall, "viscosity = 0.01", "viscosity = 0.01\ncolour = 3"), {"bad.toml:5", "fluid.colour", "unknown key"});
-  expect_error(replace(kWall, "viscosity = 0.01", ""), {"fluid.viscosity", "missing"});
-  expect_error(replace(kWall, "diameter = 0.0127\n", ""), {"sphere[0].diameter", "missing"});
-  expect_error(replace(kWall, "\"steel\"", "\"unobtainium\""), {"sphere[0].material", "unknown material", "steel"});
-  expect_error(replace(kWall, "position = -0.02", "position = -0.001"), {"wall.position", "overlap"});
-  expect_error(std::string(kWall) + "[solver]\nrtol = 0.0\n", {"solver.rtol", "bad.toml:16"});
-  expect_error(std::string(kWall) + "[solver]\nrtol = -1e-6\n", {"solver.rtol"});
-  expect_error(std::string(kWall) + "[solver]\nrtol = 1e-20\n", {"solver.rtol"});
-  expect_error(std::string(kWall) + "[solver]\nintegrator = \"rk4\"\n", {"solver.integrator", "cvode | ida"});
-  expect_error("effects = [\"magic\"]\n" + std::string(kWall), {"bad.toml:1", "effects", "unknown effect"});
-  expect_error(std::string(kWall) + "effects = [\"drag\"]\n", {"wall.effects", "unknown key"});
-  expect_error(std::string(kWall) + "[drag]\nlaw = \"newton\"\n", {"drag.law"});
+  expect_error(test::edit(kWall, "viscosity = 0.01", "viscosity = -0.01"), {"bad.toml:3", "fluid.viscosity", "> 0"});
+  expect_error(test::edit(kWall, "density = 1000.0", "density = -1.0"), {"bad.toml:2", "fluid.density"});
+  expect_error(test::edit(kWall, "viscosity = 0.01", "viscosity = 0.01\ncolour = 3"), {"bad.toml:4", "fluid.colour", "unknown key"});
+  expect_error(test::edit(kWall, "viscosity = 0.01", ""), {"fluid.viscosity", "missing"});
+  expect_error(test::edit(kWall, "diameter = 0.0127\n", ""), {"sphere[0].diameter", "missing"});
+  expect_error(test::edit(kWall, "\"steel\"", "\"unobtainium\""), {"sphere[0].material", "unknown material", "steel"});
+  expect_error(test::edit(kWall, "position = -0.02", "position = -0.001"), {"wall.position", "overlap"});
+  expect_error(kWall + "[solver]\nrtol = 0.0\n", {"solver.rtol", "bad.toml:13"});
+  expect_error(kWall + "[solver]\nrtol = -1e-6\n", {"solver.rtol"});
+  expect_error(kWall + "[solver]\nrtol = 1e-20\n", {"solver.rtol"});
+  expect_error(kWall + "[solver]\nintegrator = \"rk4\"\n", {"solver.integrator", "cvode | ida"});
+  expect_error("effects = [\"magic\"]\n" + kWall, {"bad.toml:1", "effects", "unknown effect"});
+  expect_error(kWall + "effects = [\"drag\"]\n", {"wall.effects", "unknown key"});
+  expect_error(kWall + "[drag]\nlaw = \"newton\"\n", {"drag.law"});
   expect_error("[[sphere]\n", {"bad.toml:1", "TOML"});
 }
 
 TEST(Scene, RejectsOverlappingSpheresAndWrongLubrication) {
-  const char* pair = R"(
-[fluid]
-density = 1000.0
-viscosity = 0.01
-[[sphere]]
-material = "glass"
-diameter = 0.0127
-position = 0.0
-velocity = 0.1
-[[sphere]]
-material = "glass"
-diameter = 0.0127
-position = 0.02
-)";
+  const std::string pair = test::fluid(0.01) + test::sphere("glass", 0.0127, 0.0, 0.1) + test::sphere("glass", 0.0127, 0.02, 0.0);
   EXPECT_NO_THROW(parse_scene(pair, "pair.toml"));
-  expect_error(replace(pair, "position = 0.02", "position = 0.01"), {"sphere[1].position", "overlap"});
-  expect_error(replace(pair, "position = 0.02", "position = 0.0128"), {"sphere[1].position", "contact zone"});
-  expect_error(std::string(pair) + "[lubrication]\nmodel = \"brenner\"\n", {"lubrication.model", "asymptotic"});
-  expect_error(std::string(pair) + "[wall]\nmaterial = \"glass\"\nposition = 1.0\n", {"wall", "not both"});
+  expect_error(test::edit(pair, "position = 0.02", "position = 0.01"), {"sphere[1].position", "overlap"});
+  expect_error(test::edit(pair, "position = 0.02", "position = 0.0128"), {"sphere[1].position", "contact zone"});
+  expect_error(pair + "[lubrication]\nmodel = \"brenner\"\n", {"lubrication.model", "asymptotic"});
+  expect_error(pair + "[wall]\nmaterial = \"glass\"\nposition = 1.0\n", {"wall", "not both"});
 }
 
 TEST(Scene, DryScenesRejectFluidEffects) {
