@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "apps/compare_history.hpp"
 #include "apps/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
@@ -206,6 +207,18 @@ int run_cli(int argc, char** argv) {
   effects->add_option("scene", escene, "scene file (TOML)")->required();
   add_common(effects, eff_opt);
 
+  std::string hscene;
+  CommonOptions hist_opt;
+  HistoryCompareOptions hopt;
+  bool no_plot = false;
+  auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history)");
+  history->add_option("scene", hscene, "scene file (TOML)")->required();
+  history->add_option("--out", hopt.out, "output directory (default out/<scene name>/history)");
+  history->add_option("--kernels", hopt.kernels, "kernels to run (default all)")->delimiter(',');
+  history->add_option("--evaluators", hopt.evaluators, "soe, direct (default both)")->delimiter(',');
+  history->add_flag("--no-plot", no_plot, "skip the PNG plot");
+  add_common(history, hist_opt);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -220,6 +233,10 @@ int run_cli(int argc, char** argv) {
     if (*val) return cmd_validate(what, vout, val_opt);
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
     if (*effects) return cmd_effects(escene, eff_opt);
+    if (*history) {
+      hopt.plot = !no_plot;
+      return compare_history(hscene, hist_opt.overrides(), hopt);
+    }
   } catch (const InputError& e) {
     std::cerr << "imcol: error: " << e.what() << "\n";
     return 2;

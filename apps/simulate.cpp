@@ -37,6 +37,7 @@ class Recorder : public Observer {
       if (sc.has(Effect::added_mass)) columns_.push_back("f_am" + k);
       if (sc.has(Effect::elastic)) columns_.push_back("f_contact" + k);
       if (sc.has(Effect::gravity)) columns_.push_back("f_grav" + k);
+      if (sc.has(Effect::history)) columns_.push_back("f_hist" + k);
       columns_.push_back("a" + k);
     }
     columns_.push_back("event");
@@ -59,7 +60,9 @@ class Recorder : public Observer {
       if (sc_.has(Effect::added_mass)) r.push_back(f.added_mass);
       if (sc_.has(Effect::elastic)) r.push_back(f.contact);
       if (sc_.has(Effect::gravity)) r.push_back(f.gravity);
+      if (sc_.has(Effect::history)) r.push_back(f.history);
       r.push_back(f.accel);
+      max_history_ = std::max(max_history_, std::abs(f.history));
     }
     r.push_back(at_event ? 1.0 : 0.0);
     rows_.push_back(std::move(r));
@@ -71,7 +74,7 @@ class Recorder : public Observer {
 
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
-  double min_gap_ = INFINITY, max_force_ = 0;
+  double min_gap_ = INFINITY, max_force_ = 0, max_history_ = 0;
 
  private:
   const CollisionModel& model_;
@@ -96,6 +99,8 @@ RunResult simulate(const Scene& sc) {
   st.atol = sc.solver.atol;
   st.output_dt = sc.output.dt;
   st.max_steps = sc.solver.max_steps;
+  st.linear_solver = sc.solver.linear_solver;
+  st.krylov_tol = sc.solver.krylov_tol;
   const SolverStats stats = integrate(model, st, rec);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
@@ -214,6 +219,11 @@ RunResult simulate(const Scene& sc) {
   s["min_gap_m"] = model.has_target() ? nlohmann::ordered_json(rec.min_gap_) : nlohmann::ordered_json(nullptr);
   s["max_contact_force_N"] = rec.max_force_;
   s["group_velocity_m_s"] = or_null(U_G);
+  if (sc.has(Effect::history)) s["max_history_force_N"] = rec.max_history_;  // at the output samples and events
+  if (!res.rows.empty()) {
+    s["u1_final_m_s"] = res.rows.back()[2];
+    if (pair) s["u2_final_m_s"] = res.rows.back()[5];
+  }
   if (model.has_target() && sc.has(Effect::elastic)) {
     s["contact"] = {{"t_contact_s", or_null(model.t_contact())},
                     {"t_separation_s", or_null(model.t_separation())},
@@ -229,7 +239,8 @@ RunResult simulate(const Scene& sc) {
   nlohmann::ordered_json mod = nlohmann::ordered_json::object();
   for (const auto& [k, v] : model.choices()) mod[k] = v;
   s["model"] = mod;
-  nlohmann::ordered_json sol = {{"integrator", st.method}, {"rtol", st.rtol}, {"atol", st.atol},
+  nlohmann::ordered_json sol = {{"integrator", st.method}, {"linear_solver", stats.linear_solver},
+                                {"rtol", st.rtol}, {"atol", st.atol},
                                 {"absolute_tolerances", model.absolute_tolerances(st.atol)},
                                 {"state", model.component_names()}, {"max_step_s", model.max_step()},
                                 {"t_final_s", t_final}};
@@ -279,6 +290,14 @@ std::string human_summary(const RunResult& r) {
      << sol["steps"].get<long>() << " steps, " << sol["rhs_evals"].get<long>() << " rhs evals, "
      << sol["root_events"].get<long>() << " events, " << sol["error_test_fails"].get<long>() << " error-test fails; "
      << std::setprecision(3) << s["wall_time_s"].get<double>() * 1e3 << " ms\n";
+  const auto& mod = s["model"];
+  if (mod.contains("history.kernel")) {
+    os << "  history: " << mod["history.kernel"].get<std::string>() << " kernel, " << mod["history.evaluator"].get<std::string>()
+       << " evaluator";
+    if (mod.contains("history.modes")) os << ", " << mod["history.modes"].get<std::string>() << " modes";
+    os << "; peak |f_H| = " << num(s["max_history_force_N"]) << " N; " << sol["linear_solver"].get<std::string>()
+       << " linear solver, state size " << sol["state_size"].get<long>() << "\n";
+  }
   for (const auto& w : s["warnings"]) os << "  warning: " << w.get<std::string>() << "\n";
   return os.str();
 }

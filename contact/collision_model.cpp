@@ -94,13 +94,116 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
     dw_slope_ = added_mass_dW(dw_floor_);
   }
   if (sc.has(Effect::lubrication) && brenner_) brenner_lambda(1.0);
+  if (sc.has(Effect::history)) setup_history();
   arm();
 }
 
+void CollisionModel::setup_history() {
+  const auto& h = scene_.history;
+  auto& o = hist_opt_;
+  o.kernel = *kernel_from_string(h.kernel);
+  o.direct = h.evaluator == "direct";
+  o.tolerance = h.tolerance;
+  o.modes = static_cast<int>(h.modes);
+  o.impulsive = h.start == "impulsive";
+  o.initial_re = h.reynolds == "initial";
+  kh_added_mass_ = h.wall_correction == "added-mass" && has_target();
+  if (kh_added_mass_ && !(w_floor_ > 0)) {
+    w_floor_ = added_mass_W(dw_floor_);
+    dw_slope_ = added_mass_dW(dw_floor_);
+  }
+  // Fastest time scale the memory must resolve: the viscous and particle relaxation times of each
+  // sphere and, with a target, the time to cross the contact zone.
+  double t_fast = std::numeric_limits<double>::infinity();
+  const double nu = mu_ / rho_f_;
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    t_fast = std::min(t_fast, a_[m] * a_[m] / nu);
+    t_fast = std::min(t_fast, (mp_[m] + 0.5 * mf_[m]) / (6 * pi * mu_ * a_[m]));
+  }
+  if (has_target()) t_fast = std::min(t_fast, delta_ss_m_ / u_ref_);
+  o.horizon = h.horizon > 0 ? h.horizon : scene_.solver.t_end;
+  o.min_lag = h.min_lag > 0 ? h.min_lag : 1e-3 * t_fast;
+  if (o.horizon < 10 * o.min_lag)
+    throw InputError(scene_.path, h.horizon > 0 ? "history.horizon" : "history.min_lag",
+                     "the memory horizon " + std::to_string(o.horizon) + " s must be at least 10 × min_lag (" +
+                         std::to_string(o.min_lag) + " s)");
+  // Direct evaluator: 100 steps per fastest time scale (a collision converges to 1e-4 in e there),
+  // but at most 50000 steps up to t_end.
+  o.direct_step = h.direct_step > 0 ? h.direct_step : std::max(0.01 * t_fast, scene_.solver.t_end / 50000);
+  std::size_t offset = core_size();
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    try {
+      history_[m] = std::make_unique<SphereHistory>(o, a_[m], mu_, rho_f_, scene_.spheres[m].velocity);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(scene_.path, "history", e.what());
+    }
+    hist_offset_[m] = offset;
+    offset += history_[m]->states();
+  }
+  history_states_ = offset - core_size();
+  if (o.direct) max_step_ = std::min(max_step_, o.direct_step);
+}
+
+double CollisionModel::next_breakpoint(double) const {
+  if (!history_[0] || !hist_opt_.direct) return std::numeric_limits<double>::infinity();
+  return history_[0]->step() * static_cast<double>(direct_points_);
+}
+
+void CollisionModel::at_breakpoint(double t, std::span<const double> y) {
+  if (!history_[0] || !hist_opt_.direct) return;
+  Evaluation ev;
+  kinematics(y, ev);
+  for (std::size_t m = 0; m < n_spheres_; ++m) history_[m]->record(t, ev.u[m]);
+  ++direct_points_;
+}
+
+std::span<const double> CollisionModel::history_z(std::span<const double> y, std::size_t m) const {
+  return y.subspan(hist_offset_[m], history_[m]->states());
+}
+
+bool CollisionModel::modal_structure(double, std::span<const double> y, ModalStructure& s) const {
+  if (!history_[0] || history_states_ == 0) return false;
+  Evaluation ev;
+  kinematics(y, ev);
+  const double K_H = history_K_H(ev.gap);
+  s = ModalStructure{};
+  s.core = core_size();
+  s.groups = n_spheres_;
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    const auto& h = *history_[m];
+    std::vector<double> g(h.states());
+    h.gains(ev.u[m], K_H, g);
+    for (std::size_t i = 0; i < h.states(); ++i) {
+      s.source.push_back(2 * m + 1);  // velocity of sphere m
+      s.group.push_back(m);
+      s.rate.push_back(h.rates()[i]);
+      s.gain.push_back(g[i]);
+    }
+  }
+  return true;
+}
+
+double CollisionModel::wall_function_W(double gap) const {
+  const double d = gap / a_star_;
+  if (d >= dw_floor_) return added_mass_W(d);
+  return w_floor_ + dw_slope_ * (d - dw_floor_);
+}
+
+double CollisionModel::history_K_H(double gap) const {
+  // K_H (choice, MODEL.md §2.3): `none` 1; `added-mass` 1 + 3W(δ**), the wall amplification of the added mass.
+  return kh_added_mass_ ? 1 + 3 * wall_function_W(gap) : 1.0;
+}
+
 std::vector<std::string> CollisionModel::component_names() const {
-  if (target_ == Target::none) return {"z1", "u1"};
-  if (target_ == Target::wall) return {"gap", "u1"};
-  return {"gap", "u1", "z2", "u2"};
+  std::vector<std::string> names;
+  if (target_ == Target::none) names = {"z1", "u1"};
+  else if (target_ == Target::wall) names = {"gap", "u1"};
+  else names = {"gap", "u1", "z2", "u2"};
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    if (history_[m])
+      for (std::size_t i = 0; i < history_[m]->states(); ++i)
+        names.push_back("mem" + std::to_string(m + 1) + "_" + std::to_string(i));
+  return names;
 }
 
 std::vector<double> CollisionModel::absolute_tolerances(double atol) const {
@@ -109,6 +212,9 @@ std::vector<double> CollisionModel::absolute_tolerances(double atol) const {
     t.push_back(atol * (m == 0 && has_target() ? gap_scale_ : D_));
     t.push_back(atol * u_ref_);
   }
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    if (history_[m])
+      for (double v : history_[m]->absolute_tolerances(atol * u_ref_)) t.push_back(v);
   return t;
 }
 
@@ -121,6 +227,17 @@ void CollisionModel::initial_state(std::span<double> y) const {
     y[0] = s[1].position - s[0].position - a_[0] - a_[1];
     y[2] = s[1].position;
     y[3] = s[1].velocity;
+  }
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    if (history_[m]) history_[m]->initial_states(y.subspan(hist_offset_[m], history_[m]->states()));
+  // Impulsive start: the start-up momentum below the force floor is given at t = 0.
+  if (history_[0] && hist_opt_.impulsive) {
+    const Evaluation ev = evaluate(0.0, y);
+    for (std::size_t m = 0; m < n_spheres_; ++m) {
+      const double dU = history_K_H(ev.gap) * history_[m]->start_impulse() / ev.m_eff[m];
+      y[2 * m + 1] -= dU;
+      history_[m]->shift_start(dU, y.subspan(hist_offset_[m], history_[m]->states()));
+    }
   }
 }
 
@@ -149,7 +266,7 @@ double CollisionModel::contact_force(double gap) const {
   return factor_ * W_now_ * ramp_F(gap / delta_ss_m_, beta_now_);
 }
 
-void CollisionModel::forces(Evaluation& ev) const {
+void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev) const {
   const auto& sc = scene_;
   const bool pair = target_ == Target::sphere;
   const double six_pi_mu = 6 * pi * mu_;
@@ -161,13 +278,8 @@ void CollisionModel::forces(Evaluation& ev) const {
   const bool am = sc.has(Effect::added_mass) && has_target();
   if (am) {
     const double d = ev.gap / a_star_;
-    if (d >= dw_floor_) {
-      W = added_mass_W(d);
-      dW = added_mass_dW(d);
-    } else {
-      dW = dw_slope_;
-      W = w_floor_ + dW * (d - dw_floor_);
-    }
+    W = wall_function_W(ev.gap);
+    dW = d >= dw_floor_ ? added_mass_dW(d) : dw_slope_;
   }
   ev.m_couple = 0;
   for (std::size_t m = 0; m < n_spheres_; ++m) {
@@ -186,6 +298,13 @@ void CollisionModel::forces(Evaluation& ev) const {
         ev.m_eff[m] += 0.5 * mf_[m] * (1 + 3 * W);
         if (am) f.added_mass = 0.75 * mf_[m] * ev.u[m] * (ev.u_rel / a_star_) * dW;  // velocity part (6.8)
       }
+    }
+    ev.m_hist[m] = 0;
+    if (history_[m]) {
+      const auto term = history_[m]->evaluate(t, ev.u[m], history_K_H(ev.gap), history_z(y, m));
+      f.history = term.force;
+      ev.m_hist[m] = term.mass;
+      ev.m_eff[m] += term.mass;
     }
   }
   if (am && lagrangian_am_ && pair) {
@@ -222,29 +341,30 @@ std::array<double, 2> CollisionModel::total_forces(const Evaluation& ev) const {
   std::array<double, 2> g{};
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     const auto& f = ev.f[m];
-    g[m] = f.drag + f.lubrication + f.added_mass + f.contact + f.gravity;
+    g[m] = f.drag + f.lubrication + f.added_mass + f.contact + f.gravity + f.history;
   }
   return g;
 }
 
-Evaluation CollisionModel::evaluate(double, std::span<const double> y) const {
+Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
   Evaluation ev;
   kinematics(y, ev);
-  forces(ev);
+  forces(t, y, ev);
   const auto acc = ev.accelerations(total_forces(ev), n_spheres_);
   for (std::size_t m = 0; m < n_spheres_; ++m) ev.f[m].accel = acc[m];
-  // Report the full added-mass force, including its acceleration part (the mass matrix beyond m_p).
+  // Report the full added-mass and history forces, including their acceleration parts (the mass matrix beyond m_p).
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     const double other = n_spheres_ == 2 ? ev.m_couple * acc[1 - m] : 0.0;
-    ev.f[m].added_mass -= (ev.m_eff[m] - mp_[m]) * acc[m] + other;
+    ev.f[m].added_mass -= (ev.m_eff[m] - mp_[m] - ev.m_hist[m]) * acc[m] + other;
+    ev.f[m].history -= ev.m_hist[m] * acc[m];
   }
   return ev;
 }
 
-void CollisionModel::rhs(double, std::span<const double> y, std::span<double> ydot) {
+void CollisionModel::rhs(double t, std::span<const double> y, std::span<double> ydot) {
   Evaluation ev;
   kinematics(y, ev);
-  forces(ev);
+  forces(t, y, ev);
   const auto acc = ev.accelerations(total_forces(ev), n_spheres_);
   ydot[0] = target_ == Target::none ? ev.u[0] : -ev.u_rel;
   ydot[1] = acc[0];
@@ -252,21 +372,31 @@ void CollisionModel::rhs(double, std::span<const double> y, std::span<double> yd
     ydot[2] = ev.u[1];
     ydot[3] = acc[1];
   }
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    if (history_[m] && history_[m]->states())
+      history_[m]->state_rhs(acc[m], history_z(y, m), ydot.subspan(hist_offset_[m], history_[m]->states()));
 }
 
-void CollisionModel::residual(double, std::span<const double> y, std::span<const double> yp, std::span<double> r) {
+void CollisionModel::residual(double t, std::span<const double> y, std::span<const double> yp, std::span<double> r) {
   Evaluation ev;
   kinematics(y, ev);
-  forces(ev);
+  forces(t, y, ev);
   const auto g = total_forces(ev);
   r[0] = yp[0] - (target_ == Target::none ? ev.u[0] : -ev.u_rel);
   if (target_ != Target::sphere) {
     r[1] = ev.m_eff[0] * yp[1] - g[0];
-    return;
+  } else {
+    r[1] = ev.m_eff[0] * yp[1] + ev.m_couple * yp[3] - g[0];
+    r[2] = yp[2] - ev.u[1];
+    r[3] = ev.m_couple * yp[1] + ev.m_eff[1] * yp[3] - g[1];
   }
-  r[1] = ev.m_eff[0] * yp[1] + ev.m_couple * yp[3] - g[0];
-  r[2] = yp[2] - ev.u[1];
-  r[3] = ev.m_couple * yp[1] + ev.m_eff[1] * yp[3] - g[1];
+  // Memory states: z_i' − (U' − λ_i z_i) = 0.
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    if (!history_[m] || !history_[m]->states()) continue;
+    const auto& lam = history_[m]->rates();
+    const std::size_t o = hist_offset_[m];
+    for (std::size_t i = 0; i < lam.size(); ++i) r[o + i] = yp[o + i] - (yp[2 * m + 1] - lam[i] * y[o + i]);
+  }
 }
 
 // ---------- Events (MODEL.md §3) ----------
@@ -430,6 +560,22 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
     c.push_back({"contact.dissipation", "e_dry^2 on unloading"});
     c.push_back({"contact.e_dry", num(e_dry_)});
     c.push_back({"contact.delta_ss_m", num(delta_ss_m_)});
+  }
+  if (history_[0]) {
+    const auto& h = sc.history;
+    c.push_back({"history.kernel", h.kernel});
+    c.push_back({"history.evaluator", h.evaluator});
+    c.push_back({"history.start", h.start});
+    c.push_back({"history.wall_correction", h.wall_correction});
+    if (h.kernel != "basset") c.push_back({"history.reynolds", h.reynolds});
+    if (hist_opt_.direct) {
+      c.push_back({"history.direct_step_s", num(hist_opt_.direct_step)});
+    } else {
+      c.push_back({"history.modes", std::to_string(history_[0]->modes())});
+      c.push_back({"history.min_lag_s", num(hist_opt_.min_lag)});
+      c.push_back({"history.horizon_s", num(hist_opt_.horizon)});
+      c.push_back({"history.fit_error_basset", num(history_[0]->soe()->base().max_rel_error)});
+    }
   }
   c.push_back({"blend.H", "1 (reduced-order: no f_SIM)"});
   return c;

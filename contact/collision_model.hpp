@@ -8,22 +8,28 @@
 //                 and for a pair it conserves momentum and, in an ideal fluid, the relative energy.
 // Only the effects the scene lists are built.
 //
-// State (SI): wall   [gap, u1]; pair [gap, u1, z2, u2]; free sphere [z1, u1].
+// With the history effect (MODEL.md §2.3, contact/history_force.hpp) f_H,m joins the forces and its
+// acceleration part m_H,m dU_m/dt the mass matrix.
+//
+// State (SI): wall   [gap, u1]; pair [gap, u1, z2, u2]; free sphere [z1, u1]; then the history
+// memory states of sphere 1, then of sphere 2 (sum of exponentials only).
 // The gap, not z1, is a state so that the error control acts on it relative to its own size:
 // a contact happens over micrometres while z1 is centimetres.
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "contact/formulas.hpp"
+#include "contact/history_force.hpp"
 #include "core/scene.hpp"
 #include "core/system.hpp"
 
 namespace imcol::contact {
 
 struct SphereForces {
-  double drag = 0, lubrication = 0, added_mass = 0, contact = 0, gravity = 0;  // N along z
+  double drag = 0, lubrication = 0, added_mass = 0, contact = 0, gravity = 0, history = 0;  // N along z
   double accel = 0;  // m/s^2
 };
 
@@ -33,6 +39,7 @@ struct Evaluation {
   std::array<double, 2> z{}, u{};
   std::array<double, 2> m_eff{};  // diagonal of the velocity mass matrix, kg
   double m_couple = 0;            // its off-diagonal entry (lagrangian pair added mass), kg
+  std::array<double, 2> m_hist{};  // the history force's share of m_eff (κ-like term), kg
   /// Solves the 2×2 mass system for the accelerations given the forces g.
   std::array<double, 2> accelerations(const std::array<double, 2>& g, std::size_t n) const;
   std::array<SphereForces, 2> f{};
@@ -54,7 +61,7 @@ class CollisionModel : public DynamicalSystem {
   explicit CollisionModel(const Scene& scene);
 
   // ---- DynamicalSystem ----
-  std::size_t size() const override { return n_spheres_ * 2; }
+  std::size_t size() const override { return core_size() + history_states_; }
   std::vector<std::string> component_names() const override;
   std::vector<double> absolute_tolerances(double atol) const override;
   void initial_state(std::span<double> y) const override;
@@ -65,12 +72,20 @@ class CollisionModel : public DynamicalSystem {
   EventAction on_roots(std::span<const std::size_t> found, double t, std::span<double> y) override;
   double stop_time() const override { return stop_time_; }
   double max_step() const override { return max_step_; }
+  double next_breakpoint(double t) const override;
+  void at_breakpoint(double t, std::span<const double> y) override;
+  bool modal_structure(double t, std::span<const double> y, ModalStructure& s) const override;
 
   // ---- Physics, for reporting ----
   Evaluation evaluate(double t, std::span<const double> y) const;
   std::size_t n_spheres() const { return n_spheres_; }
   bool has_target() const { return target_ != Target::none; }
   bool has_wall() const { return target_ == Target::wall; }
+
+  std::size_t core_size() const { return n_spheres_ * 2; }
+  /// History of sphere m (null without the history effect).
+  const SphereHistory* history(std::size_t m) const { return history_[m].get(); }
+  const HistoryOptions& history_options() const { return hist_opt_; }
 
   // Pair properties
   double a_star() const { return a_star_; }
@@ -107,7 +122,11 @@ class CollisionModel : public DynamicalSystem {
   void kinematics(std::span<const double> y, Evaluation& ev) const;
   std::array<double, 2> total_forces(const Evaluation& ev) const;
   /// Forces without the added-mass acceleration terms; fills ev.f, ev.m_eff and ev.m_couple.
-  void forces(Evaluation& ev) const;
+  void forces(double t, std::span<const double> y, Evaluation& ev) const;
+  double wall_function_W(double gap) const;  // W(δ**) continued linearly below dw_floor
+  double history_K_H(double gap) const;
+  std::span<const double> history_z(std::span<const double> y, std::size_t m) const;
+  void setup_history();
   double contact_force(double gap) const;  // magnitude, pushes the pair apart
   void freeze_contact(double t, double u_rel);
   void handle(RootKind kind, const std::string& name, double t, std::span<const double> y);
@@ -127,6 +146,12 @@ class CollisionModel : public DynamicalSystem {
   bool brenner_ = false;
   bool lagrangian_am_ = false;
   double mf_star_ = 0;  // reduced fluid mass for the lagrangian pair added mass
+  HistoryOptions hist_opt_;
+  std::array<std::unique_ptr<SphereHistory>, 2> history_;
+  std::array<std::size_t, 2> hist_offset_{};
+  std::size_t history_states_ = 0;
+  std::size_t direct_points_ = 1;  // grid points recorded by the direct evaluator (t_0 = 0 at construction)
+  bool kh_added_mass_ = false;
 
   Phase phase_ = Phase::approach;
   double W_o_ = 0, beta_ = 0, U_c_ = 0, W_now_ = 0, beta_now_ = 0, factor_ = 1;

@@ -306,7 +306,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   for (Effect e : {Effect::drag, Effect::lubrication, Effect::added_mass, Effect::history, Effect::flow})
     if (sc.has(e) && !sc.fluid)
       top.fail("effects", std::string("effect '") + to_string(e) + "' needs a [fluid] table");
-  for (Effect e : {Effect::history, Effect::flow})
+  for (Effect e : {Effect::flow})
     if (sc.has(e))
       top.fail("effects", std::string("effect '") + to_string(e) + "' is not implemented in this version");
   if ((sc.has(Effect::lubrication) || sc.has(Effect::elastic)) && !sc.has_target())
@@ -358,10 +358,45 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     r.finish();
   }
 
+  if (const auto* t = top.table("history")) {
+    Reader r(*t, "history", path);
+    if (!sc.has(Effect::history)) r.fail("kernel", "a [history] table needs the 'history' effect in `effects`");
+    auto& h = sc.history;
+    if (auto v = r.string("kernel")) h.kernel = *v;
+    r.one_of("kernel", h.kernel, {"basset", "mei-adrian", "kim", "dorgan-loth"});
+    if (auto v = r.string("evaluator")) h.evaluator = *v;
+    r.one_of("evaluator", h.evaluator, {"soe", "direct"});
+    h.tolerance = r.number("tolerance", h.tolerance);
+    r.in_range("tolerance", h.tolerance, 1e-13, 0.1, false, true);
+    if (auto v = r.integer("modes")) h.modes = *v;
+    if (r.has("modes") && (h.modes < 2 || h.modes > 400)) r.fail("modes", "must be in [2, 400] (got " + std::to_string(h.modes) + ")");
+    h.min_lag = r.number("min_lag", 0.0);
+    if (r.has("min_lag")) r.positive("min_lag", h.min_lag);
+    h.horizon = r.number("horizon", 0.0);
+    if (r.has("horizon")) r.positive("horizon", h.horizon);
+    if (auto v = r.string("start")) h.start = *v;
+    r.one_of("start", h.start, {"steady", "impulsive"});
+    if (auto v = r.string("reynolds")) h.reynolds = *v;
+    r.one_of("reynolds", h.reynolds, {"instantaneous", "initial"});
+    if (auto v = r.string("wall_correction")) h.wall_correction = *v;
+    r.one_of("wall_correction", h.wall_correction, {"none", "added-mass"});
+    h.direct_step = r.number("direct_step", 0.0);
+    if (r.has("direct_step")) r.positive("direct_step", h.direct_step);
+    if (h.min_lag > 0 && h.horizon > 0 && h.horizon < 10 * h.min_lag)
+      r.fail("horizon", "must be at least 10 × min_lag (" + fmt(h.min_lag) + " s)");
+    r.finish();
+  }
+
   if (const auto* t = top.table("solver")) {
     Reader r(*t, "solver", path);
     if (auto v = r.string("integrator")) sc.solver.integrator = *v;
     r.one_of("integrator", sc.solver.integrator, {"cvode", "ida"});
+    if (auto v = r.string("linear_solver")) sc.solver.linear_solver = *v;
+    r.one_of("linear_solver", sc.solver.linear_solver, {"auto", "dense", "gmres"});
+    if (sc.solver.linear_solver == "gmres" && sc.solver.integrator != "cvode")
+      r.fail("linear_solver", "'gmres' is implemented for the cvode integrator only");
+    sc.solver.krylov_tol = r.number("krylov_tol", sc.solver.krylov_tol);
+    r.in_range("krylov_tol", sc.solver.krylov_tol, 0.0, 1.0, true, false);
     sc.solver.rtol = r.number("rtol", sc.solver.rtol);
     sc.solver.atol = r.number("atol", sc.solver.atol);
     sc.solver.t_end = r.number("t_end", sc.solver.t_end);

@@ -61,8 +61,22 @@ struct Scene {
     double e_dry = -1;        // <0: from the materials
     double beta = 0;          // F(x) steepness; 0 = energy-consistent (MODEL.md §2.4)
   } contact;
+  struct History {
+    std::string kernel = "basset";     // basset | mei-adrian | kim | dorgan-loth (MODEL.md §2.3)
+    std::string evaluator = "soe";     // soe (sum of exponentials, production) | direct (product integration, reference)
+    double tolerance = 1e-6;           // soe: relative accuracy of the exponential fit of s^(-1/2)
+    long modes = 0;                    // soe: > 0 fixes the number of exponentials instead of `tolerance`
+    double min_lag = 0;                // s; shortest lag the exponentials resolve; 0 = automatic
+    double horizon = 0;                // s; longest lag they resolve; 0 = solver.t_end
+    std::string start = "steady";      // steady (moving at U(0) for ever) | impulsive (started from rest at t = 0)
+    std::string reynolds = "instantaneous";  // Re of a finite-Re kernel: instantaneous |U| | initial |U(0)|
+    std::string wall_correction = "none";   // K_H: none (1) | added-mass (1 + 3W(δ**), choice)
+    double direct_step = 0;            // s; the direct evaluator's fixed step; 0 = automatic
+  } history;
   struct Solver {
     std::string integrator = "cvode";  // cvode | ida
+    std::string linear_solver = "auto";  // auto | dense | gmres (cvode; Schur-complement preconditioner)
+    double krylov_tol = 0.05;          // gmres: linear tolerance relative to the Newton tolerance (CVodeSetEpsLin)
     double rtol = 1e-8;
     double atol = 1e-10;      // dimensionless; scaled per component (see integrators/)
     double t_end = 1.0;       // s

@@ -4,6 +4,7 @@
 //
 // ODE form:      y' = f(t, y)
 // Residual form: F(t, y, y') = M(t, y) y' - g(t, y) = 0  (M: the added mass sits on y')
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,6 +21,17 @@ enum class EventAction {
   proceed,   // diagnostic only: the right-hand side did not change
   reinit,    // the right-hand side or the root set changed: re-initialise the integrator here
   stop       // the run is complete
+};
+
+/// Optional structure of a state with memory ("modal") components, used by the iterative linear
+/// solver's Schur-complement preconditioner. Components [0, core) are the core. Each modal
+/// component i ≥ core obeys z_i' = y'_source(i) − rate_i z_i, and the core right-hand side depends
+/// on the modal components only through the sums h_g = Σ_{i in group g} gain_i z_i.
+struct ModalStructure {
+  std::size_t core = 0;
+  std::size_t groups = 0;
+  std::vector<std::size_t> source, group;  // per modal component (index i − core)
+  std::vector<double> rate, gain;
 };
 
 class DynamicalSystem {
@@ -47,6 +59,14 @@ class DynamicalSystem {
   virtual double stop_time() const = 0;
   /// Largest internal step allowed (so that no root can hide inside one step).
   virtual double max_step() const = 0;
+
+  /// Next time after t at which the integrator must stop exactly and call at_breakpoint
+  /// (a fixed-step history grid, for example); +infinity if none.
+  virtual double next_breakpoint(double /*t*/) const { return std::numeric_limits<double>::infinity(); }
+  virtual void at_breakpoint(double /*t*/, std::span<const double> /*y*/) {}
+
+  /// Fills the modal structure at (t, y) and returns true, or returns false if the state has none.
+  virtual bool modal_structure(double /*t*/, std::span<const double> /*y*/, ModalStructure& /*s*/) const { return false; }
 };
 
 /// Receives the solution: at every output time and at every event.

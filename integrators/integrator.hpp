@@ -10,6 +10,10 @@ namespace imcol {
 
 struct IntegratorSettings {
   std::string method = "cvode";  // cvode | ida
+  std::string linear_solver = "auto";  // dense | gmres (cvode only) | auto: gmres when the state is large
+  double krylov_tol = 0.05;      // gmres: CVodeSetEpsLin
+  int gmres_max_krylov = 5;      // gmres: Krylov subspace size
+  std::size_t gmres_auto_size = 64;  // auto: gmres from this state size on (cvode, modal structure present)
   double rtol = 1e-8;
   double atol = 1e-10;           // dimensionless, see DynamicalSystem::absolute_tolerances
   double output_dt = 1e-4;       // s, sampling interval passed to the observer
@@ -27,6 +31,13 @@ struct SolverStats {
   long root_fn_evals = 0;
   long root_events = 0;        // roots found
   long reinits = 0;
+  long lin_iters = 0;          // gmres iterations
+  long lin_conv_fails = 0;
+  long prec_setups = 0;        // Schur-complement preconditioner set-ups (with a Jacobian evaluation)
+  long prec_solves = 0;
+  long breakpoints = 0;        // stops on the system's fixed grid (direct history evaluator)
+  std::string linear_solver;   // what ran: dense | gmres
+  std::size_t state_size = 0;
   std::map<std::string, long> as_map() const;
 };
 

@@ -4,7 +4,10 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_dense.h>
+
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
@@ -31,7 +34,13 @@ std::map<std::string, long> SolverStats::as_map() const {
           {"error_test_fails", error_test_fails},
           {"root_fn_evals", root_fn_evals},
           {"root_events", root_events},
-          {"reinits", reinits}};
+          {"reinits", reinits},
+          {"lin_iters", lin_iters},
+          {"lin_conv_fails", lin_conv_fails},
+          {"prec_setups", prec_setups},
+          {"prec_solves", prec_solves},
+          {"breakpoints", breakpoints},
+          {"state_size", static_cast<long>(state_size)}};
 }
 
 namespace {
@@ -39,9 +48,105 @@ namespace {
 std::span<const double> view(N_Vector v) { return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))}; }
 std::span<double> mview(N_Vector v) { return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))}; }
 
+/// Exact solve of the Newton matrix I − γJ for a state with modal (memory) components
+/// (DynamicalSystem::ModalStructure). With δh_g = Σ_{i∈g} gain_i δz_i, the modal rows give
+///   δz_i = (r_i + γ q_g)/(1 + γ λ_i),  q_g = (J_pp δp)_src(g) + Σ_g' B_src(g),g' δh_g',
+/// with B = ∂f_core/∂h. Eliminating δz leaves a (core + groups) dense system (the Schur complement):
+///   (I − γJ_pp) δp − γ B δh = r_p,   δh_g − γ σ_g q_g = ρ_g,
+///   σ_g = Σ_{i∈g} gain_i/(1 + γλ_i),  ρ_g = Σ_{i∈g} gain_i r_i/(1 + γλ_i).
+/// J_pp and B come from core + groups finite differences of the right-hand side, so a set-up costs
+/// O(core + groups) evaluations however many modes there are; as a left preconditioner for GMRES it
+/// is exact up to the age of the Jacobian.
+class SchurPreconditioner {
+ public:
+  void setup(DynamicalSystem& sys, double t, std::span<const double> y, std::span<const double> fy,
+             std::span<const double> atol) {
+    if (!sys.modal_structure(t, y, ms_)) throw SolverError("gmres: the system has no modal structure for the preconditioner");
+    const std::size_t n = y.size(), p = ms_.core, S = ms_.groups;
+    src_.assign(S, 0);
+    for (std::size_t i = 0; i < ms_.source.size(); ++i) src_[ms_.group[i]] = ms_.source[i];
+    std::vector<double> yt(y.begin(), y.end()), ft(n);
+    const double sqeps = std::sqrt(std::numeric_limits<double>::epsilon());
+    Jpp_.resize(p, p);
+    B_.resize(p, S);
+    for (std::size_t j = 0; j < p; ++j) {
+      const double inc = sqeps * std::max(std::abs(y[j]), atol[j]);
+      yt[j] = y[j] + inc;
+      sys.rhs(t, yt, ft);
+      yt[j] = y[j];
+      for (std::size_t k = 0; k < p; ++k) Jpp_(k, j) = (ft[k] - fy[k]) / inc;
+    }
+    for (std::size_t g = 0; g < S; ++g) {
+      // Perturb the mode of this group with the largest gain so that h_g changes by `inc`.
+      std::size_t best = n;
+      double hg = 0, scale = 0;
+      for (std::size_t i = 0; i < ms_.gain.size(); ++i) {
+        if (ms_.group[i] != g) continue;
+        hg += ms_.gain[i] * y[p + i];
+        scale += std::abs(ms_.gain[i]) * atol[p + i];
+        if (best == n || std::abs(ms_.gain[i]) > std::abs(ms_.gain[best - p])) best = p + i;
+      }
+      B_.col(g).setZero();
+      if (best == n || ms_.gain[best - p] == 0) continue;
+      const double inc = sqeps * std::max(std::abs(hg), scale);
+      const double dz = inc / ms_.gain[best - p];
+      yt[best] = y[best] + dz;
+      sys.rhs(t, yt, ft);
+      yt[best] = y[best];
+      for (std::size_t k = 0; k < p; ++k) B_(k, g) = (ft[k] - fy[k]) / inc;
+    }
+    gamma_ = -1;  // force a refactorisation
+  }
+
+  /// Solves (I − γJ) x = r.
+  void solve(std::span<const double> r, std::span<double> x, double gamma) {
+    const std::size_t p = ms_.core, S = ms_.groups, nm = ms_.rate.size();
+    if (gamma != gamma_) factor(gamma);
+    Eigen::VectorXd rhs(p + S);
+    for (std::size_t k = 0; k < p; ++k) rhs[k] = r[k];
+    for (std::size_t g = 0; g < S; ++g) rhs[p + g] = 0;
+    for (std::size_t i = 0; i < nm; ++i) rhs[p + ms_.group[i]] += ms_.gain[i] * r[p + i] / (1 + gamma * ms_.rate[i]);
+    const Eigen::VectorXd sol = lu_.solve(rhs);
+    std::vector<double> q(S);
+    for (std::size_t g = 0; g < S; ++g) {
+      double v = 0;
+      for (std::size_t l = 0; l < p; ++l) v += Jpp_(src_[g], l) * sol[l];
+      for (std::size_t h = 0; h < S; ++h) v += B_(src_[g], h) * sol[p + h];
+      q[g] = v;
+    }
+    for (std::size_t k = 0; k < p; ++k) x[k] = sol[k];
+    for (std::size_t i = 0; i < nm; ++i) x[p + i] = (r[p + i] + gamma * q[ms_.group[i]]) / (1 + gamma * ms_.rate[i]);
+  }
+
+ private:
+  void factor(double gamma) {
+    const std::size_t p = ms_.core, S = ms_.groups;
+    std::vector<double> sigma(S, 0.0);
+    for (std::size_t i = 0; i < ms_.rate.size(); ++i) sigma[ms_.group[i]] += ms_.gain[i] / (1 + gamma * ms_.rate[i]);
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(p + S, p + S);
+    A.topLeftCorner(p, p) = Eigen::MatrixXd::Identity(p, p) - gamma * Jpp_;
+    A.topRightCorner(p, S) = -gamma * B_;
+    for (std::size_t g = 0; g < S; ++g) {
+      A.block(p + g, 0, 1, p) = -gamma * sigma[g] * Jpp_.row(src_[g]);
+      A.block(p + g, p, 1, S) = -gamma * sigma[g] * B_.row(src_[g]);
+      A(p + g, p + g) += 1.0;
+    }
+    lu_.compute(A);
+    gamma_ = gamma;
+  }
+
+  ModalStructure ms_;
+  std::vector<std::size_t> src_;
+  Eigen::MatrixXd Jpp_, B_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  double gamma_ = -1;
+};
+
 /// State shared with the C callbacks. Exceptions never cross SUNDIALS: they are stored and rethrown.
 struct Callback {
   DynamicalSystem* sys;
+  SchurPreconditioner* prec = nullptr;
+  std::vector<double> atol;
   std::size_t nroots = 0;  // roots armed now
   std::exception_ptr error;
   std::string last_message;
@@ -68,6 +173,24 @@ void error_handler(int code, const char* module, const char* function, char* msg
 int cv_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* data) {
   auto* cb = static_cast<Callback*>(data);
   return cb->guard([&] { cb->sys->rhs(t, view(y), mview(ydot)); });
+}
+int cv_psetup(sunrealtype t, N_Vector y, N_Vector fy, sunbooleantype jok, sunbooleantype* jcur, sunrealtype gamma,
+              void* data) {
+  auto* cb = static_cast<Callback*>(data);
+  (void)gamma;
+  return cb->guard([&] {
+    if (jok) {
+      *jcur = SUNFALSE;
+      return;
+    }
+    cb->prec->setup(*cb->sys, t, view(y), view(fy), cb->atol);
+    *jcur = SUNTRUE;
+  });
+}
+int cv_psolve(sunrealtype, N_Vector, N_Vector, N_Vector r, N_Vector z, sunrealtype gamma, sunrealtype, int,
+              void* data) {
+  auto* cb = static_cast<Callback*>(data);
+  return cb->guard([&] { cb->prec->solve(view(r), mview(z), gamma); });
 }
 int cv_root(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
   auto* cb = static_cast<Callback*>(data);
@@ -109,16 +232,24 @@ class CvodeBackend : public Backend {
     check(CVodeInit(mem_, cv_rhs, 0.0, y), "CVodeInit");
     check(CVodeSetUserData(mem_, &cb_), "CVodeSetUserData");
     check(CVodeSVtolerances(mem_, st.rtol, abstol_), "CVodeSVtolerances");
-    A_ = SUNDenseMatrix(N_VGetLength(y), N_VGetLength(y), ctx);
-    LS_ = SUNLinSol_Dense(y, A_, ctx);
-    check(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
+    if (cb_.prec) {
+      LS_ = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, st.gmres_max_krylov, ctx);
+      if (!LS_) throw SolverError("SUNLinSol_SPGMR failed");
+      check(CVodeSetLinearSolver(mem_, LS_, nullptr), "CVodeSetLinearSolver");
+      check(CVodeSetPreconditioner(mem_, cv_psetup, cv_psolve), "CVodeSetPreconditioner");
+      check(CVodeSetEpsLin(mem_, st.krylov_tol), "CVodeSetEpsLin");
+    } else {
+      A_ = SUNDenseMatrix(N_VGetLength(y), N_VGetLength(y), ctx);
+      LS_ = SUNLinSol_Dense(y, A_, ctx);
+      check(CVodeSetLinearSolver(mem_, LS_, A_), "CVodeSetLinearSolver");
+    }
     check(CVodeSetMaxOrd(mem_, st.max_order), "CVodeSetMaxOrd");
     check(CVodeSetNoInactiveRootWarn(mem_), "CVodeSetNoInactiveRootWarn");
   }
   ~CvodeBackend() override {
     CVodeFree(&mem_);
     SUNLinSolFree(LS_);
-    SUNMatDestroy(A_);
+    if (A_) SUNMatDestroy(A_);
   }
   void init(double t, N_Vector y) override {
     check(CVodeReInit(mem_, t, y), "CVodeReInit");
@@ -150,6 +281,11 @@ class CvodeBackend : public Backend {
     CVodeGetNumNonlinSolvConvFails(mem_, &v); s.nonlin_conv_fails += v;
     CVodeGetNumErrTestFails(mem_, &v); s.error_test_fails += v;
     CVodeGetNumGEvals(mem_, &v); s.root_fn_evals += v;
+    if (!cb_.prec) return;
+    CVodeGetNumLinIters(mem_, &v); s.lin_iters += v;
+    CVodeGetNumLinConvFails(mem_, &v); s.lin_conv_fails += v;
+    CVodeGetNumPrecEvals(mem_, &v); s.prec_setups += v;
+    CVodeGetNumPrecSolves(mem_, &v); s.prec_solves += v;
   }
   std::string flag_name(int flag) override {
     char* name = CVodeGetReturnFlagName(flag);
@@ -273,13 +409,27 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
   auto tol = sys.absolute_tolerances(st.atol);
   std::copy(tol.begin(), tol.end(), mview(abstol.get()).begin());
 
-  Callback cb{&sys, 0, nullptr, {}};
+  Callback cb{&sys, nullptr, {tol.begin(), tol.end()}, 0, nullptr, {}};
+  SchurPreconditioner prec;
+  ModalStructure probe;
+  const bool modal = sys.modal_structure(0.0, view(y.get()), probe);
+  std::string ls = st.linear_solver;
+  if (ls == "auto") ls = (st.method == "cvode" && modal && sys.size() >= st.gmres_auto_size) ? "gmres" : "dense";
+  if (ls == "gmres") {
+    if (st.method != "cvode") throw SolverError("the gmres linear solver is implemented for cvode only");
+    if (!modal) throw SolverError("the gmres linear solver needs a state with memory components (the history effect)");
+    cb.prec = &prec;
+  } else if (ls != "dense") {
+    throw SolverError("unknown linear solver '" + ls + "'");
+  }
   std::unique_ptr<Backend> be;
   if (st.method == "cvode") be = std::make_unique<CvodeBackend>(ctx.get(), cb, st, y.get(), abstol.get());
   else if (st.method == "ida") be = std::make_unique<IdaBackend>(ctx.get(), cb, st, y.get(), abstol.get());
   else throw SolverError("unknown integrator '" + st.method + "'");
 
   SolverStats stats;
+  stats.linear_solver = ls;
+  stats.state_size = sys.size();
   double t = 0.0;
   be->init(t, y.get());
   be->set_roots(sys.roots());
@@ -326,8 +476,10 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
     // The next output time must lie strictly ahead (an event may have landed on it).
     while (k_out * st.output_dt <= t + t_eps) ++k_out;
     const double next_out = k_out * st.output_dt;
-    const double tout = std::min(next_out, tstop);
-    int flag = be->solve(tout, tstop, y.get(), t);
+    const double bp = sys.next_breakpoint(t);
+    const double t_limit = std::min(tstop, bp);
+    const double tout = std::min(next_out, t_limit);
+    int flag = be->solve(tout, t_limit, y.get(), t);
     if (flag < 0) fail(flag);
     if (cb.error) rethrow_model_error();
     if (flag > 0) {
@@ -348,7 +500,11 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
       }
       continue;
     }
-    observer.sample(t, view(y.get()), false);
+    if (t >= bp - t_eps) {
+      sys.at_breakpoint(t, view(y.get()));
+      ++stats.breakpoints;
+    }
+    if (t >= next_out - t_eps || t >= tstop - t_eps) observer.sample(t, view(y.get()), false);
   }
   be->add_stats(stats);
   return stats;

@@ -1,0 +1,94 @@
+#pragma once
+// History force of one sphere (MODEL.md §2.3, seed 6.9), in a quiescent fluid (slip = U):
+//   f_H = −6πμa K_H ∫_0^t (dU/dτ) K(t − τ) dτ − [impulsive start] 6πμa K_H U(0) K(t)        [N]
+// written as f_H = F_explicit − m_H dU/dt, so that the acceleration term joins the mass matrix.
+//
+// Evaluators:
+//  soe     memory states z_i = ∫_0^t U'(τ) e^(−λ_i (t−τ)) dτ [m/s], z_i' = U' − λ_i z_i, carried by the
+//          integrator; ∫ U' K ≈ Σ w_i(Re) z_i + κ(Re) U' (κ: short-lag correction, the last min_lag of
+//          memory with U' taken constant). O(modes) per evaluation.
+//  direct  product integration on its own fixed grid t_k = kΔ (the integrator stops on it): U piecewise
+//          linear through the grid values and the current U(t), each segment integrated exactly against K
+//          (HistoryKernel::integral). O(t/Δ) per evaluation, O(N²) per run; second order in Δ for smooth U.
+// Slip jumps. `steady` start: the sphere has moved at U(0) for ever, no jump, z_i(0) = 0. `impulsive`:
+// the jump 0 → U(0) at t = 0 is treated analytically: its force −c U(0) K(t) is added exactly (soe:
+// z_i(0) = U(0) carries Σ w_i e^(−λ_i t), plus the exact remainder K − Σ w_i e^(−λ_i t) that the
+// exponentials miss below min_lag). Below t_f = 1e-3 min_lag that force is held at its value at t_f
+// and the momentum it misses (∝ √t_f) is applied at t = 0 (start_impulse): the error left is that of
+// moving an impulse ~3% of the start-up impulse over min_lag by at most t_f. A rebound is not a jump
+// here (the contact force is continuous); it is resolved by the integrator's steps, and by the soe
+// only down to min_lag: its error there is that of holding U' constant over the last min_lag.
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "contact/history_kernel.hpp"
+
+namespace imcol::contact {
+
+struct HistoryOptions {
+  KernelKind kernel = KernelKind::basset;
+  bool direct = false;
+  double tolerance = 1e-6;
+  int modes = 0;               // > 0: fixed mode count
+  double min_lag = 0, horizon = 0;  // s (resolved, > 0)
+  bool impulsive = false;
+  bool initial_re = false;     // finite-Re kernels: Re frozen at |U(0)|
+  double direct_step = 0;      // s (resolved, > 0) for the direct evaluator
+};
+
+class SphereHistory {
+ public:
+  /// a [m], μ [Pa s], ρ_f [kg/m³], U0 [m/s] the initial velocity.
+  SphereHistory(const HistoryOptions& opt, double a, double mu, double rho_f, double U0);
+
+  std::size_t states() const { return direct_ ? 0 : soe_->modes(); }
+  /// Memory states at t = 0.
+  void initial_states(std::span<double> z) const;
+  /// Per-state absolute tolerances: atol_u [m/s] shared by the modes in proportion to their weights.
+  std::vector<double> absolute_tolerances(double atol_u) const;
+
+  struct Term {
+    double force = 0;  // F_explicit [N] (already times K_H)
+    double mass = 0;   // m_H [kg]: f_H = force − mass·dU/dt
+  };
+  Term evaluate(double t, double U, double K_H, std::span<const double> z) const;
+  /// z_i' = U' − λ_i z_i.
+  void state_rhs(double accel, std::span<const double> z, std::span<double> dz) const;
+  /// Current weights c K_H w_i(Re) (force per unit z_i) [kg/s], for the preconditioner.
+  void gains(double U, double K_H, std::span<double> g) const;
+  const std::vector<double>& rates() const;
+
+  /// Momentum [N s] of the start-up force below the floor t_f that the model applies at t = 0 (impulsive start).
+  double start_impulse() const;
+  /// The sphere starts at U(0) − dU (dU from start_impulse): the memory states see that jump.
+  void shift_start(double dU, std::span<double> z) const;
+
+  // direct evaluator grid
+  double step() const { return step_; }
+  void record(double t, double U);  // value at the next grid point t_k = kΔ
+
+  // reporting
+  std::size_t modes() const { return direct_ ? 0 : soe_->modes(); }
+  double fit_error(double Re) const { return soe_ ? soe_->max_rel_error(Re) : 0.0; }
+  double reynolds(double U) const;
+  const SoeKernel* soe() const { return soe_.get(); }
+
+ private:
+  double jump_term(double t, double Re) const;  // the start-up jump's share of ∫ U' K (U(0) K(t), soe: minus its exponentials)
+  double start_floor() const;
+
+  HistoryKernel kernel_;
+  std::unique_ptr<SoeKernel> soe_;
+  bool direct_;
+  bool impulsive_, initial_re_;
+  double c_;        // 6πμa [kg/s]
+  double D_, nu_, U0_, min_lag_;
+  mutable std::vector<double> w_;  // scratch for the current weights
+  std::vector<double> w_basset_;
+  double step_ = 0;
+  std::vector<double> grid_u_;     // U at t_k = kΔ, k = 0..n
+};
+
+}  // namespace imcol::contact
