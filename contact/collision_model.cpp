@@ -113,7 +113,7 @@ void CollisionModel::setup_history() {
     dw_slope_ = added_mass_dW(dw_floor_);
   }
   // Fastest time scale the memory must resolve: the viscous and particle relaxation times of each
-  // sphere and, with a target, the time to cross the contact zone.
+  // sphere and, with a target, the time to cross the contact zone and the Hertz contact time.
   double t_fast = std::numeric_limits<double>::infinity();
   const double nu = mu_ / rho_f_;
   for (std::size_t m = 0; m < n_spheres_; ++m) {
@@ -121,15 +121,16 @@ void CollisionModel::setup_history() {
     t_fast = std::min(t_fast, (mp_[m] + 0.5 * mf_[m]) / (6 * pi * mu_ * a_[m]));
   }
   if (has_target()) t_fast = std::min(t_fast, delta_ss_m_ / u_ref_);
+  if (has_target() && scene_.has(Effect::elastic) && u_rel0_ > 0)
+    t_fast = std::min(t_fast, hertz_contact_time(m_star_, u_rel0_, E_star_, a_star_));
   o.horizon = h.horizon > 0 ? h.horizon : scene_.solver.t_end;
   o.min_lag = h.min_lag > 0 ? h.min_lag : 1e-3 * t_fast;
   if (o.horizon < 10 * o.min_lag)
     throw InputError(scene_.path, h.horizon > 0 ? "history.horizon" : "history.min_lag",
                      "the memory horizon " + std::to_string(o.horizon) + " s must be at least 10 × min_lag (" +
                          std::to_string(o.min_lag) + " s)");
-  // Direct evaluator: 100 steps per fastest time scale (a collision converges to 1e-4 in e there),
-  // but at most 50000 steps up to t_end.
-  o.direct_step = h.direct_step > 0 ? h.direct_step : std::max(0.01 * t_fast, scene_.solver.t_end / 50000);
+  // Direct evaluator: 10 steps per fastest time scale, but at most 50000 steps up to t_end.
+  o.direct_step = h.direct_step > 0 ? h.direct_step : std::max(0.1 * t_fast, scene_.solver.t_end / 50000);
   std::size_t offset = core_size();
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     try {
@@ -214,7 +215,8 @@ std::vector<double> CollisionModel::absolute_tolerances(double atol) const {
   }
   for (std::size_t m = 0; m < n_spheres_; ++m)
     if (history_[m])
-      for (double v : history_[m]->absolute_tolerances(atol * u_ref_)) t.push_back(v);
+      // Memory states: a force error below rtol times the drag at u_ref is noise (MODEL.md §2.3).
+      for (double v : history_[m]->absolute_tolerances(std::max(atol, scene_.solver.rtol) * u_ref_)) t.push_back(v);
   return t;
 }
 

@@ -43,11 +43,11 @@ void SphereHistory::initial_states(std::span<double> z) const {
   std::fill(z.begin(), z.end(), impulsive_ ? U0_ : 0.0);
 }
 
-std::vector<double> SphereHistory::absolute_tolerances(double atol_u) const {
-  // Mode i adds c w_i z_i to the force; an error atol_u/(n w_i) in each keeps the sum within the
-  // drag error c atol_u of a velocity error atol_u.
+std::vector<double> SphereHistory::absolute_tolerances(double u_floor) const {
+  // Mode i adds c w_i z_i to the force; errors u_floor/(√n w_i) in the modes add up (randomly) to
+  // the drag error c u_floor of a velocity error u_floor.
   std::vector<double> t(states());
-  for (std::size_t i = 0; i < t.size(); ++i) t[i] = atol_u / (std::sqrt(static_cast<double>(t.size())) * std::max(w_basset_[i], 1e-300));
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = u_floor / (std::sqrt(static_cast<double>(t.size())) * std::max(w_basset_[i], 1e-300));
   return t;
 }
 

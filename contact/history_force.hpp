@@ -46,8 +46,9 @@ class SphereHistory {
   std::size_t states() const { return direct_ ? 0 : soe_->modes(); }
   /// Memory states at t = 0.
   void initial_states(std::span<double> z) const;
-  /// Per-state absolute tolerances: atol_u [m/s] shared by the modes in proportion to their weights.
-  std::vector<double> absolute_tolerances(double atol_u) const;
+  /// Per-state absolute tolerances u_floor/(√n w_i): the modes' force errors add up to that of a
+  /// velocity error u_floor [m/s].
+  std::vector<double> absolute_tolerances(double u_floor) const;
 
   struct Term {
     double force = 0;  // F_explicit [N] (already times K_H)

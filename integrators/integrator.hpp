@@ -13,7 +13,7 @@ struct IntegratorSettings {
   std::string linear_solver = "auto";  // dense | gmres (cvode only) | auto: gmres when the state is large
   double krylov_tol = 0.05;      // gmres: CVodeSetEpsLin
   int gmres_max_krylov = 5;      // gmres: Krylov subspace size
-  std::size_t gmres_auto_size = 64;  // auto: gmres from this state size on (cvode, modal structure present)
+  std::size_t gmres_auto_size = 24;  // auto: gmres from this state size on (cvode, modal structure present)
   double rtol = 1e-8;
   double atol = 1e-10;           // dimensionless, see DynamicalSystem::absolute_tolerances
   double output_dt = 1e-4;       // s, sampling interval passed to the observer

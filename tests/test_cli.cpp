@@ -10,6 +10,7 @@
 #include <string>
 #include <sys/wait.h>
 
+#include "core/materials.hpp"
 #include "tests/scene_text.hpp"
 
 namespace fs = std::filesystem;
@@ -114,4 +115,24 @@ TEST(Cli, ContactZoneTooThinForTheImpactIsAnInputError) {
                          " --set contact.delta_ss=0.001");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("contact.delta_ss"), std::string::npos) << r.err;
+}
+
+TEST(Cli, HistoryComparesKernelsAndWritesTableAndPlotData) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_history";
+  fs::remove_all(out);
+  const std::string scene = imcol::data_dir() + "/scenes/rising_sphere.toml";
+  const Result r = run_imcol("history " + scene + " --out " + out.string() +
+                             " --kernels basset,kim --evaluators soe --no-plot --set solver.t_end=0.01");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(out / "history.csv");
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("kernel,evaluator,u_end_m_s,", 0), 0u) << header;
+  int rows = 0;
+  while (std::getline(in, line)) ++rows;
+  EXPECT_EQ(rows, 3);  // none, basset soe, kim soe
+  EXPECT_TRUE(fs::exists(out / "history_forces.csv"));
+  const Result bad = run_imcol("history " + scene + " --kernels oseen --out " + out.string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("oseen"), std::string::npos) << bad.err;
 }

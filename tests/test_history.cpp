@@ -228,10 +228,24 @@ TEST(HistoryScene, LightSphereRisingFromRestMatchesClosedForm) {
   EXPECT_GT(r.summary["max_history_force_N"].get<double>(), 0);
 }
 
-TEST(HistoryScene, FiniteReKernelsRunAndSlowTheApproachLessThanBasset) {
-  // A steel sphere at Re ~ 50 onto a wall: the finite-Re kernels forget faster, so their history
-  // force on approach is smaller than Basset's.
-  std::map<std::string, double> peak;
+TEST(HistoryScene, FiniteReKernelsForgetFasterThanBasset) {
+  // A steel sphere settling from rest at Re ~ 10: Basset's t^(-1/2) memory holds it back longest,
+  // so after 0.3 s it is furthest from its terminal velocity; the finite-Re kernels (t^(-2) tails)
+  // are closer, and all approach the same terminal velocity from below.
+  std::map<std::string, double> u;
+  for (const char* k : {"basset", "mei-adrian", "kim", "dorgan-loth"}) {
+    const std::string text = "gravity = -9.81\neffects = [\"drag\", \"added_mass\", \"gravity\", \"history\"]\n" +
+                             test::fluid(0.01, 1150.0) + test::sphere("steel", 0.002, 0.0, 0.0) +
+                             "[drag]\nlaw = \"schiller-naumann\"\n[history]\nkernel = \"" + k +
+                             "\"\n[solver]\nt_end = 0.3\n[output]\ndt = 0.001\n";
+    const RunResult r = simulate(parse_scene(text, "settle.toml"));
+    u[k] = r.summary["u1_final_m_s"].get<double>();
+    EXPECT_LT(u[k], 0) << k;  // settling (z up)
+  }
+  for (const char* k : {"mei-adrian", "kim", "dorgan-loth"}) EXPECT_LT(u[k], u["basset"]) << k << " " << u[k];
+}
+
+TEST(HistoryScene, EveryKernelGivesAPhysicalRestitution) {
   for (const char* k : {"basset", "mei-adrian", "kim", "dorgan-loth"}) {
     const std::string text = "effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\", \"history\"]\n" +
                              test::fluid(0.005, 1000.0) + test::sphere("steel", 0.005, -0.01, 0.05) +
@@ -239,10 +253,8 @@ TEST(HistoryScene, FiniteReKernelsRunAndSlowTheApproachLessThanBasset) {
     const RunResult r = simulate(parse_scene(text, "finite_re.toml"));
     ASSERT_FALSE(r.summary["e"].is_null()) << k;
     const double e = r.summary["e"].get<double>();
-    EXPECT_TRUE(e >= 0 && e <= 1) << k << " e " << e;
-    peak[k] = r.summary["max_history_force_N"].get<double>();
+    EXPECT_TRUE(e >= 0 && e <= r.summary["contact"]["e_dry"].get<double>()) << k << " e " << e;
   }
-  for (const char* k : {"mei-adrian", "kim", "dorgan-loth"}) EXPECT_LT(peak[k], peak["basset"]) << k;
 }
 
 TEST(HistoryScene, SumOfExponentialsAgreesWithDirectOnAWallCollision) {

@@ -53,7 +53,7 @@ double adaptive(const std::function<double(double)>& f, double a, double b, doub
   return adaptive(f, a, m, 0.5 * abs_tol, depth + 1) + adaptive(f, m, b, 0.5 * abs_tol, depth + 1);
 }
 
-// Max relative error of a kernel's SoE on [min_lag, horizon], on a grid far denser than the library's.
+// Max relative error of a kernel's SoE on [min_lag, horizon], on a grid 5× denser than the library's.
 double dense_error(const std::vector<double>& rate, const std::vector<double>& w, const std::function<double(double)>& K,
                    double a, double b) {
   double err = 0;
@@ -125,7 +125,7 @@ TEST(HistoryKernel, TendsToBassetAsReTendsToZero) {
         // 0 ≤ 1 − φ(x) = 1 − (1 + x^p)^(−c1) ≤ c1 x^p
         const double dev = 1 - k.K(s, Re) / basset.K(s, 0), bound = k.c1() * std::pow(s / k.crossover_time(Re), p);
         EXPECT_GE(dev, 0);
-        EXPECT_LE(dev, bound * (1 + 1e-9));
+        EXPECT_LE(dev, bound * (1 + 1e-9) + 1e-15);  // + rounding of 1 − K/K_B
         EXPECT_LT(dev, prev);
         prev = dev;
       }
@@ -140,12 +140,16 @@ TEST(HistoryKernel, LargeLagTailDecaysAsInverseSquare) {
     const HistoryKernel k(kind, D, nu);
     const double Re = 20, sc = k.crossover_time(Re), p = 1.5 / k.c1();
     const double limit = D / (2 * std::sqrt(pi * nu)) * std::pow(sc, 1.5);
-    for (double x : {1e2, 1e4, 1e8, 1e30, 1e300}) {
+    for (double x : {1e2, 1e4, 1e8, 1e30, 1e100}) {
       const double s = x * sc, Ks2 = k.K(s, Re) * s * s;
       ASSERT_TRUE(std::isfinite(Ks2)) << x;
       EXPECT_LT(rel(Ks2, limit * std::pow(1 + std::pow(x, -p), -k.c1())), 1e-12) << x;
-      EXPECT_LE(1 - Ks2 / limit, k.c1() * std::pow(x, -p)) << x;  // → 0
+      EXPECT_LE(1 - Ks2 / limit, k.c1() * std::pow(x, -p) + 1e-13) << x;  // → 0 (+ rounding)
     }
+    // no overflow or NaN at extreme arguments (K underflows to 0 far out)
+    EXPECT_EQ(k.K(1e300, Re), 0.0);
+    EXPECT_TRUE(std::isfinite(k.K(1e-300, Re)));
+    EXPECT_TRUE(std::isfinite(k.integral(1e300, Re)));
   }
 }
 
@@ -159,8 +163,7 @@ TEST(HistoryKernel, BassetIntegralIsExact) {
 }
 
 // Table of the universal G vs adaptive quadrature of ∫_0^√s 2u K(u²) du (smooth integrand), across
-// the table and both of its ends (s/s_c = 1e-12, 1e12). The table is built to ~1e-13; the adaptive
-// rule is converged to ≤ 1e-13 of the Basset bound 2C√s, which is ≥ the integral.
+// the table and both of its ends (s/s_c = 1e-12, 1e12). Measured ≤ ~1e-13 (the table's own accuracy).
 TEST(HistoryKernel, IntegralMatchesAdaptiveQuadrature) {
   for (auto kind : finite_kinds) {
     const HistoryKernel k(kind, D, nu);
@@ -168,15 +171,22 @@ TEST(HistoryKernel, IntegralMatchesAdaptiveQuadrature) {
       const double sc = k.crossover_time(Re);
       for (double y : {1e-14, 1e-12, 1e-9, 1e-6, 1e-3, 0.1, 0.7, 1.0, 3.0, 10.0, 1e3, 1e6, 1e9, 1e12, 1e14}) {
         const double s = y * sc;
-        const double ref = adaptive([&](double u) { return 2 * u * k.K(u * u, Re); }, 0, std::sqrt(s),
-                                    1e-15 * D * std::sqrt(s) / std::sqrt(pi * nu));
-        EXPECT_LT(rel(k.integral(s, Re), ref), 1e-11) << to_string(kind) << " Re " << Re << " s/s_c " << y;
+        // panels [0, 1e-4 √s_c], then factors of 10 in u, so no panel's nodes miss the bulk;
+        // absolute tolerance 1e-15 · 2C √min(s, s_c), a lower bound of the integral times ~1e-14
+        const double tol = 1e-15 * D * std::sqrt(std::min(s, sc)) / std::sqrt(pi * nu);
+        const auto f = [&](double u) { return 2 * u * k.K(u * u, Re); };
+        double ref = 0;
+        for (double a = 0, b = std::min(std::sqrt(s), 1e-4 * std::sqrt(sc)); a < std::sqrt(s);
+             a = b, b = std::min(std::sqrt(s), 10 * b))
+          ref += adaptive(f, a, b, tol);
+        EXPECT_LT(rel(k.integral(s, Re), ref), 1e-12) << to_string(kind) << " Re " << Re << " s/s_c " << y;
       }
     }
   }
 }
 
-// d/ds ∫_0^s K = K: central difference, h = 1e-4 s (truncation ~h²K''/6K ≈ 1e-9, rounding ≲ 1e-9).
+// d/ds ∫_0^s K = K: central difference, h = 1e-4 s. Truncation (h/s)² |s³K'''/K|/6 ≤ 1e-8 · 24/6
+// (|s³K'''/K| ≤ 24 for a kernel between s^(−1/2) and s^(−2)), rounding ≲ 1e-9; measured ≤ 1e-8.
 TEST(HistoryKernel, IntegralDerivativeIsTheKernel) {
   for (auto kind : finite_kinds) {
     const HistoryKernel k(kind, D, nu);
@@ -204,8 +214,8 @@ TEST(HistorySoe, ErrorAndModeCountFollowTheStep) {
     EXPECT_GE(soe.max_rel_error, 0.5 * tol) << tol;  // the trapezoid error is really reached
     // the reported error is what a 100× denser grid sees (up to the sampling of its ripple)
     const double dense = dense_error(soe.rate, soe.weight, [](double s) { return 1 / std::sqrt(s); }, min_lag, horizon);
-    EXPECT_GE(dense, soe.max_rel_error);
-    EXPECT_LE(dense, 1.05 * soe.max_rel_error);
+    EXPECT_GE(dense, soe.max_rel_error * (1 - 1e-9));
+    EXPECT_LE(dense, 1.02 * soe.max_rel_error);
     // modes ≈ (ln(T/δ) + 7.5)/h (MODEL.md): 19, 33, 47 here against 21.5, 34.8, 48.1
     const double predicted = (std::log(horizon / min_lag) + 7.5) / h;
     EXPECT_NEAR(double(soe.rate.size()), predicted, 0.15 * predicted) << tol;
@@ -348,8 +358,8 @@ TEST(HistorySoeKernel, FitErrorAtFiniteRe) {
       double kappa = 0;
       sk.weights(Re, w, kappa);
       const double dense = dense_error(sk.rates(), w, [&](double s) { return k.K(s, Re); }, min_lag, horizon);
-      EXPECT_LE(dense, 1.05 * err) << to_string(kind) << " Re " << Re;
-      EXPECT_GE(dense, err);
+      EXPECT_LE(dense, 1.02 * err) << to_string(kind) << " Re " << Re;
+      EXPECT_GE(dense, err * (1 - 1e-9));
       // κ closes ∫_0^δ K exactly
       double tail = 0;
       for (std::size_t i = 0; i < w.size(); ++i) tail += w[i] * -std::expm1(-sk.rates()[i] * min_lag) / sk.rates()[i];
@@ -378,7 +388,9 @@ TEST(HistorySoeKernel, WeightsAreSmoothAndBounded) {
         worst = std::max(worst, std::abs(w[i]) / wB_max);
         EXPECT_LT(std::abs(w2[i] - w[i]), 1e-5 * wB_max) << to_string(kind) << " Re " << Re;
       }
-      EXPECT_LT(sk.max_rel_error(Re), 50e-6) << to_string(kind) << " Re " << Re;
+      if (j % 10 == 0) {
+        EXPECT_LT(sk.max_rel_error(Re), 50e-6) << to_string(kind) << " Re " << Re;
+      }
     }
     EXPECT_LT(worst, 1.1) << to_string(kind);  // measured 1.0014
   }
@@ -396,7 +408,7 @@ TEST(HistorySoeKernel, ConstructionIsFast) {
 
 // ---------------------------------------------------------------- exact solutions (Basset kernel)
 
-TEST(HistoryExact, ReferenceValues) {
+TEST(HistoryClosedForm, ReferenceValues) {
   EXPECT_LT(rel(basset_relaxation(2, 1, 1), 0.1138702806290020), 1e-12);
   EXPECT_LT(rel(basset_settling(2, 1, 1), 0.3112415874894448), 1e-12);
   EXPECT_LT(rel(basset_relaxation(2, 1, 100), 7.132539553596432e-5), 1e-12);
@@ -407,7 +419,29 @@ TEST(HistoryExact, ReferenceValues) {
   EXPECT_LT(rel(basset_settling(0.5, 3, 100), 1.400458060273616), 1e-12);
 }
 
-TEST(HistoryExact, Limits) {
+// Further values from the same closed forms evaluated in 80-digit arithmetic (mpmath), covering
+// the large-t asymptotic branch and both sides of its switch (|σ±|²t = 40), an exact and a near
+// double root, and underdamped roots.
+TEST(HistoryClosedForm, HighPrecisionValues) {
+  struct Case {
+    double alpha, gamma, t, relax, settle;
+  };
+  for (const Case& c : {Case{2, 1, 1e4, 7.0531632685981132162e-8, 0.49858947314505122941},
+                        Case{0.5, 3, 1e6, 3.3849750276331826116e-9, 1.993229833316648118},
+                        Case{1, 2, 0.5, 0.24842860665762813085, 0.20211543919713464412},
+                        Case{1, 2, 1000, 1.7787917220575263517e-5, 0.96435312014013647445},
+                        Case{1, 2.0001, 2, 0.085249168858651431717, 0.41283215916926236911},
+                        Case{1, 0.5, 3, 0.062270680097523025176, 0.7648283490036110902},
+                        Case{2, 1, 19.9, 0.00084173667357590194532, 0.46776688272619302046},
+                        Case{2, 1, 20.1, 0.00082871756365668167003, 0.46793392251284321196},
+                        Case{1, 2, 39.9, 0.0020844258973128075584, 0.82560782472009431236},
+                        Case{1, 2, 40.1, 0.0020695511897440284387, 0.82602321946678605648}}) {
+    EXPECT_LT(rel(basset_relaxation(c.alpha, c.gamma, c.t), c.relax), 1e-12) << c.alpha << " " << c.gamma << " " << c.t;
+    EXPECT_LT(rel(basset_settling(c.alpha, c.gamma, c.t), c.settle), 1e-12) << c.alpha << " " << c.gamma << " " << c.t;
+  }
+}
+
+TEST(HistoryClosedForm, Limits) {
   for (auto [a, g] : {std::pair{2.0, 1.0}, {0.5, 3.0}, {1.0, 2.0}}) {
     EXPECT_NEAR(basset_relaxation(a, g, 0), 1, 1e-15);
     EXPECT_NEAR(basset_settling(a, g, 0), 0, 1e-15);
@@ -425,9 +459,9 @@ TEST(HistoryExact, Limits) {
   EXPECT_THROW(basset_settling(1, 1, -1), std::invalid_argument);
 }
 
-// Double root γ² = 4α: the limit is used; q(γ) stays smooth through the switch between the
-// closed form and its series (|σ+ − σ−|√t = 1e-2): a 4th difference on a fine γ grid stays at rounding level.
-TEST(HistoryExact, DoubleRootIsSmooth) {
+// Double root γ² = 4α: the limit is used; q(γ) stays smooth through the switch between the closed
+// form and its series (|σ+ − σ−|√t = 1e-2): a 4th difference on a fine γ grid stays at rounding level.
+TEST(HistoryClosedForm, DoubleRootIsSmooth) {
   const double a = 1, t = 2;
   const double g0 = std::sqrt(4 * a + 1e-4 / t);  // |σ+ − σ−| √t = 1e-2
   for (auto q : {basset_relaxation, basset_settling}) {
@@ -447,7 +481,7 @@ TEST(HistoryExact, DoubleRootIsSmooth) {
 
 // The integrated equation q(t) − q(0) + α ∫_0^t q + (γ/√π) ∫_0^t q(s)/√(t−s) ds = f t, by quadrature
 // with s = t sin²θ (q is analytic in √s, so both integrands are smooth in θ).
-TEST(HistoryExact, SatisfiesTheIntegralEquation) {
+TEST(HistoryClosedForm, SatisfiesTheIntegralEquation) {
   for (auto [a, g] : {std::pair{2.0, 1.0}, {0.5, 3.0}, {1.0, 2.0}}) {
     for (double t : {0.7, 3.0}) {
       for (int kind = 0; kind < 2; ++kind) {

@@ -103,3 +103,19 @@ position = 0.02
 )";
   expect_error(dry, {"effects", "drag", "[fluid]"});
 }
+
+TEST(Scene, HistorySettingsAreReadAndChecked) {
+  const std::string fx = "effects = [\"drag\", \"added_mass\", \"elastic\", \"history\"]\n" + kWall;
+  const Scene sc = parse_scene(fx + "[history]\nkernel = \"kim\"\nevaluator = \"direct\"\nstart = \"impulsive\"\n", "h.toml");
+  EXPECT_TRUE(sc.has(Effect::history));
+  EXPECT_EQ(sc.history.kernel, "kim");
+  EXPECT_EQ(sc.history.evaluator, "direct");
+  EXPECT_EQ(sc.history.start, "impulsive");
+  expect_error(fx + "[history]\nkernel = \"oseen\"\n", {"history.kernel", "unknown choice 'oseen'", "bad.toml:"});
+  expect_error(fx + "[history]\nmodes = 1\n", {"history.modes", "[2, 400]"});
+  expect_error(fx + "[history]\ntolerance = 0.0\n", {"history.tolerance"});
+  expect_error(fx + "[history]\nmin_lag = 1e-3\nhorizon = 1e-3\n", {"history.horizon", "10 × min_lag"});
+  expect_error(fx + "[history]\nmemory = 3\n", {"history.memory", "unknown key"});
+  expect_error(kWall + "[history]\nkernel = \"basset\"\n", {"history.kernel", "needs the 'history' effect"});
+  expect_error(kWall + "[solver]\nintegrator = \"ida\"\nlinear_solver = \"gmres\"\n", {"solver.linear_solver", "cvode integrator only"});
+}
