@@ -108,7 +108,7 @@ class GTable {
   }
 
  private:
-  // φ ≈ 1 − c1 x^p + c1(c1+1)/2 x^2p − …, integrated term by term (y ≤ 1e-12: x^3p ≤ 1e-21).
+  // φ ≈ 1 − c1 x^p + c1(c1+1)/2 x^2p − …, integrated term by term (y ≤ 1e-12: error O(y^4p) < 1e-28).
   double small(double y) const {
     const double q = std::pow(y, p_), c = c1_;
     return 2 * std::sqrt(y) *
@@ -205,9 +205,12 @@ SumOfExponentials build_soe(double delta, double T, double h) {
     r.weight.push_back(t.weight);
   }
   r.kappa = 2 * std::sqrt(delta);
-  for (std::size_t i = 0; i < r.rate.size(); ++i) r.kappa += r.weight[i] * std::expm1(-r.rate[i] * delta) / r.rate[i];
-  for (double s : log_grid(delta, T, error_grid_density(h)))
-    r.max_rel_error = std::max(r.max_rel_error, std::abs(soe_sum(r.rate, r.weight.data(), s) * std::sqrt(s) - 1));
+  for (std::size_t i = 0; i < r.rate.size(); ++i)
+    r.kappa += r.weight[i] * std::expm1(-r.rate[i] * delta) / r.rate[i];
+  for (double s : log_grid(delta, T, error_grid_density(h))) {
+    const double e = std::abs(soe_sum(r.rate, r.weight.data(), s) * std::sqrt(s) - 1);
+    r.max_rel_error = std::max(r.max_rel_error, e);
+  }
   return r;
 }
 
@@ -238,9 +241,10 @@ std::array<cplx, 6> F_derivatives(cplx sigma, double t) {
 }
 
 // Large |z| = |σ|√t (Im z ≥ 0): w(z) ~ (i/(√π z)) Σ_k (2k−1)!!/(2z²)^k, error ~e^(−|z|²), so
-//   σF(σ) ~ −(1/√(πt)) Σ_k c_k σ^(−2k),  F/σ ~ −(1/√(πt)) Σ_k c_k σ^(−2k−2),  c_k = (−1)^k (2k−1)!!/(2t)^k,
-// and the divided differences D_n of σ^(−n) follow D_n = D_(n−1)/σ+ + D_1 σ−^(−(n−1)), D_1 = −1/(σ+σ−),
-// free of the cancellation the closed form suffers at large t.
+//   σF(σ) ~ −(1/√(πt)) Σ_k c_k σ^(−2k),  F/σ ~ −(1/√(πt)) Σ_k c_k σ^(−2k−2),
+//   c_k = (−1)^k (2k−1)!!/(2t)^k,
+// and the divided differences D_n of σ^(−n) follow D_n = D_(n−1)/σ+ + D_1 σ−^(−(n−1)),
+// D_1 = −1/(σ+σ−): no cancellation, unlike the closed form at large t.
 cplx divided_difference_asymptotic(cplx sp, cplx sm, double t, bool over_sigma) {
   const cplx D1 = -1.0 / (sp * sm);
   cplx Dn = D1, sm_pow = 1;  // D_n, σ−^(−(n−1))
@@ -252,15 +256,19 @@ cplx divided_difference_asymptotic(cplx sp, cplx sm, double t, bool over_sigma) 
       ++n;
     }
   };
-  // |D_n| oscillates for complex roots: truncate on the envelope |c_k| n r^(n+1), r = 1/min|σ±|.
+  // |D_n| oscillates for complex roots: truncate on the envelope |c_k| n r^(n+1), r = 1/min|σ±|,
+  // with |c_k| r^n (= scaled) updated by ratios, so that nothing overflows.
   const double r = 1 / std::min(std::abs(sp), std::abs(sm));
   cplx sum = 0;
-  double c = 1, prev = std::numeric_limits<double>::infinity();
+  double c = 1, scaled = over_sigma ? r * r : 1, prev = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 500; ++k) {
-    if (k > 0) c *= -(2 * k - 1) / (2 * t);
+    if (k > 0) {
+      c *= -(2 * k - 1) / (2 * t);
+      scaled *= (2 * k - 1) / (2 * t) * r * r;
+    }
     const int power = over_sigma ? 2 * k + 2 : 2 * k;
     if (power == 0) continue;  // constant: no divided difference
-    const double envelope = std::abs(c) * power * std::pow(r, power + 1);
+    const double envelope = scaled * power * r;
     if (envelope >= prev) break;  // asymptotic series: stop at the smallest term
     advance_to(power);
     sum += c * Dn;
@@ -277,10 +285,14 @@ cplx divided_difference_asymptotic(cplx sp, cplx sm, double t, bool over_sigma) 
 // Otherwise the closed form. Measured against 80-digit values: ≲ 1e-13 relative, up to 3e-12 for
 // nearly double roots just below |σ|²t = 40.
 cplx divided_difference(cplx sp, cplx sm, double t, bool over_sigma) {
-  if (std::norm(sp) * t >= 40 && std::norm(sm) * t >= 40) return divided_difference_asymptotic(sp, sm, t, over_sigma);
+  if (std::norm(sp) * t >= 40 && std::norm(sm) * t >= 40)
+    return divided_difference_asymptotic(sp, sm, t, over_sigma);
   const cplx d = sp - sm, m = 0.5 * (sp + sm);
   const bool close = std::abs(d) * std::sqrt(t) < 1e-2 && (!over_sigma || std::abs(d) < 1e-2 * std::abs(m));
-  const auto g = [&](cplx s) { return over_sigma ? faddeeva(cplx(0, -std::sqrt(t)) * s) / s : s * faddeeva(cplx(0, -std::sqrt(t)) * s); };
+  const auto g = [&](cplx s) {
+    const cplx F = faddeeva(cplx(0, -std::sqrt(t)) * s);
+    return over_sigma ? F / s : s * F;
+  };
   if (!close) return (g(sp) - g(sm)) / d;
   const auto F = F_derivatives(m, t);
   std::array<cplx, 6> gd{};
@@ -304,8 +316,10 @@ cplx divided_difference(cplx sp, cplx sm, double t, bool over_sigma) {
 }
 
 void check_basset_args(double alpha, double gamma, double t) {
-  if (!(alpha > 0) || !std::isfinite(alpha)) throw std::invalid_argument("basset solution: alpha must be positive");
-  if (!(gamma >= 0) || !std::isfinite(gamma)) throw std::invalid_argument("basset solution: gamma must be non-negative");
+  if (!(alpha > 0) || !std::isfinite(alpha))
+    throw std::invalid_argument("basset solution: alpha must be positive and finite");
+  if (!(gamma >= 0) || !std::isfinite(gamma))
+    throw std::invalid_argument("basset solution: gamma must be non-negative and finite");
   if (!(t >= 0) || !std::isfinite(t)) throw std::invalid_argument("basset solution: t must be non-negative");
 }
 
@@ -341,7 +355,8 @@ const char* to_string(KernelKind k) {
 
 HistoryKernel::HistoryKernel(KernelKind kind, double D, double nu) : kind_(kind), D_(D), nu_(nu) {
   if (!(D > 0) || !std::isfinite(D)) throw std::invalid_argument("HistoryKernel: diameter must be positive");
-  if (!(nu > 0) || !std::isfinite(nu)) throw std::invalid_argument("HistoryKernel: viscosity must be positive");
+  if (!(nu > 0) || !std::isfinite(nu))
+    throw std::invalid_argument("HistoryKernel: viscosity must be positive");
   switch (kind) {
     case KernelKind::basset: break;
     case KernelKind::mei_adrian: c1_ = 2.0, c2_ = 0.105; break;
@@ -375,7 +390,8 @@ double HistoryKernel::integral(double s, double Re) const {
 
 SumOfExponentials inverse_sqrt_soe(double min_lag, double horizon, double tol) {
   check_interval(min_lag, horizon);
-  if (!(tol > 1e-15 && tol < 0.1)) throw std::invalid_argument("inverse_sqrt_soe: tol must lie in (1e-15, 0.1)");
+  if (!(tol > 1e-15 && tol < 0.1))
+    throw std::invalid_argument("inverse_sqrt_soe: tol must lie in (1e-15, 0.1)");
   return build_soe(min_lag, horizon, pi * pi / std::log(7 / tol));
 }
 
@@ -384,7 +400,8 @@ SumOfExponentials inverse_sqrt_soe(double min_lag, double horizon, double tol) {
 // over `modes`, the nearest achievable count is returned (ties: the larger one).
 SumOfExponentials inverse_sqrt_soe_modes(double min_lag, double horizon, int modes) {
   check_interval(min_lag, horizon);
-  if (modes < 2 || modes > 400) throw std::invalid_argument("inverse_sqrt_soe_modes: modes must lie in [2, 400]");
+  if (modes < 2 || modes > 400)
+    throw std::invalid_argument("inverse_sqrt_soe_modes: modes must lie in [2, 400]");
   const auto count = [&](double h) { return static_cast<int>(soe_terms(min_lag, horizon, h).size()); };
   const double h_min = pi * pi / std::log(7 / 1e-300), h_max = 50;
   if (count(h_min) < modes) return build_soe(min_lag, horizon, h_min);
@@ -416,7 +433,9 @@ SumOfExponentials inverse_sqrt_soe_modes(double min_lag, double horizon, int mod
   return have ? best : build_soe(min_lag, horizon, a);
 }
 
-std::complex<double> inverse_sqrt_transfer(double omega) { return std::sqrt(pi) * std::sqrt(cplx(0, -omega)); }
+std::complex<double> inverse_sqrt_transfer(double omega) {
+  return std::sqrt(pi) * std::sqrt(cplx(0, -omega));  // principal branch
+}
 
 std::complex<double> soe_transfer(const SumOfExponentials& soe, double omega) {
   const cplx iw(0, omega);
@@ -452,23 +471,27 @@ SoeKernel::SoeKernel(const HistoryKernel& kernel, const SumOfExponentials& base)
   //   M_ji = w_base,i √s_j e^(−λ_i s_j),  target b_j = (φ(s_j/s_c) − 1) ρ_j,  ρ_j = Σ_i M_ji,
   // i.e. the fit is to φ × (Basset SoE), so the Basset SoE's own error is not amplified by 1/φ in
   // the tail, and b = 0 (w = w_B) at Re = 0. c = P b, P the Tikhonov pseudo-inverse (QR of [M; μI]).
-  const int n_s = std::max(static_cast<int>(std::ceil(samples_per_decade * std::log10(T / delta))) + 1, static_cast<int>(m));
+  const int n_s = std::max(static_cast<int>(std::ceil(samples_per_decade * std::log10(T / delta))) + 1,
+                           static_cast<int>(m));
   const double ds = std::log(T / delta) / (n_s - 1);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n_s + m, m);
   Eigen::VectorXd rho(n_s);
   for (int j = 0; j < n_s; ++j) {
     const double s = delta * std::exp(j * ds);
-    for (std::size_t i = 0; i < m; ++i) A(j, i) = base.weight[i] * std::sqrt(s) * std::exp(-rate_[i] * s);
+    for (std::size_t i = 0; i < m; ++i)
+      A(j, i) = base.weight[i] * std::sqrt(s) * std::exp(-rate_[i] * s);
     rho[j] = A.row(j).sum();
   }
   const double mu = tikhonov * A.topRows(n_s).norm();
   for (std::size_t i = 0; i < m; ++i) A(n_s + i, i) = mu;
   const Eigen::HouseholderQR<Eigen::MatrixXd> qr(A);
   const Eigen::MatrixXd Q1 = (qr.householderQ() * Eigen::MatrixXd::Identity(n_s + m, m)).topRows(n_s);
-  const Eigen::MatrixXd P = qr.matrixQR().topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(Q1.transpose());
+  const Eigen::MatrixXd P =
+      qr.matrixQR().topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(Q1.transpose());  // m × n_s
 
-  // Nodes τ_k = ln s_c, spacing ds (finer spacing changes nothing measurable), from s_c(Re = ∞) up to where 1 − φ(T/s_c) ≈ c1 (T/s_c)^p
-  // < 1e-3 max_rel_error; the top node is Basset itself (zero slope), so the blend is C¹.
+  // Nodes τ_k = ln s_c with spacing ds (a finer one changes nothing measurable), from s_c(Re = ∞)
+  // up to where 1 − φ(T/s_c) ≈ c1 (T/s_c)^p < 1e-3 max_rel_error; the top node is Basset itself
+  // (zero slope), so the blend is C¹. Weights in between: cubic Hermite with the exact slopes.
   const double c1 = kernel.c1(), p = 1.5 / c1;
   tau0_ = std::log(kernel.crossover_time(inf));
   dtau_ = ds;
@@ -503,7 +526,8 @@ SoeKernel::SoeKernel(const HistoryKernel& kernel, const SumOfExponentials& base)
 
 void SoeKernel::weights(double Re, std::span<double> w, double& kappa) const {
   const std::size_t m = rate_.size();
-  if (w.size() != m) throw std::invalid_argument("SoeKernel::weights: span size differs from the mode count");
+  if (w.size() != m)
+    throw std::invalid_argument("SoeKernel::weights: span size differs from the mode count");
   const double sc = kernel_.crossover_time(Re);
   const double u = ln_sc_.empty() || std::isinf(sc) ? inf : (std::log(sc) - tau0_) / dtau_;
   if (!(u < static_cast<double>(ln_sc_.size() - 1))) {
@@ -527,7 +551,8 @@ double SoeKernel::max_rel_error(double Re) const {
   double kappa = 0;
   weights(Re, w, kappa);
   double err = 0;
-  for (double s : log_grid(base_.min_lag, base_.horizon, error_grid_density(base_.step > 0 ? base_.step : 1.0)))
+  const double density = error_grid_density(base_.step > 0 ? base_.step : 1.0);
+  for (double s : log_grid(base_.min_lag, base_.horizon, density))
     err = std::max(err, std::abs(soe_sum(rate_, w.data(), s) / kernel_.K(s, Re) - 1));
   return err;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "apps/simulate.hpp"
@@ -139,6 +140,8 @@ TEST(HistoryExact, SumOfExponentialsReproducesRelaxationAndSettling) {
       if (c.alpha != alpha) continue;
       EXPECT_NEAR(r.q.at(c.t) / c.relax, 1.0, 1e-8) << "relaxation alpha " << alpha << " t " << c.t;
       EXPECT_NEAR(s.q.at(c.t) / c.settle, 1.0, 1e-8) << "settling alpha " << alpha << " t " << c.t;
+      std::printf("  (alpha, gamma) = (%g, %g), t = %g: relative error relaxation %.2e, settling %.2e\n", alpha, gamma,
+                  c.t, r.q.at(c.t) / c.relax - 1, s.q.at(c.t) / c.settle - 1);
       // The closed form itself (libcerf) at the same points.
       EXPECT_NEAR(contact::basset_relaxation(alpha, gamma, c.t) / c.relax, 1.0, 1e-12);
       EXPECT_NEAR(contact::basset_settling(alpha, gamma, c.t) / c.settle, 1.0, 1e-12);
@@ -161,6 +164,7 @@ TEST(HistoryExact, DirectQuadratureConvergesToSettling) {
     const auto s = solve(p, "cvode", 1e-11, 1e-13);
     const double err = std::abs(s.q.at(T) - exact);
     errs.push_back(err);
+    std::printf("  direct, step %g: |q(T) - exact| = %.3e\n", dt, err);
     prev = err;
   }
   (void)prev;
@@ -225,6 +229,7 @@ TEST(HistoryScene, LightSphereRisingFromRestMatchesClosedForm) {
     worst = std::max(worst, std::abs(row[2] - f * contact::basset_settling(alpha, gamma, row[0])) / u_term);
   }
   EXPECT_LT(worst, 1e-6);
+  std::printf("  rising sphere: max |u - u_exact| / u_terminal = %.2e over %zu samples\n", worst, r.rows.size());
   EXPECT_GT(r.summary["max_history_force_N"].get<double>(), 0);
 }
 
