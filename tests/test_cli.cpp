@@ -132,6 +132,8 @@ TEST(Cli, HistoryComparesKernelsAndWritesTableAndPlotData) {
   while (std::getline(in, line)) ++rows;
   EXPECT_EQ(rows, 3);  // none, basset soe, kim soe
   EXPECT_TRUE(fs::exists(out / "history_forces.csv"));
+  // `effects` on a scene with a [history] table drops the effect without tripping over the table.
+  EXPECT_EQ(run_imcol("effects " + scene + " --set solver.t_end=0.01").status, 0);
   const Result bad = run_imcol("history " + scene + " --kernels oseen --out " + out.string());
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("oseen"), std::string::npos) << bad.err;
