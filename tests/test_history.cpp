@@ -153,7 +153,6 @@ TEST(HistoryExact, DirectQuadratureConvergesToSettling) {
   // Settling from rest (no jump): the error of the direct evaluator falls as its step is refined.
   const double alpha = 2, gamma = 1, T = 4;
   const double exact = contact::basset_settling(alpha, gamma, T);
-  double prev = 0;
   std::vector<double> errs;
   for (double dt : {0.04, 0.02, 0.01}) {
     HistoryOptions o;
@@ -165,9 +164,7 @@ TEST(HistoryExact, DirectQuadratureConvergesToSettling) {
     const double err = std::abs(s.q.at(T) - exact);
     errs.push_back(err);
     std::printf("  direct, step %g: |q(T) - exact| = %.3e\n", dt, err);
-    prev = err;
   }
-  (void)prev;
   // Order between 1.5 (partial segment, O(Δ^(3/2))) and 2 (piecewise-linear product rule).
   for (std::size_t i = 1; i < errs.size(); ++i) {
     const double order = std::log2(errs[i - 1] / errs[i]);
