@@ -31,13 +31,20 @@ std::string num(double v) {
   return os.str();
 }
 
+/// α [1/s], γ [1/√s] and the forcing f [m/s²] of MODEL.md §2.3's settling problem for the scene's sphere.
+struct Exact {
+  double alpha, gamma, f;
+  explicit Exact(const Scene& sc) {
+    const auto& s = sc.spheres.at(0);
+    const double a = s.diameter / 2, rp = s.density, rf = sc.fluid->density, mu = sc.fluid->viscosity;
+    alpha = 9 * mu / (a * a * (2 * rp + rf));
+    gamma = 9 * std::sqrt(rf * mu) / (a * (2 * rp + rf));
+    f = 2 * (rp - rf) * sc.gravity / (2 * rp + rf);
+  }
+};
+
 Result run(const std::string& path, std::vector<Override> ov, double relax_times, int repeat = 3) {
-  // Parameters of the exact solution from the scene itself.
-  const Scene probe = load_scene(path, ov);
-  const auto& s = probe.spheres.at(0);
-  const double a = s.diameter / 2, rp = s.density, rf = probe.fluid->density, mu = probe.fluid->viscosity;
-  const double alpha = 9 * mu / (a * a * (2 * rp + rf)), gamma = 9 * std::sqrt(rf * mu) / (a * (2 * rp + rf));
-  const double f = 2 * (rp - rf) * probe.gravity / (2 * rp + rf);
+  const auto [alpha, gamma, f] = Exact(load_scene(path, ov));
   const double t_end = relax_times / alpha;
   ov.push_back({"solver.t_end", num(t_end)});
   ov.push_back({"output.dt", num(t_end / 100)});
@@ -73,13 +80,9 @@ int main(int argc, char** argv) {
     st << "tol " << tol << " rtol " << tol / 10;
     all.push_back({"soe", st.str(), r});
   }
+  const double alpha = Exact(load_scene(path)).alpha;
   for (int n : {250, 500, 1000, 2000, 4000, 8000}) {
-    const double alpha_t = 100.0;  // t_end in relaxation times; the step is t_end / n
-    const Scene probe = load_scene(path);
-    const auto& s = probe.spheres.at(0);
-    const double a = s.diameter / 2;
-    const double alpha = 9 * probe.fluid->viscosity / (a * a * (2 * s.density + probe.fluid->density));
-    const double dt = alpha_t / alpha / n;
+    const double dt = 100 / alpha / n;  // 100 relaxation times in n steps
     const Result r = run(path, {{"history.evaluator", "\"direct\""}, {"history.direct_step", num(dt)},
                                 {"solver.rtol", "1e-10"}, {"solver.atol", "1e-12"}}, 100, 1);
     all.push_back({"direct", "N = " + std::to_string(n) + " steps", r});
@@ -100,10 +103,6 @@ int main(int argc, char** argv) {
   std::cout << "\n2. cost against run length (soe tol 1e-6; direct with the fixed step of N = 1000 per 100 relaxation times)\n";
   std::cout << std::setw(12) << "relax times" << std::setw(12) << "soe ms" << std::setw(10) << "steps" << std::setw(12)
             << "direct ms" << std::setw(10) << "steps" << std::setw(12) << "soe error" << std::setw(12) << "dir error" << "\n";
-  const Scene probe = load_scene(path);
-  const auto& s = probe.spheres.at(0);
-  const double a = s.diameter / 2;
-  const double alpha = 9 * probe.fluid->viscosity / (a * a * (2 * s.density + probe.fluid->density));
   const double dt = 100 / alpha / 1000;
   for (double L : {25.0, 50.0, 100.0, 200.0, 400.0}) {
     const Result so = run(path, {{"history.evaluator", "\"soe\""}, {"history.tolerance", "1e-6"}, {"solver.rtol", "1e-7"},

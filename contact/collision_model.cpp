@@ -236,9 +236,7 @@ void CollisionModel::initial_state(std::span<double> y) const {
   if (history_[0] && hist_opt_.impulsive) {
     const Evaluation ev = evaluate(0.0, y);
     for (std::size_t m = 0; m < n_spheres_; ++m) {
-      const double dU = history_K_H(ev.gap) * history_[m]->start_impulse() / ev.m_eff[m];
-      y[2 * m + 1] -= dU;
-      history_[m]->shift_start(dU, y.subspan(hist_offset_[m], history_[m]->states()));
+      y[2 * m + 1] -= history_[m]->apply_start(history_K_H(ev.gap), ev.m_eff[m], y.subspan(hist_offset_[m], history_[m]->states()));
     }
   }
 }

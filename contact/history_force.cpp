@@ -27,9 +27,6 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
                                   : inverse_sqrt_soe(opt.min_lag, opt.horizon, opt.tolerance);
   soe_ = std::make_unique<SoeKernel>(kernel_, base);
   w_.assign(soe_->modes(), 0.0);
-  w_basset_.assign(soe_->modes(), 0.0);
-  double kappa = 0;
-  soe_->weights(0.0, w_basset_, kappa);
 }
 
 double SphereHistory::reynolds(double U) const { return std::abs(initial_re_ ? U0_ : U) * D_ / nu_; }
@@ -47,7 +44,11 @@ std::vector<double> SphereHistory::absolute_tolerances(double u_floor) const {
   // Mode i adds c w_i z_i to the force; errors u_floor/(√n w_i) in the modes add up (randomly) to
   // the drag error c u_floor of a velocity error u_floor.
   std::vector<double> t(states());
-  for (std::size_t i = 0; i < t.size(); ++i) t[i] = u_floor / (std::sqrt(static_cast<double>(t.size())) * std::max(w_basset_[i], 1e-300));
+  if (t.empty()) return t;
+  std::vector<double> w(t.size());
+  double kappa = 0;
+  soe_->weights(0.0, w, kappa);  // Basset weights
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = u_floor / (std::sqrt(static_cast<double>(t.size())) * std::max(w[i], 1e-300));
   return t;
 }
 
@@ -64,16 +65,14 @@ double SphereHistory::jump_term(double t, double Re) const {
   return U0_ * k;
 }
 
-double SphereHistory::start_impulse() const {
+double SphereHistory::apply_start(double K_H, double m_eff, std::span<double> z) const {
   // Below the floor t_f the start-up force is held at its value at t_f; the momentum it misses,
   // c K_H U(0) ∫_0^t_f (K(s) − K(t_f)) ds, is given to the sphere at t = 0 instead.
   if (!impulsive_ || U0_ == 0) return 0.0;
   const double tf = start_floor(), Re = reynolds(U0_);
-  return c_ * U0_ * (kernel_.integral(tf, Re) - tf * kernel_.K(tf, Re));
-}
-
-void SphereHistory::shift_start(double dU, std::span<double> z) const {
+  const double dU = K_H * c_ * U0_ * (kernel_.integral(tf, Re) - tf * kernel_.K(tf, Re)) / m_eff;
   for (auto& v : z) v -= dU;  // direct: no states; its grid keeps U(0) and sees the drop as memory
+  return dU;
 }
 
 SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std::span<const double> z) const {

@@ -14,7 +14,7 @@
 // the jump 0 → U(0) at t = 0 is treated analytically: its force −c U(0) K(t) is added exactly (soe:
 // z_i(0) = U(0) carries Σ w_i e^(−λ_i t), plus the exact remainder K − Σ w_i e^(−λ_i t) that the
 // exponentials miss below min_lag). Below t_f = 1e-3 min_lag that force is held at its value at t_f
-// and the momentum it misses (∝ √t_f) is applied at t = 0 (start_impulse): the error left is that of
+// and the momentum it misses (∝ √t_f) is applied at t = 0 (apply_start): the error left is that of
 // moving an impulse ~3% of the start-up impulse over min_lag by at most t_f. A rebound is not a jump
 // here (the contact force is continuous); it is resolved by the integrator's steps, and by the soe
 // only down to min_lag: its error there is that of holding U' constant over the last min_lag.
@@ -61,10 +61,10 @@ class SphereHistory {
   void gains(double U, double K_H, std::span<double> g) const;
   const std::vector<double>& rates() const;
 
-  /// Momentum [N s] of the start-up force below the floor t_f that the model applies at t = 0 (impulsive start).
-  double start_impulse() const;
-  /// The sphere starts at U(0) − dU (dU from start_impulse): the memory states see that jump.
-  void shift_start(double dU, std::span<double> z) const;
+  /// Impulsive start: the momentum of the start-up force below the floor t_f, given at t = 0 to a
+  /// sphere of mass m_eff [kg]. Returns the velocity drop dU [m/s] (the sphere starts at U(0) − dU)
+  /// and shifts the memory states z so that they see that start.
+  double apply_start(double K_H, double m_eff, std::span<double> z) const;
 
   // direct evaluator grid
   double step() const { return step_; }
@@ -87,7 +87,6 @@ class SphereHistory {
   double c_;        // 6πμa [kg/s]
   double D_, nu_, U0_, min_lag_;
   mutable std::vector<double> w_;  // scratch for the current weights
-  std::vector<double> w_basset_;
   double step_ = 0;
   std::vector<double> grid_u_;     // U at t_k = kΔ, k = 0..n
 };

@@ -43,9 +43,7 @@ class BassetProblem : public DynamicalSystem {
   void initial_state(std::span<double> y) const override {
     y[0] = q0_;
     h_.initial_states(y.subspan(1));
-    const double dU = h_.start_impulse() / (M_ + h_.evaluate(0.0, q0_, 1.0, y.subspan(1)).mass);
-    y[0] -= dU;
-    h_.shift_start(dU, y.subspan(1));
+    y[0] -= h_.apply_start(1.0, M_ + h_.evaluate(0.0, q0_, 1.0, y.subspan(1)).mass, y.subspan(1));
   }
   void rhs(double t, std::span<const double> y, std::span<double> yd) override {
     const auto term = h_.evaluate(t, y[0], 1.0, y.subspan(1));
