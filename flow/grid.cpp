@@ -1,0 +1,139 @@
+#include "flow/grid.hpp"
+
+#include <fftw3.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace imcol::flow {
+
+void apply_stokes_operator(const LevelGeometry& g, const std::vector<double>& x, std::vector<double>& y) {
+  y.assign(g.size(), 0.0);
+  const double ih2 = 1.0 / (g.h * g.h);
+  for (int i = 1; i < g.nr; ++i) {
+    const double cp = i / (i + 0.5), cm = i / (i - 0.5);
+    const double* xm = &x[g.at(i - 1, 0)];
+    const double* x0 = &x[g.at(i, 0)];
+    const double* xp = &x[g.at(i + 1, 0)];
+    double* yy = &y[g.at(i, 0)];
+    for (int j = 1; j < g.nz; ++j)
+      yy[j] = ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]);
+  }
+}
+
+FastSolver::FastSolver(const LevelGeometry& g, std::vector<Op> ops, bool measure_plans) : g_(g), ops_(std::move(ops)) {
+  if (g.nr < 2 || g.nz < 2) throw std::invalid_argument("FastSolver: grid needs at least 2 cells each way");
+  m_ = g.nz - 1;
+  n_ = g.nr - 1;
+  buf_ = static_cast<double*>(fftw_malloc(sizeof(double) * static_cast<std::size_t>(m_) * n_));
+  const fftw_r2r_kind kind = FFTW_RODFT00;
+  plan_ = fftw_plan_many_r2r(1, &m_, n_, buf_, nullptr, 1, m_, buf_, nullptr, 1, m_, &kind,
+                             measure_plans ? FFTW_MEASURE : FFTW_ESTIMATE);
+  if (!plan_) throw std::runtime_error("FFTW could not plan the sine transform");
+  const double ih2 = 1.0 / (g.h * g.h);
+  for (const Op& op : ops_) {
+    std::vector<double> lower(n_ + 1), inv_den(static_cast<std::size_t>(n_) * m_), cp(static_cast<std::size_t>(n_) * m_);
+    for (int k = 0; k < m_; ++k) {
+      const double lam = (2 * std::cos(M_PI * (k + 1) / (m_ + 1)) - 2) * ih2;
+      double cprev = 0;
+      for (int ii = 0; ii < n_; ++ii) {
+        const int i = ii + 1;
+        const double cplus = i / (i + 0.5), cminus = i / (i - 0.5);
+        const double lo = ii == 0 ? 0.0 : op.b * cminus * ih2;
+        const double up = op.b * cplus * ih2;
+        const double diag = op.a + op.b * (-(cplus + cminus) * ih2 + lam);
+        const double den = diag - lo * cprev;
+        if (den == 0) throw std::runtime_error("FastSolver: singular operator");
+        inv_den[static_cast<std::size_t>(ii) * m_ + k] = 1.0 / den;
+        cprev = up / den;
+        cp[static_cast<std::size_t>(ii) * m_ + k] = cprev;
+        lower[ii] = lo;
+      }
+    }
+    lower_.push_back(std::move(lower));
+    inv_den_.push_back(std::move(inv_den));
+    cp_.push_back(std::move(cp));
+  }
+}
+
+FastSolver::~FastSolver() {
+  if (plan_) fftw_destroy_plan(plan_);
+  if (buf_) fftw_free(buf_);
+}
+
+std::size_t FastSolver::bytes() const {
+  return sizeof(double) * static_cast<std::size_t>(m_) * n_ * (1 + 2 * ops_.size());
+}
+
+void FastSolver::forward(const std::vector<double>& f) {
+  for (int ii = 0; ii < n_; ++ii)
+    for (int k = 0; k < m_; ++k) buf_[static_cast<std::size_t>(ii) * m_ + k] = f[g_.at(ii + 1, k + 1)];
+  fftw_execute(plan_);
+}
+
+void FastSolver::tridiag(int op) {
+  const auto& lo = lower_[op];
+  const auto& id = inv_den_[op];
+  const auto& cp = cp_[op];
+  // forward elimination over i for all modes at once (contiguous in k)
+  for (int k = 0; k < m_; ++k) buf_[k] *= id[k];
+  for (int ii = 1; ii < n_; ++ii) {
+    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
+    const double* dm = d - m_;
+    const double* inv = id.data() + static_cast<std::size_t>(ii) * m_;
+    const double l = lo[ii];
+    for (int k = 0; k < m_; ++k) d[k] = (d[k] - l * dm[k]) * inv[k];
+  }
+  for (int ii = n_ - 2; ii >= 0; --ii) {
+    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
+    const double* dn = d + m_;
+    const double* c = cp.data() + static_cast<std::size_t>(ii) * m_;
+    for (int k = 0; k < m_; ++k) d[k] -= c[k] * dn[k];
+  }
+}
+
+void FastSolver::backward(std::vector<double>& x) {
+  fftw_execute(plan_);
+  const double s = 1.0 / (2.0 * (m_ + 1));
+  for (int ii = 0; ii < n_; ++ii)
+    for (int k = 0; k < m_; ++k) x[g_.at(ii + 1, k + 1)] = s * buf_[static_cast<std::size_t>(ii) * m_ + k];
+}
+
+void FastSolver::solve(int op, const std::vector<double>& f, std::vector<double>& x) {
+  const double b = ops_.at(op).b, ih2 = 1.0 / (g_.h * g_.h);
+  // move the boundary values of x to the right-hand side
+  for (int ii = 0; ii < n_; ++ii) {
+    const int i = ii + 1;
+    double* row = buf_ + static_cast<std::size_t>(ii) * m_;
+    for (int k = 0; k < m_; ++k) row[k] = f[g_.at(i, k + 1)];
+    row[0] -= b * ih2 * x[g_.at(i, 0)];
+    row[m_ - 1] -= b * ih2 * x[g_.at(i, g_.nz)];
+  }
+  {
+    const int i = g_.nr - 1;
+    const double cplus = i / (i + 0.5);
+    double* row = buf_ + static_cast<std::size_t>(n_ - 1) * m_;
+    for (int k = 0; k < m_; ++k) row[k] -= b * ih2 * cplus * x[g_.at(g_.nr, k + 1)];
+  }
+  fftw_execute(plan_);
+  tridiag(op);
+  backward(x);
+  for (int j = 0; j <= g_.nz; ++j) x[g_.at(0, j)] = 0.0;  // axis
+}
+
+void FastSolver::solve_chain(const std::vector<int>& chain, const std::vector<double>& f,
+                             std::vector<std::vector<double>*> out) {
+  forward(f);
+  std::vector<double> saved;
+  for (std::size_t c = 0; c < chain.size(); ++c) {
+    tridiag(chain[c]);
+    if (out[c]) {
+      if (c + 1 < chain.size()) saved.assign(buf_, buf_ + static_cast<std::size_t>(m_) * n_);
+      out[c]->assign(g_.size(), 0.0);
+      backward(*out[c]);
+      if (c + 1 < chain.size()) std::copy(saved.begin(), saved.end(), buf_);
+    }
+  }
+}
+
+}  // namespace imcol::flow

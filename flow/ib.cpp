@@ -1,0 +1,141 @@
+#include "flow/ib.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace imcol::flow {
+
+double rpb_delta(double x) {
+  const double a = std::abs(x);
+  if (a <= 0.5) return (1.0 + std::sqrt(1.0 - 3.0 * a * a)) / 3.0;
+  if (a <= 1.5) return (5.0 - 3.0 * a - std::sqrt(std::max(0.0, 1.0 - 3.0 * (1.0 - a) * (1.0 - a)))) / 6.0;
+  return 0.0;
+}
+
+void add_sphere_rings(BodyPoints& pts, double a, double zc, double h, double spacing, int body_id) {
+  const int n = std::max(2, static_cast<int>(std::ceil(M_PI * a / (spacing * h))));
+  for (int k = 0; k < n; ++k) {
+    const double th = (k + 0.5) * M_PI / n;
+    pts.r.push_back(a * std::sin(th));
+    pts.z.push_back(zc - a * std::cos(th));
+    pts.ds.push_back(M_PI * a / n);
+    pts.body.push_back(body_id);
+  }
+}
+
+FaceField face_velocity(const LevelGeometry& g, const std::vector<double>& psi) {
+  FaceField u;
+  u.uz.assign(static_cast<std::size_t>(g.nr) * (g.nz + 1), 0.0);
+  u.ur.assign(static_cast<std::size_t>(g.nr + 1) * g.nz, 0.0);
+  for (int i = 0; i < g.nr; ++i)
+    for (int j = 0; j <= g.nz; ++j)
+      u.uz[static_cast<std::size_t>(i) * (g.nz + 1) + j] = (psi[g.at(i + 1, j)] - psi[g.at(i, j)]) / (g.h * g.r(i + 0.5));
+  for (int i = 1; i <= g.nr; ++i)
+    for (int j = 0; j < g.nz; ++j)
+      u.ur[static_cast<std::size_t>(i) * g.nz + j] = -(psi[g.at(i, j + 1)] - psi[g.at(i, j)]) / (g.h * g.r(i));
+  return u;
+}
+
+FaceField face_weights(const LevelGeometry& g) {
+  FaceField w;
+  w.uz.assign(static_cast<std::size_t>(g.nr) * (g.nz + 1), 0.0);
+  w.ur.assign(static_cast<std::size_t>(g.nr + 1) * g.nz, 0.0);
+  const double h2 = g.h * g.h;
+  for (int i = 0; i < g.nr; ++i)
+    for (int j = 0; j <= g.nz; ++j) w.uz[static_cast<std::size_t>(i) * (g.nz + 1) + j] = 2 * M_PI * g.r(i + 0.5) * h2;
+  for (int i = 0; i <= g.nr; ++i)
+    for (int j = 0; j < g.nz; ++j) w.ur[static_cast<std::size_t>(i) * g.nz + j] = 2 * M_PI * g.r(i) * h2;
+  return w;
+}
+
+std::vector<double> cell_outflux(const LevelGeometry& g, const FaceField& u) {
+  std::vector<double> q(static_cast<std::size_t>(g.nr) * g.nz);
+  for (int i = 0; i < g.nr; ++i)
+    for (int j = 0; j < g.nz; ++j) {
+      const double az = 2 * M_PI * g.r(i + 0.5) * g.h;  // annulus area π(r_{i+1}² − r_i²)
+      const double out_z = az * (u.uz[static_cast<std::size_t>(i) * (g.nz + 1) + j + 1] - u.uz[static_cast<std::size_t>(i) * (g.nz + 1) + j]);
+      const double out_r = 2 * M_PI * g.h * (g.r(i + 1) * u.ur[static_cast<std::size_t>(i + 1) * g.nz + j] - g.r(i) * u.ur[static_cast<std::size_t>(i) * g.nz + j]);
+      q[static_cast<std::size_t>(i) * g.nz + j] = out_z + out_r;
+    }
+  return q;
+}
+
+Stencil interp_stencil(const LevelGeometry& g, double r, double z, int comp) {
+  Stencil s;
+  const double xr = r / g.h, xz = (z - g.z0) / g.h;
+  // face centre offsets: comp 1 (u_z): r at i+½, z at j; comp 0 (u_r): r at i, z at j+½
+  const double orr = comp == 1 ? 0.5 : 0.0, ozz = comp == 1 ? 0.0 : 0.5;
+  const int i0 = static_cast<int>(std::ceil(xr - orr - 1.5)), i1 = static_cast<int>(std::floor(xr - orr + 1.5));
+  const int j0 = static_cast<int>(std::ceil(xz - ozz - 1.5)), j1 = static_cast<int>(std::floor(xz - ozz + 1.5));
+  const int imin = comp == 1 ? 0 : 1, imax = comp == 1 ? g.nr - 1 : g.nr;
+  const int jmax = comp == 1 ? g.nz : g.nz - 1;
+  if (j0 < 0 || j1 > jmax || i1 > imax) throw std::runtime_error("body point too close to the finest grid's boundary");
+  double norm = 0;
+  for (int i = std::max(i0, imin); i <= i1; ++i)
+    for (int j = j0; j <= j1; ++j) {
+      const double w = rpb_delta(i + orr - xr) * rpb_delta(j + ozz - xz) * 2 * M_PI * g.r(i + orr) * g.h * g.h;
+      if (w == 0) continue;
+      s.face.push_back(comp == 1 ? i * (g.nz + 1) + j : i * g.nz + j);
+      s.w.push_back(w);
+      norm += w;
+    }
+  if (!(norm > 0)) throw std::runtime_error("empty interpolation stencil");
+  for (double& w : s.w) w /= norm;
+  return s;
+}
+
+std::vector<double> interpolate(const LevelGeometry& g, const BodyPoints& p, const FaceField& u) {
+  std::vector<double> out(2 * p.size(), 0.0);
+  for (std::size_t k = 0; k < p.size(); ++k)
+    for (int c = 0; c < 2; ++c) {
+      const Stencil s = interp_stencil(g, p.r[k], p.z[k], c);
+      const auto& field = c == 1 ? u.uz : u.ur;
+      double v = 0;
+      for (std::size_t m = 0; m < s.face.size(); ++m) v += s.w[m] * field[s.face[m]];
+      out[2 * k + c] = v;
+    }
+  return out;
+}
+
+FaceField spread(const LevelGeometry& g, const BodyPoints& p, const std::vector<double>& f) {
+  FaceField out;
+  out.uz.assign(static_cast<std::size_t>(g.nr) * (g.nz + 1), 0.0);
+  out.ur.assign(static_cast<std::size_t>(g.nr + 1) * g.nz, 0.0);
+  const FaceField W = face_weights(g);
+  for (std::size_t k = 0; k < p.size(); ++k)
+    for (int c = 0; c < 2; ++c) {
+      const Stencil s = interp_stencil(g, p.r[k], p.z[k], c);
+      auto& field = c == 1 ? out.uz : out.ur;
+      const auto& wf = c == 1 ? W.uz : W.ur;
+      for (std::size_t m = 0; m < s.face.size(); ++m) field[s.face[m]] += s.w[m] * f[2 * k + c] / wf[s.face[m]];
+    }
+  return out;
+}
+
+Eigen::SparseMatrix<double, Eigen::RowMajor> velocity_at_points(const LevelGeometry& g, const BodyPoints& p) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    for (int c = 0; c < 2; ++c) {
+      const Stencil s = interp_stencil(g, p.r[k], p.z[k], c);
+      const int row = static_cast<int>(2 * k + c);
+      for (std::size_t m = 0; m < s.face.size(); ++m) {
+        const int f = s.face[m];
+        if (c == 1) {  // u_z face (i+½, j)
+          const int i = f / (g.nz + 1), j = f % (g.nz + 1);
+          const double w = s.w[m] / (g.h * g.r(i + 0.5));
+          t.emplace_back(row, static_cast<int>(g.at(i + 1, j)), w);
+          if (i > 0) t.emplace_back(row, static_cast<int>(g.at(i, j)), -w);  // ψ = 0 on the axis
+        } else {       // u_r face (i, j+½)
+          const int i = f / g.nz, j = f % g.nz;
+          const double w = s.w[m] / (g.h * g.r(i));
+          t.emplace_back(row, static_cast<int>(g.at(i, j + 1)), -w);
+          t.emplace_back(row, static_cast<int>(g.at(i, j)), w);
+        }
+      }
+    }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> B(static_cast<int>(2 * p.size()), static_cast<int>(g.size()));
+  B.setFromTriplets(t.begin(), t.end());
+  return B;
+}
+
+}  // namespace imcol::flow
