@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "apps/compare_history.hpp"
+#include "apps/flow_command.hpp"
 #include "apps/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
@@ -218,6 +219,18 @@ int run_cli(int argc, char** argv) {
   history->add_flag("--no-plot", no_plot, "skip the PNG plot");
   add_common(history, hist_opt);
 
+  std::string fscene;
+  FlowCommandOptions fopt;
+  bool f_no_plot = false;
+  auto* flowc = app.add_subcommand("flow", "immersed-boundary flow around spheres on the axis: force history, C_D, snapshots");
+  flowc->add_option("scene", fscene, "flow scene file (TOML, data/scenes/flow/)")->required();
+  flowc->add_option("--out", fopt.out, "output directory (default out/<scene name>)");
+  flowc->add_option("--cells", fopt.cells_per_diameter, "override grid.cells_per_diameter");
+  flowc->add_option("--levels", fopt.levels, "override grid.levels");
+  flowc->add_option("--dt", fopt.dt, "override time.dt");
+  flowc->add_option("--t-end", fopt.t_end, "override time.t_end");
+  flowc->add_flag("--no-plot", f_no_plot, "skip the PNG plots");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -232,6 +245,10 @@ int run_cli(int argc, char** argv) {
     if (*val) return cmd_validate(what, vout, val_opt);
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
     if (*effects) return cmd_effects(escene, eff_opt);
+    if (*flowc) {
+      fopt.plot = !f_no_plot;
+      return cmd_flow(fscene, fopt);
+    }
     if (*history) {
       hopt.plot = !no_plot;
       return compare_history(hscene, hist_opt.overrides(), hopt);

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/errors.hpp"
+
 namespace imcol::flow {
 
 namespace {
@@ -52,6 +54,7 @@ void Solver::build_points(const std::vector<SphereState>& sp) {
     add_sphere_rings(pts_, b.radius, b.z, g.h, s_.ring_spacing, static_cast<int>(k));
   }
   B_ = velocity_at_points(g, pts_);
+  for (std::size_t l = 1; l < lv_.size(); ++l) lv_[l].B = velocity_at_points(lv_[l].g, pts_);
 }
 
 void Solver::nonlinear(const Level& L, double u_inf, std::vector<double>& out) {
@@ -137,11 +140,16 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     std::vector<double> rhs(L.g.size());
     for (std::size_t p = 0; p < rhs.size(); ++p) rhs[p] = L.eta[p] + dt * ((1 - th) * nu * lap[p] + ab_new * nl[l][p] + ab_old * L.nl_old[p]);
     L.nl_old = std::move(nl[l]);
+    if (l > 0 && g_.size() == L.B.rows()) {  // lagged body force on the coarser levels
+      const Eigen::VectorXd sp = L.B.transpose() * g_;
+      const double sc = dt / (2 * M_PI * L.g.h * L.g.h);
+      for (int i = 1; i < L.g.nr; ++i)
+        for (int j = 1; j < L.g.nz; ++j) rhs[L.g.at(i, j)] += sc * L.g.r(i) * sp[static_cast<Eigen::Index>(L.g.at(i, j))];
+    }
     if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].eta, L, L.eta);
     L.fast->solve(1, rhs, L.eta);
   }
-  // 3. finer interiors replace coarser ones
-  for (int l = 0; l + 1 < NL; ++l) restrict_interior(lv_[l], lv_[l].eta, lv_[l + 1], lv_[l + 1].eta);
+  // 3. (the coarser levels keep their own predictor, which carries the lagged body force)
   // 4. streamfunction, coarsest to finest
   for (int l = NL - 1; l >= 0; --l) {
     Level& L = lv_[l];
@@ -188,7 +196,7 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     int it = 0;
     while (std::sqrt(rr) > s_.cg_tol * bn) {
       if (++it > s_.cg_max_iter)
-        throw std::runtime_error("flow: CG did not converge in " + std::to_string(s_.cg_max_iter) + " iterations (residual " +
+        throw SolverError("flow: CG did not converge in " + std::to_string(s_.cg_max_iter) + " iterations (residual " +
                                  std::to_string(std::sqrt(rr) / bn) + ")");
       Eigen::VectorXd Ap = apply_Q(p);
       const double alpha = rr / p.dot(Ap);

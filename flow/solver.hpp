@@ -62,6 +62,7 @@ struct Level {
   LevelGeometry g;
   std::unique_ptr<FastSolver> fast;  // ops: 0 = E² (Poisson), 1 = I − θνΔt E² (viscous)
   std::vector<double> eta, psi, nl_old;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> B;  // velocity at the body points (levels >= 1: for spreading)
 };
 
 class Solver {

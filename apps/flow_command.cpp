@@ -1,0 +1,214 @@
+#include "apps/flow_command.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "core/report.hpp"
+#include "flow/flow_scene.hpp"
+#include "flow/solver.hpp"
+
+namespace imcol {
+
+namespace {
+
+namespace fs = std::filesystem;
+using flow::Solver;
+
+/// Vertex values of one level: r, z, total ψ, ω, u_r, u_z (CSV rows).
+void write_level(std::ostringstream& os, int l, const flow::Level& L, double u_inf) {
+  const auto& g = L.g;
+  auto uzf = [&](int i, int j) { return (L.psi[g.at(i + 1, j)] - L.psi[g.at(i, j)]) / (g.h * g.r(i + 0.5)) + u_inf; };
+  auto urf = [&](int i, int j) { return i == 0 ? 0.0 : -(L.psi[g.at(i, j + 1)] - L.psi[g.at(i, j)]) / (g.h * g.r(i)); };
+  for (int i = 0; i <= g.nr; ++i)
+    for (int j = 0; j <= g.nz; ++j) {
+      const double r = g.r(i), z = g.z(j);
+      const double psi = L.psi[g.at(i, j)] + 0.5 * u_inf * r * r;
+      const double om = i == 0 ? 0.0 : L.eta[g.at(i, j)] / r;
+      double uz, ur;
+      if (i == 0) uz = (9 * uzf(0, j) - uzf(1, j)) / 8;
+      else if (i == g.nr) uz = uzf(i - 1, j);
+      else uz = 0.5 * (uzf(i - 1, j) + uzf(i, j));
+      if (j == 0) ur = urf(i, 0);
+      else if (j == g.nz) ur = urf(i, j - 1);
+      else ur = 0.5 * (urf(i, j - 1) + urf(i, j));
+      os << l << ',' << r << ',' << z << ',' << psi << ',' << om << ',' << ur << ',' << uz << '\n';
+    }
+}
+
+std::string snapshot_csv(const Solver& s) {
+  std::ostringstream os;
+  os << std::setprecision(9);
+  os << "# t = " << s.time() << " s; level 0 is the finest; psi is the total Stokes streamfunction (m^3/s)\n";
+  os << "level,r,z,psi,omega,u_r,u_z\n";
+  for (std::size_t l = 0; l < s.levels().size(); ++l) write_level(os, static_cast<int>(l), s.levels()[l], s.settings().u_inf);
+  return os.str();
+}
+
+}  // namespace
+
+nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowCommandOptions& opt) {
+  flow::FlowScene sc = flow::load_flow_scene(scene_path);
+  if (opt.t_end > 0) sc.t_end = opt.t_end;
+  if (opt.dt > 0) sc.dt = opt.dt;
+  if (opt.cells_per_diameter > 0) sc.cells_per_diameter = opt.cells_per_diameter;
+  if (opt.levels > 0) sc.levels = opt.levels;
+  flow::check_flow_scene(sc);
+  const fs::path dir = opt.out.empty() ? fs::path("out") / sc.name : fs::path(opt.out);
+  const flow::Settings set = sc.settings();
+  const int nb = static_cast<int>(sc.spheres.size());
+  const double D = sc.D(), a = 0.5 * D, U = sc.U(), Re = sc.Re(), mu = sc.viscosity, nu = sc.nu();
+  const double q = 0.5 * sc.density * U * U * M_PI * a * a;  // dynamic pressure × frontal area
+  const double drag_sign = (sc.stream - sc.spheres.front().velocity) >= 0 ? 1.0 : -1.0;
+  const double cd_ref = nb == 1 ? flow::standard_drag_coefficient(Re) : NAN;
+  const double f_stokes = 6 * M_PI * mu * a * U;
+  const long nsteps = std::max(1L, std::lround(std::ceil(sc.t_end / sc.dt - 1e-9)));
+
+  const auto t0 = std::chrono::steady_clock::now();
+  Solver solver(set, sc.spheres_at(0.0));
+  if (!opt.quiet)
+    std::cout << "flow " << sc.name << ": Re = " << Re << ", " << sc.cells_per_diameter << " cells/D, " << set.levels << " levels of "
+              << set.nr << " x " << set.nz << " cells, dt = " << sc.dt << " s, " << nsteps << " steps\n";
+  std::ostringstream hist;
+  hist << std::setprecision(10);
+  hist << "step,t,wall_s";
+  for (int b = 0; b < nb; ++b) hist << ",z" << b + 1 << ",u" << b + 1 << ",F" << b + 1 << ",F_internal" << b + 1;
+  hist << ",C_D,C_D_standard,F_stokes_basset,cg_iterations,slip\n";
+  std::vector<double> cds, times, walls;
+  long cg_total = 0;
+  int cg_max = 0;
+  double slip_max = 0, last_cd = NAN, min_gap_seen = INFINITY;
+  std::vector<double> last_force(nb, 0.0);
+  int snap = 0;
+  long steps_done = 0;
+  double basset_err = 0, basset_from = 0;
+  for (long n = 1; n <= nsteps; ++n) {
+    const double t = n * sc.dt;
+    const auto next = sc.spheres_at(t);
+    const flow::StepInfo info = solver.step(next);
+    steps_done = n;
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double cd = drag_sign * info.force[0] / q;
+    // impulsively started sphere (Stokes + Basset, t > 0): F = 6πμaU (1 + a/√(πνt))
+    const double fsb = f_stokes * (1 + a / std::sqrt(M_PI * nu * t));
+    if (nb == 1 && Re <= 1 && n >= 10) {
+      const double e = std::abs(drag_sign * info.force[0] - fsb) / fsb;
+      if (e > basset_err) basset_err = e;
+      if (basset_from == 0) basset_from = t;
+    }
+    cds.push_back(cd);
+    times.push_back(t);
+    walls.push_back(wall);
+    last_cd = cd;
+    last_force = info.force;
+    cg_total += info.cg_iterations;
+    cg_max = std::max(cg_max, info.cg_iterations);
+    slip_max = std::max(slip_max, info.slip);
+    if (n % sc.history_every == 0 || n == nsteps) {
+      hist << n << ',' << t << ',' << wall;
+      for (int b = 0; b < nb; ++b) hist << ',' << next[b].z << ',' << next[b].u << ',' << info.force[b] << ',' << info.internal[b];
+      hist << ',' << cd << ',' << cd_ref << ',' << fsb << ',' << info.cg_iterations << ',' << info.slip << '\n';
+    }
+    if (!opt.quiet && (n % std::max(1L, nsteps / 10) == 0 || n == nsteps)) {
+      std::cout << "  t = " << std::setw(8) << t << "  C_D = " << std::setw(10) << cd;
+      for (int b = 0; b < nb; ++b) std::cout << "  F" << b + 1 << " = " << std::setw(11) << info.force[b] << " N";
+      if (info.cg_iterations) std::cout << "  cg " << info.cg_iterations;
+      std::cout << "  (" << std::fixed << std::setprecision(2) << wall << " s)" << std::defaultfloat << std::setprecision(6) << "\n";
+    }
+    if (sc.snapshots > 0 && n == (snap + 1) * nsteps / sc.snapshots) {
+      write_file_atomic(dir / ("snapshot_" + std::string(snap < 10 ? "0" : "") + std::to_string(snap) + ".csv"), snapshot_csv(solver));
+      ++snap;
+    }
+    if (nb > 1) {
+      double gap = INFINITY;
+      for (int b = 0; b + 1 < nb; ++b) gap = std::min(gap, next[b + 1].z - next[b].z - 0.5 * (sc.spheres[b].diameter + sc.spheres[b + 1].diameter));
+      min_gap_seen = std::min(min_gap_seen, gap);
+      if (sc.min_gap > 0 && gap < sc.min_gap * D) break;
+    }
+  }
+  const double wall_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (sc.snapshots > 0 && snap < sc.snapshots)  // stopped early: one last snapshot
+    write_file_atomic(dir / ("snapshot_" + std::string(snap < 10 ? "0" : "") + std::to_string(snap) + ".csv"), snapshot_csv(solver));
+
+  nlohmann::ordered_json j;
+  j["scene"] = sc.path;
+  j["name"] = sc.name;
+  j["Re"] = Re;
+  j["drag_coefficient"] = last_cd;
+  j["drag_coefficient_standard"] = std::isnan(cd_ref) ? nlohmann::ordered_json() : nlohmann::ordered_json(cd_ref);
+  j["drag_error_percent"] = std::isnan(cd_ref) ? nlohmann::ordered_json() : nlohmann::ordered_json(100 * (last_cd - cd_ref) / cd_ref);
+  j["stokes_drag_ratio"] = drag_sign * last_force[0] / f_stokes;  // F / 6πμaU
+  if (nb == 1) {
+    j["wake_length_D"] = solver.wake_length(0) / D;
+    // first time after which C_D stays within 3 % of the standard curve
+    long k = static_cast<long>(cds.size());
+    while (k > 0 && std::abs(cds[k - 1] - cd_ref) <= 0.03 * cd_ref) --k;
+    if (k < static_cast<long>(cds.size())) {
+      j["time_to_3pct_s"] = times[k];
+      j["wall_time_to_3pct_s"] = walls[k];
+    } else {
+      j["time_to_3pct_s"] = nullptr;
+      j["wall_time_to_3pct_s"] = nullptr;
+    }
+    if (Re <= 1) j["impulsive_start"] = {{"reference", "F = 6 pi mu a U (1 + a / sqrt(pi nu t)), t > 0"},
+                                         {"max_rel_error_from_t", basset_from},
+                                         {"max_rel_error", basset_err}};
+  }
+  j["forces_N"] = last_force;
+  if (nb > 1) j["min_gap_D"] = min_gap_seen / D;
+  const auto& L0 = solver.levels().front().g;
+  const auto& Lc = solver.levels().back().g;
+  j["grid"] = {{"cells_per_diameter", sc.cells_per_diameter},
+               {"h", set.h},
+               {"levels", set.levels},
+               {"nr", set.nr},
+               {"nz", set.nz},
+               {"finest", {{"r_max", L0.r(L0.nr)}, {"z_min", L0.z0}, {"z_max", L0.z(L0.nz)}}},
+               {"coarsest", {{"r_max", Lc.r(Lc.nr)}, {"z_min", Lc.z0}, {"z_max", Lc.z(Lc.nz)}}},
+               {"body_points", solver.points().size()}};
+  j["dt"] = sc.dt;
+  j["theta"] = sc.theta;
+  j["steps"] = steps_done;
+  j["t_end"] = steps_done * sc.dt;
+  j["wall_time_s"] = wall_total;
+  j["ms_per_step"] = 1e3 * wall_total / std::max(1L, steps_done);
+  j["memory_bytes"] = solver.bytes();
+  j["force_solver"] = {{"cg_tol", sc.cg_tol}, {"cg_iterations_mean", steps_done ? double(cg_total) / steps_done : 0.0},
+                       {"cg_iterations_max", cg_max}, {"max_slip", slip_max}};
+  write_file_atomic(dir / "forces.csv", hist.str());
+  write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
+  return j;
+}
+
+int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
+  const auto j = run_flow_scene(scene_path, opt);
+  const flow::FlowScene sc = flow::load_flow_scene(scene_path);
+  const fs::path dir = opt.out.empty() ? fs::path("out") / sc.name : fs::path(opt.out);
+  std::cout << std::setprecision(5);
+  std::cout << "Re = " << j["Re"].get<double>() << "  C_D = " << j["drag_coefficient"].get<double>();
+  if (!j["drag_coefficient_standard"].is_null())
+    std::cout << "  (standard curve " << j["drag_coefficient_standard"].get<double>() << ", error " << std::setprecision(3)
+              << j["drag_error_percent"].get<double>() << " %)";
+  std::cout << std::setprecision(5) << "  F/(6 pi mu a U) = " << j["stokes_drag_ratio"].get<double>() << "\n";
+  if (j.contains("wake_length_D")) std::cout << "wake length = " << j["wake_length_D"].get<double>() << " D\n";
+  if (j.contains("impulsive_start"))
+    std::cout << "impulsive start vs Stokes + Basset: max relative error " << j["impulsive_start"]["max_rel_error"].get<double>()
+              << " for t >= " << j["impulsive_start"]["max_rel_error_from_t"].get<double>() << " s\n";
+  std::cout << "steps " << j["steps"].get<long>() << ", wall " << j["wall_time_s"].get<double>() << " s ("
+            << j["ms_per_step"].get<double>() << " ms/step)\n";
+  std::cout << "wrote " << (dir / "forces.csv").string() << ", " << (dir / "summary.json").string() << ", snapshots\n";
+  if (opt.plot) {
+    const fs::path script = fs::path(IMCOL_DATA_DIR).parent_path() / "scripts" / "plot_flow.py";
+    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
+    if (std::system(cmd.c_str()) != 0) std::cerr << "imcol: warning: plotting failed (" << cmd << ")\n";
+  }
+  return 0;
+}
+
+}  // namespace imcol

@@ -1,0 +1,265 @@
+#include "flow/flow_scene.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace imcol::flow {
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+/// Reads one table, remembering the keys used so that unknown keys can be reported with their line.
+class Reader {
+ public:
+  Reader(const toml::table& t, std::string prefix, const std::string& file) : t_(t), prefix_(std::move(prefix)), file_(file) {}
+  std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+  std::string where(const toml::node* n) const {
+    const toml::node* at = n ? n : &t_;
+    const auto line = at->source().begin.line;
+    return line == 0 ? file_ : file_ + ":" + std::to_string(line);
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw InputError(where(t_.get(key)), full(key), problem);
+  }
+  const toml::node* node(const std::string& key) {
+    used_.insert(key);
+    return t_.get(key);
+  }
+  std::optional<double> number(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (!n->is_number()) fail(key, "must be a number");
+    const double v = *n->value<double>();
+    if (!std::isfinite(v) || std::abs(v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
+    return v;
+  }
+  double number(const std::string& key, double fallback) { return number(key).value_or(fallback); }
+  double required(const std::string& key) {
+    auto v = number(key);
+    if (!v) throw InputError(where(nullptr), full(key), "missing (required)");
+    return *v;
+  }
+  long integer(const std::string& key, long fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (!n->is_integer()) fail(key, "must be an integer");
+    return static_cast<long>(*n->value<int64_t>());
+  }
+  bool boolean(const std::string& key, bool fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "must be true or false");
+    return *n->value<bool>();
+  }
+  std::optional<std::string> string(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (!n->is_string()) fail(key, "must be a string");
+    return *n->value<std::string>();
+  }
+  const toml::table* table(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(key, "must be a table");
+    return n->as_table();
+  }
+  void positive(const std::string& key, double v) const {
+    if (!(v > 0)) fail(key, "must be > 0 (got " + fmt(v) + ")");
+  }
+  void finish() const {
+    for (auto&& [k, v] : t_) {
+      const std::string key(k.str());
+      if (!used_.count(key)) throw InputError(where(&v), full(key), "unknown key");
+    }
+  }
+
+ private:
+  const toml::table& t_;
+  std::string prefix_;
+  const std::string& file_;
+  std::set<std::string> used_;
+};
+
+int round_up(double x, int mult) { return std::max(mult, static_cast<int>(std::ceil(x / mult - 1e-9)) * mult); }
+
+}  // namespace
+
+double FlowScene::U() const { return std::abs(stream - spheres.front().velocity); }
+
+Settings FlowScene::settings() const {
+  Settings s;
+  s.nu = nu();
+  s.density = density;
+  s.dt = dt;
+  s.theta = theta;
+  s.h = D() / cells_per_diameter;
+  s.nr = round_up(r_max * cells_per_diameter, 2);
+  s.nz = round_up((z_max - z_min) * cells_per_diameter, 4);
+  s.levels = levels;
+  s.z_center = (z_min * D() + 0.5 * s.nz * s.h);
+  s.u_inf = stream;
+  s.cg_tol = cg_tol;
+  s.cg_max_iter = cg_max_iter;
+  s.ring_spacing = ring_spacing;
+  s.direct_when_fixed = direct_when_fixed;
+  s.measure_plans = measure_plans;
+  return s;
+}
+
+std::vector<SphereState> FlowScene::spheres_at(double t) const {
+  std::vector<SphereState> out;
+  for (const auto& s : spheres) out.push_back({0.5 * s.diameter, s.position + s.velocity * t, s.velocity});
+  return out;
+}
+
+void check_flow_scene(const FlowScene& sc) {
+  if (sc.U() == 0) throw InputError(sc.path, "stream.velocity", "no relative motion: give a stream or a sphere velocity");
+  // every sphere inside the finest level over the whole run, 3 cells clear of its edges
+  const Settings s = sc.settings();
+  const double zlo = s.z_center - 0.5 * s.nz * s.h, zhi = s.z_center + 0.5 * s.nz * s.h, rhi = s.nr * s.h;
+  for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
+    const auto& p = sc.spheres[i];
+    const double a = 0.5 * p.diameter;
+    for (double t : {0.0, sc.t_end}) {
+      const double z = p.position + p.velocity * t;
+      if (z - a < zlo + 3 * s.h || z + a > zhi - 3 * s.h || a > rhi - 3 * s.h)
+        throw InputError(sc.path, "sphere[" + std::to_string(i) + "]",
+                         "sphere outside the finest grid at t = " + fmt(t) + " (grid z in [" + fmt(zlo) + ", " + fmt(zhi) +
+                             "], r < " + fmt(rhi) + ", 3 cells clear)");
+    }
+  }
+}
+
+FlowScene load_flow_scene(const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path + ":" + std::to_string(e.source().begin.line), "", "TOML syntax error: " + std::string(e.description()));
+  }
+  FlowScene sc;
+  sc.path = path;
+  Reader top(root, "", path);
+  sc.name = top.string("name").value_or(std::filesystem::path(path).stem().string());
+  sc.description = top.string("description").value_or("");
+
+  const toml::table* fluid = top.table("fluid");
+  if (!fluid) throw InputError(path, "fluid", "missing (required table)");
+  {
+    Reader r(*fluid, "fluid", path);
+    sc.density = r.required("density");
+    r.positive("density", sc.density);
+    sc.viscosity = r.required("viscosity");
+    r.positive("viscosity", sc.viscosity);
+    r.finish();
+  }
+  if (const toml::table* st = top.table("stream")) {
+    Reader r(*st, "stream", path);
+    sc.stream = r.number("velocity", 0.0);
+    r.finish();
+  }
+  const toml::node* sn = top.node("sphere");
+  if (!sn || !sn->is_array_of_tables() || sn->as_array()->empty())
+    throw InputError(top.where(sn), "sphere", "give at least one [[sphere]] table");
+  int k = 0;
+  for (const auto& el : *sn->as_array()) {
+    ++k;
+    Reader r(*el.as_table(), "sphere[" + std::to_string(k - 1) + "]", path);
+    FlowSphere s;
+    s.diameter = r.required("diameter");
+    r.positive("diameter", s.diameter);
+    s.position = r.number("position", 0.0);
+    s.velocity = r.number("velocity", 0.0);
+    r.finish();
+    sc.spheres.push_back(s);
+  }
+  if (sc.spheres.size() > 1) {
+    for (std::size_t i = 0; i + 1 < sc.spheres.size(); ++i) {
+      const auto &a = sc.spheres[i], &b = sc.spheres[i + 1];
+      if (b.position - a.position < 0.5 * (a.diameter + b.diameter))
+        throw InputError(top.where(sn), "sphere", "spheres overlap or are out of order (list them by increasing position)");
+    }
+  }
+  if (const toml::table* g = top.table("grid")) {
+    Reader r(*g, "grid", path);
+    const long cpd = r.integer("cells_per_diameter", sc.cells_per_diameter);
+    if (cpd < 4 || cpd > 4096) r.fail("cells_per_diameter", "must be in [4, 4096] (got " + std::to_string(cpd) + ")");
+    sc.cells_per_diameter = static_cast<int>(cpd);
+    const long lv = r.integer("levels", sc.levels);
+    if (lv < 1 || lv > 16) r.fail("levels", "must be in [1, 16] (got " + std::to_string(lv) + ")");
+    sc.levels = static_cast<int>(lv);
+    sc.r_max = r.number("r_max", sc.r_max);
+    r.positive("r_max", sc.r_max);
+    sc.z_min = r.number("z_min", sc.z_min);
+    sc.z_max = r.number("z_max", sc.z_max);
+    if (!(sc.z_max > sc.z_min)) r.fail("z_max", "must exceed grid.z_min");
+    r.finish();
+  }
+  const toml::table* tt = top.table("time");
+  if (!tt) throw InputError(path, "time", "missing (required table with dt and t_end)");
+  {
+    Reader r(*tt, "time", path);
+    sc.dt = r.required("dt");
+    r.positive("dt", sc.dt);
+    sc.t_end = r.required("t_end");
+    r.positive("t_end", sc.t_end);
+    sc.theta = r.number("theta", sc.theta);
+    if (!(sc.theta >= 0.5 && sc.theta <= 1)) r.fail("theta", "must be in [0.5, 1] (0.5 = Crank–Nicolson)");
+    r.finish();
+  }
+  if (const toml::table* so = top.table("solver")) {
+    Reader r(*so, "solver", path);
+    sc.cg_tol = r.number("cg_tol", sc.cg_tol);
+    r.positive("cg_tol", sc.cg_tol);
+    if (sc.cg_tol >= 1) r.fail("cg_tol", "must be < 1");
+    const long it = r.integer("cg_max_iter", sc.cg_max_iter);
+    if (it < 1) r.fail("cg_max_iter", "must be >= 1");
+    sc.cg_max_iter = static_cast<int>(it);
+    sc.ring_spacing = r.number("ring_spacing", sc.ring_spacing);
+    if (!(sc.ring_spacing >= 0.25 && sc.ring_spacing <= 4)) r.fail("ring_spacing", "must be in [0.25, 4] (units of h)");
+    sc.direct_when_fixed = r.boolean("direct_when_fixed", sc.direct_when_fixed);
+    if (auto p = r.string("fft_plan")) {
+      if (*p != "estimate" && *p != "measure") r.fail("fft_plan", "unknown choice '" + *p + "' (expected estimate | measure)");
+      sc.measure_plans = *p == "measure";
+    }
+    r.finish();
+  }
+  if (const toml::table* o = top.table("output")) {
+    Reader r(*o, "output", path);
+    const long e = r.integer("history_every", sc.history_every);
+    if (e < 1) r.fail("history_every", "must be >= 1");
+    sc.history_every = static_cast<int>(e);
+    const long s = r.integer("snapshots", sc.snapshots);
+    if (s < 0 || s > 1000) r.fail("snapshots", "must be in [0, 1000]");
+    sc.snapshots = static_cast<int>(s);
+    sc.min_gap = r.number("min_gap", 0.0);
+    if (sc.min_gap < 0) r.fail("min_gap", "must be >= 0");
+    r.finish();
+  }
+  top.finish();
+  check_flow_scene(sc);
+  return sc;
+}
+
+double standard_drag_coefficient(double Re) {
+  if (!(Re > 0)) return NAN;
+  const double w = std::log10(Re);
+  if (Re <= 0.01) return 3.0 / 16.0 + 24.0 / Re;
+  if (Re < 20) return 24.0 / Re * (1 + 0.1315 * std::pow(Re, 0.82 - 0.05 * w));
+  if (Re <= 260) return 24.0 / Re * (1 + 0.1935 * std::pow(Re, 0.6305));
+  if (Re <= 1500) return std::pow(10.0, 1.6435 - 1.1242 * w + 0.1558 * w * w);
+  return NAN;
+}
+
+}  // namespace imcol::flow

@@ -1,0 +1,57 @@
+#pragma once
+// Flow scenes (data/scenes/flow/*.toml): spheres on the axis, fixed or on prescribed trajectories
+// z(t) = position + velocity·t, optionally in a uniform stream; the grid, time step and solver settings.
+// Parsed with toml++; bad input throws InputError naming file:line and key. SI units (any consistent units work).
+#include <string>
+#include <vector>
+
+#include "flow/solver.hpp"
+
+namespace imcol::flow {
+
+struct FlowSphere {
+  double diameter = 0;  // m
+  double position = 0;  // z of the centre at t = 0, m
+  double velocity = 0;  // prescribed constant velocity along +z, m/s
+};
+
+struct FlowScene {
+  std::string path, name, description;
+  double density = 0, viscosity = 0;  // kg/m³, Pa s
+  double stream = 0;                  // uniform stream along +z, m/s
+  std::vector<FlowSphere> spheres;
+  // grid (lengths in units of the first sphere's diameter D)
+  int cells_per_diameter = 32;
+  int levels = 3;
+  double r_max = 2, z_min = -2, z_max = 4;  // finest level, D (z relative to the origin, in D)
+  // time
+  double dt = 0, t_end = 0, theta = 0.5;
+  // solver
+  double cg_tol = 1e-10;
+  int cg_max_iter = 1000;
+  double ring_spacing = 1.0;
+  bool direct_when_fixed = true;
+  bool measure_plans = false;
+  // output
+  int history_every = 1;  // force history stride, steps
+  int snapshots = 1;      // evenly spaced in time, the last at t_end
+  double min_gap = 0;     // stop when the surface gap of two spheres falls below this, units of D (0 = off)
+
+  double D() const { return spheres.front().diameter; }
+  double nu() const { return viscosity / density; }
+  /// Reference speed: |stream − sphere 1 velocity|.
+  double U() const;
+  double Re() const { return U() * D() / nu(); }
+  /// Solver settings derived from the scene (grid rounded to nr even, nz a multiple of 4).
+  Settings settings() const;
+  std::vector<SphereState> spheres_at(double t) const;
+};
+
+FlowScene load_flow_scene(const std::string& path);
+/// Relative motion present; every sphere inside the finest level (3 cells clear) at t = 0 and t_end. Throws InputError.
+void check_flow_scene(const FlowScene& sc);
+
+/// Standard drag curve, Clift, Grace & Weber (Bubbles, Drops and Particles, 1978, Table 5.2), Re = UD/ν < 1500.
+double standard_drag_coefficient(double Re);
+
+}  // namespace imcol::flow
