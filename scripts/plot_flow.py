@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""Plot an `imcol flow` run: vorticity and streamlines of each snapshot, and the force history.
+
+Usage: /usr/bin/python3 scripts/plot_flow.py DIR
+Reads DIR/snapshot_NN.csv and DIR/forces.csv; writes DIR/snapshot_NN.png and DIR/forces.png.
+Needs Debian's python3-matplotlib and numpy (importable from /usr/bin/python3 only).
+"""
+import csv
+import os
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def save(fig, path: Path) -> None:
+    tmp = path.with_suffix(".tmp.png")
+    fig.savefig(tmp, dpi=130)
+    plt.close(fig)
+    os.replace(tmp, path)
+
+
+def read_level(path: Path, level: int):
+    rows = np.loadtxt(path, delimiter=",", comments="#", skiprows=2)
+    rows = rows[rows[:, 0] == level]
+    r, z = np.unique(rows[:, 1]), np.unique(rows[:, 2])
+    shape = (len(r), len(z))  # written with z fastest
+    return r, z, rows[:, 3].reshape(shape), rows[:, 4].reshape(shape)
+
+
+def plot_snapshot(path: Path, spheres) -> None:
+    with open(path) as f:
+        title = f.readline().lstrip("# ").split(";")[0]
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5.2))
+    for ax, level in zip(axes, (0, 1)):
+        try:
+            r, z, psi, om = read_level(path, level)
+        except (ValueError, IndexError):
+            ax.set_visible(False)
+            continue
+        if len(r) == 0:
+            ax.set_visible(False)
+            continue
+        R = np.concatenate([-r[:0:-1], r])  # mirror about the axis
+        P = np.concatenate([psi[:0:-1], psi])
+        W = np.concatenate([-om[:0:-1], om])
+        lim = np.percentile(np.abs(W), 99.5) or 1.0
+        ax.pcolormesh(z, R, W, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="auto")
+        ax.contour(z, R, P, levels=np.linspace(P.min(), P.max(), 41)[1:-1], colors="k", linewidths=0.5)
+        for zc, d in spheres:
+            ax.add_patch(plt.Circle((zc, 0), d / 2, fill=False, color="g", lw=1.2))
+        ax.set_aspect("equal")
+        ax.set_xlabel("z")
+        ax.set_ylabel("r (mirrored)")
+        ax.set_title(f"level {level}: vorticity (colour), streamlines")
+    fig.suptitle(title)
+    fig.tight_layout()
+    save(fig, path.with_suffix(".png"))
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    out = Path(sys.argv[1])
+    with open(out / "forces.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    nb = sum(1 for k in rows[0] if k.startswith("F") and k[1:].isdigit())
+    t = np.array([float(r["t"]) for r in rows])
+    last = rows[-1]
+    spheres = [(float(last[f"z{b + 1}"]), None) for b in range(nb)]
+    import json
+
+    summary = json.loads((out / "summary.json").read_text())
+    d = summary["grid"]["h"] * summary["grid"]["cells_per_diameter"]
+    spheres = [(zc, d) for zc, _ in spheres]
+    for snap in sorted(out.glob("snapshot_*.csv")):
+        plot_snapshot(snap, spheres)
+    fig, ax = plt.subplots(figsize=(9, 5))
+    for b in range(nb):
+        ax.plot(t, [float(r[f"F{b + 1}"]) for r in rows], label=f"F{b + 1} (simulation)")
+    if nb == 1:
+        fsb = np.array([float(r["F_stokes_basset"]) for r in rows])
+        cds = np.array([float(r["C_D_standard"]) for r in rows])
+        sign = np.sign(np.mean([float(r["F1"]) for r in rows]))
+        if summary["Re"] <= 1:
+            ax.plot(t, sign * fsb, "--", label="Stokes + Basset, impulsive start")
+        if np.isfinite(cds).all():
+            q = abs(float(last["F1"]) / float(last["C_D"]))
+            ax.axhline(sign * cds[0] * q, color="k", ls=":", label="standard drag curve (steady)")
+        lo, hi = np.percentile([float(r["F1"]) for r in rows], [2, 98])
+        pad = 0.3 * (hi - lo) + 1e-12
+        ax.set_ylim(lo - pad, hi + pad)
+    ax.set_xlabel("t")
+    ax.set_ylabel("force along +z [N]")
+    ax.set_title(f"{summary['name']}: Re = {summary['Re']:.3g}")
+    ax.grid(alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    save(fig, out / "forces.png")
+    print(f"wrote {out / 'forces.png'} and {len(list(out.glob('snapshot_*.png')))} snapshot images")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
