@@ -124,12 +124,14 @@ void FastSolver::solve(int op, const std::vector<double>& f, std::vector<double>
 void FastSolver::solve_chain(const std::vector<int>& chain, const std::vector<double>& f,
                              std::vector<std::vector<double>*> out) {
   forward(f);
-  std::vector<double> saved;
+  std::vector<double>& saved = saved_;
   for (std::size_t c = 0; c < chain.size(); ++c) {
     tridiag(chain[c]);
     if (out[c]) {
       if (c + 1 < chain.size()) saved.assign(buf_, buf_ + static_cast<std::size_t>(m_) * n_);
-      out[c]->assign(g_.size(), 0.0);
+      out[c]->resize(g_.size());
+      for (int j = 0; j <= g_.nz; ++j) (*out[c])[g_.at(0, j)] = (*out[c])[g_.at(g_.nr, j)] = 0.0;
+      for (int i = 0; i <= g_.nr; ++i) (*out[c])[g_.at(i, 0)] = (*out[c])[g_.at(i, g_.nz)] = 0.0;
       backward(*out[c]);
       if (c + 1 < chain.size()) std::copy(saved.begin(), saved.end(), buf_);
     }

@@ -54,6 +54,7 @@ class FastSolver {
   int m_ = 0, n_ = 0;                         // modes (nz−1), radial unknowns (nr−1)
   double* buf_ = nullptr;                     // n_ × m_, row i, mode k contiguous
   fftw_plan_s* plan_ = nullptr;
+  std::vector<double> saved_;
   std::vector<std::vector<double>> lower_, inv_den_, cp_;  // per op: lower[i], inv_den[i·m+k], cp[i·m+k]
 };
 

@@ -59,24 +59,45 @@ void Solver::build_points(const std::vector<SphereState>& sp) {
 
 void Solver::nonlinear(const Level& L, double u_inf, std::vector<double>& out) {
   const LevelGeometry& g = L.g;
-  const int nz = g.nz;
+  const int nr = g.nr, nz = g.nz, W = nz + 1;
   const double h = g.h;
-  auto psi = [&](int i, int j) { return L.psi[g.at(i, j)]; };
-  auto uz = [&](int i, int j) { return (psi(i + 1, j) - psi(i, j)) / (h * g.r(i + 0.5)) + u_inf; };  // face (i+½, j)
-  auto ur = [&](int i, int j) { return i == 0 ? 0.0 : -(psi(i, j + 1) - psi(i, j)) / (h * g.r(i)); };  // face (i, j+½)
-  auto om = [&](int i, int j) { return i == 0 ? 0.0 : L.eta[g.at(i, j)] / g.r(i); };
+  // face velocities: uz at (i+½, j) [i < nr], ur at (i, j+½) [j < nz], ω at vertices
+  thread_local std::vector<double> uz, ur, om;
+  uz.assign(g.size(), 0.0);
+  ur.assign(g.size(), 0.0);
+  om.assign(g.size(), 0.0);
+  const double* psi = L.psi.data();
+  for (int i = 0; i < nr; ++i) {
+    const double c = 1.0 / (h * g.r(i + 0.5));
+    for (int j = 0; j <= nz; ++j) uz[i * W + j] = (psi[(i + 1) * W + j] - psi[i * W + j]) * c + u_inf;
+  }
+  for (int i = 1; i <= nr; ++i) {
+    const double c = -1.0 / (h * g.r(i)), ir = 1.0 / g.r(i);
+    for (int j = 0; j < nz; ++j) ur[i * W + j] = (psi[i * W + j + 1] - psi[i * W + j]) * c;
+    for (int j = 0; j <= nz; ++j) om[i * W + j] = L.eta[i * W + j] * ir;
+  }
   out.assign(g.size(), 0.0);
-  for (int i = 1; i < g.nr; ++i)
+  for (int i = 1; i < nr; ++i) {
+    const double f = -g.r(i) / h;
+    const double* uzm = &uz[(i - 1) * W];
+    const double* uz0 = &uz[i * W];
+    const double* urm = &ur[(i - 1) * W];
+    const double* ur0 = &ur[i * W];
+    const double* urp = &ur[(i + 1) * W];
+    const double* omm = &om[(i - 1) * W];
+    const double* om0 = &om[i * W];
+    const double* omp = &om[(i + 1) * W];
+    double* o = &out[i * W];
     for (int j = 1; j < nz; ++j) {
-      const double w0 = om(i, j);
-      const double uzu = 0.25 * (uz(i - 1, j) + uz(i, j) + uz(i - 1, j + 1) + uz(i, j + 1));
-      const double uzd = 0.25 * (uz(i - 1, j - 1) + uz(i, j - 1) + uz(i - 1, j) + uz(i, j));
-      const double uro = 0.25 * (ur(i, j - 1) + ur(i, j) + ur(i + 1, j - 1) + ur(i + 1, j));
-      const double uri = 0.25 * (ur(i - 1, j - 1) + ur(i - 1, j) + ur(i, j - 1) + ur(i, j));
-      const double fz = uzu * 0.5 * (w0 + om(i, j + 1)) - uzd * 0.5 * (w0 + om(i, j - 1));
-      const double fr = uro * 0.5 * (w0 + om(i + 1, j)) - uri * 0.5 * (w0 + om(i - 1, j));
-      out[g.at(i, j)] = -g.r(i) * (fz + fr) / h;
+      const double uzu = 0.25 * (uzm[j] + uz0[j] + uzm[j + 1] + uz0[j + 1]);
+      const double uzd = 0.25 * (uzm[j - 1] + uz0[j - 1] + uzm[j] + uz0[j]);
+      const double uro = 0.25 * (ur0[j - 1] + ur0[j] + urp[j - 1] + urp[j]);
+      const double uri = 0.25 * (urm[j - 1] + urm[j] + ur0[j - 1] + ur0[j]);
+      const double fz = uzu * 0.5 * (om0[j] + om0[j + 1]) - uzd * 0.5 * (om0[j] + om0[j - 1]);
+      const double fr = uro * 0.5 * (om0[j] + omp[j]) - uri * 0.5 * (om0[j] + omm[j]);
+      o[j] = f * (fz + fr);
     }
+  }
 }
 
 void Solver::prolong_boundary(const Level& coarse, const std::vector<double>& fc, const Level& fine, std::vector<double>& ff) {
@@ -109,19 +130,17 @@ void Solver::restrict_interior(const Level& fine, const std::vector<double>& ff,
 Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g, std::vector<double>* eta_c, std::vector<double>* psi_c) {
   Level& L = lv_[0];
   const LevelGeometry& G = L.g;
-  work_.assign(G.size(), 0.0);
+  work_.resize(G.size());
   Eigen::Map<Eigen::VectorXd> s(work_.data(), static_cast<Eigen::Index>(work_.size()));
-  s = B_.transpose() * g;
+  s.noalias() = B_.transpose() * g;
   const double scale = s_.dt / (2 * M_PI * G.h * G.h);
   for (int i = 0; i <= G.nr; ++i)
     for (int j = 0; j <= G.nz; ++j) work_[G.at(i, j)] *= (i == 0 || i == G.nr || j == 0 || j == G.nz) ? 0.0 : scale * G.r(i);
-  std::vector<double> x;
+  std::vector<double>& x = psi_c ? *psi_c : xq_;
   L.fast->solve_chain({1, 0}, work_, {eta_c, &x});
   for (double& v : x) v = -v;
   Eigen::Map<const Eigen::VectorXd> px(x.data(), static_cast<Eigen::Index>(x.size()));
-  Eigen::VectorXd out = B_ * px;
-  if (psi_c) *psi_c = std::move(x);
-  return out;
+  return B_ * px;
 }
 
 StepInfo Solver::step(const std::vector<SphereState>& next) {
@@ -129,34 +148,38 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
   const int NL = static_cast<int>(lv_.size());
   const double dt = s_.dt, nu = s_.nu, th = s_.theta;
   // 1. advection terms at t^n, each level
-  std::vector<std::vector<double>> nl(NL);
+  thread_local std::vector<std::vector<double>> nl;
+  nl.resize(NL);
   for (int l = 0; l < NL; ++l) nonlinear(lv_[l], s_.u_inf, nl[l]);
   // 2. vorticity predictor, coarsest to finest (boundary values at t^{n+1} from the coarser level)
-  std::vector<double> lap;
+  std::vector<double>& lap = work2_;
+  std::vector<double>& rv = work3_;
   for (int l = NL - 1; l >= 0; --l) {
     Level& L = lv_[l];
     const double ab_new = n_ == 0 ? 1.0 : 1.5, ab_old = n_ == 0 ? 0.0 : -0.5;
     apply_stokes_operator(L.g, L.eta, lap);
-    std::vector<double> rhs(L.g.size());
-    for (std::size_t p = 0; p < rhs.size(); ++p) rhs[p] = L.eta[p] + dt * ((1 - th) * nu * lap[p] + ab_new * nl[l][p] + ab_old * L.nl_old[p]);
-    L.nl_old = std::move(nl[l]);
+    rv.resize(L.g.size());
+    for (std::size_t p = 0; p < rv.size(); ++p) rv[p] = L.eta[p] + dt * ((1 - th) * nu * lap[p] + ab_new * nl[l][p] + ab_old * L.nl_old[p]);
+    std::swap(L.nl_old, nl[l]);
     if (l > 0 && g_.size() == L.B.rows()) {  // lagged body force on the coarser levels
-      const Eigen::VectorXd sp = L.B.transpose() * g_;
+      work_.resize(L.g.size());
+      Eigen::Map<Eigen::VectorXd> sp(work_.data(), static_cast<Eigen::Index>(work_.size()));
+      sp.noalias() = L.B.transpose() * g_;
       const double sc = dt / (2 * M_PI * L.g.h * L.g.h);
       for (int i = 1; i < L.g.nr; ++i)
-        for (int j = 1; j < L.g.nz; ++j) rhs[L.g.at(i, j)] += sc * L.g.r(i) * sp[static_cast<Eigen::Index>(L.g.at(i, j))];
+        for (int j = 1; j < L.g.nz; ++j) rv[L.g.at(i, j)] += sc * L.g.r(i) * sp[static_cast<Eigen::Index>(L.g.at(i, j))];
     }
     if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].eta, L, L.eta);
-    L.fast->solve(1, rhs, L.eta);
+    L.fast->solve(1, rv, L.eta);
   }
   // 3. (the coarser levels keep their own predictor, which carries the lagged body force)
   // 4. streamfunction, coarsest to finest
   for (int l = NL - 1; l >= 0; --l) {
     Level& L = lv_[l];
     if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].psi, L, L.psi);
-    std::vector<double> rhs(L.eta.size());
-    for (std::size_t p = 0; p < rhs.size(); ++p) rhs[p] = -L.eta[p];
-    L.fast->solve(0, rhs, L.psi);
+    rv.resize(L.eta.size());
+    for (std::size_t p = 0; p < rv.size(); ++p) rv[p] = -L.eta[p];
+    L.fast->solve(0, rv, L.psi);
   }
   // 5. body forces on the finest level
   StepInfo info;
@@ -209,7 +232,8 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     info.cg_iterations = it;
     info.cg_residual = std::sqrt(rr) / bn;
   }
-  std::vector<double> eta_c, psi_c;
+  std::vector<double>& eta_c = eta_c_;
+  std::vector<double>& psi_c = psi_c_;
   apply_Q(g_, &eta_c, &psi_c);
   for (std::size_t p = 0; p < F.eta.size(); ++p) {
     F.eta[p] += eta_c[p];

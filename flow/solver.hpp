@@ -102,7 +102,7 @@ class Solver {
   std::unique_ptr<Eigen::LLT<Eigen::MatrixXd>> chol_;
   double t_ = 0;
   long n_ = 0;
-  std::vector<double> work_, work2_;
+  std::vector<double> work_, work2_, work3_, xq_, eta_c_, psi_c_;
 };
 
 }  // namespace imcol::flow
