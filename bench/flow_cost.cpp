@@ -1,0 +1,109 @@
+// Cost of the immersed-boundary flow kernel: time per step and memory for 1, 2, 3 levels at 32, 64, 128
+// cells per diameter (fixed sphere, Re = 100, CFL 0.32), the growth exponent of time with the number of cells,
+// and (--steady) the wall time from a cold start to a C_D within 3 % of the standard curve at Re = 100.
+// A program that prints timings, not a test.
+//   imcol_flow_cost [--cells 32,64,128] [--levels 1,2,3] [--steps 20] [--steady [--steady-cells 48]]
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "apps/flow_command.hpp"
+#include "flow/solver.hpp"
+
+using namespace imcol::flow;
+
+namespace {
+std::vector<int> parse_list(const char* s) {
+  std::vector<int> v;
+  std::stringstream ss(s);
+  for (std::string x; std::getline(ss, x, ',');) v.push_back(std::atoi(x.c_str()));
+  return v;
+}
+long peak_rss_kb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> cells = {32, 64, 128}, levels = {1, 2, 3};
+  int steps = 20, steady_cells = 0;
+  bool steady = false;
+  for (int k = 1; k < argc; ++k) {
+    const std::string a = argv[k];
+    if (a == "--cells" && k + 1 < argc) cells = parse_list(argv[++k]);
+    else if (a == "--levels" && k + 1 < argc) levels = parse_list(argv[++k]);
+    else if (a == "--steps" && k + 1 < argc) steps = std::atoi(argv[++k]);
+    else if (a == "--steady") steady = true;
+    else if (a == "--steady-cells" && k + 1 < argc) steady_cells = std::atoi(argv[++k]);
+    else {
+      std::fprintf(stderr, "usage: %s [--cells 32,64,128] [--levels 1,2,3] [--steps N] [--steady [--steady-cells C]]\n", argv[0]);
+      return 2;
+    }
+  }
+  std::printf("fixed sphere, Re = 100, finest level r < 2D, -2D < z < 4D, dt = 0.32 h/U; median of %d steps after 3 warm-up steps\n", steps);
+  std::printf("%6s %7s %10s %12s %12s %12s %14s\n", "cells/D", "levels", "grid", "vertices", "ms/step", "ns/vertex", "solver MB");
+  struct Row { int c, l; double n, ms; };
+  std::vector<Row> rows;
+  for (int l : levels)
+    for (int c : cells) {
+      Settings s;
+      s.nu = 0.01;
+      s.h = 1.0 / c;
+      s.dt = 0.32 * s.h;
+      s.nr = 2 * c;
+      s.nz = 6 * c;
+      s.levels = l;
+      s.z_center = 1.0;
+      s.u_inf = 1.0;
+      s.measure_plans = true;
+      Solver solver(s, {{0.5, 0.0, 0.0}});
+      for (int n = 0; n < 3; ++n) solver.step({{0.5, 0.0, 0.0}});
+      std::vector<double> t;
+      for (int n = 0; n < steps; ++n) {
+        const auto t0 = std::chrono::steady_clock::now();
+        solver.step({{0.5, 0.0, 0.0}});
+        t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      }
+      std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+      const double ms = t[t.size() / 2];
+      const double nv = static_cast<double>(l) * (s.nr + 1) * (s.nz + 1);
+      rows.push_back({c, l, nv, ms});
+      char grid[32];
+      std::snprintf(grid, sizeof grid, "%dx%d", s.nr, s.nz);
+      std::printf("%6d %7d %10s %12.0f %12.3f %12.2f %14.2f\n", c, l, grid, nv, ms, 1e6 * ms / nv, solver.bytes() / 1048576.0);
+    }
+  std::printf("peak resident set of this process: %.1f MB\n", peak_rss_kb() / 1024.0);
+  // growth: least-squares slope of log(ms) against log(vertices), per level count
+  for (int l : levels) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int n = 0;
+    for (const auto& r : rows)
+      if (r.l == l) {
+        const double x = std::log(r.n), y = std::log(r.ms);
+        sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
+      }
+    if (n >= 2) std::printf("%d level(s): time per step ~ vertices^%.2f\n", l, (n * sxy - sx * sy) / (n * sxx - sx * sx));
+  }
+  if (steady) {
+    imcol::FlowCommandOptions o;
+    o.plot = false;
+    o.quiet = true;
+    o.out = "out/bench_flow_re100";
+    o.cells_per_diameter = steady_cells;
+    const auto j = imcol::run_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml", o);
+    std::printf("Re = 100 cold start, %d cells/D, %d levels: C_D = %.4f (standard %.4f, %+.2f %%); within 3 %% from t = %s after %s s wall; "
+                "whole run %.2f s for %ld steps\n",
+                j["grid"]["cells_per_diameter"].get<int>(), j["grid"]["levels"].get<int>(), j["drag_coefficient"].get<double>(),
+                j["drag_coefficient_standard"].get<double>(), j["drag_error_percent"].get<double>(), j["time_to_3pct_s"].dump().c_str(),
+                j["wall_time_to_3pct_s"].dump().c_str(), j["wall_time_s"].get<double>(), j["steps"].get<long>());
+  }
+  return 0;
+}
