@@ -2,7 +2,10 @@
 // cells per diameter (fixed sphere, Re = 100, CFL 0.32), the growth exponent of time with the number of cells,
 // and (--steady) the wall time from a cold start to a C_D within 3 % of the standard curve at Re = 100.
 // A program that prints timings, not a test.
+// (--refine SCENE) runs a flow scene at several resolutions (dt ∝ h) and prints C_D, its error against the standard
+// drag curve, the observed order from successive refinements and a first-order Richardson extrapolation.
 //   imcol_flow_cost [--cells 32,64,128] [--levels 1,2,3] [--steps 20] [--steady [--steady-cells 48]]
+//   imcol_flow_cost --refine data/scenes/flow/fixed_sphere_re20.toml --cells 32,48,64
 #include <sys/resource.h>
 
 #include <chrono>
@@ -14,6 +17,7 @@
 #include <vector>
 
 #include "apps/flow_command.hpp"
+#include "flow/flow_scene.hpp"
 #include "flow/solver.hpp"
 
 using namespace imcol::flow;
@@ -36,17 +40,64 @@ int main(int argc, char** argv) {
   std::vector<int> cells = {32, 64, 128}, levels = {1, 2, 3};
   int steps = 20, steady_cells = 0;
   bool steady = false;
+  std::string refine;
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--cells" && k + 1 < argc) cells = parse_list(argv[++k]);
     else if (a == "--levels" && k + 1 < argc) levels = parse_list(argv[++k]);
     else if (a == "--steps" && k + 1 < argc) steps = std::atoi(argv[++k]);
     else if (a == "--steady") steady = true;
+    else if (a == "--refine" && k + 1 < argc) refine = argv[++k];
     else if (a == "--steady-cells" && k + 1 < argc) steady_cells = std::atoi(argv[++k]);
     else {
       std::fprintf(stderr, "usage: %s [--cells 32,64,128] [--levels 1,2,3] [--steps N] [--steady [--steady-cells C]]\n", argv[0]);
       return 2;
     }
+  }
+  if (!refine.empty()) {
+    const imcol::flow::FlowScene sc = imcol::flow::load_flow_scene(refine);
+    std::printf("%s: Re = %g, %d levels, finest r < %g D, %g D < z < %g D; dt = %g x (%d / cells)\n", sc.name.c_str(), sc.Re(),
+                sc.levels, sc.r_max, sc.z_min, sc.z_max, sc.dt, sc.cells_per_diameter);
+    std::printf("%8s %10s %10s %9s %12s %10s %10s %10s\n", "cells/D", "C_D", "standard", "error %", "wake L/D", "steps", "wall s", "order");
+    std::vector<double> cds;
+    for (int c : cells) {
+      imcol::FlowCommandOptions o;
+      o.plot = false;
+      o.quiet = true;
+      o.out = "out/refine_" + sc.name + "_" + std::to_string(c);
+      o.cells_per_diameter = c;
+      o.dt = sc.dt * sc.cells_per_diameter / c;
+      const auto j = imcol::run_flow_scene(refine, o);
+      const double cd = j["drag_coefficient"].get<double>();
+      cds.push_back(cd);
+      std::string order = "-";
+      if (cds.size() >= 3) {  // from three successive resolutions (any ratios): solve e_k = C h_k^p
+        const double h0 = 1.0 / cells[cds.size() - 3], h1 = 1.0 / cells[cds.size() - 2], h2 = 1.0 / c;
+        const double d01 = cds[cds.size() - 3] - cds[cds.size() - 2], d12 = cds[cds.size() - 2] - cd;
+        // bisection on (h0^p − h1^p)/(h1^p − h2^p) = d01/d12 for p in [0.1, 4]
+        auto f = [&](double p) { return (std::pow(h0, p) - std::pow(h1, p)) / (std::pow(h1, p) - std::pow(h2, p)) - d01 / d12; };
+        double lo = 0.1, hi = 4.0, p = NAN;
+        if (d01 / d12 > 0 && f(lo) * f(hi) < 0) {
+          for (int it = 0; it < 80; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            (f(lo) * f(mid) <= 0 ? hi : lo) = mid;
+          }
+          p = 0.5 * (lo + hi);
+        }
+        char b[32];
+        std::snprintf(b, sizeof b, "%.2f", p);
+        order = b;
+      }
+      std::printf("%8d %10.4f %10.4f %9.2f %12.4f %10ld %10.2f %10s\n", c, cd, j["drag_coefficient_standard"].get<double>(),
+                  j["drag_error_percent"].get<double>(), j.value("wake_length_D", NAN), j["steps"].get<long>(),
+                  j["wall_time_s"].get<double>(), order.c_str());
+    }
+    if (cds.size() >= 2) {
+      const double h1 = 1.0 / cells[cells.size() - 2], h2 = 1.0 / cells.back();
+      const double ex = cds.back() + (cds.back() - cds[cds.size() - 2]) * h2 / (h1 - h2);  // first order
+      std::printf("first-order Richardson extrapolation from the two finest: C_D = %.4f\n", ex);
+    }
+    return 0;
   }
   std::printf("fixed sphere, Re = 100, finest level r < 2D, -2D < z < 4D, dt = 0.32 h/U; median of %d steps after 3 warm-up steps\n", steps);
   std::printf("%6s %7s %10s %12s %12s %12s %14s\n", "cells/D", "levels", "grid", "vertices", "ms/step", "ns/vertex", "solver MB");
