@@ -211,26 +211,49 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       fixed_z_ = zs;
     }
     g_ = chol_->solve(rhs);
-  } else {  // conjugate gradients, warm start from the previous forces
+  } else {  // conjugate gradients, warm start; preconditioner: each sphere's own block of Q, factorised once
+    if (prec_size_ != m) {  // at the first configuration (the rings move rigidly with their sphere)
+      Eigen::MatrixXd Q0(m, m);
+      for (Eigen::Index c = 0; c < m; ++c) Q0.col(c) = apply_Q(Eigen::VectorXd::Unit(m, c));
+      prec_.clear();
+      for (std::size_t k = 0; k < pts_.size();) {
+        std::size_t e = k;
+        while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
+        const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
+        Eigen::MatrixXd blk = 0.5 * (Q0.block(o, o, n, n) + Q0.block(o, o, n, n).transpose());
+        prec_.push_back({o, n, Eigen::LLT<Eigen::MatrixXd>(blk)});
+        k = e;
+      }
+      prec_size_ = m;
+    }
+    auto precondition = [&](const Eigen::VectorXd& r) {
+      Eigen::VectorXd z(r.size());
+      for (const auto& b : prec_) z.segment(b.offset, b.size) = b.llt.solve(r.segment(b.offset, b.size));
+      return z;
+    };
     Eigen::VectorXd r = rhs - apply_Q(g_);
-    Eigen::VectorXd p = r;
-    double rr = r.squaredNorm();
+    Eigen::VectorXd z = precondition(r);
+    Eigen::VectorXd p = z;
+    double rz = r.dot(z);
     const double bn = std::max(rhs.norm(), 1e-300);
     int it = 0;
-    while (std::sqrt(rr) > s_.cg_tol * bn) {
+    double rn = r.norm();
+    while (rn > s_.cg_tol * bn) {
       if (++it > s_.cg_max_iter)
-        throw SolverError("flow: CG did not converge in " + std::to_string(s_.cg_max_iter) + " iterations (residual " +
-                                 std::to_string(std::sqrt(rr) / bn) + ")");
-      Eigen::VectorXd Ap = apply_Q(p);
-      const double alpha = rr / p.dot(Ap);
+        throw SolverError("flow: CG did not converge in " + std::to_string(s_.cg_max_iter) + " iterations (relative residual " +
+                          std::to_string(rn / bn) + ", tolerance " + std::to_string(s_.cg_tol) + ")");
+      const Eigen::VectorXd Ap = apply_Q(p);
+      const double alpha = rz / p.dot(Ap);
       g_ += alpha * p;
       r -= alpha * Ap;
-      const double rr2 = r.squaredNorm();
-      p = r + (rr2 / rr) * p;
-      rr = rr2;
+      z = precondition(r);
+      const double rz2 = r.dot(z);
+      p = z + (rz2 / rz) * p;
+      rz = rz2;
+      rn = r.norm();
     }
     info.cg_iterations = it;
-    info.cg_residual = std::sqrt(rr) / bn;
+    info.cg_residual = rn / bn;
   }
   std::vector<double>& eta_c = eta_c_;
   std::vector<double>& psi_c = psi_c_;

@@ -10,7 +10,8 @@
 // The body forces g (ring totals, m⁴/s² = N per kg/m³) are the Lagrange multipliers of no-slip at the ring
 // points: with B = E C (velocity at the points from ψ) and the force term Δt R Bᵀg/(2πh²) in η,
 //   Q g = U_b − U∞e_z − Bψ*,   Q = Δt B (−E²)⁻¹ (I − θνΔt E²)⁻¹ R Bᵀ /(2πh²)   (symmetric positive definite),
-// solved by Cholesky of the dense Q when the bodies have not moved, by conjugate gradients otherwise.
+// solved by Cholesky of the dense Q when the bodies have not moved, by conjugate gradients otherwise (relative
+// residual cg_tol; preconditioned by each sphere's own block of Q at the first configuration, factorised once).
 // Levels: ℓ = 0 finest (spacing h), level ℓ has spacing 2^ℓ h and the same nr × nz cells, all centred on
 // z_center; the coarsest has η = ψ = 0 on its outer boundary, each finer level takes its boundary values from
 // the next coarser one (cubic interpolation), and its interior replaces the coarser level's interior (full weighting).
@@ -97,7 +98,10 @@ class Solver {
   std::vector<SphereState> sph_;
   BodyPoints pts_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> B_;
-  Eigen::VectorXd g_;  // last ring forces (warm start)
+  Eigen::VectorXd g_;     // last ring forces (warm start)
+  struct Block { Eigen::Index offset, size; Eigen::LLT<Eigen::MatrixXd> llt; };
+  std::vector<Block> prec_;  // CG preconditioner: per-sphere blocks of Q at the first configuration
+  Eigen::Index prec_size_ = -1;
   std::vector<double> fixed_z_;  // sphere positions of the factorised Q
   std::unique_ptr<Eigen::LLT<Eigen::MatrixXd>> chol_;
   double t_ = 0;
