@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "contact/formulas.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
 #include "flow/flow_scene.hpp"
@@ -51,6 +52,23 @@ std::string snapshot_csv(const Solver& s) {
   return os.str();
 }
 
+/// f_THR of the reduced-order model for two spheres at constant velocities (seed eqs. 6.7–6.9 with dU/dt = 0):
+/// Schiller–Naumann drag, the asymptotic gap lubrication (h_c = a*), the velocity part of the added mass (6.8).
+/// History forces are left out (they decay after the impulsive start). Returns N along +z on each sphere.
+using namespace contact;
+std::pair<double, double> f_thr_pair(double mu, double rho, double a1, double a2, double u1, double u2, double gap) {
+  const double a_star = reduced(a1, a2), u_rel = u1 - u2, d = gap / a_star;
+  const double R = asymptotic_resistance(gap, a_star, lubrication_log_coefficient(a1, a2), a_star);
+  const double lub = -6 * M_PI * mu * R * u_rel;
+  const double dW = added_mass_dW(d);
+  auto one = [&](double a, double u) {
+    const double Re = rho * 2 * a * std::abs(u) / mu;
+    const double ml = rho * 4.0 / 3.0 * M_PI * a * a * a;
+    return -6 * M_PI * mu * a * u * drag_factor(DragLaw::schiller_naumann, Re) + 0.75 * ml * u * (u_rel / a_star) * dW;
+  };
+  return {one(a1, u1) + lub, one(a2, u2) - lub};
+}
+
 }  // namespace
 
 nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowCommandOptions& opt) {
@@ -79,7 +97,12 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   hist << std::setprecision(10);
   hist << "step,t,wall_s";
   for (int b = 0; b < nb; ++b) hist << ",z" << b + 1 << ",u" << b + 1 << ",F" << b + 1 << ",F_internal" << b + 1;
-  hist << ",C_D,C_D_standard,F_stokes_basset,cg_iterations,slip\n";
+  hist << ",C_D,C_D_standard,F_stokes_basset,cg_iterations,slip";
+  if (nb == 2) hist << ",gap_D,F_THR1,F_THR2";
+  hist << "\n";
+  // two spheres: simulated vs reduced-order force at a few gaps (the seed's Fig. 6.4)
+  std::vector<double> report_gaps = {1.0, 0.5, 0.25, 0.1, 0.05};
+  nlohmann::ordered_json thr_rows = nlohmann::ordered_json::array();
   std::vector<double> cds, times, walls;
   long cg_total = 0;
   int cg_max = 0;
@@ -113,7 +136,21 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     if (n % sc.history_every == 0 || n == nsteps) {
       hist << n << ',' << t << ',' << wall;
       for (int b = 0; b < nb; ++b) hist << ',' << next[b].z << ',' << next[b].u << ',' << info.force[b] << ',' << info.internal[b];
-      hist << ',' << cd << ',' << cd_ref << ',' << fsb << ',' << info.cg_iterations << ',' << info.slip << '\n';
+      hist << ',' << cd << ',' << cd_ref << ',' << fsb << ',' << info.cg_iterations << ',' << info.slip;
+      if (nb == 2) {
+        const double gap = next[1].z - next[0].z - next[0].radius - next[1].radius;
+        const auto [t1, t2] = f_thr_pair(mu, sc.density, next[0].radius, next[1].radius, next[0].u, next[1].u, gap);
+        hist << ',' << gap / D << ',' << t1 << ',' << t2;
+      }
+      hist << '\n';
+    }
+    if (nb == 2) {
+      const double gap = next[1].z - next[0].z - next[0].radius - next[1].radius;
+      while (!report_gaps.empty() && gap <= report_gaps.front() * D) {
+        const auto [t1, t2] = f_thr_pair(mu, sc.density, next[0].radius, next[1].radius, next[0].u, next[1].u, gap);
+        thr_rows.push_back({{"gap_D", gap / D}, {"F1", info.force[0]}, {"F_THR1", t1}, {"F2", info.force[1]}, {"F_THR2", t2}});
+        report_gaps.erase(report_gaps.begin());
+      }
     }
     if (!opt.quiet && (n % std::max(1L, nsteps / 10) == 0 || n == nsteps)) {
       std::cout << "  t = " << std::setw(8) << t << "  C_D = " << std::setw(10) << cd;
@@ -162,6 +199,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   }
   j["forces_N"] = last_force;
   if (nb > 1) j["min_gap_D"] = min_gap_seen / D;
+  if (nb == 2) j["f_sim_vs_f_thr"] = thr_rows;
   const auto& L0 = solver.levels().front().g;
   const auto& Lc = solver.levels().back().g;
   j["grid"] = {{"cells_per_diameter", sc.cells_per_diameter},
@@ -197,6 +235,10 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
               << j["drag_error_percent"].get<double>() << " %)";
   std::cout << std::setprecision(5) << "  F/(6 pi mu a U) = " << j["stokes_drag_ratio"].get<double>() << "\n";
   if (j.contains("wake_length_D")) std::cout << "wake length = " << j["wake_length_D"].get<double>() << " D\n";
+  if (j.contains("f_sim_vs_f_thr"))
+    for (const auto& r : j["f_sim_vs_f_thr"])
+      std::cout << "gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR " << r["F_THR1"].get<double>()
+                << "), F2 = " << r["F2"].get<double>() << " (f_THR " << r["F_THR2"].get<double>() << ") N\n";
   if (j.contains("impulsive_start"))
     std::cout << "impulsive start vs Stokes + Basset: max relative error " << j["impulsive_start"]["max_rel_error"].get<double>()
               << " for t >= " << j["impulsive_start"]["max_rel_error_from_t"].get<double>() << " s\n";

@@ -83,6 +83,9 @@ def main() -> int:
     fig, ax = plt.subplots(figsize=(9, 5))
     for b in range(nb):
         ax.plot(t, [float(r[f"F{b + 1}"]) for r in rows], label=f"F{b + 1} (simulation)")
+    if "F_THR1" in rows[0]:
+        for b in range(nb):
+            ax.plot(t, [float(r[f"F_THR{b + 1}"]) for r in rows], "--", label=f"F{b + 1}: f_THR (reduced-order, no history)")
     if nb == 1:
         fsb = np.array([float(r["F_stokes_basset"]) for r in rows])
         cds = np.array([float(r["C_D_standard"]) for r in rows])
