@@ -8,6 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "core/errors.hpp"
 #include "flow/flow_scene.hpp"
@@ -198,4 +201,43 @@ cg_tol = 1e-8
   expect_error(replace("position = 0.0", "position = 9.0"), "sphere[0]", "");
   expect_error(good + "[[sphere]]\ndiameter = 1.0\nposition = 0.5\n", "sphere", "");
   fs::remove(p);
+}
+
+TEST(FlowCommand, WritesSummaryAndForcesAndRejectsBadScenes) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("imcol_flow_cli_" + std::to_string(::getpid()));
+  const fs::path scene = dir.string() + ".toml";
+  std::ofstream(scene) << R"(name = "tiny"
+[fluid]
+density = 1.0
+viscosity = 0.05
+[stream]
+velocity = 1.0
+[[sphere]]
+diameter = 1.0
+[grid]
+cells_per_diameter = 8
+levels = 2
+r_max = 1.5
+z_min = -1.5
+z_max = 1.5
+[time]
+dt = 0.05
+t_end = 0.5
+)";
+  const std::string cmd = std::string(IMCOL_BINARY) + " flow " + scene.string() + " --no-plot --out " + dir.string() + " >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream in(dir / "summary.json");
+  const auto j = nlohmann::json::parse(in);
+  for (const char* k : {"drag_coefficient", "Re", "grid", "steps", "wall_time_s"}) EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["steps"].get<int>(), 10);
+  EXPECT_DOUBLE_EQ(j["Re"].get<double>(), 20.0);
+  EXPECT_GT(j["drag_coefficient"].get<double>(), 0.0);
+  EXPECT_TRUE(fs::exists(dir / "forces.csv"));
+  EXPECT_TRUE(fs::exists(dir / "snapshot_00.csv"));
+  std::ofstream(scene, std::ios::app) << "theta = 2.0\n";  // out of range
+  const int raw = std::system((std::string(IMCOL_BINARY) + " flow " + scene.string() + " --no-plot >/dev/null 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(raw), 2);
+  fs::remove_all(dir);
+  fs::remove(scene);
 }
