@@ -248,6 +248,7 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
   if (opt.plot) {
     const fs::path script = fs::path(IMCOL_DATA_DIR).parent_path() / "scripts" / "plot_flow.py";
     const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
+    std::cout.flush();
     if (std::system(cmd.c_str()) != 0) std::cerr << "imcol: warning: plotting failed (" << cmd << ")\n";
   }
   return 0;

@@ -182,7 +182,13 @@ TEST(FlowOps, ForceSystemIsSymmetricPositiveDefinite) {
   const Eigen::Index m = static_cast<Eigen::Index>(2 * solver.points().size());
   Eigen::MatrixXd Q(m, m);
   for (Eigen::Index c = 0; c < m; ++c) Q.col(c) = solver.apply_Q(Eigen::VectorXd::Unit(m, c));
-  const double asym = (Q - Q.transpose()).cwiseAbs().maxCoeff() / Q.cwiseAbs().maxCoeff();
+  double asym = 0, qmax = 0;
+  for (Eigen::Index i = 0; i < m; ++i)
+    for (Eigen::Index j = 0; j < m; ++j) {
+      asym = std::max(asym, std::abs(Q(i, j) - Q(j, i)));
+      qmax = std::max(qmax, std::abs(Q(i, j)));
+    }
+  asym /= qmax;
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (Q + Q.transpose()));
   std::printf("Q: %ld x %ld, asymmetry %.2e, eigenvalues [%.3e, %.3e]\n", (long)m, (long)m, asym, es.eigenvalues().minCoeff(),
               es.eigenvalues().maxCoeff());
