@@ -50,7 +50,10 @@ def plot_snapshot(path: Path, spheres) -> None:
         W = np.concatenate([-om[:0:-1], om])
         lim = np.percentile(np.abs(W), 99.5) or 1.0
         ax.pcolormesh(z, R, W, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="auto")
-        ax.contour(z, R, P, levels=np.linspace(P.min(), P.max(), 41)[1:-1], colors="k", linewidths=0.5)
+        # streamlines: levels even in sqrt|psi| (psi ~ r^2), with the recirculation (psi < 0) and psi = 0
+        pos = np.linspace(0, np.sqrt(max(P.max(), 0)), 31)[1:-1] ** 2
+        neg = -(np.linspace(0, np.sqrt(max(-P.min(), 0)), 7)[1:-1] ** 2)
+        ax.contour(z, R, P, levels=np.unique(np.concatenate([neg, [0.0], pos])), colors="k", linewidths=0.5)
         for zc, d in spheres:
             ax.add_patch(plt.Circle((zc, 0), d / 2, fill=False, color="g", lw=1.2))
         ax.set_aspect("equal")
