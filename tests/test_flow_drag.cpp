@@ -85,6 +85,27 @@ TEST(FlowDrag, ImpulsivelyStartedSphereFollowsStokesPlusBasset) {
   EXPECT_LT(err[1], 0.65 * err[0]);  // converges with the grid
 }
 
+TEST(FlowDrag, ImpulsiveStartImpulseIsAddedMassPlusInternalFluid) {
+  // Re = 1000, first 10 steps: the impulse ∫F dt of a stream switched on around a fixed sphere is the
+  // potential-flow impulse (½ρV added mass + ρV for the fluid inside, which the IB forces stop) plus a small
+  // Stokes + Basset part 6πμaU (T + 2a√(T/(πν))). Converges at first order with h (IB thickening).
+  double ratio[2];
+  int c = 0;
+  for (int cpd : {16, 32}) {
+    const double dt = 0.001, nu = 1e-3, T = 0.01, a = 0.5;
+    Solver s(stream_settings(1.0 / nu, cpd, 3, 1.5, -1.5, 1.5, dt, 0.5), {{a, 0.0, 0.0}});
+    double impulse = 0;
+    for (int n = 0; n < 10; ++n) impulse += s.step({{a, 0.0, 0.0}}).force[0] * dt;
+    const double viscous = 6 * M_PI * nu * a * (T + 2 * a * std::sqrt(T / (M_PI * nu)));
+    const double V = 4.0 / 3.0 * M_PI * a * a * a;
+    ratio[c] = (impulse - viscous) / (1.5 * V);
+    std::printf("%d cells/D: impulse %.4f, viscous part %.4f, (impulse - viscous)/(1.5 rho V U) = %.4f\n", cpd, impulse, viscous, ratio[c]);
+    ++c;
+  }
+  EXPECT_LT(std::abs(ratio[1] - 1), 0.2);
+  EXPECT_LT(std::abs(ratio[1] - 1), 0.6 * std::abs(ratio[0] - 1));
+}
+
 TEST(FlowDrag, ConjugateGradientPathMatchesCholeskyPath) {
   auto run = [](bool direct) {
     Settings st = stream_settings(20, 16, 2, 1.5, -1.5, 1.5, 0.01, 0.5);
