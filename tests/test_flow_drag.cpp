@@ -64,6 +64,21 @@ TEST(FlowDrag, StokesDragConvergesToProudmanPearsonAtFirstOrder) {
   EXPECT_LT(std::abs(extrap - 1), 0.03);         // and within 3 % of 6πμaU
 }
 
+TEST(FlowDrag, NestedLevelsReproduceOneLargeLevel) {
+  // Steady Stokes drag (Re = 0.1, 16 cells/D) with 4 nested levels of 24 × 48 cells against one level of
+  // 192 × 384 cells covering the same outer domain (r < 12 D, |z| < 12 D): the far field through the levels.
+  auto drag = [](int levels, int nr, int nz) {
+    Settings st = stream_settings(0.1, 16, levels, nr / 16.0, -nz / 32.0, nz / 32.0, 0.2, 1.0);
+    Solver s(st, {{0.5, 0.0, 0.0}});
+    double F = 0;
+    for (int n = 0; n < 150; ++n) F = s.step({{0.5, 0.0, 0.0}}).force[0];
+    return F;
+  };
+  const double nested = drag(4, 24, 48), single = drag(1, 192, 384);
+  std::printf("F nested (4 levels) %.5f, single level %.5f, difference %.3f %%\n", nested, single, 100 * (nested / single - 1));
+  EXPECT_NEAR(nested / single, 1.0, 0.005);
+}
+
 TEST(FlowDrag, ImpulsivelyStartedSphereFollowsStokesPlusBasset) {
   // F(t) = 6πμaU (1 + a/√(πνt)) for t > 0 at Re → 0; Re = 0.1, Crank–Nicolson
   double err[2] = {0, 0};
