@@ -98,6 +98,16 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   hist << "step,t,wall_s";
   for (int b = 0; b < nb; ++b) hist << ",z" << b + 1 << ",u" << b + 1 << ",F" << b + 1 << ",F_internal" << b + 1;
   hist << ",C_D,C_D_standard,F_stokes_basset,cg_iterations,slip";
+  // a sphere oscillating in fluid at rest: Stokes (1851) / Landau & Lifshitz §24, a ≪ δ not required, A ≪ a
+  const auto& s0 = sc.spheres.front();
+  const bool osc = nb == 1 && s0.amplitude != 0 && sc.stream == 0 && s0.velocity == 0;
+  const double om = 2 * M_PI * s0.frequency, delta = osc ? std::sqrt(2 * nu / om) : 0;
+  auto f_osc = [&](double t) {  // F = −6πμa(1 + a/δ)U − 3πa²√(2μρ/ω)(1 + 2a/(9δ)) dU/dt
+    const double U = s0.amplitude * om * std::sin(om * t), dU = s0.amplitude * om * om * std::cos(om * t);
+    return -6 * M_PI * mu * a * (1 + a / delta) * U - 3 * M_PI * a * a * std::sqrt(2 * mu * sc.density / om) * (1 + 2 * a / (9 * delta)) * dU;
+  };
+  double osc_err = 0, osc_amp = 0;
+  if (osc) hist << ",F_stokes_oscillating";
   if (nb == 2) hist << ",gap_D,F_THR1,F_THR2";
   hist << "\n";
   // two spheres: simulated vs reduced-order force at a few gaps (the seed's Fig. 6.4)
@@ -120,10 +130,14 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     const double cd = drag_sign * info.force[0] / q;
     // impulsively started sphere (Stokes + Basset, t > 0): F = 6πμaU (1 + a/√(πνt))
     const double fsb = f_stokes * (1 + a / std::sqrt(M_PI * nu * t));
-    if (nb == 1 && Re <= 1 && n >= 10) {
+    if (nb == 1 && !osc && Re <= 1 && n >= 10) {
       const double e = std::abs(drag_sign * info.force[0] - fsb) / fsb;
       if (e > basset_err) basset_err = e;
       if (basset_from == 0) basset_from = t;
+    }
+    if (osc && t >= sc.t_end - 1.0 / s0.frequency - 1e-12) {  // the last period; step forces are step averages
+      osc_err = std::max(osc_err, std::abs(info.force[0] - f_osc(t - 0.5 * sc.dt)));
+      osc_amp = std::max(osc_amp, std::abs(f_osc(t - 0.5 * sc.dt)));
     }
     cds.push_back(cd);
     times.push_back(t);
@@ -137,6 +151,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
       hist << n << ',' << t << ',' << wall;
       for (int b = 0; b < nb; ++b) hist << ',' << next[b].z << ',' << next[b].u << ',' << info.force[b] << ',' << info.internal[b];
       hist << ',' << cd << ',' << cd_ref << ',' << fsb << ',' << info.cg_iterations << ',' << info.slip;
+      if (osc) hist << ',' << f_osc(t - 0.5 * sc.dt);
       if (nb == 2) {
         const double gap = next[1].z - next[0].z - next[0].radius - next[1].radius;
         const auto [t1, t2] = f_thr_pair(mu, sc.density, next[0].radius, next[1].radius, next[0].u, next[1].u, gap);
@@ -193,13 +208,16 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
       j["time_to_3pct_s"] = nullptr;
       j["wall_time_to_3pct_s"] = nullptr;
     }
-    if (Re <= 1) j["impulsive_start"] = {{"reference", "F = 6 pi mu a U (1 + a / sqrt(pi nu t)), t > 0"},
+    if (Re <= 1 && !osc) j["impulsive_start"] = {{"reference", "F = 6 pi mu a U (1 + a / sqrt(pi nu t)), t > 0"},
                                          {"max_rel_error_from_t", basset_from},
                                          {"max_rel_error", basset_err}};
   }
   j["forces_N"] = last_force;
   if (nb > 1) j["min_gap_D"] = min_gap_seen / D;
   if (nb == 2) j["f_sim_vs_f_thr"] = thr_rows;
+  if (osc) j["oscillating"] = {{"reference", "F = -6 pi mu a (1 + a/delta) U - 3 pi a^2 sqrt(2 mu rho/omega) (1 + 2a/(9 delta)) dU/dt, at mid-step"},
+                               {"delta_over_a", delta / a},
+                               {"max_error_last_period_rel_amplitude", osc_amp > 0 ? osc_err / osc_amp : NAN}};
   const auto& L0 = solver.levels().front().g;
   const auto& Lc = solver.levels().back().g;
   j["grid"] = {{"cells_per_diameter", sc.cells_per_diameter},
@@ -239,6 +257,10 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
     for (const auto& r : j["f_sim_vs_f_thr"])
       std::cout << "gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR " << r["F_THR1"].get<double>()
                 << "), F2 = " << r["F2"].get<double>() << " (f_THR " << r["F_THR2"].get<double>() << ") N\n";
+  if (j.contains("oscillating"))
+    std::cout << "oscillating sphere vs unsteady Stokes (delta/a = " << j["oscillating"]["delta_over_a"].get<double>()
+              << "): max error over the last period " << 100 * j["oscillating"]["max_error_last_period_rel_amplitude"].get<double>()
+              << " % of the force amplitude\n";
   if (j.contains("impulsive_start"))
     std::cout << "impulsive start vs Stokes + Basset: max relative error " << j["impulsive_start"]["max_rel_error"].get<double>()
               << " for t >= " << j["impulsive_start"]["max_rel_error_from_t"].get<double>() << " s\n";

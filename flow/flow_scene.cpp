@@ -95,7 +95,10 @@ int round_up(double x, int mult) { return std::max(mult, static_cast<int>(std::c
 
 }  // namespace
 
-double FlowScene::U() const { return std::abs(stream - spheres.front().velocity); }
+double FlowScene::U() const {
+  const auto& s = spheres.front();
+  return std::max(std::abs(stream - s.velocity), 2 * M_PI * s.frequency * std::abs(s.amplitude));
+}
 
 Settings FlowScene::settings() const {
   Settings s;
@@ -119,12 +122,28 @@ Settings FlowScene::settings() const {
 
 std::vector<SphereState> FlowScene::spheres_at(double t) const {
   std::vector<SphereState> out;
-  for (const auto& s : spheres) out.push_back({0.5 * s.diameter, s.position + s.velocity * t, s.velocity});
+  for (const auto& s : spheres) {
+    const double w = 2 * M_PI * s.frequency;
+    out.push_back({0.5 * s.diameter, s.position + s.velocity * t + s.amplitude * (1 - std::cos(w * t)),
+                   s.velocity + s.amplitude * w * std::sin(w * t)});
+  }
   return out;
 }
 
 void check_flow_scene(const FlowScene& sc) {
   if (sc.U() == 0) throw InputError(sc.path, "stream.velocity", "no relative motion: give a stream or a sphere velocity");
+  // neighbours stay apart (gaps are linear in t apart from the oscillations); a min_gap stop ends the run first
+  for (std::size_t i = 0; i + 1 < sc.spheres.size() && sc.min_gap <= 0; ++i) {
+    const auto &p = sc.spheres[i], &q = sc.spheres[i + 1];
+    for (double t : {0.0, sc.t_end}) {
+      const double gap = (q.position + q.velocity * t) - (p.position + p.velocity * t) - 0.5 * (p.diameter + q.diameter) -
+                         std::abs(p.amplitude) - std::abs(q.amplitude);
+      if (gap <= 0)
+        throw InputError(sc.path, "sphere[" + std::to_string(i + 1) + "]",
+                         "spheres " + std::to_string(i + 1) + " and " + std::to_string(i + 2) + " would overlap by t = " + fmt(t) +
+                             " (shorten time.t_end or set output.min_gap)");
+    }
+  }
   // every sphere inside the finest level over the whole run, 3 cells clear of its edges
   const Settings s = sc.settings();
   const double zlo = s.z_center - 0.5 * s.nz * s.h, zhi = s.z_center + 0.5 * s.nz * s.h, rhi = s.nr * s.h;
@@ -132,8 +151,8 @@ void check_flow_scene(const FlowScene& sc) {
     const auto& p = sc.spheres[i];
     const double a = 0.5 * p.diameter;
     for (double t : {0.0, sc.t_end}) {
-      const double z = p.position + p.velocity * t;
-      if (z - a < zlo + 3 * s.h || z + a > zhi - 3 * s.h || a > rhi - 3 * s.h)
+      const double z = p.position + p.velocity * t + p.amplitude, A = std::abs(p.amplitude);
+      if (z - a - A < zlo + 3 * s.h || z + a + A > zhi - 3 * s.h || a > rhi - 3 * s.h)
         throw InputError(sc.path, "sphere[" + std::to_string(i) + "]",
                          "sphere outside the finest grid at t = " + fmt(t) + " (grid z in [" + fmt(zlo) + ", " + fmt(zhi) +
                              "], r < " + fmt(rhi) + ", 3 cells clear)");
@@ -181,6 +200,10 @@ FlowScene load_flow_scene(const std::string& path) {
     r.positive("diameter", s.diameter);
     s.position = r.number("position", 0.0);
     s.velocity = r.number("velocity", 0.0);
+    s.amplitude = r.number("amplitude", 0.0);
+    s.frequency = r.number("frequency", 0.0);
+    if (s.frequency < 0) r.fail("frequency", "must be >= 0");
+    if (s.amplitude != 0 && s.frequency == 0) r.fail("amplitude", "an oscillation needs frequency > 0");
     r.finish();
     sc.spheres.push_back(s);
   }

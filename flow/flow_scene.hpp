@@ -1,6 +1,6 @@
 #pragma once
 // Flow scenes (data/scenes/flow/*.toml): spheres on the axis, fixed or on prescribed trajectories
-// z(t) = position + velocity·t, optionally in a uniform stream; the grid, time step and solver settings.
+// z(t) = position + velocity·t + amplitude·(1 − cos 2π frequency t) (from rest), optionally in a uniform stream; the grid, time step and solver settings.
 // Parsed with toml++; bad input throws InputError naming file:line and key. SI units (any consistent units work).
 #include <string>
 #include <vector>
@@ -13,6 +13,8 @@ struct FlowSphere {
   double diameter = 0;  // m
   double position = 0;  // z of the centre at t = 0, m
   double velocity = 0;  // prescribed constant velocity along +z, m/s
+  double amplitude = 0;  // optional oscillation z += A (1 − cos 2π f t), m (starts from rest)
+  double frequency = 0;  // its frequency f, Hz
 };
 
 struct FlowScene {
@@ -39,7 +41,7 @@ struct FlowScene {
 
   double D() const { return spheres.front().diameter; }
   double nu() const { return viscosity / density; }
-  /// Reference speed: |stream − sphere 1 velocity|.
+  /// Reference speed: |stream − sphere 1 velocity|, or sphere 1's oscillation speed amplitude 2πfA if larger.
   double U() const;
   double Re() const { return U() * D() / nu(); }
   /// Solver settings derived from the scene (grid rounded to nr even, nz a multiple of 4).

@@ -121,6 +121,40 @@ TEST(FlowDrag, ImpulsiveStartImpulseIsAddedMassPlusInternalFluid) {
   EXPECT_LT(std::abs(ratio[1] - 1), 0.6 * std::abs(ratio[0] - 1));
 }
 
+TEST(FlowDrag, OscillatingSphereFollowsUnsteadyStokes) {
+  // z = A(1 − cos ωt), ν = 1, a = 0.5, ω = 32 (δ = √(2ν/ω) = a/2), A = 0.01: the periodic unsteady Stokes force
+  // F = −6πμa(1 + a/δ)U − 3πa²√(2μρ/ω)(1 + 2a/(9δ)) dU/dt (Landau & Lifshitz §24), compared over the second
+  // period at mid-step (the step's force is its average). Moving body: CG, internal fluid included.
+  const double a = 0.5, nu = 1.0, om = 32.0, A = 0.01, T = 2 * M_PI / om, delta = std::sqrt(2 * nu / om);
+  const int per = 100;
+  const double dt = T / per;
+  auto ref = [&](double t) {
+    const double U = A * om * std::sin(om * t), dU = A * om * om * std::cos(om * t);
+    return -6 * M_PI * nu * a * (1 + a / delta) * U - 3 * M_PI * a * a * std::sqrt(2 * nu / om) * (1 + 2 * a / (9 * delta)) * dU;
+  };
+  double err[2];
+  int c = 0;
+  for (int cpd : {12, 24}) {
+    Settings st = stream_settings(1.0, cpd, 5, 1.5, -1.5, 1.5, dt, 0.5);
+    st.u_inf = 0;
+    Solver s(st, {{a, 0.0, 0.0}});
+    double e = 0, amp = 0;
+    for (int n = 1; n <= 2 * per; ++n) {
+      const double t = n * dt;
+      const double F = s.step({{a, A * (1 - std::cos(om * t)), A * om * std::sin(om * t)}}).force[0];
+      if (n > per) {
+        e = std::max(e, std::abs(F - ref(t - 0.5 * dt)));
+        amp = std::max(amp, std::abs(ref(t - 0.5 * dt)));
+      }
+    }
+    err[c] = e / amp;
+    std::printf("%d cells/D: max |F - F_Stokes| over the 2nd period = %.2f %% of the amplitude\n", cpd, 100 * err[c]);
+    ++c;
+  }
+  EXPECT_LT(err[1], 0.15);
+  EXPECT_LT(err[1], 0.6 * err[0]);
+}
+
 TEST(FlowDrag, ConjugateGradientPathMatchesCholeskyPath) {
   auto run = [](bool direct) {
     Settings st = stream_settings(20, 16, 2, 1.5, -1.5, 1.5, 0.01, 0.5);
