@@ -93,6 +93,12 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   if (!opt.quiet)
     std::cout << "flow " << sc.name << ": Re = " << Re << ", " << sc.cells_per_diameter << " cells/D, " << set.levels << " levels of "
               << set.nr << " x " << set.nz << " cells, dt = " << sc.dt << " s, " << nsteps << " steps\n";
+  {
+    double umax = std::abs(sc.stream);
+    for (const auto& p : sc.spheres) umax = std::max(umax, std::abs(p.velocity) + 2 * M_PI * p.frequency * std::abs(p.amplitude));
+    const double cfl = umax * sc.dt / set.h;
+    if (cfl > 1) std::cerr << "imcol: warning: U dt / h = " << cfl << " > 1; the explicit (Adams–Bashforth) advection may be unstable\n";
+  }
   std::ostringstream hist;
   hist << std::setprecision(10);
   hist << "step,t,wall_s";
