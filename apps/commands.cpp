@@ -13,6 +13,7 @@
 
 #include "apps/compare_history.hpp"
 #include "apps/simulate.hpp"
+#include "apps/work_precision.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/report.hpp"
@@ -218,6 +219,25 @@ int run_cli(int argc, char** argv) {
   history->add_flag("--no-plot", no_plot, "skip the PNG plot");
   add_common(history, hist_opt);
 
+  std::string wscene;
+  CommonOptions wp_opt;
+  WorkPrecisionOptions wopt;
+  bool wp_no_plot = false;
+  auto* wp = app.add_subcommand("work-precision", "what accuracy costs: a tolerance ladder per integrator and history evaluator against a tight reference");
+  wp->add_option("scene", wscene, "scene file (TOML)")->required();
+  wp->add_option("--out", wopt.out, "output directory (default out/<scene name>/work_precision)");
+  wp->add_option("--rtols", wopt.rtols, "the rtol ladder (atol = rtol)")->delimiter(',');
+  wp->add_option("--integrators", wopt.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',');
+  wp->add_option("--evaluators", wopt.evaluators, "history evaluators soe, direct (default both if the scene has history)")->delimiter(',');
+  wp->add_option("--direct-steps", wopt.direct_steps, "direct evaluator: multiples of its default step")->delimiter(',');
+  wp->add_option("--direct-rtol", wopt.direct_rtol, "direct evaluator: rtol while its step varies");
+  wp->add_option("--ref-rtol", wopt.ref_rtol, "reference run: rtol = atol");
+  wp->add_option("--ref-history-tolerance", wopt.ref_history_tol, "reference run: soe fit tolerance");
+  wp->add_option("--repeat", wopt.repeat, "runs per setting (median wall time reported)");
+  wp->add_flag("--add-history", wopt.add_history, "add the history effect (Basset) to a scene without it");
+  wp->add_flag("--no-plot", wp_no_plot, "skip the PNG plot");
+  add_common(wp, wp_opt);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -232,6 +252,10 @@ int run_cli(int argc, char** argv) {
     if (*val) return cmd_validate(what, vout, val_opt);
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
     if (*effects) return cmd_effects(escene, eff_opt);
+    if (*wp) {
+      wopt.plot = !wp_no_plot;
+      return work_precision(wscene, wp_opt.overrides(), wopt);
+    }
     if (*history) {
       hopt.plot = !no_plot;
       return compare_history(hscene, hist_opt.overrides(), hopt);
