@@ -13,6 +13,7 @@
 
 #include "apps/compare_history.hpp"
 #include "apps/simulate.hpp"
+#include "apps/sweep.hpp"
 #include "apps/work_precision.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
@@ -238,6 +239,24 @@ int run_cli(int argc, char** argv) {
   wp->add_flag("--no-plot", wp_no_plot, "skip the PNG plot");
   add_common(wp, wp_opt);
 
+  std::string sscene;
+  CommonOptions sw_opt;
+  SweepOptions sopt;
+  bool sw_no_plot = false, sw_no_progress = false;
+  auto* sw = app.add_subcommand("sweep", "e against St over a range of one quantity, the points in parallel");
+  sw->add_option("scene", sscene, "scene file (TOML)")->required();
+  sw->add_option("--vary", sopt.vary, "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
+      ->required()->check(CLI::IsMember({"velocity", "viscosity", "diameter", "density"}));
+  sw->add_option("--from", sopt.from, "first value (SI units)")->required();
+  sw->add_option("--to", sopt.to, "last value (SI units)")->required();
+  sw->add_option("--points", sopt.points, "number of points")->required();
+  sw->add_option("--spacing", sopt.spacing, "log (default) | linear")->check(CLI::IsMember({"log", "linear"}));
+  sw->add_option("--jobs", sopt.jobs, "parallel runs (default: all cores)");
+  sw->add_option("--out", sopt.out, "output directory (default out/<scene name>/sweep_<quantity>)");
+  sw->add_flag("--no-progress", sw_no_progress, "no progress line on the terminal");
+  sw->add_flag("--no-plot", sw_no_plot, "skip the PNG plot");
+  add_common(sw, sw_opt);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -252,6 +271,11 @@ int run_cli(int argc, char** argv) {
     if (*val) return cmd_validate(what, vout, val_opt);
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
     if (*effects) return cmd_effects(escene, eff_opt);
+    if (*sw) {
+      sopt.plot = !sw_no_plot;
+      sopt.progress = !sw_no_progress;
+      return sweep(sscene, sw_opt.overrides(), sopt);
+    }
     if (*wp) {
       wopt.plot = !wp_no_plot;
       return work_precision(wscene, wp_opt.overrides(), wopt);
