@@ -442,19 +442,20 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   // Geometry: the target must be ahead of the impact sphere and not touching it.
   const auto& s1 = sc.spheres[0];
   const double D = s1.diameter;
+  const double u_rel0 = s1.velocity - (sc.two_spheres() ? sc.spheres[1].velocity : 0.0);
   if (sc.two_spheres()) {
     const auto& s2 = sc.spheres[1];
     double gap = s2.position - s1.position - 0.5 * (s1.diameter + s2.diameter);
     if (gap <= 0)
       throw InputError(path, "sphere[1].position", "spheres overlap or touch (gap " + fmt(gap) + " m); the target must lie at larger z");
-    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D)
-      throw InputError(path, "sphere[1].position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m");
+    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
+      throw InputError(path, "sphere[1].position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
   } else if (sc.wall) {
     double gap = sc.wall->position - s1.position - 0.5 * D;
     if (gap <= 0)
       throw InputError(path, "wall.position", "sphere overlaps or touches the wall (gap " + fmt(gap) + " m); the wall must lie at larger z");
-    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D)
-      throw InputError(path, "wall.position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m");
+    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
+      throw InputError(path, "wall.position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
   }
   if (sc.has(Effect::elastic)) {
     bool any = sc.contact.e_dry >= 0 || s1.e_dry || (sc.two_spheres() && sc.spheres[1].e_dry) || (sc.wall && sc.wall->e_dry);

@@ -84,7 +84,10 @@ TEST(Scene, RejectsOverlappingSpheresAndWrongLubrication) {
   const std::string pair = test::fluid(0.01) + test::sphere("glass", 0.0127, 0.0, 0.1) + test::sphere("glass", 0.0127, 0.02, 0.0);
   EXPECT_NO_THROW(parse_scene(pair, "pair.toml"));
   expect_error(test::edit(pair, "position = 0.02", "position = 0.01"), {"sphere[1].position", "overlap"});
-  expect_error(test::edit(pair, "position = 0.02", "position = 0.0128"), {"sphere[1].position", "contact zone"});
+  // Inside the contact zone: allowed while approaching (the contact starts at t = 0), an error otherwise.
+  EXPECT_NO_THROW(parse_scene(test::edit(pair, "position = 0.02", "position = 0.0128"), "pair.toml"));
+  expect_error(test::edit(test::edit(pair, "position = 0.02", "position = 0.0128"), "velocity = 0.1", "velocity = 0.0"),
+               {"sphere[1].position", "contact zone", "not approaching"});
   expect_error(pair + "[lubrication]\nmodel = \"brenner\"\n", {"lubrication.model", "asymptotic"});
   expect_error(pair + "[wall]\nmaterial = \"glass\"\nposition = 1.0\n", {"wall", "not both"});
 }
