@@ -53,6 +53,7 @@ struct PointResult {
   double value = NAN;
   nlohmann::ordered_json summary;
   std::string message;
+  std::string row;  // CSV
 };
 
 nlohmann::ordered_json or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
@@ -68,23 +69,29 @@ std::string csv_cell(const nlohmann::ordered_json& j) {
   return j.dump();
 }
 
-std::string sweep_csv(const std::vector<PointResult>& pts, const Quantity& q) {
+const char* kCsvHeader = "point,{},St,St_B_eq_6_2,St_initial,Re,e,e_instant,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
+
+/// One finished point's CSV row (formatted once: the file is rewritten after every point).
+std::string csv_row(std::size_t i, const PointResult& p) {
+  const auto& s = p.summary;
+  auto get = [&](const char* k) { return s.contains(k) ? csv_cell(s[k]) : std::string(); };
+  std::string msg = p.message;
+  for (char& c : msg)
+    if (c == ',' || c == '\n') c = ';';
   std::ostringstream csv;
-  csv << "point," << q.column << ",St,St_B_eq_6_2,St_initial,Re,e,e_instant,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const auto& p = pts[i];
-    if (!p.done) continue;
-    const auto& s = p.summary;
-    auto get = [&](const char* k) { return s.contains(k) ? csv_cell(s[k]) : std::string(); };
-    std::string msg = p.message;
-    for (char& c : msg)
-      if (c == ',' || c == '\n') c = ';';
-    csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_eq_6_2") << "," << get("St_initial")
-        << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << get("separated") << "," << get("min_gap_m") << ","
-        << (p.ok ? csv_cell(s["solver"]["steps"]) : "") << "," << (p.ok ? csv_cell(s["solver"]["rhs_evals"]) : "") << ","
-        << get("wall_time_s") << "," << (p.ok ? "ok" : "failed") << "," << msg << "\n";
-  }
+  csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_eq_6_2") << "," << get("St_initial")
+      << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << get("separated") << "," << get("min_gap_m") << ","
+      << (p.ok ? csv_cell(s["solver"]["steps"]) : "") << "," << (p.ok ? csv_cell(s["solver"]["rhs_evals"]) : "") << ","
+      << get("wall_time_s") << "," << (p.ok ? "ok" : "failed") << "," << msg << "\n";
   return csv.str();
+}
+
+std::string sweep_csv(const std::vector<PointResult>& pts, const Quantity& q) {
+  std::string header = kCsvHeader;
+  std::string out = header.replace(header.find("{}"), 2, q.column);
+  for (const auto& p : pts)
+    if (p.done) out += p.row;
+  return out;
 }
 
 /// The run ended before its collision or rebound was complete: no e because of t_end, or e = 0 while
@@ -195,6 +202,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
         r.message = e.what();  // a solver failure (or anything else) ends this point only
       }
       r.done = true;
+      r.row = csv_row(i, r);
       std::lock_guard lock(mu);
       pts[i] = std::move(r);
       ++finished;
