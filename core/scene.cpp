@@ -69,9 +69,11 @@ class Reader {
   std::optional<double> number(const std::string& key) {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;
-    if (auto v = n->value<double>(); v && n->is_number()) {
-      if (!std::isfinite(*v) || std::abs(*v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
-      return *v;
+    if (n->is_number()) {
+      // An integer beyond 2^53 is still a number: round it (toml++'s value<double>() refuses it).
+      const double v = n->is_integer() ? static_cast<double>(*n->value<int64_t>()) : *n->value<double>();
+      if (!std::isfinite(v) || std::abs(v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
+      return v;
     }
     fail(key, "must be a number");
   }
