@@ -175,7 +175,10 @@ std::string random_value(Rng& r) {
     case 0: return r.pick(kExtremes).text;
     case 1: return r.pick(kWrongTypes);
     case 2: return "\"" + std::string(r.pick(kUnicode)) + "\"";
-    case 3: return test::num(std::ldexp(static_cast<double>(r.below(2000)) - 1000, static_cast<int>(r.below(200)) - 100));
+    case 3: {
+      const double mantissa = static_cast<double>(r.below(2000)) - 1000;
+      return test::num(std::ldexp(mantissa, static_cast<int>(r.below(200)) - 100));
+    }
     default: return "\"" + std::string(r.pick(kEffects)) + "\"";
   }
 }
@@ -192,9 +195,12 @@ std::string mutate(std::string text, Rng& r) {
       for (std::size_t k = 0, n = 1 + r.below(4); k < n && !text.empty(); ++k)
         text[r.below(text.size())] = static_cast<char>(r.below(256));
       return text;
-    case 1:  // byte insertion / deletion
-      if (r.chance(50) || text.empty()) return text.insert(r.below(text.size() + 1), 1, static_cast<char>(r.below(256)));
-      return text.erase(r.below(text.size()), 1 + r.below(3));
+    case 1: {  // byte insertion / deletion (one draw per statement: the same cases with every compiler)
+      const bool insert = r.chance(50) || text.empty();
+      const std::size_t at = r.below(text.size() + (insert ? 1 : 0));
+      if (insert) return text.insert(at, 1, static_cast<char>(r.below(256)));
+      return text.erase(at, 1 + r.below(3));
+    }
     case 2:  // truncation
       return text.substr(0, r.below(text.size() + 1));
     case 3:  // delete a line
@@ -207,7 +213,10 @@ std::string mutate(std::string text, Rng& r) {
       }
       return join(lines);
     case 5:  // swap two lines (keys move to other tables)
-      if (lines.size() > 1) std::swap(lines[any_line()], lines[any_line()]);
+      if (lines.size() > 1) {
+        const std::size_t a = any_line(), b = any_line();
+        std::swap(lines[a], lines[b]);
+      }
       return join(lines);
     case 6:  // swap the values of two keys
       if (kv.size() > 1) {
@@ -218,11 +227,16 @@ std::string mutate(std::string text, Rng& r) {
       }
       return join(lines);
     case 7:  // a value of another type, an extreme number, unicode, an effect name
-      if (!kv.empty()) set_value(lines[r.pick(kv)], random_value(r));
+      if (!kv.empty()) {
+        const std::size_t i = r.pick(kv);
+        set_value(lines[i], random_value(r));
+      }
       return join(lines);
-    case 8:  // unknown key somewhere
-      lines.insert(lines.begin() + r.below(lines.size() + 1), Line{"zz_unknown_" + std::to_string(r.below(9)) + " = 1.0", "", "", ""});
+    case 8: {  // unknown key somewhere
+      const std::size_t at = r.below(lines.size() + 1);
+      lines.insert(lines.begin() + at, Line{"zz_unknown_" + std::to_string(r.below(9)) + " = 1.0", "", "", ""});
       return join(lines);
+    }
     case 9:  // a table: unknown, duplicated, or array-of-tables where a table is expected
       return r.chance(50) ? text + "[" + r.pick(kTables) + "]\nx = 1\n" : text + "[[" + r.pick(kTables) + "]]\n";
     case 10: {  // a random effects list
@@ -392,7 +406,10 @@ TEST(SceneFuzz, RandomMutationsParseOrThrowInputError) {
     for (std::size_t k = 0, n = 1 + r.below(3); k < n; ++k) text = mutate(text, r);
     std::vector<std::string> ov;
     if (r.chance(15))
-      for (std::size_t k = 0, n = 1 + r.below(2); k < n; ++k) ov.push_back(std::string(r.pick(kOverrideKeys)) + "=" + random_value(r));
+      for (std::size_t k = 0, n = 1 + r.below(2); k < n; ++k) {
+        const std::string key = r.pick(kOverrideKeys);
+        ov.push_back(key + "=" + random_value(r));
+      }
     c.add(run_case(text, ov, "random #" + std::to_string(i)));
     if (HasFatalFailure() || ::testing::Test::HasFailure()) break;  // one clear report, not thousands
   }
