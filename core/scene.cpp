@@ -69,9 +69,11 @@ class Reader {
   std::optional<double> number(const std::string& key) {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;
-    if (auto v = n->value<double>(); v && n->is_number()) {
-      if (!std::isfinite(*v) || std::abs(*v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
-      return *v;
+    if (n->is_number()) {
+      // An integer beyond 2^53 is still a number: round it (toml++'s value<double>() refuses it).
+      const double v = n->is_integer() ? static_cast<double>(*n->value<int64_t>()) : *n->value<double>();
+      if (!std::isfinite(v) || std::abs(v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
+      return v;
     }
     fail(key, "must be a number");
   }
@@ -348,7 +350,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   if (const auto* t = top.table("contact")) {
     Reader r(*t, "contact", path);
     sc.contact.delta_ss = r.number("delta_ss", sc.contact.delta_ss);
-    r.in_range("delta_ss", sc.contact.delta_ss, 0.0, 1.0, true, false);
+    r.in_range("delta_ss", sc.contact.delta_ss, 0.0, 1.0, true, true);  // units of D
     sc.contact.delta_sl = r.number("delta_sl", sc.contact.delta_sl);
     r.positive("delta_sl", sc.contact.delta_sl);
     sc.contact.e_dry = r.number("e_dry", -1.0);

@@ -122,3 +122,19 @@ TEST(Scene, HistorySettingsAreReadAndChecked) {
   expect_error(kWall + "[history]\nkernel = \"basset\"\n", {"history.kernel", "needs the 'history' effect"});
   expect_error(kWall + "[solver]\nintegrator = \"ida\"\nlinear_solver = \"gmres\"\n", {"solver.linear_solver", "cvode integrator only"});
 }
+
+// Found by tests/test_scene_fuzz.cpp: escaped newlines in string values and quoted keys used to
+// break the one-line message; they are now written as escapes.
+TEST(Scene, MessagesStayOnOneLineWithControlCharactersInTheInput) {
+  expect_error(test::edit(kWall, "\"steel\"", "\"st\\neel\""), {"bad.toml:5", "sphere[0].material", "unknown material 'st\\neel'"});
+  expect_error(test::edit(kWall, "viscosity = 0.01", "viscosity = 0.01\n\"a\\r\\nb\\u0001\" = 1"),
+               {"bad.toml:4", "key 'fluid.a\\r\\nb\\x01'", "unknown key"});
+}
+
+// Found by tests/test_scene_fuzz.cpp: an integer beyond 2^53 was refused as "must be a number".
+TEST(Scene, LargeIntegersAreNumbers) {
+  const Scene sc = parse_scene("gravity = -9007199254740993\n" + kWall, "big.toml");
+  EXPECT_EQ(sc.gravity, -9007199254740992.0);  // the nearest double
+  const Scene fast = parse_scene(test::edit(kWall, "velocity = 0.2", "velocity = 9223372036854775807"), "big.toml");
+  EXPECT_EQ(fast.spheres[0].velocity, 9223372036854775807.0);
+}
