@@ -180,6 +180,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   std::mutex mu;
   std::atomic<int> next{0};
   int finished = 0, failed = 0;
+  double last_write = -1;
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
@@ -207,7 +208,11 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
       pts[i] = std::move(r);
       ++finished;
       if (!pts[i].ok) ++failed;
-      write_file_atomic(dir / "sweep.csv", sweep_csv(pts, *q));  // finished points survive what follows
+      // Finished points survive what follows: the file is rewritten at most every 0.25 s, and at the end.
+      if (finished == opt.points || elapsed() - last_write >= 0.25) {
+        write_file_atomic(dir / "sweep.csv", sweep_csv(pts, *q));
+        last_write = elapsed();
+      }
       if (tty) {
         const double t = elapsed();
         std::cerr << "\r  sweep " << opt.vary << ": " << finished << "/" << opt.points << " done, " << failed << " failed, "

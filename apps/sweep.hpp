@@ -21,8 +21,9 @@ struct SweepOptions {
 /// The scene keys one sweep point sets (exposed for tests): `value` of the varied quantity on `base`.
 std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary, double value);
 
-/// Runs the sweep; writes DIR/sweep.csv after every finished point (so finished points survive a later
-/// failure or an interrupt), then DIR/sweep.json and DIR/sweep.png. Returns 0, or 3 if any point failed.
+/// Runs the sweep; rewrites DIR/sweep.csv as points finish (at most every 0.25 s, and at the end), so
+/// that finished points survive a later failure or an interrupt; then DIR/sweep.json and DIR/sweep.png.
+/// Returns 0, or 3 if any point failed.
 int sweep(const std::string& scene_path, const std::vector<Override>& overrides, const SweepOptions& opt);
 
 }  // namespace imcol
