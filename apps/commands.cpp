@@ -14,6 +14,8 @@
 #include "apps/compare_history.hpp"
 #include "apps/flow_command.hpp"
 #include "apps/simulate.hpp"
+#include "apps/sweep.hpp"
+#include "apps/work_precision.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/report.hpp"
@@ -231,6 +233,43 @@ int run_cli(int argc, char** argv) {
   flowc->add_option("--t-end", fopt.t_end, "override time.t_end");
   flowc->add_flag("--no-plot", f_no_plot, "skip the PNG plots");
 
+  std::string wscene;
+  CommonOptions wp_opt;
+  WorkPrecisionOptions wopt;
+  bool wp_no_plot = false;
+  auto* wp = app.add_subcommand("work-precision", "what accuracy costs: a tolerance ladder per integrator and history evaluator against a tight reference");
+  wp->add_option("scene", wscene, "scene file (TOML)")->required();
+  wp->add_option("--out", wopt.out, "output directory (default out/<scene name>/work_precision)");
+  wp->add_option("--rtols", wopt.rtols, "the rtol ladder (atol = rtol)")->delimiter(',');
+  wp->add_option("--integrators", wopt.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',');
+  wp->add_option("--evaluators", wopt.evaluators, "history evaluators soe, direct (default both if the scene has history)")->delimiter(',');
+  wp->add_option("--direct-steps", wopt.direct_steps, "direct evaluator: multiples of its default step")->delimiter(',');
+  wp->add_option("--direct-rtol", wopt.direct_rtol, "direct evaluator: rtol while its step varies");
+  wp->add_option("--ref-rtol", wopt.ref_rtol, "reference run: rtol = atol");
+  wp->add_option("--ref-history-tolerance", wopt.ref_history_tol, "reference run: soe fit tolerance");
+  wp->add_option("--repeat", wopt.repeat, "runs per setting (median wall time reported)");
+  wp->add_flag("--add-history", wopt.add_history, "add the history effect (Basset) to a scene without it");
+  wp->add_flag("--no-plot", wp_no_plot, "skip the PNG plot");
+  add_common(wp, wp_opt);
+
+  std::string sscene;
+  CommonOptions sw_opt;
+  SweepOptions sopt;
+  bool sw_no_plot = false, sw_no_progress = false;
+  auto* sw = app.add_subcommand("sweep", "e against St over a range of one quantity, the points in parallel");
+  sw->add_option("scene", sscene, "scene file (TOML)")->required();
+  sw->add_option("--vary", sopt.vary, "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
+      ->required()->check(CLI::IsMember({"velocity", "viscosity", "diameter", "density"}));
+  sw->add_option("--from", sopt.from, "first value (SI units)")->required();
+  sw->add_option("--to", sopt.to, "last value (SI units)")->required();
+  sw->add_option("--points", sopt.points, "number of points")->required();
+  sw->add_option("--spacing", sopt.spacing, "log (default) | linear")->check(CLI::IsMember({"log", "linear"}));
+  sw->add_option("--jobs", sopt.jobs, "parallel runs (default: all cores)");
+  sw->add_option("--out", sopt.out, "output directory (default out/<scene name>/sweep_<quantity>)");
+  sw->add_flag("--no-progress", sw_no_progress, "no progress line on the terminal");
+  sw->add_flag("--no-plot", sw_no_plot, "skip the PNG plot");
+  add_common(sw, sw_opt);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -248,6 +287,15 @@ int run_cli(int argc, char** argv) {
     if (*flowc) {
       fopt.plot = !f_no_plot;
       return cmd_flow(fscene, fopt);
+    }
+    if (*sw) {
+      sopt.plot = !sw_no_plot;
+      sopt.progress = !sw_no_progress;
+      return sweep(sscene, sw_opt.overrides(), sopt);
+    }
+    if (*wp) {
+      wopt.plot = !wp_no_plot;
+      return work_precision(wscene, wp_opt.overrides(), wopt);
     }
     if (*history) {
       hopt.plot = !no_plot;

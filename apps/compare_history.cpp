@@ -1,16 +1,15 @@
 #include "apps/compare_history.hpp"
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <sstream>
 
+#include "apps/plot.hpp"
 #include "apps/simulate.hpp"
 #include "core/errors.hpp"
-#include "core/materials.hpp"
 #include "core/report.hpp"
 
 namespace imcol {
@@ -132,12 +131,7 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
   write_file_atomic(dir / "history.csv", csv.str());
   write_file_atomic(dir / "history_forces.csv", forces.str());
   std::cout << "wrote " << (dir / "history.csv").string() << " and " << (dir / "history_forces.csv").string() << "\n";
-  if (opt.plot) {
-    const fs::path script = fs::path(data_dir()).parent_path() / "scripts" / "plot_history.py";
-    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
-    if (std::system(cmd.c_str()) == 0) std::cout << "wrote " << (dir / "history.png").string() << "\n";
-    else std::cerr << "imcol: warning: the plot failed (" << cmd << "); the CSV files are complete\n";
-  }
+  if (opt.plot) run_plot_script("plot_history.py", dir, "history.png");
   return 0;
 }
 

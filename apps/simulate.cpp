@@ -142,13 +142,24 @@ RunResult simulate(const Scene& sc) {
     // Approach window ends at the first δ_SS crossing, or at the closest approach without contact.
     const double t_ref = model.t_contact().value_or(*model.t_closest());
     // A short approach shortens both windows alike, so that they stay symmetric in time.
-    const double Wfit = std::min(W, t_ref);
-    if (Wfit < W) warnings.push_back("the approach lasted less than the fit window: both fits use windows of the approach's length");
-    auto f1 = fit_line_continuous(t, z1, t_ref - Wfit, t_ref);
-    auto f2 = pair ? fit_line_continuous(t, z2, t_ref - Wfit, t_ref) : std::optional<LineFit>(LineFit{});
-    if (f1 && f2) {
-      u_i1 = f1->slope;
-      u_i2 = f2->slope;
+    const bool in_contact = model.started_in_contact();
+    const double Wfit = in_contact ? W : std::min(W, t_ref);
+    if (in_contact) {
+      // No approach to fit: the impact velocities are the initial ones.
+      u_i1 = sc.spheres[0].velocity;
+      u_i2 = pair ? sc.spheres[1].velocity : 0.0;
+      std::ostringstream os;
+      os << "started inside the contact zone: the zone is shortened to the initial gap (" << model.delta_ss_m()
+         << " m) and the impact velocities are the initial ones";
+      warnings.push_back(os.str());
+    } else {
+      if (Wfit < W) warnings.push_back("the approach lasted less than the fit window: both fits use windows of the approach's length");
+      auto f1 = fit_line_continuous(t, z1, t_ref - Wfit, t_ref);
+      auto f2 = pair ? fit_line_continuous(t, z2, t_ref - Wfit, t_ref) : std::optional<LineFit>(LineFit{});
+      if (f1 && f2) {
+        u_i1 = f1->slope;
+        u_i2 = f2->slope;
+      }
     }
     // Rebound window: from the separation, or the last window of the run.
     const double t_post = separated ? *model.t_separation() : std::max(t_ref, t_final - Wfit);
@@ -199,6 +210,15 @@ RunResult simulate(const Scene& sc) {
       warnings.push_back("e_instant: the gap did not cross measure.instant_gap inward and outward before t_end");
   }
 
+  if (e && sc.has(Effect::elastic) && *e > model.e_dry() * (1 + 1e-9)) {
+    // More elastic than the solids alone: energy was created. Known for the seed's per-sphere added mass with unequal spheres.
+    std::ostringstream os;
+    os << "e = " << *e << " exceeds the dry restitution e_dry = " << model.e_dry()
+       << ": energy was created, by integration error (tighten solver.rtol, now " << sc.solver.rtol << ")";
+    if (pair && sc.has(Effect::added_mass) && sc.added_mass.model == "seed")
+      os << " or by the seed's per-sphere added mass (6.8), which is not conservative for unequal spheres (use added_mass.model = \"lagrangian\")";
+    warnings.push_back(os.str());
+  }
   s["e"] = or_null(e);
   s["e_instant"] = or_null(e_inst);
   s["e_instant_gap_m"] = sc.measure.instant_gap * 2 * model.radius(0);

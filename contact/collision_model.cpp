@@ -63,10 +63,14 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
     e_dry_ = e;
   }
   delta_ss_m_ = sc.contact.delta_ss * D_;
+  // A start inside the contact zone (the reader admits it only while approaching): the zone is
+  // shortened to the initial gap, so that the ramp stores no energy at t = 0 and the contact begins.
+  const bool start_inside = has_target() && sc.has(Effect::elastic) && initial_gap() <= delta_ss_m_;
+  if (start_inside) delta_ss_m_ = initial_gap();
   instant_gap_m_ = sc.measure.instant_gap * D_;
   h_min_ = sc.lubrication.cutoff * D_;
   h_c_ = sc.lubrication.h_c * a_star_;
-  dw_floor_ = sc.added_mass.dw_floor > 0 ? sc.added_mass.dw_floor : delta_ss_m_ / a_star_;
+  dw_floor_ = sc.added_mass.dw_floor > 0 ? sc.added_mass.dw_floor : sc.contact.delta_ss * D_ / a_star_;
   drag_law_ = drag_law_from_string(sc.drag.law);
   brenner_ = sc.lubrication.model == "brenner";
   lagrangian_am_ = sc.added_mass.model == "lagrangian";
@@ -95,7 +99,31 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   }
   if (sc.has(Effect::lubrication) && brenner_) brenner_lambda(1.0);
   if (sc.has(Effect::history)) setup_history();
+  if (start_inside) {
+    // The contact begins at t = 0 with W_o and β frozen at the initial speed.
+    const double eps_max = hertz_max_indentation(m_star_, u_rel0_, E_star_, a_star_);
+    if (sc.contact.beta <= 0 && eps_max >= 1.25 * delta_ss_m_) {
+      std::ostringstream os;
+      os << "the sphere starts inside the contact zone, " << delta_ss_m_ << " m from contact, where the ramp cannot store the impact:"
+         << " the Hertz indentation at U = " << u_rel0_ << " m/s is " << eps_max << " m; start at a gap above " << 0.8 * eps_max
+         << " m or approach more slowly";
+      throw InputError(sc.path, "sphere[0].position", os.str());
+    }
+    std::vector<double> y0(size());
+    initial_state(y0);
+    freeze_contact(0.0, u_rel0_);
+    phase_ = Phase::loading;
+    record(0.0, "start inside the contact zone", y0);
+    if (initial_gap() <= instant_gap_m_) u_in_ = u_rel0_;
+  }
   arm();
+}
+
+double CollisionModel::initial_gap() const {
+  const auto& s = scene_.spheres;
+  if (target_ == Target::sphere) return s[1].position - s[0].position - a_[0] - a_[1];
+  if (target_ == Target::wall) return scene_.wall->position - s[0].position - a_[0];
+  return std::numeric_limits<double>::infinity();
 }
 
 void CollisionModel::setup_history() {

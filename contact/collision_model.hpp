@@ -109,6 +109,8 @@ class CollisionModel : public DynamicalSystem {
   double W_o() const { return W_o_; }             // first contact's frozen peak force, N
   double impact_speed() const { return U_c_; }    // U_rel at the first δ_SS crossing, m/s
   double initial_u_rel() const { return u_rel0_; }  // U1 − U2 at t = 0, m/s
+  double initial_gap() const;                        // m; infinite without a target
+  bool started_in_contact() const { return t_contact_ && *t_contact_ == 0.0; }
   double beta() const { return beta_; }
   double max_contact_force() const { return max_contact_force_; }
   /// Model choices that ran, name → value.

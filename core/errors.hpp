@@ -5,7 +5,8 @@
 
 namespace imcol {
 
-/// Bad input: names the place (file[:line] or "--set"), the key and the problem.
+/// Bad input: names the place (file[:line] or "--set"), the key and the problem, on one line
+/// (control characters in any part are written as escapes such as \n).
 class InputError : public std::runtime_error {
  public:
   InputError(std::string where, std::string key, const std::string& problem);

@@ -69,9 +69,11 @@ class Reader {
   std::optional<double> number(const std::string& key) {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;
-    if (auto v = n->value<double>(); v && n->is_number()) {
-      if (!std::isfinite(*v) || std::abs(*v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
-      return *v;
+    if (n->is_number()) {
+      // An integer beyond 2^53 is still a number: round it (toml++'s value<double>() refuses it).
+      const double v = n->is_integer() ? static_cast<double>(*n->value<int64_t>()) : *n->value<double>();
+      if (!std::isfinite(v) || std::abs(v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
+      return v;
     }
     fail(key, "must be a number");
   }
@@ -348,7 +350,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   if (const auto* t = top.table("contact")) {
     Reader r(*t, "contact", path);
     sc.contact.delta_ss = r.number("delta_ss", sc.contact.delta_ss);
-    r.in_range("delta_ss", sc.contact.delta_ss, 0.0, 1.0, true, false);
+    r.in_range("delta_ss", sc.contact.delta_ss, 0.0, 1.0, true, true);  // units of D
     sc.contact.delta_sl = r.number("delta_sl", sc.contact.delta_sl);
     r.positive("delta_sl", sc.contact.delta_sl);
     sc.contact.e_dry = r.number("e_dry", -1.0);
@@ -442,19 +444,20 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   // Geometry: the target must be ahead of the impact sphere and not touching it.
   const auto& s1 = sc.spheres[0];
   const double D = s1.diameter;
+  const double u_rel0 = s1.velocity - (sc.two_spheres() ? sc.spheres[1].velocity : 0.0);
   if (sc.two_spheres()) {
     const auto& s2 = sc.spheres[1];
     double gap = s2.position - s1.position - 0.5 * (s1.diameter + s2.diameter);
     if (gap <= 0)
       throw InputError(path, "sphere[1].position", "spheres overlap or touch (gap " + fmt(gap) + " m); the target must lie at larger z");
-    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D)
-      throw InputError(path, "sphere[1].position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m");
+    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
+      throw InputError(path, "sphere[1].position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
   } else if (sc.wall) {
     double gap = sc.wall->position - s1.position - 0.5 * D;
     if (gap <= 0)
       throw InputError(path, "wall.position", "sphere overlaps or touches the wall (gap " + fmt(gap) + " m); the wall must lie at larger z");
-    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D)
-      throw InputError(path, "wall.position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m");
+    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
+      throw InputError(path, "wall.position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
   }
   if (sc.has(Effect::elastic)) {
     bool any = sc.contact.e_dry >= 0 || s1.e_dry || (sc.two_spheres() && sc.spheres[1].e_dry) || (sc.wall && sc.wall->e_dry);

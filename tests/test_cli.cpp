@@ -6,6 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
@@ -137,4 +140,100 @@ TEST(Cli, HistoryComparesKernelsAndWritesTableAndPlotData) {
   const Result bad = run_imcol("history " + scene + " --kernels oseen --out " + out.string());
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("oseen"), std::string::npos) << bad.err;
+}
+
+namespace {
+/// Rows of a CSV file as column name → cell.
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& p) {
+  std::ifstream in(p);
+  std::vector<std::string> cols;
+  std::vector<std::map<std::string, std::string>> rows;
+  auto split = [](const std::string& line) {
+    std::vector<std::string> v;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) v.push_back(x);
+    if (!line.empty() && line.back() == ',') v.emplace_back();
+    return v;
+  };
+  std::string line;
+  if (std::getline(in, line)) cols = split(line);
+  while (std::getline(in, line)) {
+    const auto cells = split(line);
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < cols.size() && i < cells.size(); ++i) row[cols[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+}  // namespace
+
+TEST(Cli, WorkPrecisionErrorsFallAsTheToleranceTightens) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_wp";
+  fs::remove_all(out);
+  const Result r = run_imcol("work-precision " + imcol::data_dir() + "/scenes/default.toml --out " + out.string() +
+                             " --rtols 1e-4,1e-6,1e-8 --integrators cvode-dense,ida --repeat 1 --ref-rtol 1e-11 --no-plot");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = read_csv(out / "work_precision.csv");
+  ASSERT_EQ(rows.size(), 6u);
+  for (std::size_t k = 0; k < rows.size(); k += 3) {
+    for (std::size_t i = k; i < k + 3; ++i) EXPECT_EQ(rows[i].at("status"), "ok") << rows[i].at("message");
+    const double loose = std::stod(rows[k].at("err_e")), tight = std::stod(rows[k + 2].at("err_e"));
+    EXPECT_LT(tight, loose / 10) << rows[k].at("integrator");  // two decades of rtol buy at least one of error
+    EXPECT_LT(tight, 1e-5);
+    EXPECT_LT(std::stod(rows[k + 2].at("err_trajectory")), std::stod(rows[k].at("err_trajectory")));
+  }
+  std::ifstream js(out / "work_precision.json");
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_EQ(j["reference"]["rtol"].get<double>(), 1e-11);
+  EXPECT_TRUE(j["cheapest"].contains("1e-03"));
+  EXPECT_FALSE(j["cheapest"]["1e-03"].is_null());
+  // gmres without history cannot run: skipped with its reason, not an error.
+  const Result g = run_imcol("work-precision " + imcol::data_dir() + "/scenes/default.toml --out " + out.string() +
+                             " --rtols 1e-6 --integrators cvode-gmres,cvode-dense --repeat 1 --ref-rtol 1e-10 --no-plot");
+  EXPECT_EQ(g.status, 0) << g.err;
+  EXPECT_EQ(read_csv(out / "work_precision.csv").size(), 1u);
+  const Result bad = run_imcol("work-precision " + imcol::data_dir() + "/scenes/default.toml --integrators lsoda --out " + out.string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("lsoda"), std::string::npos) << bad.err;
+}
+
+TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
+  const std::string scene = imcol::data_dir() + "/scenes/gg3462.toml";
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_sweep";
+  fs::remove_all(out);
+  const Result r = run_imcol("sweep " + scene + " --vary velocity --from 0.05 --to 0.4 --points 4 --jobs 2 --no-plot --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto rows = read_csv(out / "sweep.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  double last_st = 0, last_e = -1;
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.at("status"), "ok") << row.at("message");
+    const double st = std::stod(row.at("St")), e = std::stod(row.at("e"));
+    EXPECT_GT(st, last_st);  // faster impact, larger St
+    EXPECT_GT(e, last_e);    // and a more elastic rebound
+    EXPECT_LE(e, 0.97);
+    last_st = st, last_e = e;
+  }
+  // The very viscous point needs < 70 steps between outputs, the least viscous > 150: with 100 allowed, one fails.
+  fs::remove_all(out);
+  const Result f = run_imcol("sweep " + scene + " --vary viscosity --from 0.001 --to 0.1 --points 2 --no-plot --out " + out.string() +
+                             " --set solver.max_steps=100");
+  EXPECT_EQ(f.status, 3) << f.err;
+  rows = read_csv(out / "sweep.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("status"), "failed");
+  EXPECT_NE(rows[0].at("message").find("CV_TOO_MUCH_WORK"), std::string::npos) << rows[0].at("message");
+  EXPECT_EQ(rows[1].at("status"), "ok");
+  EXPECT_FALSE(rows[1].at("e").empty());
+  std::ifstream js(out / "sweep.json");
+  const auto j = nlohmann::json::parse(js);
+  ASSERT_EQ(j["failures"].size(), 1u);
+  EXPECT_EQ(j["failures"][0]["point"].get<int>(), 0);
+  // Bad input stops the sweep before anything runs.
+  const Result bad = run_imcol("sweep " + scene + " --vary viscosity --from -1 --to 0.1 --points 3 --out " + out.string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--from"), std::string::npos) << bad.err;
+  const Result neg = run_imcol("sweep " + scene + " --vary velocity --from 0.1 --to 0.2 --points 2 --set fluid.viscosity=-1 --out " + out.string());
+  EXPECT_EQ(neg.status, 2) << neg.err;
+  EXPECT_NE(neg.err.find("fluid.viscosity"), std::string::npos) << neg.err;
 }

@@ -84,7 +84,10 @@ TEST(Scene, RejectsOverlappingSpheresAndWrongLubrication) {
   const std::string pair = test::fluid(0.01) + test::sphere("glass", 0.0127, 0.0, 0.1) + test::sphere("glass", 0.0127, 0.02, 0.0);
   EXPECT_NO_THROW(parse_scene(pair, "pair.toml"));
   expect_error(test::edit(pair, "position = 0.02", "position = 0.01"), {"sphere[1].position", "overlap"});
-  expect_error(test::edit(pair, "position = 0.02", "position = 0.0128"), {"sphere[1].position", "contact zone"});
+  // Inside the contact zone: allowed while approaching (the contact starts at t = 0), an error otherwise.
+  EXPECT_NO_THROW(parse_scene(test::edit(pair, "position = 0.02", "position = 0.0128"), "pair.toml"));
+  expect_error(test::edit(test::edit(pair, "position = 0.02", "position = 0.0128"), "velocity = 0.1", "velocity = 0.0"),
+               {"sphere[1].position", "contact zone", "not approaching"});
   expect_error(pair + "[lubrication]\nmodel = \"brenner\"\n", {"lubrication.model", "asymptotic"});
   expect_error(pair + "[wall]\nmaterial = \"glass\"\nposition = 1.0\n", {"wall", "not both"});
 }
@@ -118,4 +121,20 @@ TEST(Scene, HistorySettingsAreReadAndChecked) {
   expect_error(fx + "[history]\nmemory = 3\n", {"history.memory", "unknown key"});
   expect_error(kWall + "[history]\nkernel = \"basset\"\n", {"history.kernel", "needs the 'history' effect"});
   expect_error(kWall + "[solver]\nintegrator = \"ida\"\nlinear_solver = \"gmres\"\n", {"solver.linear_solver", "cvode integrator only"});
+}
+
+// Found by tests/test_scene_fuzz.cpp: escaped newlines in string values and quoted keys used to
+// break the one-line message; they are now written as escapes.
+TEST(Scene, MessagesStayOnOneLineWithControlCharactersInTheInput) {
+  expect_error(test::edit(kWall, "\"steel\"", "\"st\\neel\""), {"bad.toml:5", "sphere[0].material", "unknown material 'st\\neel'"});
+  expect_error(test::edit(kWall, "viscosity = 0.01", "viscosity = 0.01\n\"a\\r\\nb\\u0001\" = 1"),
+               {"bad.toml:4", "key 'fluid.a\\r\\nb\\x01'", "unknown key"});
+}
+
+// Found by tests/test_scene_fuzz.cpp: an integer beyond 2^53 was refused as "must be a number".
+TEST(Scene, LargeIntegersAreNumbers) {
+  const Scene sc = parse_scene("gravity = -9007199254740993\n" + kWall, "big.toml");
+  EXPECT_EQ(sc.gravity, -9007199254740992.0);  // the nearest double
+  const Scene fast = parse_scene(test::edit(kWall, "velocity = 0.2", "velocity = 9223372036854775807"), "big.toml");
+  EXPECT_EQ(fast.spheres[0].velocity, 9223372036854775807.0);
 }

@@ -1,0 +1,286 @@
+#include "apps/sweep.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "apps/plot.hpp"
+#include "apps/simulate.hpp"
+#include "core/errors.hpp"
+#include "core/report.hpp"
+
+namespace imcol {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A TOML float literal that reads back to the same double.
+std::string toml_float(double v) {
+  char buf[40];
+  std::string s(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+struct Quantity {
+  const char* name;
+  const char* column;  // CSV column of the varied value
+};
+
+const Quantity* quantity(const std::string& vary) {
+  static const Quantity q[] = {{"velocity", "velocity_m_s"},
+                               {"viscosity", "viscosity_Pa_s"},
+                               {"diameter", "diameter_m"},
+                               {"density", "density_kg_m3"}};
+  for (const auto& x : q)
+    if (vary == x.name) return &x;
+  return nullptr;
+}
+
+struct PointResult {
+  bool done = false, ok = false;
+  double value = NAN;
+  nlohmann::ordered_json summary;
+  std::string message;
+  std::string row;  // CSV
+};
+
+nlohmann::ordered_json or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
+
+std::string csv_cell(const nlohmann::ordered_json& j) {
+  if (j.is_null()) return "";
+  if (j.is_boolean()) return j.get<bool>() ? "1" : "0";
+  if (j.is_number()) {
+    std::ostringstream os;
+    os << std::setprecision(12) << j.get<double>();
+    return os.str();
+  }
+  return j.dump();
+}
+
+const char* kCsvHeader = "point,{},St,St_B_eq_6_2,St_initial,Re,e,e_instant,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
+
+/// One finished point's CSV row (formatted once: the file is rewritten after every point).
+std::string csv_row(std::size_t i, const PointResult& p) {
+  const auto& s = p.summary;
+  auto get = [&](const char* k) { return s.contains(k) ? csv_cell(s[k]) : std::string(); };
+  std::string msg = p.message;
+  for (char& c : msg)
+    if (c == ',' || c == '\n') c = ';';
+  std::ostringstream csv;
+  csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_eq_6_2") << "," << get("St_initial")
+      << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << get("separated") << "," << get("min_gap_m") << ","
+      << (p.ok ? csv_cell(s["solver"]["steps"]) : "") << "," << (p.ok ? csv_cell(s["solver"]["rhs_evals"]) : "") << ","
+      << get("wall_time_s") << "," << (p.ok ? "ok" : "failed") << "," << msg << "\n";
+  return csv.str();
+}
+
+std::string sweep_csv(const std::vector<PointResult>& pts, const Quantity& q) {
+  std::string header = kCsvHeader;
+  std::string out = header.replace(header.find("{}"), 2, q.column);
+  for (const auto& p : pts)
+    if (p.done) out += p.row;
+  return out;
+}
+
+/// The run ended before its collision or rebound was complete: no e because of t_end, or e = 0 while
+/// the gap was still opening.
+bool cut_by_t_end(const nlohmann::ordered_json& s) {
+  for (const auto& w : s["warnings"]) {
+    const auto text = w.get<std::string>();
+    if ((s["e"].is_null() && text.find("t_end") != std::string::npos) || text.rfind("no separation by t_end", 0) == 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary, double value) {
+  std::vector<Override> ov;
+  const std::size_t n = base.spheres.size();
+  const double t_end = base.solver.t_end;
+  if (vary == "velocity") {
+    const double v0 = base.spheres[0].velocity;
+    ov.push_back({"sphere[0].velocity", toml_float(v0 < 0 ? -value : value)});
+    // A slower approach takes longer: t_end grows with the time to cross the initial gap.
+    if (v0 != 0 && value < std::abs(v0)) ov.push_back({"solver.t_end", toml_float(t_end * std::abs(v0) / value)});
+  } else if (vary == "viscosity") {
+    ov.push_back({"fluid.viscosity", toml_float(value)});
+  } else if (vary == "density") {
+    // Every sphere's density by the same factor: the impactor's becomes `value`, ratios are kept.
+    const double s = value / base.spheres[0].density;
+    for (std::size_t k = 0; k < n; ++k) ov.push_back({"sphere[" + std::to_string(k) + "].density", toml_float(base.spheres[k].density * s)});
+  } else if (vary == "diameter") {
+    // Every sphere scaled by the same factor (the impactor's diameter becomes `value`); the initial
+    // gap keeps its size in diameters, the target (or wall) stays where it is.
+    const double s = value / base.spheres[0].diameter;
+    for (std::size_t k = 0; k < n; ++k)
+      ov.push_back({"sphere[" + std::to_string(k) + "].diameter", toml_float(base.spheres[k].diameter * s)});
+    if (base.has_target()) {
+      const double a0 = base.spheres[0].diameter / 2, x0 = base.spheres[0].position;
+      const double face = n == 2 ? base.spheres[1].position - base.spheres[1].diameter / 2 : base.wall->position;
+      const double face_new = n == 2 ? base.spheres[1].position - s * base.spheres[1].diameter / 2 : base.wall->position;
+      const double gap = face - (x0 + a0);
+      ov.push_back({"sphere[0].position", toml_float(face_new - s * (gap + a0))});
+    }
+    if (s > 1) ov.push_back({"solver.t_end", toml_float(t_end * s)});
+  } else {
+    throw InputError("--vary", vary, "unknown quantity (expected velocity, viscosity, diameter, density)");
+  }
+  return ov;
+}
+
+int sweep(const std::string& scene_path, const std::vector<Override>& overrides, const SweepOptions& opt) {
+  const Quantity* q = quantity(opt.vary);
+  if (!q) throw InputError("--vary", opt.vary, "unknown quantity (expected velocity, viscosity, diameter, density)");
+  if (!(opt.from > 0 && std::isfinite(opt.from))) throw InputError("--from", "from", "must be a positive number");
+  if (!(opt.to > 0 && std::isfinite(opt.to))) throw InputError("--to", "to", "must be a positive number");
+  if (opt.points < 1 || opt.points > 100000) throw InputError("--points", "points", "must lie in [1, 100000]");
+  if (opt.points > 1 && opt.from == opt.to) throw InputError("--to", "to", "equals --from: a sweep of several points needs a range");
+  if (opt.spacing != "log" && opt.spacing != "linear") throw InputError("--spacing", opt.spacing, "expected log or linear");
+  if (opt.jobs < 0) throw InputError("--jobs", "jobs", "must be >= 0 (0 = all cores)");
+
+  const Scene base = load_scene(scene_path, overrides);
+  if (opt.vary == "viscosity" && !base.fluid) throw InputError(scene_path, "fluid", "a viscosity sweep needs a [fluid] table");
+  const bool pair = base.two_spheres();
+
+  // Every point's scene is built and validated before anything runs: bad input stops the sweep at once.
+  std::vector<Scene> scenes;
+  std::vector<PointResult> pts(opt.points);
+  for (int i = 0; i < opt.points; ++i) {
+    const double f = opt.points == 1 ? 0.0 : static_cast<double>(i) / (opt.points - 1);
+    const double v = opt.spacing == "log" ? opt.from * std::pow(opt.to / opt.from, f) : opt.from + f * (opt.to - opt.from);
+    pts[i].value = v;
+    auto ov = overrides;
+    for (auto& o : sweep_overrides(base, opt.vary, v)) ov.push_back(o);
+    try {
+      scenes.push_back(load_scene(scene_path, ov));
+    } catch (const InputError& e) {
+      std::ostringstream os;
+      os << std::setprecision(6) << "sweep point " << i << " (" << opt.vary << " = " << v << ")";
+      throw InputError(e.where(), e.key(), os.str() + ": " + e.what());
+    }
+  }
+
+  const fs::path dir = opt.out.empty() ? fs::path("out") / base.name / ("sweep_" + opt.vary) : fs::path(opt.out);
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const int jobs = std::min(opt.points, opt.jobs > 0 ? opt.jobs : static_cast<int>(hw));
+  const bool tty = opt.progress && isatty(STDERR_FILENO);
+  std::mutex mu;
+  std::atomic<int> next{0};
+  int finished = 0, failed = 0;
+  double last_write = -1;
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+
+  auto worker = [&] {
+    for (int i = next++; i < opt.points; i = next++) {
+      PointResult r;
+      r.value = pts[i].value;
+      try {
+        // A point whose collision or rebound window did not fit in t_end is rerun with t_end doubled (twice at most).
+        Scene sc = scenes[i];
+        for (int attempt = 0;; ++attempt) {
+          r.summary = simulate(sc).summary;
+          if (attempt == 2 || !cut_by_t_end(r.summary)) break;
+          sc.solver.t_end *= 2;
+        }
+        r.ok = true;
+        if (sc.solver.t_end != scenes[i].solver.t_end) r.message = "t_end extended to " + std::to_string(sc.solver.t_end) + " s";
+        if (r.summary["e"].is_null() && !r.summary["warnings"].empty()) r.message = r.summary["warnings"][0].get<std::string>();
+      } catch (const std::exception& e) {
+        r.message = e.what();  // a solver failure (or anything else) ends this point only
+      }
+      r.done = true;
+      r.row = csv_row(i, r);
+      std::lock_guard lock(mu);
+      pts[i] = std::move(r);
+      ++finished;
+      if (!pts[i].ok) ++failed;
+      // Finished points survive what follows: the file is rewritten at most every 0.25 s, and at the end.
+      if (finished == opt.points || elapsed() - last_write >= 0.25) {
+        write_file_atomic(dir / "sweep.csv", sweep_csv(pts, *q));
+        last_write = elapsed();
+      }
+      if (tty) {
+        const double t = elapsed();
+        std::cerr << "\r  sweep " << opt.vary << ": " << finished << "/" << opt.points << " done, " << failed << " failed, "
+                  << std::fixed << std::setprecision(1) << t << " s, ~" << t / finished * (opt.points - finished) << " s left   "
+                  << std::flush;
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
+  for (auto& t : threads) t.join();
+  const double wall = elapsed();
+  if (tty) std::cerr << "\n";
+
+  // Table, failures, throughput.
+  std::cout << "scene " << base.name << ": sweep of " << opt.vary << " from " << opt.from << " to " << opt.to << " (" << opt.points
+            << " points, " << opt.spacing << " spacing, " << jobs << " jobs)\n";
+  std::cout << std::setw(14) << q->column << std::setw(10) << "St" << std::setw(9) << "Re" << std::setw(9) << "e" << std::setw(9)
+            << "steps" << std::setw(10) << "ms" << "  note\n";
+  nlohmann::ordered_json failures = nlohmann::ordered_json::array();
+  double cpu = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const auto& p = pts[i];
+    const auto& s = p.summary;
+    auto ms = [](double sec) {
+      std::ostringstream os;
+      os << std::fixed << std::setprecision(3) << 1e3 * sec;
+      return os.str();
+    };
+    auto num = [&](const char* k, int prec) {
+      if (!p.ok || !s.contains(k) || s[k].is_null()) return std::string("-");
+      std::ostringstream os;
+      os << std::fixed << std::setprecision(prec) << s[k].get<double>();
+      return os.str();
+    };
+    std::cout << std::setw(14) << std::setprecision(5) << std::defaultfloat << p.value << std::setw(10) << num("St", 2) << std::setw(9)
+              << num("Re", 1) << std::setw(9) << num("e", 4) << std::setw(9)
+              << (p.ok ? std::to_string(s["solver"]["steps"].get<long>()) : "-") << std::setw(10)
+              << (p.ok ? ms(s["wall_time_s"].get<double>()) : "-") << "  " << (p.ok ? p.message : "FAILED: " + p.message) << "\n";
+    if (p.ok) cpu += s["wall_time_s"].get<double>();
+    if (!p.ok) failures.push_back({{"point", i}, {"value", p.value}, {"reason", p.message}});
+  }
+  const int ok = opt.points - failed;
+  std::cout << ok << " of " << opt.points << " points ran in " << std::fixed << std::setprecision(2) << wall << " s on " << jobs
+            << " jobs: " << std::setprecision(1) << ok / wall << " collisions per second (" << std::setprecision(3)
+            << (ok ? 1e3 * cpu / ok : NAN) << " ms integration per point)\n";
+  for (const auto& f : failures)
+    std::cout << "failed: point " << f["point"] << " (" << opt.vary << " = " << f["value"] << "): " << f["reason"].get<std::string>() << "\n";
+
+  nlohmann::ordered_json j;
+  j["scene"] = base.name;
+  j["configuration"] = pair ? "sphere-sphere" : (base.wall ? "sphere-wall" : "free sphere");
+  j["vary"] = opt.vary;
+  j["column"] = q->column;
+  j["from"] = opt.from;
+  j["to"] = opt.to;
+  j["points"] = opt.points;
+  j["spacing"] = opt.spacing;
+  j["jobs"] = jobs;
+  j["wall_time_s"] = wall;
+  j["collisions_per_second"] = or_null(ok / wall);
+  j["failures"] = failures;
+  j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : pts[0].summary["St_convention"];
+  if (!pts.empty() && pts[0].ok) j["effects"] = pts[0].summary["effects"];
+  write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
+  std::cout << "wrote " << (dir / "sweep.csv").string() << " and " << (dir / "sweep.json").string() << "\n";
+  if (opt.plot) run_plot_script("plot_sweep.py", dir, "sweep.png");
+  return failed ? 3 : 0;
+}
+
+}  // namespace imcol

@@ -1,0 +1,29 @@
+#pragma once
+// `imcol sweep`: e against St over a range of one scene quantity, the points run in parallel.
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace imcol {
+
+struct SweepOptions {
+  std::string vary;          // velocity | viscosity | diameter | density
+  double from = 0, to = 0;   // SI units of the varied quantity
+  int points = 0;
+  std::string spacing = "log";  // log | linear
+  int jobs = 0;              // 0 = all cores
+  std::string out;           // default out/<scene>/sweep_<vary>
+  bool progress = true;      // on a terminal only
+  bool plot = true;
+};
+
+/// The scene keys one sweep point sets (exposed for tests): `value` of the varied quantity on `base`.
+std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary, double value);
+
+/// Runs the sweep; rewrites DIR/sweep.csv as points finish (at most every 0.25 s, and at the end), so
+/// that finished points survive a later failure or an interrupt; then DIR/sweep.json and DIR/sweep.png.
+/// Returns 0, or 3 if any point failed.
+int sweep(const std::string& scene_path, const std::vector<Override>& overrides, const SweepOptions& opt);
+
+}  // namespace imcol

@@ -1,0 +1,334 @@
+#include "apps/work_precision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "apps/plot.hpp"
+#include "apps/simulate.hpp"
+#include "contact/collision_model.hpp"
+#include "core/errors.hpp"
+#include "core/report.hpp"
+
+namespace imcol {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// One integrator × evaluator combination and its ladder.
+struct Config {
+  std::string integrator;  // cvode-dense | cvode-gmres | ida
+  std::string evaluator;   // none | soe | direct
+  std::string label() const { return evaluator == "none" ? integrator : integrator + " / " + evaluator; }
+};
+
+struct Point {
+  Config cfg;
+  double rtol = NAN, direct_step = NAN, history_tol = NAN;
+  bool ok = false;
+  std::string message;
+  double e = NAN, err_e = NAN, err_traj = NAN, ms = NAN;
+  long steps = 0, rhs = 0, lin_iters = 0;
+};
+
+/// Output samples (events excluded) keyed by time: the gap (or z1) over D and the velocities.
+struct Samples {
+  std::map<double, std::vector<double>> at;
+};
+
+Samples samples(const RunResult& r, double D) {
+  auto col = [&](const std::string& name) {
+    for (std::size_t i = 0; i < r.columns.size(); ++i)
+      if (r.columns[i] == name) return static_cast<long>(i);
+    return -1L;
+  };
+  const long ig = col("gap") >= 0 ? col("gap") : col("z1"), iu1 = col("u1"), iu2 = col("u2"), ie = col("event");
+  Samples s;
+  for (const auto& row : r.rows) {
+    if (row[ie] != 0.0) continue;
+    std::vector<double> v = {row[ig] / D, row[iu1]};
+    if (iu2 >= 0) v.push_back(row[iu2]);
+    s.at[row[0]] = v;
+  }
+  return s;
+}
+
+/// max over common output times of max(|Δgap|/D, |Δu|/u_scale); NaN if no common times.
+double trajectory_error(const Samples& run, const Samples& ref, double u_scale) {
+  double err = 0;
+  std::size_t common = 0;
+  for (const auto& [t, v] : run.at) {
+    auto it = ref.at.lower_bound(t - 1e-12 * std::max(1.0, std::abs(t)));
+    if (it == ref.at.end() || std::abs(it->first - t) > 1e-12 * std::max(1.0, std::abs(t))) continue;
+    ++common;
+    err = std::max(err, std::abs(v[0] - it->second[0]));
+    for (std::size_t k = 1; k < v.size(); ++k) err = std::max(err, std::abs(v[k] - it->second[k]) / u_scale);
+  }
+  return common ? err : NAN;
+}
+
+double metric_of(const RunResult& r, bool collision) {
+  const auto& s = r.summary;
+  if (collision) return s["e"].is_null() ? NAN : s["e"].get<double>();
+  return s.value("u1_final_m_s", NAN);
+}
+
+std::string sci(double v, int p = 2) {
+  if (std::isnan(v)) return "-";
+  std::ostringstream os;
+  os << std::scientific << std::setprecision(p) << v;
+  return os.str();
+}
+
+/// Least-squares slope of log10(y) against log10(x).
+std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>& xy) {
+  if (xy.size() < 3) return std::nullopt;
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (auto [x, y] : xy) {
+    const double lx = std::log10(x), ly = std::log10(y);
+    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+  }
+  const double n = static_cast<double>(xy.size()), d = n * sxx - sx * sx;
+  if (!(std::abs(d) > 0)) return std::nullopt;
+  return (n * sxy - sx * sy) / d;
+}
+
+}  // namespace
+
+int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
+  Scene base = load_scene(scene_path, overrides);
+  if (opt.repeat < 1) throw InputError("--repeat", "repeat", "must be >= 1");
+  if (opt.rtols.empty()) throw InputError("--rtols", "rtols", "give at least one tolerance");
+  for (double r : opt.rtols)
+    if (!(r >= 1e-14 && r < 1)) throw InputError("--rtols", "rtols", "each tolerance must lie in [1e-14, 1)");
+  for (double h : opt.direct_steps)
+    if (!(h > 0 && std::isfinite(h))) throw InputError("--direct-steps", "direct_steps", "each multiple must be positive");
+  if (opt.add_history) {
+    if (!base.fluid) throw InputError(scene_path, "fluid", "--add-history needs a [fluid] table");
+    base.effects.insert(Effect::history);
+  }
+  const bool history = base.has(Effect::history);
+  std::vector<std::string> evaluators = opt.evaluators;
+  if (evaluators.empty()) evaluators = history ? std::vector<std::string>{"soe", "direct"} : std::vector<std::string>{"none"};
+  for (const auto& e : evaluators) {
+    if (e != "soe" && e != "direct" && e != "none") throw InputError("--evaluators", e, "unknown evaluator (expected soe, direct)");
+    if (e != "none" && !history)
+      throw InputError("--evaluators", e, "the scene has no history effect (list it in `effects`, or pass --add-history)");
+  }
+  for (const auto& i : opt.integrators)
+    if (i != "cvode-dense" && i != "cvode-gmres" && i != "ida")
+      throw InputError("--integrators", i, "unknown integrator (expected cvode-dense, cvode-gmres, ida)");
+  const bool collision = base.has_target();
+  const double D = base.spheres[0].diameter;
+
+  // Configurations; a combination the solvers cannot do is skipped with its reason.
+  std::vector<Config> configs;
+  std::vector<std::string> skipped;
+  for (const auto& ev : evaluators)
+    for (const auto& in : opt.integrators) {
+      if (in == "cvode-gmres" && ev != "soe") {
+        skipped.push_back(in + (ev == "none" ? "" : " / " + ev) +
+                          ": gmres needs the memory modes of the soe history evaluator (its preconditioner)");
+        continue;
+      }
+      configs.push_back({in, ev});
+    }
+
+  auto scene_for = [&](const Config& c, double rtol, double direct_step, double history_tol) {
+    Scene sc = base;
+    sc.solver.rtol = rtol;
+    sc.solver.atol = rtol;
+    sc.solver.integrator = c.integrator == "ida" ? "ida" : "cvode";
+    sc.solver.linear_solver = c.integrator == "cvode-gmres" ? "gmres" : "dense";
+    if (c.evaluator != "none") {
+      sc.history.evaluator = c.evaluator;
+      if (c.evaluator == "soe") {
+        sc.history.modes = 0;
+        sc.history.tolerance = history_tol;
+      } else {
+        sc.history.direct_step = direct_step;
+      }
+    }
+    return sc;
+  };
+  // The soe fit tolerance follows rtol (within what the fit supports), so that one knob sets the accuracy.
+  auto history_tol_for = [](double rtol) { return std::clamp(rtol, 1e-10, 1e-3); };
+
+  // Reference: the tightest settings.
+  const Config ref_cfg{"cvode-dense", history ? "soe" : "none"};
+  std::cerr << "reference run (cvode dense, rtol = atol = " << opt.ref_rtol << ")\n";
+  const RunResult ref = simulate(scene_for(ref_cfg, opt.ref_rtol, NAN, opt.ref_history_tol));
+  const double e_ref = metric_of(ref, collision);
+  if (std::isnan(e_ref))
+    throw SolverError("the reference run has no " + std::string(collision ? "e (no collision by t_end?)" : "final velocity"));
+  const Samples ref_s = samples(ref, D);
+  double u_scale = 0;
+  for (const auto& [t, v] : ref_s.at)
+    for (std::size_t k = 1; k < v.size(); ++k) u_scale = std::max(u_scale, std::abs(v[k]));
+  if (!(u_scale > 0)) u_scale = 1;
+
+  // The direct evaluator's accuracy is set by its step: its ladder varies the step at a tight rtol.
+  double h_direct = base.history.direct_step;
+  if (std::count(evaluators.begin(), evaluators.end(), "direct") && !(h_direct > 0)) {
+    Scene probe = base;  // the model's automatic step, read off a model that is built but not run
+    probe.history.evaluator = "direct";
+    for (const auto& [k, v] : contact::CollisionModel(probe).choices())
+      if (k == "history.direct_step_s") h_direct = std::stod(v);
+  }
+
+  std::vector<Point> pts;
+  for (const auto& c : configs) {
+    std::vector<std::pair<double, double>> ladder;  // (rtol, direct step)
+    if (c.evaluator == "direct")
+      for (double m : opt.direct_steps) ladder.push_back({opt.direct_rtol, m * h_direct});
+    else
+      for (double r : opt.rtols) ladder.push_back({r, NAN});
+    for (auto [rtol, h] : ladder) {
+      Point p;
+      p.cfg = c;
+      p.rtol = rtol;
+      p.direct_step = h;
+      p.history_tol = c.evaluator == "soe" ? history_tol_for(rtol) : NAN;
+      std::cerr << "  " << c.label() << "  rtol " << sci(rtol, 0) << (std::isnan(h) ? "" : "  direct_step " + sci(h)) << "\n";
+      try {
+        const Scene sc = scene_for(c, rtol, h, p.history_tol);
+        std::vector<double> times;
+        RunResult r;
+        for (int k = 0; k < opt.repeat; ++k) {
+          r = simulate(sc);
+          times.push_back(r.summary["wall_time_s"].get<double>());
+        }
+        std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+        const auto& sol = r.summary["solver"];
+        p.ok = true;
+        p.e = metric_of(r, collision);
+        p.err_e = std::abs(p.e - e_ref);
+        p.err_traj = trajectory_error(samples(r, D), ref_s, u_scale);
+        p.ms = 1e3 * times[times.size() / 2];
+        p.steps = sol["steps"].get<long>();
+        p.rhs = sol["rhs_evals"].get<long>();
+        p.lin_iters = sol.value("lin_iters", 0L);
+        if (std::isnan(p.e)) p.message = collision ? "no e (no collision by t_end)" : "no final velocity";
+      } catch (const SolverError& ex) {
+        p.message = std::string("solver failure: ") + ex.what();
+      }
+      pts.push_back(p);
+    }
+  }
+
+  // Fits exclude errors within 10x of the reference's own uncertainty, estimated as the error of the
+  // same settings one decade looser than the reference (the tightest cvode-dense rung).
+  double ref_unc = 0;
+  for (const auto& p : pts)
+    if (p.ok && p.cfg.integrator == "cvode-dense" && p.cfg.evaluator == ref_cfg.evaluator && p.rtol == *std::min_element(opt.rtols.begin(), opt.rtols.end()))
+      ref_unc = p.err_e;
+  const double floor = std::max(10 * ref_unc, 1e-15);
+
+  // Table.
+  const std::string metric = collision ? "e" : "u_end";
+  std::cout << "scene " << base.name << ": work-precision, median of " << opt.repeat << " runs per setting (atol = rtol"
+            << (history ? "; soe fit tolerance = rtol within [1e-10, 1e-3]" : "") << ")\n";
+  std::cout << "reference: cvode dense, rtol = atol = " << opt.ref_rtol
+            << (history ? ", soe fit tolerance " + sci(opt.ref_history_tol, 0) : std::string()) << ": " << metric << " = "
+            << std::setprecision(12) << e_ref << "; its uncertainty ~ " << sci(ref_unc) << "\n";
+  std::cout << "trajectory error: max over output times of |d gap|/D and |d u|/" << sci(u_scale, 3) << " m/s\n";
+  for (const auto& s : skipped) std::cout << "skipped " << s << "\n";
+  std::cout << std::left << std::setw(22) << "integrator / history" << std::right << std::setw(9) << "rtol" << std::setw(11)
+            << "direct dt" << std::setw(16) << metric << std::setw(10) << "err " + metric << std::setw(10) << "err traj"
+            << std::setw(11) << "median ms" << std::setw(8) << "steps" << std::setw(8) << "rhs" << "\n";
+  for (const auto& p : pts) {
+    std::cout << std::left << std::setw(22) << p.cfg.label() << std::right << std::setw(9) << sci(p.rtol, 0) << std::setw(11)
+              << sci(p.direct_step, 1);
+    if (p.ok)
+      std::cout << std::setw(16) << std::fixed << std::setprecision(11) << p.e << std::setw(10) << sci(p.err_e, 1) << std::setw(10)
+                << sci(p.err_traj, 1) << std::setw(11) << std::setprecision(3) << p.ms << std::setw(8) << p.steps << std::setw(8)
+                << p.rhs << "\n";
+    else
+      std::cout << "  " << p.message << "\n";
+  }
+
+  // Observed orders and the cheapest settings.
+  nlohmann::ordered_json orders = nlohmann::ordered_json::object();
+  std::cout << "observed order (fits over errors above " << sci(floor, 0) << "): err ~ rtol^a (tolerance proportionality), err ~ steps^-p\n";
+  for (const auto& c : configs) {
+    std::vector<std::pair<double, double>> by_tol, by_steps;
+    for (const auto& p : pts)
+      if (p.cfg.label() == c.label() && p.ok && p.err_e > floor) {
+        by_tol.push_back({c.evaluator == "direct" ? p.direct_step : p.rtol, p.err_e});
+        by_steps.push_back({static_cast<double>(p.steps), p.err_e});
+      }
+    const auto a = loglog_slope(by_tol), q = loglog_slope(by_steps);
+    const std::string x = c.evaluator == "direct" ? "direct_step" : "rtol";
+    std::cout << "  " << std::left << std::setw(22) << c.label() << std::right << " err ~ " << x << "^"
+              << (a ? std::to_string(*a).substr(0, 5) : std::string("n/a")) << "   p = " << (q ? std::to_string(-*q).substr(0, 5) : std::string("n/a"))
+              << "   (" << by_tol.size() << " points)\n";
+    orders[c.label()] = {{"vs", x}, {"exponent", a ? nlohmann::ordered_json(*a) : nullptr},
+                         {"order_in_steps", q ? nlohmann::ordered_json(-*q) : nullptr}, {"points", by_tol.size()}};
+  }
+  nlohmann::ordered_json cheapest = nlohmann::ordered_json::object();
+  std::cout << "cheapest setting that reaches an error in " << metric << " (and keeps it at every tighter rung):\n";
+  for (double target : {1e-3, 1e-6, 1e-9}) {
+    const Point* best = nullptr;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      bool good = pts[i].ok && pts[i].err_e <= target;
+      for (std::size_t j = i + 1; good && j < pts.size() && pts[j].cfg.label() == pts[i].cfg.label(); ++j)
+        good = pts[j].ok && pts[j].err_e <= target;
+      if (good && (!best || pts[i].ms < best->ms)) best = &pts[i];
+    }
+    std::cout << "  " << sci(target, 0) << ": ";
+    if (best) {
+      std::cout << best->cfg.label() << ", rtol " << sci(best->rtol, 0)
+                << (std::isnan(best->direct_step) ? "" : ", direct_step " + sci(best->direct_step)) << " (" << std::fixed
+                << std::setprecision(3) << best->ms << " ms, error " << sci(best->err_e, 1) << ")\n";
+      cheapest[sci(target, 0)] = {{"config", best->cfg.label()}, {"rtol", best->rtol},
+                                  {"direct_step_s", std::isnan(best->direct_step) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(best->direct_step)},
+                                  {"median_ms", best->ms}, {"error", best->err_e}};
+    } else {
+      std::cout << "not reached\n";
+      cheapest[sci(target, 0)] = nullptr;
+    }
+  }
+
+  // Files.
+  std::ostringstream csv;
+  csv << std::setprecision(12);
+  csv << "integrator,evaluator,rtol,atol,direct_step_s,history_tolerance,status," << metric << ",err_" << metric
+      << ",err_trajectory,median_wall_ms,steps,rhs_evals,lin_iters,message\n";
+  auto cell = [](double v) { return std::isnan(v) ? std::string() : (std::ostringstream() << std::setprecision(12) << v).str(); };
+  for (const auto& p : pts) {
+    std::string msg = p.message;
+    std::replace(msg.begin(), msg.end(), ',', ';');
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    csv << p.cfg.integrator << "," << p.cfg.evaluator << "," << cell(p.rtol) << "," << cell(p.rtol) << "," << cell(p.direct_step)
+        << "," << cell(p.history_tol) << "," << (p.ok ? "ok" : "failed") << "," << cell(p.e) << "," << cell(p.err_e) << ","
+        << cell(p.err_traj) << "," << cell(p.ms) << "," << p.steps << "," << p.rhs << "," << p.lin_iters << "," << msg << "\n";
+  }
+  nlohmann::ordered_json j;
+  j["scene"] = base.name;
+  j["metric"] = metric;
+  j["reference"] = {{"integrator", "cvode-dense"}, {"evaluator", ref_cfg.evaluator}, {"rtol", opt.ref_rtol}, {"atol", opt.ref_rtol},
+                    {"history_tolerance", history ? nlohmann::ordered_json(opt.ref_history_tol) : nullptr},
+                    {"value", e_ref}, {"uncertainty", ref_unc}, {"wall_time_s", ref.summary["wall_time_s"]},
+                    {"solver", ref.summary["solver"]}};
+  j["trajectory_velocity_scale_m_s"] = u_scale;
+  j["repeat"] = opt.repeat;
+  j["skipped"] = skipped;
+  j["observed_order"] = orders;
+  j["cheapest"] = cheapest;
+  j["effects"] = ref.summary["effects"];
+  const fs::path dir = opt.out.empty() ? fs::path("out") / base.name / "work_precision" : fs::path(opt.out);
+  write_file_atomic(dir / "work_precision.csv", csv.str());
+  write_file_atomic(dir / "work_precision.json", j.dump(2) + "\n");
+  std::cout << "wrote " << (dir / "work_precision.csv").string() << " and " << (dir / "work_precision.json").string() << "\n";
+  if (opt.plot) run_plot_script("plot_work_precision.py", dir, "work_precision.png");
+  return 0;
+}
+
+}  // namespace imcol

@@ -1,0 +1,54 @@
+#!/usr/bin/python3
+"""Plot e against St for `imcol sweep`, with the seed's Table 6.1 overlaid for a sphere pair.
+
+Usage: /usr/bin/python3 scripts/plot_sweep.py DIR   (reads DIR/sweep.csv and DIR/sweep.json, writes DIR/sweep.png)
+"""
+import csv
+import json
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li_2010_table_6_1.csv"
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
+    out = Path(sys.argv[1])
+    meta = json.loads((out / "sweep.json").read_text())
+    rows = [r for r in read_csv(out / "sweep.csv") if r["status"] == "ok" and r["St"] and r["e"]]
+    rows.sort(key=lambda r: float(r["St"]))
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    ax.semilogx([float(r["St"]) for r in rows], [float(r["e"]) for r in rows], "o-", ms=4,
+                label="imcol: %s swept (%s)" % (meta["vary"], ", ".join(meta.get("effects", []))))
+    if meta["configuration"] == "sphere-sphere" and SEED_TABLE.exists():
+        seed = read_csv(SEED_TABLE)
+        ax.semilogx([float(r["St_B"]) for r in seed], [float(r["e"]) for r in seed], "s", color="k", mfc="none", ms=7,
+                    label="Li (2010) Table 6.1, simulated (St_B)")
+        for r in seed:
+            ax.annotate(r["pair"], (float(r["St_B"]), float(r["e"])), fontsize=7, xytext=(4, -10), textcoords="offset points")
+    ax.set_xlabel("St (%s)" % (meta.get("St_convention") or "see summary"), fontsize=8)
+    ax.set_ylabel("e")
+    ax.set_ylim(-0.02, 1.02)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
+    n_fail = len(meta["failures"])
+    ax.set_title("%s: e vs St, %d points%s" % (meta["scene"], meta["points"], ", %d failed" % n_fail if n_fail else ""))
+    fig.tight_layout()
+    fig.savefig(out / "sweep.png", dpi=120)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,140 @@
+// The hard-case suite (data/scenes/hard/): stiff contacts, light and heavy spheres, St ~ 0.1, a start
+// inside the contact zone, unequal spheres, Re = 1000, release under gravity. Each scene must finish
+// with finite results and e in [0, e_dry], CVODE and IDA must agree, and e must converge as rtol
+// tightens; very loose and very tight tolerances must end cleanly.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "apps/simulate.hpp"
+#include "core/errors.hpp"
+#include "core/materials.hpp"
+#include "core/scene.hpp"
+
+namespace fs = std::filesystem;
+using namespace imcol;
+
+namespace {
+
+std::vector<std::string> hard_scenes() {
+  std::vector<std::string> names;
+  for (const auto& f : fs::directory_iterator(data_dir() + "/scenes/hard"))
+    if (f.path().extension() == ".toml") names.push_back(f.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string path_of(const std::string& name) { return data_dir() + "/scenes/hard/" + name + ".toml"; }
+
+struct Outcome {
+  RunResult run;
+  double e = NAN;
+  bool finite = true;  // every trajectory value
+  bool warned_energy = false;
+};
+
+Outcome run(const std::string& name, const std::string& integrator, double rtol) {
+  std::ostringstream r;
+  r << rtol;
+  const Scene sc = load_scene(path_of(name), {{"solver.integrator", "\"" + integrator + "\""}, {"solver.rtol", r.str()}, {"solver.atol", r.str()}});
+  Outcome o{simulate(sc)};
+  const auto& s = o.run.summary;
+  if (!s["e"].is_null()) o.e = s["e"].get<double>();
+  for (const auto& row : o.run.rows)
+    for (double v : row) o.finite = o.finite && std::isfinite(v);
+  for (const auto& w : s["warnings"]) o.warned_energy = o.warned_energy || w.get<std::string>().find("exceeds the dry restitution") != std::string::npos;
+  return o;
+}
+
+double e_dry(const Outcome& o) { return o.run.summary["contact"]["e_dry"].get<double>(); }
+
+class HardCase : public ::testing::TestWithParam<std::string> {};
+
+}  // namespace
+
+TEST(HardCases, SuiteIsPresent) { EXPECT_GE(hard_scenes().size(), 12u); }
+
+TEST_P(HardCase, FiniteBoundedAgreeingAndConverging) {
+  const std::string name = GetParam();
+  std::vector<double> rtols = {1e-6, 1e-8, 1e-10, 1e-12};
+  std::vector<Outcome> cv;
+  for (double r : rtols) cv.push_back(run(name, "cvode", r));
+  const Outcome ida = run(name, "ida", 1e-10);
+  for (std::size_t k = 0; k < cv.size(); ++k) {
+    const auto& o = cv[k];
+    SCOPED_TRACE("cvode rtol " + std::to_string(rtols[k]));
+    EXPECT_TRUE(o.finite);
+    ASSERT_TRUE(std::isfinite(o.e)) << o.run.summary["warnings"].dump();
+    EXPECT_GE(o.e, 0.0);
+    EXPECT_LE(o.e, e_dry(o));
+    EXPECT_FALSE(o.warned_energy);
+  }
+  EXPECT_TRUE(ida.finite);
+  ASSERT_TRUE(std::isfinite(ida.e));
+  EXPECT_LE(ida.e, e_dry(ida));
+  // The integrators agree, and e converges: four decades of rtol buy at least two of error.
+  const double e_ref = cv.back().e;
+  EXPECT_NEAR(ida.e, cv[2].e, 1e-6);
+  const double err6 = std::abs(cv[0].e - e_ref), err10 = std::abs(cv[2].e - e_ref);
+  EXPECT_LE(err10, 1e-6);
+  if (err6 > 1e-8) {
+    EXPECT_LE(err10, err6 / 100) << "err(1e-6) = " << err6 << ", err(1e-10) = " << err10;
+  }
+  RecordProperty("e", std::to_string(e_ref));
+  RecordProperty("ida_minus_cvode", std::to_string(ida.e - cv[2].e));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, HardCase, ::testing::ValuesIn(hard_scenes()),
+                         [](const auto& info) {
+                           std::string n = info.param;
+                           std::replace_if(n.begin(), n.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+                           return n;
+                         });
+
+TEST(HardCases, ExpectedPhysics) {
+  // St ~ 0.1: the sphere stops in lubrication, never touches, e = 0.
+  const Outcome v = run("viscous_st01", "cvode", 1e-8);
+  EXPECT_EQ(v.e, 0.0);
+  EXPECT_EQ(v.run.summary["contacts"].get<int>(), 0);
+  EXPECT_GT(v.run.summary["min_gap_m"].get<double>(), 0.0);
+  EXPECT_NEAR(v.run.summary["St_initial"].get<double>(), 0.11, 0.01);
+  // Near-dry: e within 1e-3 of e_dry.
+  const Outcome h = run("heavy_sphere", "cvode", 1e-10);
+  EXPECT_NEAR(h.e, e_dry(h), 1e-3);
+  // A start inside the contact zone says so.
+  const Outcome s = run("start_inside_contact_zone", "cvode", 1e-8);
+  EXPECT_NE(s.run.summary["warnings"].dump().find("started inside the contact zone"), std::string::npos);
+  // Re ~ 1000 with Schiller-Naumann drag.
+  EXPECT_NEAR(run("re1000_schiller_naumann", "cvode", 1e-8).run.summary["Re"].get<double>(), 1000, 50);
+}
+
+TEST(HardCases, TooFastForTheGapLeftIsAClearInputError) {
+  // At 0.3 m/s the Hertz indentation (7 um) cannot be stored in the 1.27 um left to contact.
+  try {
+    simulate(load_scene(path_of("start_gap_1e-4D"), {{"sphere[0].velocity", "0.3"}}));
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "sphere[0].position");
+    EXPECT_NE(std::string(e.what()).find("Hertz indentation"), std::string::npos) << e.what();
+  }
+}
+
+TEST(HardCases, LooseAndTightTolerancesEndCleanly) {
+  // rtol 1e-3 may be inaccurate, but never silently unphysical: finite, e >= 0, and e <= e_dry unless the
+  // run warns that energy was created. rtol 1e-13 must agree with 1e-12.
+  for (const auto& name : hard_scenes()) {
+    SCOPED_TRACE(name);
+    const Outcome loose = run(name, "cvode", 1e-3);
+    EXPECT_TRUE(loose.finite);
+    ASSERT_TRUE(std::isfinite(loose.e));
+    EXPECT_GE(loose.e, 0.0);
+    EXPECT_TRUE(loose.e <= e_dry(loose) || loose.warned_energy) << loose.e;
+    const Outcome tight = run(name, "cvode", 1e-13), ref = run(name, "cvode", 1e-12);
+    EXPECT_TRUE(tight.finite);
+    EXPECT_NEAR(tight.e, ref.e, 1e-8);
+  }
+}
