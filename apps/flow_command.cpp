@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "apps/plot.hpp"
 #include "contact/formulas.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
@@ -274,10 +275,8 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
             << j["ms_per_step"].get<double>() << " ms/step)\n";
   std::cout << "wrote " << (dir / "forces.csv").string() << ", " << (dir / "summary.json").string() << ", snapshots\n";
   if (opt.plot) {
-    const fs::path script = fs::path(IMCOL_DATA_DIR).parent_path() / "scripts" / "plot_flow.py";
-    const std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + dir.string() + "'";
     std::cout.flush();
-    if (std::system(cmd.c_str()) != 0) std::cerr << "imcol: warning: plotting failed (" << cmd << ")\n";
+    run_plot_script("plot_flow.py", dir, "forces.png");  // also snapshot_NN.png
   }
   return 0;
 }

@@ -108,7 +108,6 @@ def main() -> int:
     ax.legend()
     fig.tight_layout()
     save(fig, out / "forces.png")
-    print(f"wrote {out / 'forces.png'} and {len(list(out.glob('snapshot_*.png')))} snapshot images")
     return 0
 
 
