@@ -101,24 +101,63 @@ TEST(FlowDrag, ImpulsivelyStartedSphereFollowsStokesPlusBasset) {
 }
 
 TEST(FlowDrag, ImpulsiveStartImpulseIsAddedMassPlusInternalFluid) {
-  // Re = 1000, first 10 steps: the impulse ∫F dt of a stream switched on around a fixed sphere is the
-  // potential-flow impulse (½ρV added mass + ρV for the fluid inside, which the IB forces stop) plus a small
-  // Stokes + Basset part 6πμaU (T + 2a√(T/(πν))). Converges at first order with h (IB thickening).
-  double ratio[2];
+  // Re = 1000, first 10 steps of a stream switched on around a fixed sphere. The ring forces stop the fluid inside
+  // and push the fluid around it: their impulse is the potential-flow 1.5ρVU (ρV for the fluid inside, ½ρV added
+  // mass) plus a small Stokes + Basset part 6πμaU (T + 2a√(T/(πν))). The hydrodynamic impulse (ring forces + the
+  // fluid inside going from U to 0 on step 1, solver.hpp) is ½ρVU + viscous. Both converge at first order with h:
+  // the regularised delta thickens the body, which raises its volume-like terms most (the added-mass estimate
+  // carries three times the relative volume error of the ring impulse).
+  double ring[2], hydro[2];
   int c = 0;
   for (int cpd : {16, 32}) {
     const double dt = 0.001, nu = 1e-3, T = 0.01, a = 0.5;
     Solver s(stream_settings(1.0 / nu, cpd, 3, 1.5, -1.5, 1.5, dt, 0.5), {{a, 0.0, 0.0}});
-    double impulse = 0;
-    for (int n = 0; n < 10; ++n) impulse += s.step({{a, 0.0, 0.0}}).force[0] * dt;
+    double impulse = 0, internal = 0;
+    for (int n = 0; n < 10; ++n) {
+      const StepInfo info = s.step({{a, 0.0, 0.0}});
+      impulse += info.force[0] * dt;
+      internal += info.internal[0] * dt;
+    }
     const double viscous = 6 * M_PI * nu * a * (T + 2 * a * std::sqrt(T / (M_PI * nu)));
     const double V = 4.0 / 3.0 * M_PI * a * a * a;
-    ratio[c] = (impulse - viscous) / (1.5 * V);
-    std::printf("%d cells/D: impulse %.4f, viscous part %.4f, (impulse - viscous)/(1.5 rho V U) = %.4f\n", cpd, impulse, viscous, ratio[c]);
+    ring[c] = (impulse - internal - viscous) / (1.5 * V);
+    hydro[c] = (impulse - viscous) / (0.5 * V);
+    std::printf("%d cells/D: impulse %.4f (fluid inside %.4f), viscous part %.4f; ring impulse/(1.5 rho V U) = %.4f, "
+                "(impulse - viscous)/(0.5 rho V U) = %.4f\n", cpd, impulse, internal, viscous, ring[c], hydro[c]);
     ++c;
   }
-  EXPECT_LT(std::abs(ratio[1] - 1), 0.2);
-  EXPECT_LT(std::abs(ratio[1] - 1), 0.6 * std::abs(ratio[0] - 1));
+  EXPECT_LT(std::abs(ring[1] - 1), 0.2);
+  EXPECT_LT(std::abs(ring[1] - 1), 0.6 * std::abs(ring[0] - 1));
+  EXPECT_LT(std::abs(hydro[1] - 1), 0.6 * std::abs(hydro[0] - 1));  // 2.0 -> 1.44: first order towards ½ρVU
+}
+
+TEST(FlowDrag, NestedLevelsAddNoRingingAfterAbruptStarts) {
+  // The first 10 steps after an abrupt start, 3 nested levels of 24 × 48 cells against one level of 96 × 192 over
+  // the same outer domain (16 cells/D): the body force must reach the coarse levels in the same step (no lag).
+  // (a) Re = 1000, stream switched on around a fixed sphere (LU path); (b) Re = 10, a sphere set moving at −U
+  // through fluid at rest, crossing grid lines (GMRES path). A lagged coupling rings here with O(100 %) swings.
+  auto run = [](bool moving, int levels, int nr, int nz) {
+    Settings st = stream_settings(moving ? 10 : 1000, 16, levels, nr / 16.0, -nz / 32.0, nz / 32.0, moving ? 0.01 : 0.001, 0.5);
+    if (moving) st.u_inf = 0;
+    st.cg_tol = 1e-12;
+    const double z0 = moving ? 0.2 : 0.0, u = moving ? -1.0 : 0.0;
+    Solver s(st, {{0.5, z0, u}});
+    std::vector<double> F;
+    for (int n = 1; n <= 10; ++n) F.push_back(s.step({{0.5, z0 + u * n * st.dt, u}}).force[0]);
+    return F;
+  };
+  for (bool moving : {false, true}) {
+    const auto nested = run(moving, 3, 24, 48), single = run(moving, 1, 96, 192);
+    double worst = 0;
+    for (int n = 0; n < 10; ++n) {
+      const double rel = std::abs(nested[n] / single[n] - 1);
+      worst = std::max(worst, rel);
+      if (n < 3 || n == 9)
+        std::printf("%s step %d: nested %.6f, single %.6f\n", moving ? "moving Re 10" : "impulsive Re 1000", n + 1, nested[n], single[n]);
+    }
+    std::printf("%s: max relative difference over steps 1-10 %.2e\n", moving ? "moving Re 10" : "impulsive Re 1000", worst);
+    EXPECT_LT(worst, 1e-3);
+  }
 }
 
 TEST(FlowDrag, OscillatingSphereFollowsUnsteadyStokes) {
@@ -186,26 +225,22 @@ TEST(FlowDrag, MovingSphereInQuiescentFluidMatchesFixedSphereInStream) {
   double worst = 0;
   int iters = 0;
   for (int n = 1; n <= 50; ++n) {
-    const double Fa = a.step({{0.5, 0.0, 0.0}}).force[0];
+    const StepInfo ia = a.step({{0.5, 0.0, 0.0}});
+    const double Fa = ia.force[0];
     const StepInfo ib = b.step({{0.5, 0.25 - n * dt, -1.0}});
     iters = std::max(iters, ib.cg_iterations);
-    EXPECT_EQ(ib.internal[0], 0.0);
+    if (n == 1) {  // step 1: the fluid inside goes from U∞ = 1 to 0 (fixed) and from 0 to −1 (moving), the same change
+      EXPECT_NEAR(ib.internal[0], -4.0 / 3.0 * M_PI * 0.125 / dt, 1e-9);
+      EXPECT_NEAR(ib.internal[0], ia.internal[0], 1e-9);
+      std::printf("step 1: moving %.4f, fixed %.4f (fluid inside %.4f)\n", ib.force[0], Fa, ib.internal[0]);
+    } else {
+      EXPECT_EQ(ib.internal[0], 0.0);
+    }
     if (n >= 10) worst = std::max(worst, std::abs(ib.force[0] / Fa - 1));  // both along +z (drag on a sphere moving to −z)
   }
   std::printf("max relative difference for 0.1 <= t <= 0.5: %.2f %% (CG at most %d iterations)\n", 100 * worst, iters);
   EXPECT_LT(worst, 0.02);
   EXPECT_GT(iters, 0);
-}
-
-TEST(FlowDrag, AcceleratingSphereCarriesItsInternalFluid) {
-  Settings st = stream_settings(10, 16, 2, 1.5, -1.5, 1.5, 0.01, 0.5);
-  st.u_inf = 0;
-  st.density = 2.0;
-  Solver s(st, {{0.5, 0.0, 0.0}});
-  const StepInfo info = s.step({{0.5, 0.001, 0.2}});  // from rest to 0.2 in one step
-  const double V = 4.0 / 3.0 * M_PI * 0.125;
-  EXPECT_NEAR(info.internal[0], 2.0 * V * 0.2 / 0.01, 1e-12);
-  EXPECT_LT(info.force[0], 0.0);  // the fluid resists the acceleration (added mass)
 }
 
 TEST(FlowDrag, TwoSpheresApproachingSymmetricallyFeelEqualAndOppositeForces) {
