@@ -211,7 +211,10 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       rhs[2 * k + 1] = next[pts_.body[k]].u - s_.u_inf - u[2 * k + 1];
     }
   }
-  if (g_.size() != m) g_ = Eigen::VectorXd::Zero(m);
+  if (g_.size() != m) {
+    g_ = Eigen::VectorXd::Zero(m);
+    g_prev_.resize(0);
+  }
   const bool use_direct = s_.direct_when_fixed && !moved;
   if (use_direct) {
     if (!lu_ || fixed_z_ != zs) {
@@ -231,6 +234,13 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
         k = e;
       }
       prec_size_ = m;
+    }
+    if (g_prev_.size() == m) {  // warm start: linear extrapolation of the last two steps' forces
+      const Eigen::VectorXd g1 = g_;
+      g_ = 2 * g_ - g_prev_;
+      g_prev_ = g1;
+    } else {
+      g_prev_ = g_;
     }
     const auto [it, res] = gmres(rhs);
     info.cg_iterations = it;

@@ -114,7 +114,7 @@ class Solver {
   std::vector<SphereState> sph_;
   BodyPoints pts_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> B_;
-  Eigen::VectorXd g_;     // last ring forces (warm start)
+  Eigen::VectorXd g_, g_prev_;  // ring forces of the last two steps (warm start)
   struct Block { Eigen::Index offset, size; Eigen::PartialPivLU<Eigen::MatrixXd> lu; };
   std::vector<Block> prec_;  // GMRES preconditioner: per-sphere blocks of Q at the first configuration
   Eigen::Index prec_size_ = -1;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
@@ -39,12 +40,21 @@ Settings stream_settings(double Re, int cpd, int levels, double r_max, double z_
 // Proudman & Pearson (J. Fluid Mech. 2, 1957): F/(6πμaU) = 1 + (3/16)Re + (9/160)Re² ln(Re/2), Re = UD/ν
 double proudman_pearson(double Re) { return 1 + 3.0 / 16.0 * Re + 9.0 / 160.0 * Re * Re * std::log(Re / 2); }
 
-double steady_stokes_ratio(int cpd) {
+double steady_stokes_ratio_run(int cpd) {
   const double Re = 0.1;
-  Solver s(stream_settings(Re, cpd, 8, 1.5, -1.5, 1.5, 0.2, 1.0), {{0.5, 0.0, 0.0}});
+  // backward Euler with a large step (U²Δt/ν = 0.16) to t = 160, where F has settled to 1e-4
+  Solver s(stream_settings(Re, cpd, 8, 1.5, -1.5, 1.5, 1.6, 1.0), {{0.5, 0.0, 0.0}});
   double F = 0;
-  for (int n = 0; n < 200; ++n) F = s.step({{0.5, 0.0, 0.0}}).force[0];
+  for (int n = 0; n < 100; ++n) F = s.step({{0.5, 0.0, 0.0}}).force[0];
   return F / (6 * M_PI * (1.0 / Re) * 0.5);
+}
+
+// F/(6πμaU) at the steady state, Re = 0.1, 8 levels of r < 1.5, |z| < 1.5 (computed once per resolution)
+double steady_stokes_ratio(int cpd) {
+  static std::map<int, double> cache;
+  auto it = cache.find(cpd);
+  if (it == cache.end()) it = cache.emplace(cpd, steady_stokes_ratio_run(cpd)).first;
+  return it->second;
 }
 
 }  // namespace
@@ -68,10 +78,10 @@ TEST(FlowDrag, NestedLevelsReproduceOneLargeLevel) {
   // Steady Stokes drag (Re = 0.1, 16 cells/D) with 4 nested levels of 24 × 48 cells against one level of
   // 192 × 384 cells covering the same outer domain (r < 12 D, |z| < 12 D): the far field through the levels.
   auto drag = [](int levels, int nr, int nz) {
-    Settings st = stream_settings(0.1, 16, levels, nr / 16.0, -nz / 32.0, nz / 32.0, 0.2, 1.0);
+    Settings st = stream_settings(0.1, 16, levels, nr / 16.0, -nz / 32.0, nz / 32.0, 1.6, 1.0);
     Solver s(st, {{0.5, 0.0, 0.0}});
     double F = 0;
-    for (int n = 0; n < 150; ++n) F = s.step({{0.5, 0.0, 0.0}}).force[0];
+    for (int n = 0; n < 100; ++n) F = s.step({{0.5, 0.0, 0.0}}).force[0];
     return F;
   };
   const double nested = drag(4, 24, 48), single = drag(1, 192, 384);
@@ -80,24 +90,36 @@ TEST(FlowDrag, NestedLevelsReproduceOneLargeLevel) {
 }
 
 TEST(FlowDrag, ImpulsivelyStartedSphereFollowsStokesPlusBasset) {
-  // F(t) = 6πμaU (1 + a/√(πνt)) for t > 0 at Re → 0; Re = 0.1, Crank–Nicolson
-  double err[2] = {0, 0};
+  // F(t) = 6πμaU (1 + a/√(πνt)) for t > 0 at Re → 0; Re = 0.1, Crank–Nicolson, Δt = 0.001, 0.02 ≤ t ≤ 0.1
+  // (νt/a² = 0.8 … 4). Raw: against that formula. Bias-corrected: the grid's steady first-order bias b = S/S_PP
+  // (S = steady F/6πμaU on the same grid, S_PP Proudman–Pearson at Re = 0.1; the Oseen part of S_PP develops only
+  // for t ~ ν/U² = 10) read as an effective radius a' = a b: F(t) against 6πμa'U (1 + a'/√(πνt)).
+  // Early steps: see NestedLevelsAddNoRingingAfterAbruptStarts.
+  double err[2] = {0, 0}, cerr[2] = {0, 0};
   int c = 0;
   for (int cpd : {16, 32}) {
-    const double dt = 0.001;
-    Solver s(stream_settings(0.1, cpd, 8, 1.5, -1.5, 1.5, dt, 0.5), {{0.5, 0.0, 0.0}});
+    const double dt = 0.001, nu = 10.0, a = 0.5;
+    const double steady = steady_stokes_ratio(cpd), bias = steady / proudman_pearson(0.1), a_eff = a * bias;
+    Solver s(stream_settings(0.1, cpd, 8, 1.5, -1.5, 1.5, dt, 0.5), {{a, 0.0, 0.0}});
     for (int n = 1; n <= 100; ++n) {
-      const double F = s.step({{0.5, 0.0, 0.0}}).force[0];
-      const double t = n * dt, nu = 10.0;
-      const double ref = 6 * M_PI * nu * 0.5 * (1 + 0.5 / std::sqrt(M_PI * nu * t));
-      if (t >= 0.02 - 1e-12) err[c] = std::max(err[c], std::abs(F / ref - 1));
+      const double F = s.step({{a, 0.0, 0.0}}).force[0];
+      const double t = n * dt, basset = 1 + a / std::sqrt(M_PI * nu * t), fs = 6 * M_PI * nu * a;
+      if (t >= 0.02 - 1e-12) {
+        err[c] = std::max(err[c], std::abs(F / (fs * basset) - 1));
+        cerr[c] = std::max(cerr[c], std::abs(F / (fs * bias * (1 + a_eff / std::sqrt(M_PI * nu * t))) - 1));
+      }
     }
-    std::printf("%d cells/D: max |F/F_ref - 1| over 0.02 <= t <= 0.1 (nu t/a^2 = 0.8 .. 4): %.2f %%\n", cpd, 100 * err[c]);
+    std::printf("%d cells/D, 0.02 <= t <= 0.1: max |F/F_ref - 1| %.2f %%; bias-corrected (steady F/6 pi mu a U = %.4f, a'/a = %.4f) %.2f %%\n",
+                cpd, 100 * err[c], steady, a_eff / a, 100 * cerr[c]);
     ++c;
   }
   EXPECT_LT(err[0], 0.08);
   EXPECT_LT(err[1], 0.05);
   EXPECT_LT(err[1], 0.65 * err[0]);  // converges with the grid
+  // once the grid's steady bias is removed the unsteady force is right to ~1 % at both resolutions (0.6 %, 0.9 %:
+  // what is left does not fall with h; it is largest at the window's start, so it is the time step's, not the grid's)
+  EXPECT_LT(cerr[0], 0.015);
+  EXPECT_LT(cerr[1], 0.015);
 }
 
 TEST(FlowDrag, ImpulsiveStartImpulseIsAddedMassPlusInternalFluid) {
@@ -174,8 +196,9 @@ TEST(FlowDrag, OscillatingSphereFollowsUnsteadyStokes) {
   double err[2];
   int c = 0;
   for (int cpd : {12, 24}) {
-    Settings st = stream_settings(1.0, cpd, 5, 1.5, -1.5, 1.5, dt, 0.5);
+    Settings st = stream_settings(1.0, cpd, 4, 1.5, -1.5, 1.5, dt, 0.5);
     st.u_inf = 0;
+    st.cg_tol = 1e-8;  // the force to ~1e-8: far below the % errors checked here
     Solver s(st, {{a, 0.0, 0.0}});
     double e = 0, amp = 0;
     for (int n = 1; n <= 2 * per; ++n) {
