@@ -326,8 +326,34 @@ cg_tol = 1e-8
   expect_error(replace("viscosity = 0.01", "viscosity = -0.01"), "fluid.viscosity", ":3");
   expect_error(replace("levels = 2", "levels = 2\nlevles = 3"), "grid.levles", ":12");
   expect_error(replace("cg_tol = 1e-8", "cg_tol = 0"), "solver.cg_tol", ":16");
-  expect_error(replace("position = 0.0", "position = 9.0"), "sphere[0]", "");
-  expect_error(good + "[[sphere]]\ndiameter = 1.0\nposition = 0.5\n", "sphere", "");
+  expect_error(replace("position = 0.0", "position = 9.0"), "sphere[0]", ":6");       // outside the finest level
+  expect_error(replace("t_end = 1.0", "t_end = 0.001"), "time.dt", ":13");          // dt > t_end
+  expect_error(replace("velocity = 1.0", "velocity = 0.0"), "stream.velocity", ":5");  // no relative motion
+  expect_error(good + "[[sphere]]\ndiameter = 1.0\nposition = 0.5\n", "sphere[1]", ":17");  // the second sphere overlaps
+  expect_error(good + "[[sphere]]\ndiameter = 1.0\nposition = 1.5\nvelocity = -1.0\n", "sphere[1]", ":17");  // by t_end
+  // problems caused by command-line overrides are blamed on the command line
+  {
+    std::ofstream(p) << good;
+    FlowScene sc2 = load_flow_scene(p.string());
+    sc2.t_end = 0.001;
+    sc2.overridden.insert("--t-end");
+    try {
+      check_flow_scene(sc2);
+      ADD_FAILURE() << "accepted dt > t_end";
+    } catch (const imcol::InputError& e) {
+      EXPECT_EQ(e.where(), "command line (--t-end)") << e.what();
+    }
+    sc2 = load_flow_scene(p.string());
+    sc2.cells_per_diameter = 4;  // grid of 2 D: the sphere no longer sits 3 cells inside it
+    sc2.r_max = 1.0;
+    sc2.overridden.insert("--cells");
+    try {
+      check_flow_scene(sc2);
+      ADD_FAILURE() << "accepted a sphere outside the finest level";
+    } catch (const imcol::InputError& e) {
+      EXPECT_EQ(e.where(), "command line (--cells)") << e.what();
+    }
+  }
   fs::remove(p);
 }
 
