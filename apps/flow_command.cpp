@@ -217,7 +217,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   j["drag_error_percent"] = !settled || std::isnan(cd_ref) ? nlohmann::ordered_json() : nlohmann::ordered_json(100 * (last_cd - cd_ref) / cd_ref);
   j["stokes_drag_ratio"] = drag_sign * last_force[0] / f_stokes;  // F / 6πμaU
   if (nb == 1) {
-    j["wake_length_D"] = solver.wake_length(0) / D;
+    j["wake_length_D"] = settled && sc.stream != 0 ? nlohmann::ordered_json(solver.wake_length(0) / D) : nlohmann::ordered_json();  // steady runs in a stream only
     // first time after which C_D stays within 3 % of the standard curve
     long k = static_cast<long>(cds.size());
     while (k > 0 && std::abs(cds[k - 1] - cd_ref) <= 0.03 * cd_ref) --k;
@@ -277,7 +277,7 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
     std::cout << "  (not settled: changed " << std::setprecision(3) << j["drag_change_last_tenth_percent"].get<double>()
               << " % over the last tenth of the run; not compared with the steady standard curve)";
   std::cout << std::setprecision(5) << "  F/(6 pi mu a U) = " << j["stokes_drag_ratio"].get<double>() << "\n";
-  if (j.contains("wake_length_D")) std::cout << "wake length = " << j["wake_length_D"].get<double>() << " D\n";
+  if (j.contains("wake_length_D") && j["wake_length_D"].is_number()) std::cout << "wake length = " << j["wake_length_D"].get<double>() << " D\n";
   if (j.contains("f_sim_vs_f_thr"))
     for (const auto& r : j["f_sim_vs_f_thr"])
       std::cout << "gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR " << r["F_THR1"].get<double>()

@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
       }
       auto num = [&](const char* k) { return j[k].is_number() ? j[k].get<double>() : NAN; };  // null: drag not settled
       std::printf("%8d %10.4f %10.4f %9.2f %12.4f %10ld %10.2f %10s\n", c, cd, num("drag_coefficient_standard"),
-                  num("drag_error_percent"), j.value("wake_length_D", NAN), j["steps"].get<long>(),
+                  num("drag_error_percent"), num("wake_length_D"), j["steps"].get<long>(),
                   j["wall_time_s"].get<double>(), order.c_str());
     }
     if (cds.size() >= 2) {
