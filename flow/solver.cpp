@@ -222,18 +222,30 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       fixed_z_ = zs;
     }
     g_ = lu_->solve(rhs);
-  } else {  // GMRES, warm start, right-preconditioned by each sphere's own block of Q (first configuration)
-    if (prec_size_ != m) {
-      const Eigen::MatrixXd Q0 = force_matrix();
-      prec_.clear();
-      for (std::size_t k = 0; k < pts_.size();) {
-        std::size_t e = k;
-        while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
-        const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
-        prec_.push_back({o, n, Eigen::PartialPivLU<Eigen::MatrixXd>(Q0.block(o, o, n, n))});
-        k = e;
+  } else {  // GMRES, warm start, right-preconditioned by each sphere's own block of Q
+    // preconditioner: each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of
+    // kPrecBins bins, built the first time a sphere is there): the rings' pattern relative to the grid repeats when
+    // a sphere moves by whole cells, and the multi-level Q is nearly translation invariant
+    prec_.clear();
+    const LevelGeometry& G = lv_[0].g;
+    for (std::size_t k = 0; k < pts_.size();) {
+      std::size_t e = k;
+      while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
+      const int b = pts_.body[k];
+      const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
+      const double x = (next[b].z - G.z0) / G.h;
+      const int bin = static_cast<int>(std::lround((x - std::floor(x)) * kPrecBins)) % kPrecBins;
+      if (prec_cache_.size() < next.size()) prec_cache_.resize(next.size());
+      auto& slot = prec_cache_[b];
+      if (slot.size() != static_cast<std::size_t>(kPrecBins)) slot.assign(kPrecBins, nullptr);
+      if (!slot[bin] || slot[bin]->rows() != n) {
+        Eigen::MatrixXd blk(n, n);
+        for (Eigen::Index c = 0; c < n; ++c) blk.col(c) = apply_Q(Eigen::VectorXd::Unit(m, o + c)).segment(o, n);
+        slot[bin] = std::make_shared<Eigen::PartialPivLU<Eigen::MatrixXd>>(blk);
+        ++prec_builds_;
       }
-      prec_size_ = m;
+      prec_.push_back({o, n, slot[bin]});
+      k = e;
     }
     if (g_prev_.size() == m) {  // warm start: linear extrapolation of the last two steps' forces
       const Eigen::VectorXd g1 = g_;
@@ -280,7 +292,7 @@ std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
   // Restarted GMRES (Saad & Schultz 1986) on Q g = b with right preconditioning M⁻¹ = per-sphere block inverses.
   auto precondition = [&](const Eigen::VectorXd& r) {
     Eigen::VectorXd z(r.size());
-    for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu.solve(r.segment(blk.offset, blk.size));
+    for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu->solve(r.segment(blk.offset, blk.size));
     return z;
   };
   const int restart = 60;

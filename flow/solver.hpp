@@ -19,8 +19,10 @@
 // The body forces g (ring totals, m⁴/s² = N per kg/m³) are the Lagrange multipliers of no-slip at the ring
 // points (B = E C: velocity at the points from the finest ψ). Q is close to, but not exactly, symmetric (the level
 // transfers are not adjoint), so it is LU-factorised when the bodies have not moved and solved by restarted GMRES
-// otherwise (relative residual cg_tol, right-preconditioned by each sphere's own block of Q at the first
-// configuration, factorised once).
+// otherwise (relative residual cg_tol; right-preconditioned by each sphere's own block of Q, factorised for
+// the sphere's sub-cell offset on the finest grid in one of 16 bins, each built the first time the sphere is
+// there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
+// multi-level Q is nearly translation invariant; warm start extrapolated from the last two steps' forces).
 // Force on sphere s (N, along +z): F_s = −ρ Σ_{k∈s} g_z,k + ρ V_s (U_s^{n+1} − u_in,s^n)/Δt, the second term the
 // momentum change of the fluid inside the sphere. Convention: before the first step the fluid inside moves with
 // the initial flow (ψ = 0, so u_in = U∞, the stream); after every step no-slip makes it move with the sphere
@@ -85,6 +87,7 @@ class Solver {
 
   double time() const { return t_; }
   long steps() const { return n_; }
+  long preconditioner_blocks_built() const { return prec_builds_; }  // GMRES preconditioner blocks factorised so far
   const Settings& settings() const { return s_; }
   const std::vector<Level>& levels() const { return lv_; }
   const std::vector<SphereState>& spheres() const { return sph_; }
@@ -115,9 +118,12 @@ class Solver {
   BodyPoints pts_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> B_;
   Eigen::VectorXd g_, g_prev_;  // ring forces of the last two steps (warm start)
-  struct Block { Eigen::Index offset, size; Eigen::PartialPivLU<Eigen::MatrixXd> lu; };
-  std::vector<Block> prec_;  // GMRES preconditioner: per-sphere blocks of Q at the first configuration
-  Eigen::Index prec_size_ = -1;
+  using BlockLU = Eigen::PartialPivLU<Eigen::MatrixXd>;
+  struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; };
+  static constexpr int kPrecBins = 16;  // sub-cell offsets per finest cell with their own preconditioner block
+  std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
+  std::vector<std::vector<std::shared_ptr<BlockLU>>> prec_cache_;  // [sphere][offset bin]
+  long prec_builds_ = 0;
   std::vector<double> fixed_z_;  // sphere positions of the factorised Q
   std::unique_ptr<Eigen::PartialPivLU<Eigen::MatrixXd>> lu_;
   std::vector<double> u_in_;  // velocity of the fluid inside each sphere at t^n (see the convention above)
