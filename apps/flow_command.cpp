@@ -183,7 +183,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     if (!opt.quiet && (n % std::max(1L, nsteps / 10) == 0 || n == nsteps)) {
       std::cout << "  t = " << std::setw(8) << t << "  C_D = " << std::setw(10) << cd;
       for (int b = 0; b < nb; ++b) std::cout << "  F" << b + 1 << " = " << std::setw(11) << info.force[b] << " N";
-      if (info.cg_iterations) std::cout << "  cg " << info.cg_iterations;
+      if (info.cg_iterations) std::cout << "  gmres " << info.cg_iterations;
       std::cout << "  (" << std::fixed << std::setprecision(2) << wall << " s)" << std::defaultfloat << std::setprecision(6) << "\n";
     }
     if (sc.snapshots > 0 && n == (snap + 1) * nsteps / sc.snapshots) {

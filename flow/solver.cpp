@@ -42,6 +42,9 @@ std::size_t Solver::bytes() const {
   for (const auto& L : lv_) b += 7 * L.g.size() * sizeof(double) + L.fast->bytes();
   b += static_cast<std::size_t>(B_.nonZeros()) * (sizeof(double) + sizeof(int));
   if (lu_) b += static_cast<std::size_t>(lu_->matrixLU().size()) * sizeof(double);
+  for (const auto& bins : prec_cache_)
+    for (const auto& blk : bins)
+      if (blk) b += static_cast<std::size_t>(blk->matrixLU().size()) * sizeof(double);
   return b;
 }
 

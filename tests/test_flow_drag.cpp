@@ -1,6 +1,6 @@
 // Flow kernel physics on coarse grids (each test well under a few seconds): Stokes drag and its first-order
-// convergence, the impulsively started sphere against Stokes + Basset, the moving-body (CG) path against the
-// fixed-body (Cholesky) path, two approaching spheres, and the flow-scene reader's errors.
+// convergence, the impulsively started sphere against Stokes + Basset, the moving-body (GMRES) path against the
+// fixed-body (LU) path, two approaching spheres, and the flow-scene reader's errors.
 // The production resolutions (Re 20/100 C_D, wake length, 64+ cells/D) run through `imcol flow` and bench/.
 #include <gtest/gtest.h>
 
@@ -185,7 +185,7 @@ TEST(FlowDrag, NestedLevelsAddNoRingingAfterAbruptStarts) {
 TEST(FlowDrag, OscillatingSphereFollowsUnsteadyStokes) {
   // z = A(1 − cos ωt), ν = 1, a = 0.5, ω = 32 (δ = √(2ν/ω) = a/2), A = 0.01: the periodic unsteady Stokes force
   // F = −6πμa(1 + a/δ)U − 3πa²√(2μρ/ω)(1 + 2a/(9δ)) dU/dt (Landau & Lifshitz §24), compared over the second
-  // period at mid-step (the step's force is its average). Moving body: CG, internal fluid included.
+  // period at mid-step (the step's force is its average). Moving body: GMRES, internal fluid included.
   const double a = 0.5, nu = 1.0, om = 32.0, A = 0.01, T = 2 * M_PI / om, delta = std::sqrt(2 * nu / om);
   const int per = 100;
   const double dt = T / per;
