@@ -88,8 +88,9 @@ int main(int argc, char** argv) {
         std::snprintf(b, sizeof b, "%.2f", p);
         order = b;
       }
-      std::printf("%8d %10.4f %10.4f %9.2f %12.4f %10ld %10.2f %10s\n", c, cd, j["drag_coefficient_standard"].get<double>(),
-                  j["drag_error_percent"].get<double>(), j.value("wake_length_D", NAN), j["steps"].get<long>(),
+      auto num = [&](const char* k) { return j[k].is_number() ? j[k].get<double>() : NAN; };  // null: drag not settled
+      std::printf("%8d %10.4f %10.4f %9.2f %12.4f %10ld %10.2f %10s\n", c, cd, num("drag_coefficient_standard"),
+                  num("drag_error_percent"), num("wake_length_D"), j["steps"].get<long>(),
                   j["wall_time_s"].get<double>(), order.c_str());
     }
     if (cds.size() >= 2) {
@@ -153,7 +154,8 @@ int main(int argc, char** argv) {
     std::printf("Re = 100 cold start, %d cells/D, %d levels: C_D = %.4f (standard %.4f, %+.2f %%); within 3 %% from t = %s after %s s wall; "
                 "whole run %.2f s for %ld steps\n",
                 j["grid"]["cells_per_diameter"].get<int>(), j["grid"]["levels"].get<int>(), j["drag_coefficient"].get<double>(),
-                j["drag_coefficient_standard"].get<double>(), j["drag_error_percent"].get<double>(), j["time_to_3pct_s"].dump().c_str(),
+                j["drag_coefficient_standard"].is_number() ? j["drag_coefficient_standard"].get<double>() : NAN,
+                j["drag_error_percent"].is_number() ? j["drag_error_percent"].get<double>() : NAN, j["time_to_3pct_s"].dump().c_str(),
                 j["wall_time_to_3pct_s"].dump().c_str(), j["wall_time_s"].get<double>(), j["steps"].get<long>());
   }
   return 0;

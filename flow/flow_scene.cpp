@@ -130,18 +130,37 @@ std::vector<SphereState> FlowScene::spheres_at(double t) const {
   return out;
 }
 
+std::string FlowScene::where(int line, std::initializer_list<const char*> opts) const {
+  std::string cl;
+  for (const char* o : opts)
+    if (overridden.count(o)) cl += (cl.empty() ? "" : ", ") + std::string(o);
+  if (!cl.empty()) return "command line (" + cl + ")";
+  return line > 0 ? path + ":" + std::to_string(line) : path;
+}
+
 void check_flow_scene(const FlowScene& sc) {
-  if (sc.U() == 0) throw InputError(sc.path, "stream.velocity", "no relative motion: give a stream or a sphere velocity");
+  if (sc.U() == 0)
+    throw InputError(sc.where(sc.line_stream > 0 ? sc.line_stream : sc.spheres.front().line), "stream.velocity",
+                     "no relative motion: give a stream or a sphere velocity");
+  if (sc.dt > sc.t_end)
+    throw InputError(sc.where(sc.line_dt, {"--dt", "--t-end"}), "time.dt",
+                     "dt = " + fmt(sc.dt) + " exceeds t_end = " + fmt(sc.t_end) + " (no step would end inside the run)");
   // neighbours stay apart (gaps are linear in t apart from the oscillations); a min_gap stop ends the run first
-  for (std::size_t i = 0; i + 1 < sc.spheres.size() && sc.min_gap <= 0; ++i) {
+  for (std::size_t i = 0; i + 1 < sc.spheres.size(); ++i) {
     const auto &p = sc.spheres[i], &q = sc.spheres[i + 1];
     for (double t : {0.0, sc.t_end}) {
+      if (t > 0 && sc.min_gap > 0) continue;
       const double gap = (q.position + q.velocity * t) - (p.position + p.velocity * t) - 0.5 * (p.diameter + q.diameter) -
-                         std::abs(p.amplitude) - std::abs(q.amplitude);
-      if (gap <= 0)
-        throw InputError(sc.path, "sphere[" + std::to_string(i + 1) + "]",
+                         (t > 0 ? std::abs(p.amplitude) + std::abs(q.amplitude) : 0.0);
+      if (gap <= 0) {
+        if (t == 0)
+          throw InputError(sc.where(q.line), "sphere[" + std::to_string(i + 1) + "]",
+                           "sphere " + std::to_string(i + 2) + " overlaps sphere " + std::to_string(i + 1) +
+                               " at t = 0 or is out of order (list the spheres by increasing position)");
+        throw InputError(sc.where(q.line, {"--t-end"}), "sphere[" + std::to_string(i + 1) + "]",
                          "spheres " + std::to_string(i + 1) + " and " + std::to_string(i + 2) + " would overlap by t = " + fmt(t) +
                              " (shorten time.t_end or set output.min_gap)");
+      }
     }
   }
   // every sphere inside the finest level over the whole run, 3 cells clear of its edges
@@ -153,7 +172,8 @@ void check_flow_scene(const FlowScene& sc) {
     for (double t : {0.0, sc.t_end}) {
       const double z = p.position + p.velocity * t + p.amplitude, A = std::abs(p.amplitude);
       if (z - a - A < zlo + 3 * s.h || z + a + A > zhi - 3 * s.h || a > rhi - 3 * s.h)
-        throw InputError(sc.path, "sphere[" + std::to_string(i) + "]",
+        throw InputError(t > 0 ? sc.where(p.line, {"--cells", "--t-end"}) : sc.where(p.line, {"--cells"}),
+                         "sphere[" + std::to_string(i) + "]",
                          "sphere outside the finest grid at t = " + fmt(t) + " (grid z in [" + fmt(zlo) + ", " + fmt(zhi) +
                              "], r < " + fmt(rhi) + ", 3 cells clear)");
     }
@@ -186,6 +206,8 @@ FlowScene load_flow_scene(const std::string& path) {
   if (const toml::table* st = top.table("stream")) {
     Reader r(*st, "stream", path);
     sc.stream = r.number("velocity", 0.0);
+    const toml::node* v = st->get("velocity");
+    sc.line_stream = static_cast<int>((v ? v->source() : st->source()).begin.line);
     r.finish();
   }
   const toml::node* sn = top.node("sphere");
@@ -196,6 +218,7 @@ FlowScene load_flow_scene(const std::string& path) {
     ++k;
     Reader r(*el.as_table(), "sphere[" + std::to_string(k - 1) + "]", path);
     FlowSphere s;
+    s.line = static_cast<int>(el.source().begin.line);
     s.diameter = r.required("diameter");
     r.positive("diameter", s.diameter);
     s.position = r.number("position", 0.0);
@@ -206,13 +229,6 @@ FlowScene load_flow_scene(const std::string& path) {
     if (s.amplitude != 0 && s.frequency == 0) r.fail("amplitude", "an oscillation needs frequency > 0");
     r.finish();
     sc.spheres.push_back(s);
-  }
-  if (sc.spheres.size() > 1) {
-    for (std::size_t i = 0; i + 1 < sc.spheres.size(); ++i) {
-      const auto &a = sc.spheres[i], &b = sc.spheres[i + 1];
-      if (b.position - a.position < 0.5 * (a.diameter + b.diameter))
-        throw InputError(top.where(sn), "sphere", "spheres overlap or are out of order (list them by increasing position)");
-    }
   }
   if (const toml::table* g = top.table("grid")) {
     Reader r(*g, "grid", path);
@@ -237,6 +253,8 @@ FlowScene load_flow_scene(const std::string& path) {
     r.positive("dt", sc.dt);
     sc.t_end = r.required("t_end");
     r.positive("t_end", sc.t_end);
+    sc.line_dt = static_cast<int>(tt->get("dt")->source().begin.line);
+    sc.line_t_end = static_cast<int>(tt->get("t_end")->source().begin.line);
     sc.theta = r.number("theta", sc.theta);
     if (!(sc.theta >= 0.5 && sc.theta <= 1)) r.fail("theta", "must be in [0.5, 1] (0.5 = Crank–Nicolson)");
     r.finish();

@@ -2,6 +2,8 @@
 // Flow scenes (data/scenes/flow/*.toml): spheres on the axis, fixed or on prescribed trajectories
 // z(t) = position + velocity·t + amplitude·(1 − cos 2π frequency t) (from rest), optionally in a uniform stream; the grid, time step and solver settings.
 // Parsed with toml++; bad input throws InputError naming file:line and key. SI units (any consistent units work).
+#include <initializer_list>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@ struct FlowSphere {
   double velocity = 0;  // prescribed constant velocity along +z, m/s
   double amplitude = 0;  // optional oscillation z += A (1 − cos 2π f t), m (starts from rest)
   double frequency = 0;  // its frequency f, Hz
+  int line = 0;          // line of its [[sphere]] table in the scene file (0: unknown)
 };
 
 struct FlowScene {
@@ -38,6 +41,12 @@ struct FlowScene {
   int history_every = 1;  // force history stride, steps
   int snapshots = 1;      // evenly spaced in time, the last at t_end
   double min_gap = 0;     // stop when the surface gap of two spheres falls below this, units of D (0 = off)
+  // where values came from, for error messages: lines in the file (0: not given), and the command-line options
+  // that replaced scene values ("--cells", "--levels", "--dt", "--t-end")
+  int line_stream = 0, line_dt = 0, line_t_end = 0;
+  std::set<std::string> overridden;
+  /// "file:line" (or "file" if line is 0), or "command line (--opt)" if any of opts was overridden.
+  std::string where(int line, std::initializer_list<const char*> opts = {}) const;
 
   double D() const { return spheres.front().diameter; }
   double nu() const { return viscosity / density; }
@@ -50,10 +59,14 @@ struct FlowScene {
 };
 
 FlowScene load_flow_scene(const std::string& path);
-/// Relative motion present; every sphere inside the finest level (3 cells clear) at t = 0 and t_end. Throws InputError.
+/// Relative motion present; dt ≤ t_end; spheres apart at t = 0 and t_end (unless a min_gap stop); every sphere inside
+/// the finest level (3 cells clear) at t = 0 and t_end. Throws InputError naming file:line, or the command-line option
+/// that caused the problem.
 void check_flow_scene(const FlowScene& sc);
 
-/// Standard drag curve, Clift, Grace & Weber (Bubbles, Drops and Particles, 1978, Table 5.2), Re = UD/ν < 1500.
+/// Standard drag curve, Clift, Grace & Weber (Bubbles, Drops and Particles, 1978, Table 5.2), Re = UD/ν ≤ 1500.
+/// Their ranges 0.01 < Re ≤ 20 and 20 ≤ Re ≤ 260 meet at Re = 20; there we use the second formula,
+/// C_D = 24/Re (1 + 0.1935 Re^0.6305) = 2.7352 (the first gives 2.7147, 0.75 % lower).
 double standard_drag_coefficient(double Re);
 
 }  // namespace imcol::flow

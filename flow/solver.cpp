@@ -29,16 +29,22 @@ Solver::Solver(const Settings& s, std::vector<SphereState> spheres) : s_(s), sph
     L.eta.assign(L.g.size(), 0.0);
     L.psi.assign(L.g.size(), 0.0);
     L.nl_old.assign(L.g.size(), 0.0);
+    for (auto* v : {&L.rhs, &L.src, &L.etac, &L.psic}) v->assign(L.g.size(), 0.0);
     lv_.push_back(std::move(L));
   }
+  // before the first step the fluid (inside the spheres too) moves with the initial flow: ψ = 0, velocity U∞
+  u_in_.assign(sph_.size(), s.u_inf);
   build_points(sph_);
 }
 
 std::size_t Solver::bytes() const {
   std::size_t b = 0;
-  for (const auto& L : lv_) b += 3 * L.g.size() * sizeof(double) + L.fast->bytes();
+  for (const auto& L : lv_) b += 7 * L.g.size() * sizeof(double) + L.fast->bytes();
   b += static_cast<std::size_t>(B_.nonZeros()) * (sizeof(double) + sizeof(int));
-  if (chol_) b += static_cast<std::size_t>(chol_->matrixLLT().size()) * sizeof(double);
+  if (lu_) b += static_cast<std::size_t>(lu_->matrixLU().size()) * sizeof(double);
+  for (const auto& bins : prec_cache_)
+    for (const auto& blk : bins)
+      if (blk) b += static_cast<std::size_t>(blk->matrixLU().size()) * sizeof(double);
   return b;
 }
 
@@ -54,7 +60,6 @@ void Solver::build_points(const std::vector<SphereState>& sp) {
     add_sphere_rings(pts_, b.radius, b.z, g.h, s_.ring_spacing, static_cast<int>(k));
   }
   B_ = velocity_at_points(g, pts_);
-  for (std::size_t l = 1; l < lv_.size(); ++l) lv_[l].B = velocity_at_points(lv_[l].g, pts_);
 }
 
 void Solver::nonlinear(const Level& L, double u_inf, std::vector<double>& out) {
@@ -127,61 +132,71 @@ void Solver::restrict_interior(const Level& fine, const std::vector<double>& ff,
     }
 }
 
-Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g, std::vector<double>* eta_c, std::vector<double>* psi_c) {
-  Level& L = lv_[0];
-  const LevelGeometry& G = L.g;
-  work_.resize(G.size());
-  Eigen::Map<Eigen::VectorXd> s(work_.data(), static_cast<Eigen::Index>(work_.size()));
+void Solver::coarsify(std::vector<double> Level::*field) {
+  for (std::size_t l = 0; l + 1 < lv_.size(); ++l) restrict_interior(lv_[l], lv_[l].*field, lv_[l + 1], lv_[l + 1].*field);
+}
+
+void Solver::solve_levels(int op, std::vector<double> Level::*rhs, std::vector<double> Level::*x) {
+  for (int l = static_cast<int>(lv_.size()) - 1; l >= 0; --l) {
+    Level& L = lv_[l];
+    if (l + 1 < static_cast<int>(lv_.size())) prolong_boundary(lv_[l + 1], lv_[l + 1].*x, L, L.*x);
+    L.fast->solve(op, L.*rhs, L.*x);
+  }
+}
+
+Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
+  // source on the finest level: Δt R Bᵀg/(2πh²) at interior vertices; restricted onto every coarser level
+  Level& F = lv_[0];
+  const LevelGeometry& G = F.g;
+  Eigen::Map<Eigen::VectorXd> s(F.src.data(), static_cast<Eigen::Index>(F.src.size()));
   s.noalias() = B_.transpose() * g;
   const double scale = s_.dt / (2 * M_PI * G.h * G.h);
   for (int i = 0; i <= G.nr; ++i)
-    for (int j = 0; j <= G.nz; ++j) work_[G.at(i, j)] *= (i == 0 || i == G.nr || j == 0 || j == G.nz) ? 0.0 : scale * G.r(i);
-  std::vector<double>& x = psi_c ? *psi_c : xq_;
-  L.fast->solve_chain({1, 0}, work_, {eta_c, &x});
-  for (double& v : x) v = -v;
-  Eigen::Map<const Eigen::VectorXd> px(x.data(), static_cast<Eigen::Index>(x.size()));
+    for (int j = 0; j <= G.nz; ++j) F.src[G.at(i, j)] *= (i == 0 || i == G.nr || j == 0 || j == G.nz) ? 0.0 : scale * G.r(i);
+  for (std::size_t l = 1; l < lv_.size(); ++l) std::fill(lv_[l].src.begin(), lv_[l].src.end(), 0.0);
+  coarsify(&Level::src);
+  // η_c = (I − θνΔt E²)⁻¹ on all levels (coarsest first, zero far field, coarse-to-fine boundary values)
+  solve_levels(1, &Level::src, &Level::etac);
+  coarsify(&Level::etac);
+  // ψ_c = (−E²)⁻¹ η_c on all levels
+  for (auto& L : lv_)
+    for (std::size_t p = 0; p < L.src.size(); ++p) L.src[p] = -L.etac[p];
+  solve_levels(0, &Level::src, &Level::psic);
+  Eigen::Map<const Eigen::VectorXd> px(F.psic.data(), static_cast<Eigen::Index>(F.psic.size()));
   return B_ * px;
+}
+
+Eigen::MatrixXd Solver::force_matrix() {
+  const Eigen::Index m = static_cast<Eigen::Index>(2 * pts_.size());
+  Eigen::MatrixXd Q(m, m);
+  for (Eigen::Index c = 0; c < m; ++c) Q.col(c) = apply_Q(Eigen::VectorXd::Unit(m, c));
+  return Q;
 }
 
 StepInfo Solver::step(const std::vector<SphereState>& next) {
   if (next.size() != sph_.size()) throw std::invalid_argument("flow: sphere count changed");
   const int NL = static_cast<int>(lv_.size());
   const double dt = s_.dt, nu = s_.nu, th = s_.theta;
-  // 1. advection terms at t^n, each level
-  thread_local std::vector<std::vector<double>> nl;
-  nl.resize(NL);
-  for (int l = 0; l < NL; ++l) nonlinear(lv_[l], s_.u_inf, nl[l]);
-  // 2. vorticity predictor, coarsest to finest (boundary values at t^{n+1} from the coarser level)
+  // 1. explicit part of the vorticity equation on every level (advection AB2, viscous (1 − θ)), then the finer
+  //    levels' right-hand sides replace the coarser ones where they overlap (coarsify)
   std::vector<double>& lap = work2_;
-  std::vector<double>& rv = work3_;
-  for (int l = NL - 1; l >= 0; --l) {
+  for (int l = 0; l < NL; ++l) {
     Level& L = lv_[l];
+    nonlinear(L, s_.u_inf, nl_);
     const double ab_new = n_ == 0 ? 1.0 : 1.5, ab_old = n_ == 0 ? 0.0 : -0.5;
     apply_stokes_operator(L.g, L.eta, lap);
-    rv.resize(L.g.size());
-    for (std::size_t p = 0; p < rv.size(); ++p) rv[p] = L.eta[p] + dt * ((1 - th) * nu * lap[p] + ab_new * nl[l][p] + ab_old * L.nl_old[p]);
-    std::swap(L.nl_old, nl[l]);
-    if (l > 0 && g_.size() == L.B.rows()) {  // lagged body force on the coarser levels
-      work_.resize(L.g.size());
-      Eigen::Map<Eigen::VectorXd> sp(work_.data(), static_cast<Eigen::Index>(work_.size()));
-      sp.noalias() = L.B.transpose() * g_;
-      const double sc = dt / (2 * M_PI * L.g.h * L.g.h);
-      for (int i = 1; i < L.g.nr; ++i)
-        for (int j = 1; j < L.g.nz; ++j) rv[L.g.at(i, j)] += sc * L.g.r(i) * sp[static_cast<Eigen::Index>(L.g.at(i, j))];
-    }
-    if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].eta, L, L.eta);
-    L.fast->solve(1, rv, L.eta);
+    for (std::size_t p = 0; p < L.rhs.size(); ++p) L.rhs[p] = L.eta[p] + dt * ((1 - th) * nu * lap[p] + ab_new * nl_[p] + ab_old * L.nl_old[p]);
+    std::swap(L.nl_old, nl_);
   }
-  // 3. (the coarser levels keep their own predictor, which carries the lagged body force)
-  // 4. streamfunction, coarsest to finest
-  for (int l = NL - 1; l >= 0; --l) {
-    Level& L = lv_[l];
-    if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].psi, L, L.psi);
-    rv.resize(L.eta.size());
-    for (std::size_t p = 0; p < rv.size(); ++p) rv[p] = -L.eta[p];
-    L.fast->solve(0, rv, L.psi);
-  }
-  // 5. body forces on the finest level
+  coarsify(&Level::rhs);
+  // 2. vorticity predictor η*, coarsest to finest (zero far field, boundary values from the next coarser level)
+  solve_levels(1, &Level::rhs, &Level::eta);
+  coarsify(&Level::eta);
+  // 3. its streamfunction, coarsest to finest
+  for (auto& L : lv_)
+    for (std::size_t p = 0; p < L.rhs.size(); ++p) L.rhs[p] = -L.eta[p];
+  solve_levels(0, &Level::rhs, &Level::psi);
+  // 4. body forces: Q g = U_b − U∞ e_z − Bψ*, Q the multi-level operator of apply_Q
   StepInfo info;
   std::vector<double> zs;
   for (const auto& b : next) zs.push_back(b.z);
@@ -199,70 +214,59 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       rhs[2 * k + 1] = next[pts_.body[k]].u - s_.u_inf - u[2 * k + 1];
     }
   }
-  if (g_.size() != m) g_ = Eigen::VectorXd::Zero(m);
+  if (g_.size() != m) {
+    g_ = Eigen::VectorXd::Zero(m);
+    g_prev_.resize(0);
+  }
   const bool use_direct = s_.direct_when_fixed && !moved;
   if (use_direct) {
-    if (!chol_ || fixed_z_ != zs) {
-      Eigen::MatrixXd Q(m, m);
-      for (Eigen::Index c = 0; c < m; ++c) Q.col(c) = apply_Q(Eigen::VectorXd::Unit(m, c));
-      Q = 0.5 * (Q + Q.transpose()).eval();
-      chol_ = std::make_unique<Eigen::LLT<Eigen::MatrixXd>>(Q);
-      if (chol_->info() != Eigen::Success) throw std::runtime_error("flow: force system is not positive definite");
+    if (!lu_ || fixed_z_ != zs) {
+      lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::MatrixXd>>(force_matrix());
       fixed_z_ = zs;
     }
-    g_ = chol_->solve(rhs);
-  } else {  // conjugate gradients, warm start; preconditioner: each sphere's own block of Q, factorised once
-    if (prec_size_ != m) {  // at the first configuration (the rings move rigidly with their sphere)
-      Eigen::MatrixXd Q0(m, m);
-      for (Eigen::Index c = 0; c < m; ++c) Q0.col(c) = apply_Q(Eigen::VectorXd::Unit(m, c));
-      prec_.clear();
-      for (std::size_t k = 0; k < pts_.size();) {
-        std::size_t e = k;
-        while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
-        const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
-        Eigen::MatrixXd blk = 0.5 * (Q0.block(o, o, n, n) + Q0.block(o, o, n, n).transpose());
-        prec_.push_back({o, n, Eigen::LLT<Eigen::MatrixXd>(blk)});
-        k = e;
+    g_ = lu_->solve(rhs);
+  } else {  // GMRES, warm start, right-preconditioned by each sphere's own block of Q
+    // preconditioner: each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of
+    // kPrecBins bins, built the first time a sphere is there): the rings' pattern relative to the grid repeats when
+    // a sphere moves by whole cells, and the multi-level Q is nearly translation invariant
+    prec_.clear();
+    const LevelGeometry& G = lv_[0].g;
+    for (std::size_t k = 0; k < pts_.size();) {
+      std::size_t e = k;
+      while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
+      const int b = pts_.body[k];
+      const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
+      const double x = (next[b].z - G.z0) / G.h;
+      const int bin = static_cast<int>(std::lround((x - std::floor(x)) * kPrecBins)) % kPrecBins;
+      if (prec_cache_.size() < next.size()) prec_cache_.resize(next.size());
+      auto& slot = prec_cache_[b];
+      if (slot.size() != static_cast<std::size_t>(kPrecBins)) slot.assign(kPrecBins, nullptr);
+      if (!slot[bin] || slot[bin]->rows() != n) {
+        Eigen::MatrixXd blk(n, n);
+        for (Eigen::Index c = 0; c < n; ++c) blk.col(c) = apply_Q(Eigen::VectorXd::Unit(m, o + c)).segment(o, n);
+        slot[bin] = std::make_shared<Eigen::PartialPivLU<Eigen::MatrixXd>>(blk);
+        ++prec_builds_;
       }
-      prec_size_ = m;
+      prec_.push_back({o, n, slot[bin]});
+      k = e;
     }
-    auto precondition = [&](const Eigen::VectorXd& r) {
-      Eigen::VectorXd z(r.size());
-      for (const auto& b : prec_) z.segment(b.offset, b.size) = b.llt.solve(r.segment(b.offset, b.size));
-      return z;
-    };
-    Eigen::VectorXd r = rhs - apply_Q(g_);
-    Eigen::VectorXd z = precondition(r);
-    Eigen::VectorXd p = z;
-    double rz = r.dot(z);
-    const double bn = std::max(rhs.norm(), 1e-300);
-    int it = 0;
-    double rn = r.norm();
-    while (rn > s_.cg_tol * bn) {
-      if (++it > s_.cg_max_iter)
-        throw SolverError("flow: CG did not converge in " + std::to_string(s_.cg_max_iter) + " iterations (relative residual " +
-                          std::to_string(rn / bn) + ", tolerance " + std::to_string(s_.cg_tol) + ")");
-      const Eigen::VectorXd Ap = apply_Q(p);
-      const double alpha = rz / p.dot(Ap);
-      g_ += alpha * p;
-      r -= alpha * Ap;
-      z = precondition(r);
-      const double rz2 = r.dot(z);
-      p = z + (rz2 / rz) * p;
-      rz = rz2;
-      rn = r.norm();
+    if (g_prev_.size() == m) {  // warm start: linear extrapolation of the last two steps' forces
+      const Eigen::VectorXd g1 = g_;
+      g_ = 2 * g_ - g_prev_;
+      g_prev_ = g1;
+    } else {
+      g_prev_ = g_;
     }
+    const auto [it, res] = gmres(rhs);
     info.cg_iterations = it;
-    info.cg_residual = rn / bn;
+    info.cg_residual = res;
   }
-  std::vector<double>& eta_c = eta_c_;
-  std::vector<double>& psi_c = psi_c_;
-  apply_Q(g_, &eta_c, &psi_c);
-  for (std::size_t p = 0; p < F.eta.size(); ++p) {
-    F.eta[p] += eta_c[p];
-    F.psi[p] += psi_c[p];
-  }
-  for (int l = 0; l + 1 < NL; ++l) restrict_interior(lv_[l], lv_[l].eta, lv_[l + 1], lv_[l + 1].eta);
+  apply_Q(g_);  // corrections η_c, ψ_c on every level
+  for (auto& L : lv_)
+    for (std::size_t p = 0; p < L.eta.size(); ++p) {
+      L.eta[p] += L.etac[p];
+      L.psi[p] += L.psic[p];
+    }
   {
     Eigen::Map<const Eigen::VectorXd> ps(F.psi.data(), static_cast<Eigen::Index>(F.psi.size()));
     Eigen::VectorXd u = B_ * ps;
@@ -271,19 +275,77 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       info.slip = std::max(info.slip, std::abs(u[2 * k + 1] + s_.u_inf - next[pts_.body[k]].u));
     }
   }
-  // 6. forces on the spheres
+  // 5. forces on the spheres: ring forces + the momentum change of the fluid inside (from u_in to U^{n+1})
   info.force.assign(next.size(), 0.0);
   info.internal.assign(next.size(), 0.0);
   for (std::size_t k = 0; k < pts_.size(); ++k) info.force[pts_.body[k]] -= s_.density * g_[2 * k + 1];
   for (std::size_t b = 0; b < next.size(); ++b) {
     const double V = 4.0 / 3.0 * M_PI * std::pow(next[b].radius, 3);
-    info.internal[b] = s_.density * V * (next[b].u - sph_[b].u) / dt;
+    info.internal[b] = s_.density * V * (next[b].u - u_in_[b]) / dt;
     info.force[b] += info.internal[b];
+    u_in_[b] = next[b].u;  // no-slip: the fluid inside now moves with the sphere
   }
   sph_ = next;
   t_ += dt;
   ++n_;
   return info;
+}
+
+std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
+  // Restarted GMRES (Saad & Schultz 1986) on Q g = b with right preconditioning M⁻¹ = per-sphere block inverses.
+  auto precondition = [&](const Eigen::VectorXd& r) {
+    Eigen::VectorXd z(r.size());
+    for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu->solve(r.segment(blk.offset, blk.size));
+    return z;
+  };
+  const int restart = 60;
+  const Eigen::Index n = b.size();
+  const double bn = std::max(b.norm(), 1e-300);
+  int it = 0;
+  double rel = 0;
+  for (;;) {
+    Eigen::VectorXd r = b - apply_Q(g_);
+    double beta = r.norm();
+    rel = beta / bn;
+    if (rel <= s_.cg_tol) return {it, rel};
+    Eigen::MatrixXd V(n, restart + 1), H = Eigen::MatrixXd::Zero(restart + 1, restart);
+    Eigen::VectorXd cs(restart), sn(restart), e = Eigen::VectorXd::Zero(restart + 1);
+    V.col(0) = r / beta;
+    e[0] = beta;
+    int k = 0;
+    for (; k < restart; ++k) {
+      if (++it > s_.cg_max_iter)
+        throw SolverError("flow: GMRES did not converge in " + std::to_string(s_.cg_max_iter) + " iterations (relative residual " +
+                          std::to_string(rel) + ", tolerance " + std::to_string(s_.cg_tol) + ")");
+      Eigen::VectorXd w = apply_Q(precondition(V.col(k)));
+      for (int i = 0; i <= k; ++i) {  // modified Gram–Schmidt
+        H(i, k) = V.col(i).dot(w);
+        w -= H(i, k) * V.col(i);
+      }
+      H(k + 1, k) = w.norm();
+      if (H(k + 1, k) > 0) V.col(k + 1) = w / H(k + 1, k);
+      for (int i = 0; i < k; ++i) {  // apply the previous Givens rotations
+        const double t = cs[i] * H(i, k) + sn[i] * H(i + 1, k);
+        H(i + 1, k) = -sn[i] * H(i, k) + cs[i] * H(i + 1, k);
+        H(i, k) = t;
+      }
+      const double d = std::hypot(H(k, k), H(k + 1, k));
+      cs[k] = H(k, k) / d;
+      sn[k] = H(k + 1, k) / d;
+      H(k, k) = d;
+      H(k + 1, k) = 0;
+      e[k + 1] = -sn[k] * e[k];
+      e[k] = cs[k] * e[k];
+      rel = std::abs(e[k + 1]) / bn;
+      if (rel <= s_.cg_tol || H(k, k) == 0) {
+        ++k;
+        break;
+      }
+    }
+    const Eigen::VectorXd y = H.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(e.head(k));
+    g_ += precondition(V.leftCols(k) * y);
+    if (rel <= s_.cg_tol) return {it, rel};
+  }
 }
 
 std::vector<double> Solver::axis_velocity() const {

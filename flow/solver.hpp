@@ -7,19 +7,32 @@
 // total streamfunction is ψ + ½U∞r² (a uniform stream U∞ along +z carries no vorticity). Vorticity transport
 //   ∂η/∂t = −r[∂z(u_z ω) + ∂r(u_r ω)] + ν E²η + (force term),
 // viscous term θ-implicit (θ = ½: Crank–Nicolson), advection Adams–Bashforth-2 (Euler on the first step).
+//
+// Levels (Colonius & Taira 2008, §3.3): ℓ = 0 finest (spacing h), level ℓ has spacing 2^ℓ h and the same nr × nz
+// cells, all centred on z_center. Every elliptic solve is multi-level: the right-hand side of each finer level
+// replaces the coarser one's where they overlap (full weighting, "coarsify"), the coarsest level is solved with
+// zero far field, then each finer level with boundary values interpolated (cubic) from the next coarser one.
+// Call these A⁻¹ (for I − θνΔt E²) and P⁻¹ (for −E²). One step:
+//   η* = A⁻¹[η^n + Δt((1−θ)νE²η^n + AB2 advection)],  ψ* = P⁻¹ η*,
+//   Q g = U_b − U∞e_z − Bψ*_0,   Q g = B [P⁻¹ A⁻¹ S g]_0,   S g = Δt R Bᵀ g /(2πh²) on the finest level,
+//   η^{n+1} = η* + A⁻¹ S g,  ψ^{n+1} = ψ* + P⁻¹A⁻¹ S g   (on every level: no lagged force on the coarse levels).
 // The body forces g (ring totals, m⁴/s² = N per kg/m³) are the Lagrange multipliers of no-slip at the ring
-// points: with B = E C (velocity at the points from ψ) and the force term Δt R Bᵀg/(2πh²) in η,
-//   Q g = U_b − U∞e_z − Bψ*,   Q = Δt B (−E²)⁻¹ (I − θνΔt E²)⁻¹ R Bᵀ /(2πh²)   (symmetric positive definite),
-// solved by Cholesky of the dense Q when the bodies have not moved, by conjugate gradients otherwise (relative
-// residual cg_tol; preconditioned by each sphere's own block of Q at the first configuration, factorised once).
-// Levels: ℓ = 0 finest (spacing h), level ℓ has spacing 2^ℓ h and the same nr × nz cells, all centred on
-// z_center; the coarsest has η = ψ = 0 on its outer boundary, each finer level takes its boundary values from
-// the next coarser one (cubic interpolation), and its interior replaces the coarser level's interior (full weighting).
-// Force on sphere s (N, along +z): F_s = −ρ Σ_{k∈s} g_z,k + ρ V_s dU_s/dt (the second term: the fluid inside).
+// points (B = E C: velocity at the points from the finest ψ). Q is close to, but not exactly, symmetric (the level
+// transfers are not adjoint), so it is LU-factorised when the bodies have not moved and solved by restarted GMRES
+// otherwise (relative residual cg_tol; right-preconditioned by each sphere's own block of Q, factorised for
+// the sphere's sub-cell offset on the finest grid in one of 16 bins, each built the first time the sphere is
+// there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
+// multi-level Q is nearly translation invariant; warm start extrapolated from the last two steps' forces).
+// Force on sphere s (N, along +z): F_s = −ρ Σ_{k∈s} g_z,k + ρ V_s (U_s^{n+1} − u_in,s^n)/Δt, the second term the
+// momentum change of the fluid inside the sphere. Convention: before the first step the fluid inside moves with
+// the initial flow (ψ = 0, so u_in = U∞, the stream); after every step no-slip makes it move with the sphere
+// (u_in = U_s). A sphere prescribed at U from t = 0 in fluid at rest therefore gets ρVU/Δt on step 1, and the
+// step-1 impulse is ρVU (fluid inside) + ½ρVU (added mass) + viscous, as for a real impulsive start.
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "flow/grid.hpp"
@@ -37,10 +50,10 @@ struct Settings {
   int levels = 1;             // nested levels
   double z_center = 0;        // z of the centre of all levels, m
   double u_inf = 0;           // uniform stream along +z, m/s
-  double cg_tol = 1e-10;      // CG: relative residual ‖Qg − b‖ ≤ cg_tol ‖b‖
-  int cg_max_iter = 1000;     // CG: iteration limit (exceeded -> std::runtime_error)
+  double cg_tol = 1e-10;      // Krylov (GMRES; key name kept from CG): relative residual ‖Qg − b‖ ≤ cg_tol ‖b‖
+  int cg_max_iter = 1000;     // GMRES: iteration limit (exceeded -> SolverError)
   double ring_spacing = 1.0;  // arc spacing of the body rings, units of h
-  bool direct_when_fixed = true;  // Cholesky of Q while the bodies stay put
+  bool direct_when_fixed = true;  // LU of Q while the bodies stay put
   bool measure_plans = false;     // FFTW_MEASURE instead of FFTW_ESTIMATE
 };
 
@@ -54,7 +67,7 @@ struct SphereState {
 struct StepInfo {
   std::vector<double> force;     // N on each sphere along +z (ring forces + internal fluid)
   std::vector<double> internal;  // N, the internal-fluid part ρ V dU/dt
-  int cg_iterations = 0;         // 0 with the direct solve
+  int cg_iterations = 0;         // GMRES iterations, 0 with the direct solve
   double cg_residual = 0;        // relative
   double slip = 0;               // max |u − U_b| at the body points after the step, m/s
 };
@@ -63,17 +76,18 @@ struct Level {
   LevelGeometry g;
   std::unique_ptr<FastSolver> fast;  // ops: 0 = E² (Poisson), 1 = I − θνΔt E² (viscous)
   std::vector<double> eta, psi, nl_old;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> B;  // velocity at the body points (levels >= 1: for spreading)
+  std::vector<double> rhs, src, etac, psic;  // scratch: right-hand sides, force source, corrections
 };
 
 class Solver {
  public:
   Solver(const Settings& s, std::vector<SphereState> spheres);
   /// Advances one step; `next` are the spheres at t + dt (same count and radii). Returns the forces at t + dt.
-  StepInfo step(const std::vector<SphereState>& next);
+  StepInfo step(const std::vector<SphereState>& next);  // throws SolverError if GMRES fails
 
   double time() const { return t_; }
   long steps() const { return n_; }
+  long preconditioner_blocks_built() const { return prec_builds_; }  // GMRES preconditioner blocks factorised so far
   const Settings& settings() const { return s_; }
   const std::vector<Level>& levels() const { return lv_; }
   const std::vector<SphereState>& spheres() const { return sph_; }
@@ -88,25 +102,34 @@ class Solver {
   static void nonlinear(const Level& L, double u_inf, std::vector<double>& out);
   static void prolong_boundary(const Level& coarse, const std::vector<double>& fc, const Level& fine, std::vector<double>& ff);
   static void restrict_interior(const Level& fine, const std::vector<double>& ff, const Level& coarse, std::vector<double>& fc);
-  /// Q g (see above) for the current body points; also returns the corrections if asked.
-  Eigen::VectorXd apply_Q(const Eigen::VectorXd& g, std::vector<double>* eta_c = nullptr, std::vector<double>* psi_c = nullptr);
+  /// Q g (see above) for the current body points (m/s); leaves the corrections A⁻¹Sg, P⁻¹A⁻¹Sg in Level::etac, psic.
+  Eigen::VectorXd apply_Q(const Eigen::VectorXd& g);
+  /// The dense Q, column by column (2N applications of apply_Q).
+  Eigen::MatrixXd force_matrix();
 
  private:
   void build_points(const std::vector<SphereState>& sp);
+  void coarsify(std::vector<double> Level::*field);  // fine-to-coarse full weighting, finest first
+  void solve_levels(int op, std::vector<double> Level::*rhs, std::vector<double> Level::*x);  // coarsest to finest
+  std::pair<int, double> gmres(const Eigen::VectorXd& b);  // into g_; iterations, relative residual
   Settings s_;
   std::vector<Level> lv_;
   std::vector<SphereState> sph_;
   BodyPoints pts_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> B_;
-  Eigen::VectorXd g_;     // last ring forces (warm start)
-  struct Block { Eigen::Index offset, size; Eigen::LLT<Eigen::MatrixXd> llt; };
-  std::vector<Block> prec_;  // CG preconditioner: per-sphere blocks of Q at the first configuration
-  Eigen::Index prec_size_ = -1;
+  Eigen::VectorXd g_, g_prev_;  // ring forces of the last two steps (warm start)
+  using BlockLU = Eigen::PartialPivLU<Eigen::MatrixXd>;
+  struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; };
+  static constexpr int kPrecBins = 16;  // sub-cell offsets per finest cell with their own preconditioner block
+  std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
+  std::vector<std::vector<std::shared_ptr<BlockLU>>> prec_cache_;  // [sphere][offset bin]
+  long prec_builds_ = 0;
   std::vector<double> fixed_z_;  // sphere positions of the factorised Q
-  std::unique_ptr<Eigen::LLT<Eigen::MatrixXd>> chol_;
+  std::unique_ptr<Eigen::PartialPivLU<Eigen::MatrixXd>> lu_;
+  std::vector<double> u_in_;  // velocity of the fluid inside each sphere at t^n (see the convention above)
   double t_ = 0;
   long n_ = 0;
-  std::vector<double> work_, work2_, work3_, xq_, eta_c_, psi_c_;
+  std::vector<double> work2_, nl_;
 };
 
 }  // namespace imcol::flow
