@@ -108,7 +108,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   hist << std::setprecision(10);
   hist << "step,t,wall_s";
   for (int b = 0; b < nb; ++b) hist << ",z" << b + 1 << ",u" << b + 1 << ",F" << b + 1 << ",F_internal" << b + 1;
-  hist << ",C_D,C_D_standard,F_stokes_basset,cg_iterations,slip";
+  hist << ",C_D,C_D_standard,F_stokes_basset,krylov_iterations,slip";
   // a sphere oscillating in fluid at rest: Stokes (1851) / Landau & Lifshitz §24, a ≪ δ not required, A ≪ a
   const auto& s0 = sc.spheres.front();
   const bool osc = nb == 1 && s0.amplitude != 0 && sc.stream == 0 && s0.velocity == 0;
@@ -125,8 +125,8 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   std::vector<double> report_gaps = {1.0, 0.5, 0.25, 0.1, 0.05};
   nlohmann::ordered_json thr_rows = nlohmann::ordered_json::array();
   std::vector<double> cds, times, walls;
-  long cg_total = 0;
-  int cg_max = 0;
+  long krylov_total = 0;
+  int krylov_max = 0;
   double slip_max = 0, last_cd = NAN, min_gap_seen = INFINITY;
   std::vector<double> last_force(nb, 0.0);
   int snap = 0;
@@ -157,13 +157,13 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     walls.push_back(wall);
     last_cd = cd;
     last_force = info.force;
-    cg_total += info.cg_iterations;
-    cg_max = std::max(cg_max, info.cg_iterations);
+    krylov_total += info.krylov_iterations;
+    krylov_max = std::max(krylov_max, info.krylov_iterations);
     slip_max = std::max(slip_max, info.slip);
     if (n % sc.history_every == 0 || n == nsteps) {
       hist << n << ',' << t << ',' << wall;
       for (int b = 0; b < nb; ++b) hist << ',' << next[b].z << ',' << next[b].u << ',' << info.force[b] << ',' << info.internal[b];
-      hist << ',' << cd << ',' << cd_ref << ',' << fsb << ',' << info.cg_iterations << ',' << info.slip;
+      hist << ',' << cd << ',' << cd_ref << ',' << fsb << ',' << info.krylov_iterations << ',' << info.slip;
       if (osc) hist << ',' << f_osc(t - 0.5 * sc.dt);
       if (nb == 2) {
         const double gap = next[1].z - next[0].z - next[0].radius - next[1].radius;
@@ -183,7 +183,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     if (!opt.quiet && (n % std::max(1L, nsteps / 10) == 0 || n == nsteps)) {
       std::cout << "  t = " << std::setw(8) << t << "  C_D = " << std::setw(10) << cd;
       for (int b = 0; b < nb; ++b) std::cout << "  F" << b + 1 << " = " << std::setw(11) << info.force[b] << " N";
-      if (info.cg_iterations) std::cout << "  gmres " << info.cg_iterations;
+      if (info.krylov_iterations) std::cout << "  gmres " << info.krylov_iterations;
       std::cout << "  (" << std::fixed << std::setprecision(2) << wall << " s)" << std::defaultfloat << std::setprecision(6) << "\n";
     }
     if (sc.snapshots > 0 && n == (snap + 1) * nsteps / sc.snapshots) {
@@ -257,8 +257,8 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   j["wall_time_s"] = wall_total;
   j["ms_per_step"] = 1e3 * wall_total / std::max(1L, steps_done);
   j["memory_bytes"] = solver.bytes();
-  j["force_solver"] = {{"cg_tol", sc.cg_tol}, {"cg_iterations_mean", steps_done ? double(cg_total) / steps_done : 0.0},
-                       {"cg_iterations_max", cg_max}, {"max_slip", slip_max}};
+  j["force_solver"] = {{"krylov_tol", sc.krylov_tol}, {"krylov_iterations_mean", steps_done ? double(krylov_total) / steps_done : 0.0},
+                       {"krylov_iterations_max", krylov_max}, {"max_slip", slip_max}};
   write_file_atomic(dir / "forces.csv", hist.str());
   write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
   return j;

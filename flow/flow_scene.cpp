@@ -112,8 +112,8 @@ Settings FlowScene::settings() const {
   s.levels = levels;
   s.z_center = (z_min * D() + 0.5 * s.nz * s.h);
   s.u_inf = stream;
-  s.cg_tol = cg_tol;
-  s.cg_max_iter = cg_max_iter;
+  s.krylov_tol = krylov_tol;
+  s.krylov_max_iter = krylov_max_iter;
   s.ring_spacing = ring_spacing;
   s.direct_when_fixed = direct_when_fixed;
   s.measure_plans = measure_plans;
@@ -261,12 +261,12 @@ FlowScene load_flow_scene(const std::string& path) {
   }
   if (const toml::table* so = top.table("solver")) {
     Reader r(*so, "solver", path);
-    sc.cg_tol = r.number("cg_tol", sc.cg_tol);
-    r.positive("cg_tol", sc.cg_tol);
-    if (sc.cg_tol >= 1) r.fail("cg_tol", "must be < 1");
-    const long it = r.integer("cg_max_iter", sc.cg_max_iter);
-    if (it < 1) r.fail("cg_max_iter", "must be >= 1");
-    sc.cg_max_iter = static_cast<int>(it);
+    sc.krylov_tol = r.number("krylov_tol", sc.krylov_tol);
+    r.positive("krylov_tol", sc.krylov_tol);
+    if (sc.krylov_tol >= 1) r.fail("krylov_tol", "must be < 1");
+    const long it = r.integer("krylov_max_iter", sc.krylov_max_iter);
+    if (it < 1) r.fail("krylov_max_iter", "must be >= 1");
+    sc.krylov_max_iter = static_cast<int>(it);
     sc.ring_spacing = r.number("ring_spacing", sc.ring_spacing);
     if (!(sc.ring_spacing >= 0.25 && sc.ring_spacing <= 4)) r.fail("ring_spacing", "must be in [0.25, 4] (units of h)");
     sc.direct_when_fixed = r.boolean("direct_when_fixed", sc.direct_when_fixed);

@@ -32,8 +32,8 @@ struct FlowScene {
   // time
   double dt = 0, t_end = 0, theta = 0.5;
   // solver
-  double cg_tol = 1e-10;
-  int cg_max_iter = 1000;
+  double krylov_tol = 1e-10;
+  int krylov_max_iter = 1000;
   double ring_spacing = 1.0;
   bool direct_when_fixed = true;
   bool measure_plans = false;

@@ -18,7 +18,7 @@ Solver::Solver(const Settings& s, std::vector<SphereState> spheres) : s_(s), sph
   if (s.nr < 4 || s.nr % 2 || s.nz < 8 || s.nz % 4) throw std::invalid_argument("flow: nr must be even >= 4, nz a multiple of 4 >= 8");
   if (s.levels < 1) throw std::invalid_argument("flow: levels must be >= 1");
   if (!(s.theta >= 0.5 && s.theta <= 1)) throw std::invalid_argument("flow: theta must be in [0.5, 1]");
-  if (!(s.cg_tol > 0) || s.cg_max_iter < 1) throw std::invalid_argument("flow: cg_tol must be > 0, cg_max_iter >= 1");
+  if (!(s.krylov_tol > 0) || s.krylov_max_iter < 1) throw std::invalid_argument("flow: krylov_tol must be > 0, krylov_max_iter >= 1");
   for (int l = 0; l < s.levels; ++l) {
     Level L;
     L.g.nr = s.nr;
@@ -258,8 +258,8 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       g_prev_ = g_;
     }
     const auto [it, res] = gmres(rhs);
-    info.cg_iterations = it;
-    info.cg_residual = res;
+    info.krylov_iterations = it;
+    info.krylov_residual = res;
   }
   apply_Q(g_);  // corrections η_c, ψ_c on every level
   for (auto& L : lv_)
@@ -307,16 +307,16 @@ std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
     Eigen::VectorXd r = b - apply_Q(g_);
     double beta = r.norm();
     rel = beta / bn;
-    if (rel <= s_.cg_tol) return {it, rel};
+    if (rel <= s_.krylov_tol) return {it, rel};
     Eigen::MatrixXd V(n, restart + 1), H = Eigen::MatrixXd::Zero(restart + 1, restart);
     Eigen::VectorXd cs(restart), sn(restart), e = Eigen::VectorXd::Zero(restart + 1);
     V.col(0) = r / beta;
     e[0] = beta;
     int k = 0;
     for (; k < restart; ++k) {
-      if (++it > s_.cg_max_iter)
-        throw SolverError("flow: GMRES did not converge in " + std::to_string(s_.cg_max_iter) + " iterations (relative residual " +
-                          std::to_string(rel) + ", tolerance " + std::to_string(s_.cg_tol) + ")");
+      if (++it > s_.krylov_max_iter)
+        throw SolverError("flow: GMRES did not converge in " + std::to_string(s_.krylov_max_iter) + " iterations (relative residual " +
+                          std::to_string(rel) + ", tolerance " + std::to_string(s_.krylov_tol) + ")");
       Eigen::VectorXd w = apply_Q(precondition(V.col(k)));
       for (int i = 0; i <= k; ++i) {  // modified Gram–Schmidt
         H(i, k) = V.col(i).dot(w);
@@ -337,14 +337,14 @@ std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
       e[k + 1] = -sn[k] * e[k];
       e[k] = cs[k] * e[k];
       rel = std::abs(e[k + 1]) / bn;
-      if (rel <= s_.cg_tol || H(k, k) == 0) {
+      if (rel <= s_.krylov_tol || H(k, k) == 0) {
         ++k;
         break;
       }
     }
     const Eigen::VectorXd y = H.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(e.head(k));
     g_ += precondition(V.leftCols(k) * y);
-    if (rel <= s_.cg_tol) return {it, rel};
+    if (rel <= s_.krylov_tol) return {it, rel};
   }
 }
 

@@ -19,7 +19,7 @@
 // The body forces g (ring totals, m⁴/s² = N per kg/m³) are the Lagrange multipliers of no-slip at the ring
 // points (B = E C: velocity at the points from the finest ψ). Q is close to, but not exactly, symmetric (the level
 // transfers are not adjoint), so it is LU-factorised when the bodies have not moved and solved by restarted GMRES
-// otherwise (relative residual cg_tol; right-preconditioned by each sphere's own block of Q, factorised for
+// otherwise (relative residual krylov_tol; right-preconditioned by each sphere's own block of Q, factorised for
 // the sphere's sub-cell offset on the finest grid in one of 16 bins, each built the first time the sphere is
 // there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
 // multi-level Q is nearly translation invariant; warm start extrapolated from the last two steps' forces).
@@ -50,8 +50,8 @@ struct Settings {
   int levels = 1;             // nested levels
   double z_center = 0;        // z of the centre of all levels, m
   double u_inf = 0;           // uniform stream along +z, m/s
-  double cg_tol = 1e-10;      // Krylov (GMRES; key name kept from CG): relative residual ‖Qg − b‖ ≤ cg_tol ‖b‖
-  int cg_max_iter = 1000;     // GMRES: iteration limit (exceeded -> SolverError)
+  double krylov_tol = 1e-10;      // GMRES: relative residual ‖Qg − b‖ ≤ krylov_tol ‖b‖
+  int krylov_max_iter = 1000;     // GMRES: iteration limit (exceeded -> SolverError)
   double ring_spacing = 1.0;  // arc spacing of the body rings, units of h
   bool direct_when_fixed = true;  // LU of Q while the bodies stay put
   bool measure_plans = false;     // FFTW_MEASURE instead of FFTW_ESTIMATE
@@ -67,8 +67,8 @@ struct SphereState {
 struct StepInfo {
   std::vector<double> force;     // N on each sphere along +z (ring forces + internal fluid)
   std::vector<double> internal;  // N, the internal-fluid part ρ V dU/dt
-  int cg_iterations = 0;         // GMRES iterations, 0 with the direct solve
-  double cg_residual = 0;        // relative
+  int krylov_iterations = 0;         // GMRES iterations, 0 with the direct solve
+  double krylov_residual = 0;        // relative
   double slip = 0;               // max |u − U_b| at the body points after the step, m/s
 };
 

@@ -163,7 +163,7 @@ TEST(FlowDrag, NestedLevelsAddNoRingingAfterAbruptStarts) {
   auto run = [](bool moving, int levels, int nr, int nz) {
     Settings st = stream_settings(moving ? 10 : 1000, 16, levels, nr / 16.0, -nz / 32.0, nz / 32.0, moving ? 0.01 : 0.001, 0.5);
     if (moving) st.u_inf = 0;
-    st.cg_tol = 1e-12;
+    st.krylov_tol = 1e-12;
     const double z0 = moving ? 0.2 : 0.0, u = moving ? -1.0 : 0.0;
     Solver s(st, {{0.5, z0, u}});
     std::vector<double> F;
@@ -200,7 +200,7 @@ TEST(FlowDrag, OscillatingSphereFollowsUnsteadyStokes) {
   for (int cpd : {12, 24}) {
     Settings st = stream_settings(1.0, cpd, 4, 1.5, -1.5, 1.5, dt, 0.5);
     st.u_inf = 0;
-    st.cg_tol = 1e-8;  // the force to ~1e-8: far below the % errors checked here
+    st.krylov_tol = 1e-8;  // the force to ~1e-8: far below the % errors checked here
     Solver s(st, {{a, 0.0, 0.0}});
     double e = 0, amp = 0;
     for (int n = 1; n <= 2 * per; ++n) {
@@ -223,11 +223,11 @@ TEST(FlowDrag, KrylovPathMatchesDirectPath) {
   auto run = [](bool direct) {
     Settings st = stream_settings(20, 16, 2, 1.5, -1.5, 1.5, 0.01, 0.5);
     st.direct_when_fixed = direct;
-    st.cg_tol = 1e-12;
+    st.krylov_tol = 1e-12;
     Solver s(st, {{0.5, 0.0, 0.0}});
     StepInfo info;
     for (int n = 0; n < 20; ++n) info = s.step({{0.5, 0.0, 0.0}});
-    return std::make_pair(info.force[0], info.cg_iterations);
+    return std::make_pair(info.force[0], info.krylov_iterations);
   };
   const auto [fd, itd] = run(true);
   const auto [fc, itc] = run(false);
@@ -244,7 +244,7 @@ TEST(FlowDrag, MovingSphereInQuiescentFluidMatchesFixedSphereInStream) {
   Settings fixed = stream_settings(10, 16, 3, 1.5, -2.0, 2.0, dt, 0.5);
   Settings moving = fixed;
   moving.u_inf = 0;
-  moving.cg_tol = 1e-10;
+  moving.krylov_tol = 1e-10;
   Solver a(fixed, {{0.5, 0.0, 0.0}});
   Solver b(moving, {{0.5, 0.25, -1.0}});
   double worst = 0;
@@ -253,7 +253,7 @@ TEST(FlowDrag, MovingSphereInQuiescentFluidMatchesFixedSphereInStream) {
     const StepInfo ia = a.step({{0.5, 0.0, 0.0}});
     const double Fa = ia.force[0];
     const StepInfo ib = b.step({{0.5, 0.25 - n * dt, -1.0}});
-    iters = std::max(iters, ib.cg_iterations);
+    iters = std::max(iters, ib.krylov_iterations);
     if (n == 1) {  // step 1: the fluid inside goes from U∞ = 1 to 0 (fixed) and from 0 to −1 (moving), the same change
       EXPECT_NEAR(ib.internal[0], -4.0 / 3.0 * M_PI * 0.125 / dt, 1e-9);
       EXPECT_NEAR(ib.internal[0], ia.internal[0], 1e-9);
@@ -272,7 +272,7 @@ TEST(FlowDrag, TwoSpheresApproachingSymmetricallyFeelEqualAndOppositeForces) {
   const double dt = 0.01;
   Settings st = stream_settings(10, 16, 3, 1.5, -2.0, 2.0, dt, 0.5);
   st.u_inf = 0;
-  st.cg_tol = 1e-10;
+  st.krylov_tol = 1e-10;
   Solver two(st, {{0.5, -1.0, 0.5}, {0.5, 1.0, -0.5}});
   Solver one(st, {{0.5, -1.0, 0.5}});
   StepInfo i2, i1;
@@ -281,7 +281,7 @@ TEST(FlowDrag, TwoSpheresApproachingSymmetricallyFeelEqualAndOppositeForces) {
     i1 = one.step({{0.5, -1.0 + 0.5 * n * dt, 0.5}});
   }
   std::printf("gap 0.5 D: F1 = %.6f, F2 = %.6f; single sphere %.6f (GMRES %d iterations)\n", i2.force[0], i2.force[1], i1.force[0],
-              i2.cg_iterations);
+              i2.krylov_iterations);
   EXPECT_NEAR(i2.force[0], -i2.force[1], 1e-6 * std::abs(i2.force[0]));
   EXPECT_LT(i2.force[0], 0.0);                           // resisted
   EXPECT_LT(i2.force[0], i1.force[0]);                   // more than alone (the squeezed gap)
@@ -304,7 +304,7 @@ levels = 2
 dt = 0.01
 t_end = 1.0
 [solver]
-cg_tol = 1e-8
+krylov_tol = 1e-8
 )";
   const fs::path p = fs::temp_directory_path() / "imcol_flow_scene_test.toml";
   auto expect_error = [&](const std::string& text, const std::string& key, const std::string& line) {
@@ -327,7 +327,7 @@ cg_tol = 1e-8
   };
   expect_error(replace("viscosity = 0.01", "viscosity = -0.01"), "fluid.viscosity", ":3");
   expect_error(replace("levels = 2", "levels = 2\nlevles = 3"), "grid.levles", ":12");
-  expect_error(replace("cg_tol = 1e-8", "cg_tol = 0"), "solver.cg_tol", ":16");
+  expect_error(replace("krylov_tol = 1e-8", "krylov_tol = 0"), "solver.krylov_tol", ":16");
   expect_error(replace("position = 0.0", "position = 9.0"), "sphere[0]", ":6");       // outside the finest level
   expect_error(replace("t_end = 1.0", "t_end = 0.001"), "time.dt", ":13");          // dt > t_end
   expect_error(replace("velocity = 1.0", "velocity = 0.0"), "stream.velocity", ":5");  // no relative motion
