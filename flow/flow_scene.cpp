@@ -114,6 +114,7 @@ Settings FlowScene::settings() const {
   s.u_inf = stream;
   s.krylov_tol = krylov_tol;
   s.krylov_max_iter = krylov_max_iter;
+  s.krylov_restart = krylov_restart;
   s.ring_spacing = ring_spacing;
   s.direct_when_fixed = direct_when_fixed;
   s.measure_plans = measure_plans;
@@ -267,6 +268,9 @@ FlowScene load_flow_scene(const std::string& path) {
     const long it = r.integer("krylov_max_iter", sc.krylov_max_iter);
     if (it < 1) r.fail("krylov_max_iter", "must be >= 1");
     sc.krylov_max_iter = static_cast<int>(it);
+    const long rs = r.integer("krylov_restart", sc.krylov_restart);
+    if (rs < 1 || rs > 1000) r.fail("krylov_restart", "must be in [1, 1000]");
+    sc.krylov_restart = static_cast<int>(rs);
     sc.ring_spacing = r.number("ring_spacing", sc.ring_spacing);
     if (!(sc.ring_spacing >= 0.25 && sc.ring_spacing <= 4)) r.fail("ring_spacing", "must be in [0.25, 4] (units of h)");
     sc.direct_when_fixed = r.boolean("direct_when_fixed", sc.direct_when_fixed);

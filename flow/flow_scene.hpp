@@ -34,6 +34,7 @@ struct FlowScene {
   // solver
   double krylov_tol = 1e-10;
   int krylov_max_iter = 1000;
+  int krylov_restart = 60;
   double ring_spacing = 1.0;
   bool direct_when_fixed = true;
   bool measure_plans = false;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -224,6 +226,7 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::MatrixXd>>(force_matrix());
       fixed_z_ = zs;
     }
+    g_prev_ = g_;  // keeps a later GMRES warm start current
     g_ = lu_->solve(rhs);
   } else {  // GMRES, warm start, right-preconditioned by each sphere's own block of Q
     // preconditioner: each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of
@@ -292,31 +295,36 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
 }
 
 std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
-  // Restarted GMRES (Saad & Schultz 1986) on Q g = b with right preconditioning M⁻¹ = per-sphere block inverses.
+  // Restarted GMRES (Saad & Schultz 1986) on Q g = b with right preconditioning M⁻¹ = per-sphere block
+  // inverses. Convergence is judged on the true residual ‖b − Qg‖/‖b‖, recomputed at every restart and
+  // after the Givens estimate says converged.
   auto precondition = [&](const Eigen::VectorXd& r) {
     Eigen::VectorXd z(r.size());
     for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu->solve(r.segment(blk.offset, blk.size));
     return z;
   };
-  const int restart = 60;
+  const int restart = s_.krylov_restart;
   const Eigen::Index n = b.size();
   const double bn = std::max(b.norm(), 1e-300);
   int it = 0;
-  double rel = 0;
   for (;;) {
-    Eigen::VectorXd r = b - apply_Q(g_);
-    double beta = r.norm();
-    rel = beta / bn;
+    const Eigen::VectorXd r = b - apply_Q(g_);
+    const double beta = r.norm(), rel = beta / bn;
     if (rel <= s_.krylov_tol) return {it, rel};
+    if (it >= s_.krylov_max_iter) {
+      std::ostringstream os;
+      os << std::scientific << std::setprecision(3) << "flow: GMRES did not converge in " << it
+         << " iterations: true relative residual " << rel << " > solver.krylov_tol = " << s_.krylov_tol
+         << " (raise solver.krylov_max_iter or krylov_restart, or loosen krylov_tol)";
+      throw SolverError(os.str());
+    }
     Eigen::MatrixXd V(n, restart + 1), H = Eigen::MatrixXd::Zero(restart + 1, restart);
     Eigen::VectorXd cs(restart), sn(restart), e = Eigen::VectorXd::Zero(restart + 1);
     V.col(0) = r / beta;
     e[0] = beta;
-    int k = 0;
-    for (; k < restart; ++k) {
-      if (++it > s_.krylov_max_iter)
-        throw SolverError("flow: GMRES did not converge in " + std::to_string(s_.krylov_max_iter) + " iterations (relative residual " +
-                          std::to_string(rel) + ", tolerance " + std::to_string(s_.krylov_tol) + ")");
+    int k = 0;  // columns of the Krylov basis in use
+    while (k < restart && it < s_.krylov_max_iter) {
+      ++it;
       Eigen::VectorXd w = apply_Q(precondition(V.col(k)));
       for (int i = 0; i <= k; ++i) {  // modified Gram–Schmidt
         H(i, k) = V.col(i).dot(w);
@@ -330,21 +338,23 @@ std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
         H(i, k) = t;
       }
       const double d = std::hypot(H(k, k), H(k + 1, k));
+      if (d == 0) break;  // breakdown: the basis so far holds the solution
       cs[k] = H(k, k) / d;
       sn[k] = H(k + 1, k) / d;
       H(k, k) = d;
       H(k + 1, k) = 0;
       e[k + 1] = -sn[k] * e[k];
       e[k] = cs[k] * e[k];
-      rel = std::abs(e[k + 1]) / bn;
-      if (rel <= s_.krylov_tol || H(k, k) == 0) {
-        ++k;
-        break;
-      }
+      ++k;
+      if (std::abs(e[k]) / bn <= s_.krylov_tol) break;  // estimate converged: the true residual decides above
+    }
+    if (k == 0) {
+      std::ostringstream os;
+      os << std::scientific << std::setprecision(3) << "flow: GMRES broke down at relative residual " << rel;
+      throw SolverError(os.str());
     }
     const Eigen::VectorXd y = H.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(e.head(k));
     g_ += precondition(V.leftCols(k) * y);
-    if (rel <= s_.krylov_tol) return {it, rel};
   }
 }
 

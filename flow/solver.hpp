@@ -52,6 +52,7 @@ struct Settings {
   double u_inf = 0;           // uniform stream along +z, m/s
   double krylov_tol = 1e-10;      // GMRES: relative residual ‖Qg − b‖ ≤ krylov_tol ‖b‖
   int krylov_max_iter = 1000;     // GMRES: iteration limit (exceeded -> SolverError)
+  int krylov_restart = 60;        // GMRES: Krylov vectors kept before a restart
   double ring_spacing = 1.0;  // arc spacing of the body rings, units of h
   bool direct_when_fixed = true;  // LU of Q while the bodies stay put
   bool measure_plans = false;     // FFTW_MEASURE instead of FFTW_ESTIMATE
@@ -83,7 +84,8 @@ class Solver {
  public:
   Solver(const Settings& s, std::vector<SphereState> spheres);
   /// Advances one step; `next` are the spheres at t + dt (same count and radii). Returns the forces at t + dt.
-  StepInfo step(const std::vector<SphereState>& next);  // throws SolverError if GMRES fails
+  /// Throws SolverError if GMRES fails; the solver is then mid-step and must not be stepped again.
+  StepInfo step(const std::vector<SphereState>& next);
 
   double time() const { return t_; }
   long steps() const { return n_; }

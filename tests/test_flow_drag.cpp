@@ -237,6 +237,55 @@ TEST(FlowDrag, KrylovPathMatchesDirectPath) {
   EXPECT_NEAR(fc, fd, 1e-8 * std::abs(fd));
 }
 
+TEST(FlowDrag, KrylovSolveMeetsItsToleranceOnTheTrueResidual) {
+  // Two fixed spheres in a stream (two preconditioner blocks, so GMRES iterates) and a restart of 3 (so
+  // it restarts): the force matches LU, the no-slip residual after the step follows krylov_tol, a looser
+  // tolerance takes fewer iterations, and an iteration limit ends with a SolverError naming the residual.
+  const std::vector<SphereState> spheres = {{0.5, -0.75, 0.0}, {0.5, 0.75, 0.0}};
+  auto run = [&](bool direct, double tol, int restart, int steps) {
+    Settings st = stream_settings(20, 16, 2, 1.5, -2.0, 2.0, 0.01, 0.5);
+    st.direct_when_fixed = direct;
+    st.krylov_tol = tol;
+    st.krylov_restart = restart;
+    Solver s(st, spheres);
+    StepInfo info;
+    int iters = 0;
+    for (int n = 0; n < steps; ++n) {
+      info = s.step(spheres);
+      iters += info.krylov_iterations;
+    }
+    return std::make_pair(info, iters);
+  };
+  const auto [lu, lu_it] = run(true, 1e-12, 60, 5);
+  const auto [tight, tight_it] = run(false, 1e-12, 3, 5);
+  const auto [loose, loose_it] = run(false, 1e-4, 3, 5);
+  std::printf("LU slip %.2e; GMRES(3) tol 1e-12: %d iterations, residual %.2e, slip %.2e; tol 1e-4: %d iterations, slip %.2e\n",
+              lu.slip, tight_it, tight.krylov_residual, tight.slip, loose_it, loose.slip);
+  EXPECT_EQ(lu_it, 0);
+  EXPECT_LT(lu.slip, 1e-12);
+  EXPECT_GT(tight_it, 5 * 3);  // restarted at least once per step on average
+  EXPECT_LE(tight.krylov_residual, 1e-12);
+  EXPECT_LT(tight.slip, 1e-9);
+  EXPECT_NEAR(tight.force[0], lu.force[0], 1e-8 * std::abs(lu.force[0]));
+  EXPECT_NEAR(tight.force[1], lu.force[1], 1e-8 * std::abs(lu.force[1]));
+  EXPECT_LT(loose_it, tight_it);
+  EXPECT_GT(loose.slip, tight.slip);
+  try {
+    Settings st = stream_settings(20, 16, 2, 1.5, -2.0, 2.0, 0.01, 0.5);
+    st.direct_when_fixed = false;
+    st.krylov_tol = 1e-14;
+    st.krylov_max_iter = 2;
+    Solver s(st, spheres);
+    s.step(spheres);
+    FAIL() << "expected a SolverError";
+  } catch (const imcol::SolverError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("did not converge in 2 iterations"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("true relative residual"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("e-"), std::string::npos) << msg;  // numbers in scientific notation, not 0.000000
+  }
+}
+
 TEST(FlowDrag, MovingSphereInQuiescentFluidMatchesFixedSphereInStream) {
   // Galilean invariance for t > 0: a sphere set moving at −U in fluid at rest feels the force of a fixed
   // sphere in an impulsively started stream U. Re = 10, 16 cells/D; the moving sphere crosses half a diameter.

@@ -170,7 +170,7 @@ TEST(FlowOps, DeltaKernelMomentsAndUniformStreamInterpolation) {
   for (double v : u.uz) EXPECT_NEAR(v, 1.7, 1e-13);
 }
 
-TEST(FlowOps, ForceSystemIsSymmetricPositiveDefinite) {
+TEST(FlowOps, ForceSystemIsNearlySymmetricWithPositiveDefiniteSymmetricPart) {
   // One level: Q = Δt B(−E²)⁻¹(I − θνΔtE²)⁻¹R Bᵀ/(2πh²) is symmetric positive definite (E²/r symmetric).
   // Three levels: the multi-level inverses (full-weighting restriction, cubic boundary interpolation, which are not
   // adjoint) make Q slightly nonsymmetric; it stays positive definite in the sense xᵀQx > 0 (its symmetric part).
