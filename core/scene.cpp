@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/toml_reader.hpp"
 #include "core/materials.hpp"
 
 namespace imcol {
@@ -35,105 +36,7 @@ std::optional<Effect> effect_from_string(const std::string& s) {
 
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
-/// Reads one TOML table, remembering which keys were used so that unknown keys can be reported.
-class Reader {
- public:
-  Reader(const toml::table& t, std::string prefix, const std::string& file)
-      : t_(t), prefix_(std::move(prefix)), file_(file) {}
-
-  std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
-
-  std::string where(const toml::node* n) const {
-    const toml::node* at = n ? n : &t_;
-    auto line = at->source().begin.line;
-    if (line == 0) return n ? "command line (--set/--rtol/--atol/--integrator)" : file_;
-    return file_ + ":" + std::to_string(line);
-  }
-
-  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
-    throw InputError(where(t_.get(key)), full(key), problem);
-  }
-
-  const toml::node* node(const std::string& key) {
-    used_.insert(key);
-    return t_.get(key);
-  }
-  bool has(const std::string& key) const { return t_.contains(key); }
-
-  std::optional<double> number(const std::string& key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (n->is_number()) {
-      // An integer beyond 2^53 is still a number: round it (toml++'s value<double>() refuses it).
-      const double v = n->is_integer() ? static_cast<double>(*n->value<int64_t>()) : *n->value<double>();
-      if (!std::isfinite(v) || std::abs(v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
-      return v;
-    }
-    fail(key, "must be a number");
-  }
-  double number(const std::string& key, double fallback) { return number(key).value_or(fallback); }
-  double required_number(const std::string& key) {
-    auto v = number(key);
-    if (!v) throw InputError(where(nullptr), full(key), "missing (required)");
-    return *v;
-  }
-  std::optional<std::string> string(const std::string& key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (auto v = n->value<std::string>(); v && n->is_string()) return *v;
-    fail(key, "must be a string");
-  }
-  std::optional<long> integer(const std::string& key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (n->is_integer()) return static_cast<long>(*n->value<int64_t>());
-    fail(key, "must be an integer");
-  }
-  const toml::table* table(const std::string& key) {
-    const toml::node* n = node(key);
-    if (!n) return nullptr;
-    if (!n->is_table()) fail(key, "must be a table");
-    return n->as_table();
-  }
-  void finish() const {
-    for (auto&& [k, v] : t_) {
-      std::string key(k.str());
-      if (!used_.count(key)) throw InputError(where(&v), full(key), "unknown key");
-    }
-  }
-
-  // Checks
-  void positive(const std::string& key, double v) const {
-    if (!(v > 0)) fail(key, "must be > 0 (got " + fmt(v) + ")");
-    if (v < 1e-30) fail(key, "must be at least 1e-30 (got " + fmt(v) + ")");
-  }
-  void in_range(const std::string& key, double v, double lo, double hi, bool lo_open, bool hi_open) const {
-    bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-    if (!ok)
-      fail(key, "must be in " + std::string(lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + (hi_open ? ")" : "]") +
-                    " (got " + fmt(v) + ")");
-  }
-  void one_of(const std::string& key, const std::string& v, std::initializer_list<const char*> options) const {
-    std::string list;
-    for (auto o : options) {
-      if (v == o) return;
-      list += (list.empty() ? "" : " | ") + std::string(o);
-    }
-    fail(key, "unknown choice '" + v + "' (expected " + list + ")");
-  }
-
- private:
-  const toml::table& t_;
-  std::string prefix_;
-  const std::string& file_;
-  std::set<std::string> used_;
-};
+using Reader = TableReader;
 
 /// Material properties: either `material = "name"` or inline values; inline values override the material.
 void read_solid(Reader& r, Solid& s, bool need_density) {
@@ -385,7 +288,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     h.direct_step = r.number("direct_step", 0.0);
     if (r.has("direct_step")) r.positive("direct_step", h.direct_step);
     if (h.min_lag > 0 && h.horizon > 0 && h.horizon < 10 * h.min_lag)
-      r.fail("horizon", "must be at least 10 × min_lag (" + fmt(h.min_lag) + " s)");
+      r.fail("horizon", "must be at least 10 × min_lag (" + fmt_number(h.min_lag) + " s)");
     r.finish();
   }
 
@@ -425,7 +328,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   }
   if (sc.measure.instant_gap < 0) sc.measure.instant_gap = sc.contact.delta_ss;
   if (sc.has(Effect::lubrication) && sc.lubrication.cutoff >= sc.contact.delta_ss)
-    throw InputError(path, "lubrication.cutoff", "must be smaller than contact.delta_ss (" + fmt(sc.contact.delta_ss) + " D)");
+    throw InputError(path, "lubrication.cutoff", "must be smaller than contact.delta_ss (" + fmt_number(sc.contact.delta_ss) + " D)");
 
   if (const auto* t = top.table("output")) {
     Reader r(*t, "output", path);
@@ -436,7 +339,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   if (sc.output.dt == 0) sc.output.dt = sc.measure.window / 100.0;
   if (sc.solver.t_end / sc.output.dt > 1e7)
     throw InputError(path, top.has("output") ? "output.dt" : "measure.window",
-                     "t_end / output.dt = " + fmt(sc.solver.t_end / sc.output.dt) +
+                     "t_end / output.dt = " + fmt_number(sc.solver.t_end / sc.output.dt) +
                          " samples exceeds 1e7: raise output.dt (default window/100) or lower solver.t_end");
 
   top.finish();
@@ -449,15 +352,15 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     const auto& s2 = sc.spheres[1];
     double gap = s2.position - s1.position - 0.5 * (s1.diameter + s2.diameter);
     if (gap <= 0)
-      throw InputError(path, "sphere[1].position", "spheres overlap or touch (gap " + fmt(gap) + " m); the target must lie at larger z");
+      throw InputError(path, "sphere[1].position", "spheres overlap or touch (gap " + fmt_number(gap) + " m); the target must lie at larger z");
     if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
-      throw InputError(path, "sphere[1].position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
+      throw InputError(path, "sphere[1].position", "initial gap " + fmt_number(gap) + " m is inside the contact zone delta_ss*D = " + fmt_number(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
   } else if (sc.wall) {
     double gap = sc.wall->position - s1.position - 0.5 * D;
     if (gap <= 0)
-      throw InputError(path, "wall.position", "sphere overlaps or touches the wall (gap " + fmt(gap) + " m); the wall must lie at larger z");
+      throw InputError(path, "wall.position", "sphere overlaps or touches the wall (gap " + fmt_number(gap) + " m); the wall must lie at larger z");
     if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
-      throw InputError(path, "wall.position", "initial gap " + fmt(gap) + " m is inside the contact zone delta_ss*D = " + fmt(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
+      throw InputError(path, "wall.position", "initial gap " + fmt_number(gap) + " m is inside the contact zone delta_ss*D = " + fmt_number(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
   }
   if (sc.has(Effect::elastic)) {
     bool any = sc.contact.e_dry >= 0 || s1.e_dry || (sc.two_spheres() && sc.spheres[1].e_dry) || (sc.wall && sc.wall->e_dry);

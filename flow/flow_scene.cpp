@@ -8,87 +8,15 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/toml_reader.hpp"
 
 namespace imcol::flow {
 
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
-/// Reads one table, remembering the keys used so that unknown keys can be reported with their line.
-class Reader {
- public:
-  Reader(const toml::table& t, std::string prefix, const std::string& file) : t_(t), prefix_(std::move(prefix)), file_(file) {}
-  std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
-  std::string where(const toml::node* n) const {
-    const toml::node* at = n ? n : &t_;
-    const auto line = at->source().begin.line;
-    return line == 0 ? file_ : file_ + ":" + std::to_string(line);
-  }
-  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
-    throw InputError(where(t_.get(key)), full(key), problem);
-  }
-  const toml::node* node(const std::string& key) {
-    used_.insert(key);
-    return t_.get(key);
-  }
-  std::optional<double> number(const std::string& key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (!n->is_number()) fail(key, "must be a number");
-    const double v = *n->value<double>();
-    if (!std::isfinite(v) || std::abs(v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
-    return v;
-  }
-  double number(const std::string& key, double fallback) { return number(key).value_or(fallback); }
-  double required(const std::string& key) {
-    auto v = number(key);
-    if (!v) throw InputError(where(nullptr), full(key), "missing (required)");
-    return *v;
-  }
-  long integer(const std::string& key, long fallback) {
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    if (!n->is_integer()) fail(key, "must be an integer");
-    return static_cast<long>(*n->value<int64_t>());
-  }
-  bool boolean(const std::string& key, bool fallback) {
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    if (!n->is_boolean()) fail(key, "must be true or false");
-    return *n->value<bool>();
-  }
-  std::optional<std::string> string(const std::string& key) {
-    const toml::node* n = node(key);
-    if (!n) return std::nullopt;
-    if (!n->is_string()) fail(key, "must be a string");
-    return *n->value<std::string>();
-  }
-  const toml::table* table(const std::string& key) {
-    const toml::node* n = node(key);
-    if (!n) return nullptr;
-    if (!n->is_table()) fail(key, "must be a table");
-    return n->as_table();
-  }
-  void positive(const std::string& key, double v) const {
-    if (!(v > 0)) fail(key, "must be > 0 (got " + fmt(v) + ")");
-  }
-  void finish() const {
-    for (auto&& [k, v] : t_) {
-      const std::string key(k.str());
-      if (!used_.count(key)) throw InputError(where(&v), full(key), "unknown key");
-    }
-  }
-
- private:
-  const toml::table& t_;
-  std::string prefix_;
-  const std::string& file_;
-  std::set<std::string> used_;
+/// Flow scenes have no --set overrides; a value without a line is the file's own.
+struct Reader : TableReader {
+  Reader(const toml::table& t, std::string prefix, const std::string& file) : TableReader(t, std::move(prefix), file, file) {}
 };
 
 int round_up(double x, int mult) { return std::max(mult, static_cast<int>(std::ceil(x / mult - 1e-9)) * mult); }
@@ -145,7 +73,7 @@ void check_flow_scene(const FlowScene& sc) {
                      "no relative motion: give a stream or a sphere velocity");
   if (sc.dt > sc.t_end)
     throw InputError(sc.where(sc.line_dt, {"--dt", "--t-end"}), "time.dt",
-                     "dt = " + fmt(sc.dt) + " exceeds t_end = " + fmt(sc.t_end) + " (no step would end inside the run)");
+                     "dt = " + fmt_number(sc.dt) + " exceeds t_end = " + fmt_number(sc.t_end) + " (no step would end inside the run)");
   // neighbours stay apart (gaps are linear in t apart from the oscillations); a min_gap stop ends the run first
   for (std::size_t i = 0; i + 1 < sc.spheres.size(); ++i) {
     const auto &p = sc.spheres[i], &q = sc.spheres[i + 1];
@@ -159,7 +87,7 @@ void check_flow_scene(const FlowScene& sc) {
                            "sphere " + std::to_string(i + 2) + " overlaps sphere " + std::to_string(i + 1) +
                                " at t = 0 or is out of order (list the spheres by increasing position)");
         throw InputError(sc.where(q.line, {"--t-end"}), "sphere[" + std::to_string(i + 1) + "]",
-                         "spheres " + std::to_string(i + 1) + " and " + std::to_string(i + 2) + " would overlap by t = " + fmt(t) +
+                         "spheres " + std::to_string(i + 1) + " and " + std::to_string(i + 2) + " would overlap by t = " + fmt_number(t) +
                              " (shorten time.t_end or set output.min_gap)");
       }
     }
@@ -175,8 +103,8 @@ void check_flow_scene(const FlowScene& sc) {
       if (z - a - A < zlo + 3 * s.h || z + a + A > zhi - 3 * s.h || a > rhi - 3 * s.h)
         throw InputError(t > 0 ? sc.where(p.line, {"--cells", "--t-end"}) : sc.where(p.line, {"--cells"}),
                          "sphere[" + std::to_string(i) + "]",
-                         "sphere outside the finest grid at t = " + fmt(t) + " (grid z in [" + fmt(zlo) + ", " + fmt(zhi) +
-                             "], r < " + fmt(rhi) + ", 3 cells clear)");
+                         "sphere outside the finest grid at t = " + fmt_number(t) + " (grid z in [" + fmt_number(zlo) + ", " + fmt_number(zhi) +
+                             "], r < " + fmt_number(rhi) + ", 3 cells clear)");
     }
   }
 }
@@ -198,9 +126,9 @@ FlowScene load_flow_scene(const std::string& path) {
   if (!fluid) throw InputError(path, "fluid", "missing (required table)");
   {
     Reader r(*fluid, "fluid", path);
-    sc.density = r.required("density");
+    sc.density = r.required_number("density");
     r.positive("density", sc.density);
-    sc.viscosity = r.required("viscosity");
+    sc.viscosity = r.required_number("viscosity");
     r.positive("viscosity", sc.viscosity);
     r.finish();
   }
@@ -220,7 +148,7 @@ FlowScene load_flow_scene(const std::string& path) {
     Reader r(*el.as_table(), "sphere[" + std::to_string(k - 1) + "]", path);
     FlowSphere s;
     s.line = static_cast<int>(el.source().begin.line);
-    s.diameter = r.required("diameter");
+    s.diameter = r.required_number("diameter");
     r.positive("diameter", s.diameter);
     s.position = r.number("position", 0.0);
     s.velocity = r.number("velocity", 0.0);
@@ -250,9 +178,9 @@ FlowScene load_flow_scene(const std::string& path) {
   if (!tt) throw InputError(path, "time", "missing (required table with dt and t_end)");
   {
     Reader r(*tt, "time", path);
-    sc.dt = r.required("dt");
+    sc.dt = r.required_number("dt");
     r.positive("dt", sc.dt);
-    sc.t_end = r.required("t_end");
+    sc.t_end = r.required_number("t_end");
     r.positive("t_end", sc.t_end);
     sc.line_dt = static_cast<int>(tt->get("dt")->source().begin.line);
     sc.line_t_end = static_cast<int>(tt->get("t_end")->source().begin.line);

@@ -1,0 +1,128 @@
+#pragma once
+// Reading one TOML table with checks (toml++): every error names the file and line (or the command
+// line, for an override without a source) and the dotted key; keys never read are reported as unknown.
+// Shared by the collision-scene reader (core/scene.cpp) and the flow-scene reader (flow/flow_scene.cpp).
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <cstdint>
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "core/errors.hpp"
+
+namespace imcol {
+
+inline std::string fmt_number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+class TableReader {
+ public:
+  /// `unsourced`: the place named for a value that has no line in the file (a command-line override).
+  TableReader(const toml::table& t, std::string prefix, const std::string& file,
+              std::string unsourced = "command line (--set/--rtol/--atol/--integrator)")
+      : t_(t), prefix_(std::move(prefix)), file_(file), unsourced_(std::move(unsourced)) {}
+
+  std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
+
+  std::string where(const toml::node* n) const {
+    const toml::node* at = n ? n : &t_;
+    auto line = at->source().begin.line;
+    if (line == 0) return n ? unsourced_ : file_;
+    return file_ + ":" + std::to_string(line);
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw InputError(where(t_.get(key)), full(key), problem);
+  }
+
+  const toml::node* node(const std::string& key) {
+    used_.insert(key);
+    return t_.get(key);
+  }
+  bool has(const std::string& key) const { return t_.contains(key); }
+
+  std::optional<double> number(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (n->is_number()) {
+      // An integer beyond 2^53 is still a number: round it (toml++'s value<double>() refuses it).
+      const double v = n->is_integer() ? static_cast<double>(*n->value<int64_t>()) : *n->value<double>();
+      if (!std::isfinite(v) || std::abs(v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
+      return v;
+    }
+    fail(key, "must be a number");
+  }
+  double number(const std::string& key, double fallback) { return number(key).value_or(fallback); }
+  double required_number(const std::string& key) {
+    auto v = number(key);
+    if (!v) throw InputError(where(nullptr), full(key), "missing (required)");
+    return *v;
+  }
+  std::optional<std::string> string(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (auto v = n->value<std::string>(); v && n->is_string()) return *v;
+    fail(key, "must be a string");
+  }
+  std::optional<long> integer(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return std::nullopt;
+    if (n->is_integer()) return static_cast<long>(*n->value<int64_t>());
+    fail(key, "must be an integer");
+  }
+  long integer(const std::string& key, long fallback) { return integer(key).value_or(fallback); }
+  bool boolean(const std::string& key, bool fallback) {
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    if (!n->is_boolean()) fail(key, "must be true or false");
+    return *n->value<bool>();
+  }
+  const toml::table* table(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(key, "must be a table");
+    return n->as_table();
+  }
+  void finish() const {
+    for (auto&& [k, v] : t_) {
+      std::string key(k.str());
+      if (!used_.count(key)) throw InputError(where(&v), full(key), "unknown key");
+    }
+  }
+
+  // Checks
+  void positive(const std::string& key, double v) const {
+    if (!(v > 0)) fail(key, "must be > 0 (got " + fmt_number(v) + ")");
+    if (v < 1e-30) fail(key, "must be at least 1e-30 (got " + fmt_number(v) + ")");
+  }
+  void in_range(const std::string& key, double v, double lo, double hi, bool lo_open, bool hi_open) const {
+    bool ok = (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+    if (!ok)
+      fail(key, "must be in " + std::string(lo_open ? "(" : "[") + fmt_number(lo) + ", " + fmt_number(hi) + (hi_open ? ")" : "]") +
+                    " (got " + fmt_number(v) + ")");
+  }
+  void one_of(const std::string& key, const std::string& v, std::initializer_list<const char*> options) const {
+    std::string list;
+    for (auto o : options) {
+      if (v == o) return;
+      list += (list.empty() ? "" : " | ") + std::string(o);
+    }
+    fail(key, "unknown choice '" + v + "' (expected " + list + ")");
+  }
+
+ private:
+  const toml::table& t_;
+  std::string prefix_;
+  const std::string& file_;
+  std::string unsourced_;
+  std::set<std::string> used_;
+};
+
+}  // namespace imcol
