@@ -138,6 +138,18 @@ void Solver::coarsify(std::vector<double> Level::*field) {
   for (std::size_t l = 0; l + 1 < lv_.size(); ++l) restrict_interior(lv_[l], lv_[l].*field, lv_[l + 1], lv_[l + 1].*field);
 }
 
+void Solver::viscous_then_streamfunction(std::vector<double> Level::*rhs, std::vector<double> Level::*eta,
+                                          std::vector<double> Level::*psi) {
+  coarsify(rhs);
+  // η = (I − θνΔt E²)⁻¹ rhs on all levels (coarsest first, zero far field, coarse-to-fine boundary values)
+  solve_levels(1, rhs, eta);
+  coarsify(eta);
+  // ψ = (−E²)⁻¹ η on all levels (rhs is reused as scratch)
+  for (auto& L : lv_)
+    for (std::size_t p = 0; p < (L.*rhs).size(); ++p) (L.*rhs)[p] = -(L.*eta)[p];
+  solve_levels(0, rhs, psi);
+}
+
 void Solver::solve_levels(int op, std::vector<double> Level::*rhs, std::vector<double> Level::*x) {
   for (int l = static_cast<int>(lv_.size()) - 1; l >= 0; --l) {
     Level& L = lv_[l];
@@ -156,14 +168,7 @@ Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
   for (int i = 0; i <= G.nr; ++i)
     for (int j = 0; j <= G.nz; ++j) F.src[G.at(i, j)] *= (i == 0 || i == G.nr || j == 0 || j == G.nz) ? 0.0 : scale * G.r(i);
   for (std::size_t l = 1; l < lv_.size(); ++l) std::fill(lv_[l].src.begin(), lv_[l].src.end(), 0.0);
-  coarsify(&Level::src);
-  // η_c = (I − θνΔt E²)⁻¹ on all levels (coarsest first, zero far field, coarse-to-fine boundary values)
-  solve_levels(1, &Level::src, &Level::etac);
-  coarsify(&Level::etac);
-  // ψ_c = (−E²)⁻¹ η_c on all levels
-  for (auto& L : lv_)
-    for (std::size_t p = 0; p < L.src.size(); ++p) L.src[p] = -L.etac[p];
-  solve_levels(0, &Level::src, &Level::psic);
+  viscous_then_streamfunction(&Level::src, &Level::etac, &Level::psic);  // η_c, ψ_c: the same operator as the step's
   Eigen::Map<const Eigen::VectorXd> px(F.psic.data(), static_cast<Eigen::Index>(F.psic.size()));
   return B_ * px;
 }
@@ -190,14 +195,8 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     for (std::size_t p = 0; p < L.rhs.size(); ++p) L.rhs[p] = L.eta[p] + dt * ((1 - th) * nu * lap[p] + ab_new * nl_[p] + ab_old * L.nl_old[p]);
     std::swap(L.nl_old, nl_);
   }
-  coarsify(&Level::rhs);
-  // 2. vorticity predictor η*, coarsest to finest (zero far field, boundary values from the next coarser level)
-  solve_levels(1, &Level::rhs, &Level::eta);
-  coarsify(&Level::eta);
-  // 3. its streamfunction, coarsest to finest
-  for (auto& L : lv_)
-    for (std::size_t p = 0; p < L.rhs.size(); ++p) L.rhs[p] = -L.eta[p];
-  solve_levels(0, &Level::rhs, &Level::psi);
+  // 2–3. vorticity predictor η* and its streamfunction ψ*, coarsest to finest
+  viscous_then_streamfunction(&Level::rhs, &Level::eta, &Level::psi);
   // 4. body forces: Q g = U_b − U∞ e_z − Bψ*, Q the multi-level operator of apply_Q
   StepInfo info;
   std::vector<double> zs;

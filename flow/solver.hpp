@@ -113,6 +113,9 @@ class Solver {
   void build_points(const std::vector<SphereState>& sp);
   void coarsify(std::vector<double> Level::*field);  // fine-to-coarse full weighting, finest first
   void solve_levels(int op, std::vector<double> Level::*rhs, std::vector<double> Level::*x);  // coarsest to finest
+  /// The multi-level A⁻¹ then P⁻¹ shared by the predictor and the force correction (rhs is overwritten).
+  void viscous_then_streamfunction(std::vector<double> Level::*rhs, std::vector<double> Level::*eta,
+                                   std::vector<double> Level::*psi);
   std::pair<int, double> gmres(const Eigen::VectorXd& b);  // into g_; iterations, relative residual
   Settings s_;
   std::vector<Level> lv_;
