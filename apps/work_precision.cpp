@@ -108,6 +108,10 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   if (opt.rtols.empty()) throw InputError("--rtols", "rtols", "give at least one tolerance");
   for (double r : opt.rtols)
     if (!(r >= 1e-14 && r < 1)) throw InputError("--rtols", "rtols", "each tolerance must lie in [1e-14, 1)");
+  if (!(opt.ref_rtol >= 1e-14 && opt.ref_rtol < 1)) throw InputError("--ref-rtol", "ref_rtol", "must lie in [1e-14, 1)");
+  if (!(opt.direct_rtol >= 1e-14 && opt.direct_rtol < 1)) throw InputError("--direct-rtol", "direct_rtol", "must lie in [1e-14, 1)");
+  if (!(opt.ref_history_tol >= 1e-13 && opt.ref_history_tol < 0.1))
+    throw InputError("--ref-history-tolerance", "ref_history_tolerance", "must lie in [1e-13, 0.1)");
   for (double h : opt.direct_steps)
     if (!(h > 0 && std::isfinite(h))) throw InputError("--direct-steps", "direct_steps", "each multiple must be positive");
   if (opt.add_history) {
