@@ -263,7 +263,9 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     info.krylov_iterations = it;
     info.krylov_residual = res;
   }
-  apply_Q(g_);  // corrections η_c, ψ_c on every level
+  // Corrections η_c, ψ_c on every level: GMRES returns right after applying Q to its final g (its true-residual
+  // check), so they are current there; the direct path applies Q once here.
+  if (use_direct) apply_Q(g_);
   for (auto& L : lv_)
     for (std::size_t p = 0; p < L.eta.size(); ++p) {
       L.eta[p] += L.etac[p];

@@ -116,7 +116,9 @@ class Solver {
   /// The multi-level A⁻¹ then P⁻¹ shared by the predictor and the force correction (rhs is overwritten).
   void viscous_then_streamfunction(std::vector<double> Level::*rhs, std::vector<double> Level::*eta,
                                    std::vector<double> Level::*psi);
-  std::pair<int, double> gmres(const Eigen::VectorXd& b);  // into g_; iterations, relative residual
+  /// Solves Q g_ = b (warm start g_); returns iterations and the true relative residual. On return the level
+  /// corrections (etac, psic) are those of the returned g_: its last operation is apply_Q(g_).
+  std::pair<int, double> gmres(const Eigen::VectorXd& b);
   Settings s_;
   std::vector<Level> lv_;
   std::vector<SphereState> sph_;
