@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "apps/compare_history.hpp"
+#include "apps/format.hpp"
 #include "apps/flow_command.hpp"
 #include "apps/simulate.hpp"
 #include "apps/sweep.hpp"
@@ -46,11 +47,6 @@ void add_common(CLI::App* cmd, CommonOptions& c) {
   cmd->add_option("--set", c.sets, "override a scene key: dotted.key=value (TOML value syntax)");
 }
 
-std::string fixed(double v, int prec) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(prec) << v;
-  return os.str();
-}
 std::string json_num(const nlohmann::ordered_json& j, int prec) { return j.is_null() ? "n/a" : fixed(j.get<double>(), prec); }
 
 int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet) {

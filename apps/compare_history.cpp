@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "apps/format.hpp"
 #include "apps/plot.hpp"
 #include "apps/simulate.hpp"
 #include "core/errors.hpp"
@@ -39,12 +40,6 @@ std::map<double, double> force_samples(const RunResult& r) {
   return m;
 }
 
-std::string sci(double v, int p = 2) {
-  if (!std::isfinite(v)) return "-";
-  std::ostringstream os;
-  os << std::scientific << std::setprecision(p) << v;
-  return os.str();
-}
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "apps/format.hpp"
 #include "apps/plot.hpp"
 #include "apps/simulate.hpp"
 #include "core/errors.hpp"
@@ -61,11 +62,7 @@ nlohmann::ordered_json or_null(double v) { return std::isfinite(v) ? nlohmann::o
 std::string csv_cell(const nlohmann::ordered_json& j) {
   if (j.is_null()) return "";
   if (j.is_boolean()) return j.get<bool>() ? "1" : "0";
-  if (j.is_number()) {
-    std::ostringstream os;
-    os << std::setprecision(12) << j.get<double>();
-    return os.str();
-  }
+  if (j.is_number()) return csv_number(j.get<double>());
   return j.dump();
 }
 
@@ -237,21 +234,13 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const auto& p = pts[i];
     const auto& s = p.summary;
-    auto ms = [](double sec) {
-      std::ostringstream os;
-      os << std::fixed << std::setprecision(3) << 1e3 * sec;
-      return os.str();
-    };
     auto num = [&](const char* k, int prec) {
-      if (!p.ok || !s.contains(k) || s[k].is_null()) return std::string("-");
-      std::ostringstream os;
-      os << std::fixed << std::setprecision(prec) << s[k].get<double>();
-      return os.str();
+      return !p.ok || !s.contains(k) || s[k].is_null() ? std::string("-") : fixed(s[k].get<double>(), prec);
     };
     std::cout << std::setw(14) << std::setprecision(5) << std::defaultfloat << p.value << std::setw(10) << num("St", 2) << std::setw(9)
               << num("Re", 1) << std::setw(9) << num("e", 4) << std::setw(9)
               << (p.ok ? std::to_string(s["solver"]["steps"].get<long>()) : "-") << std::setw(10)
-              << (p.ok ? ms(s["wall_time_s"].get<double>()) : "-") << "  " << (p.ok ? p.message : "FAILED: " + p.message) << "\n";
+              << (p.ok ? fixed(1e3 * s["wall_time_s"].get<double>(), 3) : "-") << "  " << (p.ok ? p.message : "FAILED: " + p.message) << "\n";
     if (p.ok) cpu += s["wall_time_s"].get<double>();
     if (!p.ok) failures.push_back({{"point", i}, {"value", p.value}, {"reason", p.message}});
   }

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "apps/format.hpp"
 #include "apps/plot.hpp"
 #include "apps/simulate.hpp"
 #include "contact/collision_model.hpp"
@@ -80,12 +81,6 @@ double metric_of(const RunResult& r, bool collision) {
   return s.value("u1_final_m_s", NAN);
 }
 
-std::string sci(double v, int p = 2) {
-  if (std::isnan(v)) return "-";
-  std::ostringstream os;
-  os << std::scientific << std::setprecision(p) << v;
-  return os.str();
-}
 
 /// Least-squares slope of log10(y) against log10(x).
 std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>& xy) {
@@ -271,7 +266,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
     const auto a = loglog_slope(by_tol), q = loglog_slope(by_steps);
     const std::string x = c.evaluator == "direct" ? "direct_step" : "rtol";
     std::cout << "  " << std::left << std::setw(22) << c.label() << std::right << " err ~ " << x << "^"
-              << (a ? std::to_string(*a).substr(0, 5) : std::string("n/a")) << "   p = " << (q ? std::to_string(-*q).substr(0, 5) : std::string("n/a"))
+              << (a ? fixed(*a, 2) : std::string("n/a")) << "   p = " << (q ? fixed(-*q, 2) : std::string("n/a"))
               << "   (" << by_tol.size() << " points)\n";
     orders[c.label()] = {{"vs", x}, {"exponent", a ? nlohmann::ordered_json(*a) : nullptr},
                          {"order_in_steps", q ? nlohmann::ordered_json(-*q) : nullptr}, {"points", by_tol.size()}};
@@ -305,14 +300,13 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   csv << std::setprecision(12);
   csv << "integrator,evaluator,rtol,atol,direct_step_s,history_tolerance,status," << metric << ",err_" << metric
       << ",err_trajectory,median_wall_ms,steps,rhs_evals,lin_iters,message\n";
-  auto cell = [](double v) { return std::isnan(v) ? std::string() : (std::ostringstream() << std::setprecision(12) << v).str(); };
   for (const auto& p : pts) {
     std::string msg = p.message;
     std::replace(msg.begin(), msg.end(), ',', ';');
     std::replace(msg.begin(), msg.end(), '\n', ' ');
-    csv << p.cfg.integrator << "," << p.cfg.evaluator << "," << cell(p.rtol) << "," << cell(p.rtol) << "," << cell(p.direct_step)
-        << "," << cell(p.history_tol) << "," << (p.ok ? "ok" : "failed") << "," << cell(p.e) << "," << cell(p.err_e) << ","
-        << cell(p.err_traj) << "," << cell(p.ms) << "," << p.steps << "," << p.rhs << "," << p.lin_iters << "," << msg << "\n";
+    csv << p.cfg.integrator << "," << p.cfg.evaluator << "," << csv_number(p.rtol) << "," << csv_number(p.rtol) << "," << csv_number(p.direct_step)
+        << "," << csv_number(p.history_tol) << "," << (p.ok ? "ok" : "failed") << "," << csv_number(p.e) << "," << csv_number(p.err_e) << ","
+        << csv_number(p.err_traj) << "," << csv_number(p.ms) << "," << p.steps << "," << p.rhs << "," << p.lin_iters << "," << msg << "\n";
   }
   nlohmann::ordered_json j;
   j["scene"] = base.name;
