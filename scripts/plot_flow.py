@@ -6,22 +6,12 @@ Reads DIR/snapshot_NN.csv and DIR/forces.csv; writes DIR/snapshot_NN.png and DIR
 Needs Debian's python3-matplotlib and numpy (importable from /usr/bin/python3 only).
 """
 import csv
-import os
 import sys
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-
-def save(fig, path: Path) -> None:
-    tmp = path.with_suffix(".tmp.png")
-    fig.savefig(tmp, dpi=130)
-    plt.close(fig)
-    os.replace(tmp, path)
+from imcol_plot import out_dir, plt, save_png
 
 
 def read_level(path: Path, level: int):
@@ -62,14 +52,13 @@ def plot_snapshot(path: Path, spheres) -> None:
         ax.set_title(f"level {level}: vorticity (colour), streamlines")
     fig.suptitle(title)
     fig.tight_layout()
-    save(fig, path.with_suffix(".png"))
+    save_png(fig, path.with_suffix(".png"), dpi=130)
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__.strip(), file=sys.stderr)
+    out = out_dir(__doc__)
+    if out is None:
         return 2
-    out = Path(sys.argv[1])
     with open(out / "forces.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     nb = sum(1 for k in rows[0] if k.startswith("F") and k[1:].isdigit())
@@ -107,7 +96,7 @@ def main() -> int:
     ax.grid(alpha=0.3)
     ax.legend()
     fig.tight_layout()
-    save(fig, out / "forces.png")
+    save_png(fig, out / "forces.png", dpi=130)
     return 0
 
 

@@ -5,22 +5,16 @@ Usage: /usr/bin/python3 scripts/plot_history.py DIR   (reads DIR/history_forces.
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
 """
 import csv
-import os
 import sys
 from collections import defaultdict
-from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from imcol_plot import out_dir, plt, save_png
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__.strip(), file=sys.stderr)
+    out = out_dir(__doc__)
+    if out is None:
         return 2
-    out = Path(sys.argv[1])
     series = defaultdict(lambda: ([], []))
     with open(out / "history_forces.csv", newline="") as f:
         for row in csv.DictReader(f):
@@ -37,9 +31,7 @@ def main() -> int:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    tmp = out / "history.png.tmp.png"
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, out / "history.png")
+    save_png(fig, out / "history.png")
     return 0
 
 

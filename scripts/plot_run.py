@@ -7,19 +7,14 @@ Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
 import csv
 import json
 import sys
-from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from imcol_plot import out_dir, plt, save_png
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__.strip(), file=sys.stderr)
+    out = out_dir(__doc__)
+    if out is None:
         return 2
-    out = Path(sys.argv[1])
     with open(out / "trajectory.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     summary = json.loads((out / "summary.json").read_text())
@@ -56,7 +51,7 @@ def main() -> int:
         title += f", St = {st:.1f}"
     ax[0].set_title(title + "   effects: " + ", ".join(summary["effects"]))
     fig.tight_layout()
-    fig.savefig(out / "trajectory.png", dpi=100)
+    save_png(fig, out / "trajectory.png", dpi=100)
     print(f"wrote {out / 'trajectory.png'}")
     return 0
 

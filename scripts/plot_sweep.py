@@ -8,10 +8,7 @@ import json
 import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from imcol_plot import out_dir, plt, save_png
 
 SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li_2010_table_6_1.csv"
 
@@ -22,10 +19,9 @@ def read_csv(path):
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__.strip(), file=sys.stderr)
+    out = out_dir(__doc__)
+    if out is None:
         return 2
-    out = Path(sys.argv[1])
     meta = json.loads((out / "sweep.json").read_text())
     rows = [r for r in read_csv(out / "sweep.csv") if r["status"] == "ok" and r["St"] and r["e"]]
     rows.sort(key=lambda r: float(r["St"]))
@@ -46,7 +42,7 @@ def main() -> int:
     n_fail = len(meta["failures"])
     ax.set_title("%s: e vs St, %d points%s" % (meta["scene"], meta["points"], ", %d failed" % n_fail if n_fail else ""))
     fig.tight_layout()
-    fig.savefig(out / "sweep.png", dpi=120)
+    save_png(fig, out / "sweep.png")
     return 0
 
 

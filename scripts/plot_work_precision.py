@@ -10,21 +10,16 @@ import csv
 import json
 import sys
 from collections import defaultdict
-from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from imcol_plot import out_dir, plt, save_png
 
 FLOOR = 1e-16  # an error of exactly zero is drawn here
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__.strip(), file=sys.stderr)
+    out = out_dir(__doc__)
+    if out is None:
         return 2
-    out = Path(sys.argv[1])
     meta = json.loads((out / "work_precision.json").read_text())
     metric = meta["metric"]
     series = defaultdict(list)
@@ -55,7 +50,7 @@ def main() -> int:
                  (meta["scene"], ref["integrator"] + ("" if ref["evaluator"] == "none" else " / " + ref["evaluator"]),
                   ref["rtol"], metric, ref["value"]))
     fig.tight_layout()
-    fig.savefig(out / "work_precision.png", dpi=120)
+    save_png(fig, out / "work_precision.png")
     return 0
 
 

@@ -1,0 +1,29 @@
+"""Shared set-up of imcol's plot scripts: matplotlib without a display, the DIR argument, atomic PNGs.
+
+Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
+"""
+import os
+import sys
+from pathlib import Path
+from typing import Optional
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402,F401  (re-exported)
+
+
+def out_dir(doc: str) -> Optional[Path]:
+    """The one command-line argument DIR, or None after printing the usage `doc`."""
+    if len(sys.argv) != 2:
+        print(doc.strip(), file=sys.stderr)
+        return None
+    return Path(sys.argv[1])
+
+
+def save_png(fig, path: Path, dpi: int = 120) -> None:
+    """Writes the figure completely or not at all (temporary file, then rename), and closes it."""
+    tmp = path.with_name(path.name + ".tmp.png")
+    fig.savefig(tmp, dpi=dpi)
+    plt.close(fig)
+    os.replace(tmp, path)
