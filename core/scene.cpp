@@ -149,10 +149,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   if (const auto* f = top.table("fluid")) {
     Reader r(*f, "fluid", path);
     FluidSpec fl;
-    fl.density = r.required_number("density");
-    fl.viscosity = r.required_number("viscosity");
-    r.positive("density", fl.density);
-    r.positive("viscosity", fl.viscosity);
+    fl.density = r.required_positive("density");
+    fl.viscosity = r.required_positive("viscosity");
     r.finish();
     sc.fluid = fl;
   }
@@ -166,8 +164,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     Reader r(*arr->get(i)->as_table(), "sphere[" + std::to_string(i) + "]", path);
     SphereSpec s;
     read_solid(r, s, true);
-    s.diameter = r.required_number("diameter");
-    r.positive("diameter", s.diameter);
+    s.diameter = r.required_positive("diameter");
     s.position = r.required_number("position");
     s.velocity = r.number("velocity", 0.0);
     const double mass = s.density * std::pow(s.diameter, 3) * 3.141592653589793 / 6;

@@ -65,6 +65,11 @@ class TableReader {
     if (!v) throw InputError(where(nullptr), full(key), "missing (required)");
     return *v;
   }
+  double required_positive(const std::string& key) {
+    const double v = required_number(key);
+    positive(key, v);
+    return v;
+  }
   std::optional<std::string> string(const std::string& key) {
     const toml::node* n = node(key);
     if (!n) return std::nullopt;

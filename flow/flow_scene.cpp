@@ -126,10 +126,8 @@ FlowScene load_flow_scene(const std::string& path) {
   if (!fluid) throw InputError(path, "fluid", "missing (required table)");
   {
     Reader r(*fluid, "fluid", path);
-    sc.density = r.required_number("density");
-    r.positive("density", sc.density);
-    sc.viscosity = r.required_number("viscosity");
-    r.positive("viscosity", sc.viscosity);
+    sc.density = r.required_positive("density");
+    sc.viscosity = r.required_positive("viscosity");
     r.finish();
   }
   if (const toml::table* st = top.table("stream")) {
@@ -148,8 +146,7 @@ FlowScene load_flow_scene(const std::string& path) {
     Reader r(*el.as_table(), "sphere[" + std::to_string(k - 1) + "]", path);
     FlowSphere s;
     s.line = static_cast<int>(el.source().begin.line);
-    s.diameter = r.required_number("diameter");
-    r.positive("diameter", s.diameter);
+    s.diameter = r.required_positive("diameter");
     s.position = r.number("position", 0.0);
     s.velocity = r.number("velocity", 0.0);
     s.amplitude = r.number("amplitude", 0.0);
@@ -178,10 +175,8 @@ FlowScene load_flow_scene(const std::string& path) {
   if (!tt) throw InputError(path, "time", "missing (required table with dt and t_end)");
   {
     Reader r(*tt, "time", path);
-    sc.dt = r.required_number("dt");
-    r.positive("dt", sc.dt);
-    sc.t_end = r.required_number("t_end");
-    r.positive("t_end", sc.t_end);
+    sc.dt = r.required_positive("dt");
+    sc.t_end = r.required_positive("t_end");
     sc.line_dt = static_cast<int>(tt->get("dt")->source().begin.line);
     sc.line_t_end = static_cast<int>(tt->get("t_end")->source().begin.line);
     sc.theta = r.number("theta", sc.theta);
