@@ -136,6 +136,7 @@ RunResult simulate(const Scene& sc) {
   double fit_window = W;
   bool separated = model.t_separation().has_value();
   const bool collided = model.t_contact() || model.t_closest();  // reached contact or a closest approach
+  bool t_end_too_short = model.has_target() && !collided;  // a longer solver.t_end would change e
   if (model.has_target() && !collided)
     warnings.push_back("no collision by t_end: the gap never reached delta_ss and the approach never stopped; e is undefined");
   if (model.has_target() && collided) {
@@ -170,8 +171,10 @@ RunResult simulate(const Scene& sc) {
       u_r1 = g1->slope;
       u_r2 = g2->slope;
     }
-    if (separated && t_final < *model.t_separation() + W * (1 - 1e-9))
+    if (separated && t_final < *model.t_separation() + W * (1 - 1e-9)) {
+      t_end_too_short = true;
       warnings.push_back("t_end cut the rebound fit window short");
+    }
     if (u_i1 && u_r1) {
       if (separated) e = restitution(*u_i1, *u_i2, *u_r1, *u_r2);
       else {
@@ -190,6 +193,7 @@ RunResult simulate(const Scene& sc) {
           }
         }
         if (model.t_contact() && -closing > 1e-3 * std::abs(*u_i1 - *u_i2)) {
+          t_end_too_short = true;
           std::ostringstream os;
           os << "no separation by t_end, but the gap was growing at " << -closing
              << " m/s over the last window (e = 0 by definition; a longer solver.t_end may show a rebound)";
@@ -232,6 +236,7 @@ RunResult simulate(const Scene& sc) {
   s["Re"] = or_null(Re);
   if (sc.fluid && model.has_target()) s["St_initial"] = stokes(model.initial_u_rel()).first;  // nominal, same convention
   s["separated"] = separated;
+  s["t_end_too_short"] = t_end_too_short;
   if (model.has_target()) s["final_phase"] = contact::to_string(model.phase());
   s["contacts"] = model.contacts();
   s["velocities_m_s"] = {{"U_i1", or_null(u_i1)}, {"U_i2", or_null(u_i2)}, {"U_r1", or_null(u_r1)}, {"U_r2", or_null(u_r2)}};
