@@ -40,9 +40,7 @@ struct Point {
 };
 
 /// Output samples (events excluded) keyed by time: the gap (or z1) over D and the velocities.
-struct Samples {
-  std::map<double, std::vector<double>> at;
-};
+using Samples = std::map<double, std::vector<double>>;  // time → (gap or z1)/D, u1[, u2]
 
 Samples samples(const RunResult& r, double D) {
   auto col = [&](const std::string& name) {
@@ -56,7 +54,7 @@ Samples samples(const RunResult& r, double D) {
     if (row[ie] != 0.0) continue;
     std::vector<double> v = {row[ig] / D, row[iu1]};
     if (iu2 >= 0) v.push_back(row[iu2]);
-    s.at[row[0]] = v;
+    s[row[0]] = v;
   }
   return s;
 }
@@ -65,9 +63,9 @@ Samples samples(const RunResult& r, double D) {
 double trajectory_error(const Samples& run, const Samples& ref, double u_scale) {
   double err = 0;
   std::size_t common = 0;
-  for (const auto& [t, v] : run.at) {
-    auto it = ref.at.lower_bound(t - 1e-12 * std::max(1.0, std::abs(t)));
-    if (it == ref.at.end() || std::abs(it->first - t) > 1e-12 * std::max(1.0, std::abs(t))) continue;
+  for (const auto& [t, v] : run) {
+    auto it = ref.lower_bound(t - 1e-12 * std::max(1.0, std::abs(t)));
+    if (it == ref.end() || std::abs(it->first - t) > 1e-12 * std::max(1.0, std::abs(t))) continue;
     ++common;
     err = std::max(err, std::abs(v[0] - it->second[0]));
     for (std::size_t k = 1; k < v.size(); ++k) err = std::max(err, std::abs(v[k] - it->second[k]) / u_scale);
@@ -169,7 +167,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
     throw SolverError("the reference run has no " + std::string(collision ? "e (no collision by t_end?)" : "final velocity"));
   const Samples ref_s = samples(ref, D);
   double u_scale = 0;
-  for (const auto& [t, v] : ref_s.at)
+  for (const auto& [t, v] : ref_s)
     for (std::size_t k = 1; k < v.size(); ++k) u_scale = std::max(u_scale, std::abs(v[k]));
   if (!(u_scale > 0)) u_scale = 1;
 
