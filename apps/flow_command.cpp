@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/report.hpp"
 #include "flow/flow_scene.hpp"
+#include "flow/snapshot.hpp"
 #include "flow/solver.hpp"
 
 namespace imcol {
@@ -22,36 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using flow::Solver;
-
-/// Vertex values of one level: r, z, total ψ, ω, u_r, u_z (CSV rows).
-void write_level(std::ostringstream& os, int l, const flow::Level& L, double u_inf) {
-  const auto& g = L.g;
-  auto uzf = [&](int i, int j) { return (L.psi[g.at(i + 1, j)] - L.psi[g.at(i, j)]) / (g.h * g.r(i + 0.5)) + u_inf; };
-  auto urf = [&](int i, int j) { return i == 0 ? 0.0 : -(L.psi[g.at(i, j + 1)] - L.psi[g.at(i, j)]) / (g.h * g.r(i)); };
-  for (int i = 0; i <= g.nr; ++i)
-    for (int j = 0; j <= g.nz; ++j) {
-      const double r = g.r(i), z = g.z(j);
-      const double psi = L.psi[g.at(i, j)] + 0.5 * u_inf * r * r;
-      const double om = i == 0 ? 0.0 : L.eta[g.at(i, j)] / r;
-      double uz, ur;
-      if (i == 0) uz = (9 * uzf(0, j) - uzf(1, j)) / 8;
-      else if (i == g.nr) uz = uzf(i - 1, j);
-      else uz = 0.5 * (uzf(i - 1, j) + uzf(i, j));
-      if (j == 0) ur = urf(i, 0);
-      else if (j == g.nz) ur = urf(i, j - 1);
-      else ur = 0.5 * (urf(i, j - 1) + urf(i, j));
-      os << l << ',' << r << ',' << z << ',' << psi << ',' << om << ',' << ur << ',' << uz << '\n';
-    }
-}
-
-std::string snapshot_csv(const Solver& s) {
-  std::ostringstream os;
-  os << std::setprecision(9);
-  os << "# t = " << s.time() << " s; level 0 is the finest; psi is the total Stokes streamfunction (m^3/s)\n";
-  os << "level,r,z,psi,omega,u_r,u_z\n";
-  for (std::size_t l = 0; l < s.levels().size(); ++l) write_level(os, static_cast<int>(l), s.levels()[l], s.settings().u_inf);
-  return os.str();
-}
 
 /// f_THR of the reduced-order model for two spheres at constant velocities (seed eqs. 6.7–6.9 with dU/dt = 0):
 /// Schiller–Naumann drag, the asymptotic gap lubrication (h_c = a*), the velocity part of the added mass (6.8).

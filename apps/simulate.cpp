@@ -9,6 +9,7 @@
 #include "contact/collision_model.hpp"
 #include "core/measure.hpp"
 #include "core/report.hpp"
+#include "coupling/flow_coupling.hpp"
 #include "integrators/integrator.hpp"
 
 namespace imcol {
@@ -38,8 +39,13 @@ class Recorder : public Observer {
       if (sc.has(Effect::elastic)) columns_.push_back("f_contact" + k);
       if (sc.has(Effect::gravity)) columns_.push_back("f_grav" + k);
       if (sc.has(Effect::history)) columns_.push_back("f_hist" + k);
+      if (sc.has(Effect::flow)) {
+        columns_.push_back("f_sim" + k);
+        columns_.push_back("f_thr" + k);
+      }
       columns_.push_back("a" + k);
     }
+    if (sc.has(Effect::flow)) columns_.push_back("H");
     columns_.push_back("event");
   }
 
@@ -61,9 +67,14 @@ class Recorder : public Observer {
       if (sc_.has(Effect::elastic)) r.push_back(f.contact);
       if (sc_.has(Effect::gravity)) r.push_back(f.gravity);
       if (sc_.has(Effect::history)) r.push_back(f.history);
+      if (sc_.has(Effect::flow)) {
+        r.push_back(f.f_sim);
+        r.push_back(f.f_thr);
+      }
       r.push_back(f.accel);
       max_history_ = std::max(max_history_, std::abs(f.history));
     }
+    if (sc_.has(Effect::flow)) r.push_back(ev.H);
     r.push_back(at_event ? 1.0 : 0.0);
     rows_.push_back(std::move(r));
     if (model_.has_target()) {
@@ -87,7 +98,9 @@ nlohmann::ordered_json or_null(const std::optional<double>& v) {
 
 }  // namespace
 
-RunResult simulate(const Scene& sc) {
+RunResult simulate(const Scene& sc) { return simulate(sc, nullptr); }
+
+RunResult simulate(const Scene& sc, const ProgressFn& progress) {
   const auto setup_start = std::chrono::steady_clock::now();
   CollisionModel model(sc);
   const auto wall_start = std::chrono::steady_clock::now();
@@ -101,7 +114,15 @@ RunResult simulate(const Scene& sc) {
   st.max_steps = sc.solver.max_steps;
   st.linear_solver = sc.solver.linear_solver;
   st.krylov_tol = sc.solver.krylov_tol;
-  const SolverStats stats = integrate(model, st, rec);
+  std::unique_ptr<coupling::FlowCoupling> coupled;
+  SolverStats stats;
+  if (sc.has(Effect::flow)) {
+    coupled = std::make_unique<coupling::FlowCoupling>(model, sc);
+    coupled->progress = progress;
+    stats = coupled->run(st, rec);
+  } else {
+    stats = integrate(model, st, rec);
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
   RunResult res;
@@ -275,6 +296,22 @@ RunResult simulate(const Scene& sc) {
   for (const auto& x : model.events()) ev.push_back({{"t", x.t}, {"event", x.name}, {"gap_m", x.gap}, {"u_rel_m_s", x.u_rel}});
   s["events"] = ev;
   s["warnings"] = warnings;
+  if (coupled) {
+    const auto& fs = coupled->stats();
+    const double ms = fs.steps ? 1e3 * fs.flow_seconds / fs.steps : 0.0;
+    s["flow"] = {{"grid", {{"cells_per_diameter", fs.cells_per_diameter}, {"h_m", fs.h}, {"nr", fs.nr}, {"nz", fs.nz},
+                           {"levels", fs.levels}, {"memory_MB", fs.bytes / 1e6}}},
+                 {"dt_s", fs.dt}, {"start", to_string(sc.flow.start)}, {"start_up_steps", fs.pre_steps},
+                 {"force_in_step", to_string(sc.flow.force_in_step)}, {"steps", fs.steps}, {"ms_per_step", ms},
+                 {"krylov_iterations", fs.krylov_iterations},
+                 {"krylov_iterations_per_step", fs.steps ? double(fs.krylov_iterations) / fs.steps : 0.0},
+                 {"max_krylov_iterations", fs.max_krylov_iterations}, {"max_krylov_residual", fs.max_krylov_residual},
+                 {"max_slip_m_s", fs.max_slip}, {"min_gap_clamped_steps", fs.min_gap_clamped_steps},
+                 {"frame_travel_m", fs.frame_travel}, {"start_up_time_s", fs.pre_seconds},
+                 {"flow_time_s", fs.flow_seconds}, {"ode_time_s", fs.ode_seconds},
+                 {"flow_share", wall > 0 ? fs.flow_seconds / wall : 0.0}, {"ode_share", wall > 0 ? fs.ode_seconds / wall : 0.0}};
+    for (const auto& snap : coupled->snapshots()) res.files.push_back({snap.name + ".csv", snap.csv});
+  }
   s["wall_time_s"] = wall;
   s["setup_time_s"] = setup;  // model construction, incl. one-off lookup tables
   return res;
@@ -290,6 +327,7 @@ void write_outputs(const RunResult& r, const std::filesystem::path& dir) {
     csv << "\n";
   }
   write_file_atomic(dir / "trajectory.csv", csv.str());
+  for (const auto& [name, content] : r.files) write_file_atomic(dir / name, content);
   write_file_atomic(dir / "summary.json", r.summary.dump(2) + "\n");
 }
 

@@ -63,6 +63,8 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
     e_dry_ = e;
   }
   delta_ss_m_ = sc.contact.delta_ss * D_;
+  coupled_ = sc.has(Effect::flow);
+  delta_sl_m_ = sc.contact.delta_sl * D_;
   // A start inside the contact zone (the reader admits it only while approaching): the zone is
   // shortened to the initial gap, so that the ramp stores no energy at t = 0 and the contact begins.
   const bool start_inside = has_target() && sc.has(Effect::elastic) && initial_gap() <= delta_ss_m_;
@@ -310,6 +312,7 @@ void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev)
     dW = d >= dw_floor_ ? added_mass_dW(d) : dw_slope_;
   }
   ev.m_couple = 0;
+  ev.H = coupled_ ? blend(ev.gap) : 1.0;
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     auto& f = ev.f[m];
     f = SphereForces{};
@@ -357,6 +360,74 @@ void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev)
     ev.f[0].contact = -f;
     if (pair) ev.f[1].contact = f;
   }
+  if (coupled_) blend_in_simulated(t, ev);
+}
+
+void CollisionModel::blend_in_simulated(double t, Evaluation& ev) const {
+  // f_SL = H f_THR + (1 − H) f_SIM (6.10). The acceleration parts: f_SIM's added mass is removed from it
+  // (f_rest = f_SIM + M_A a) and kept implicit, so the mass matrix carries M_A in full whatever H is; the
+  // history force's κ-like mass is blended like its force.
+  const double H = ev.H;
+  const bool am_listed = scene_.has(Effect::added_mass);
+  const AddedMassMatrix M = implicit_added_mass(ev.gap);
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    auto& f = ev.f[m];
+    ev.thr_base[m] = f.drag + f.lubrication + f.added_mass + f.history;
+    ev.m_hist_full[m] = ev.m_hist[m];
+    f.drag *= H;
+    f.lubrication *= H;
+    f.added_mass *= H;  // velocity (dW/dδ) part
+    f.history *= H;
+    ev.m_eff[m] -= (1 - H) * ev.m_hist[m];
+    ev.m_hist[m] *= H;
+    ev.f_rest[m] = sim_.at(t, m);
+    f.simulated = (1 - H) * ev.f_rest[m];
+  }
+  if (!am_listed) {
+    // No analytic added mass: only the (1 − H) share standing for f_SIM's is implicit.
+    ev.m_eff[0] += (1 - H) * M.m11;
+    if (n_spheres_ == 2) ev.m_eff[1] += (1 - H) * M.m22;
+    ev.m_couple += (1 - H) * M.m12;
+  }
+}
+
+double CollisionModel::blend(double gap) const {
+  if (!has_target()) return 0.0;
+  const double x = std::clamp(0.5 * gap / delta_sl_m_, 0.0, 1.0);
+  return 1.0 - x * x * (3 - 2 * x);
+}
+
+AddedMassMatrix CollisionModel::implicit_added_mass(double gap) const {
+  // The model's own added mass (MODEL.md §2.2): the seed's per-sphere ½ m_f (1 + 3W) or the lagrangian pair form.
+  const bool pair = target_ == Target::sphere;
+  const double W = has_target() ? wall_function_W(gap) : 0.0;
+  AddedMassMatrix M;
+  if (lagrangian_am_ && pair) {
+    const double A = 1.5 * mf_star_ * W;
+    M.m11 = 0.5 * mf_[0] + A;
+    M.m22 = 0.5 * mf_[1] + A;
+    M.m12 = -A;
+  } else {
+    M.m11 = 0.5 * mf_[0] * (1 + 3 * W);
+    if (n_spheres_ == 2) M.m22 = 0.5 * mf_[1] * (1 + 3 * W);
+  }
+  return M;
+}
+
+std::array<double, 2> CollisionModel::accelerations_without_contact(double t, std::span<const double> y) const {
+  Evaluation ev;
+  kinematics(y, ev);
+  forces(t, y, ev);
+  auto g = total_forces(ev);
+  for (std::size_t m = 0; m < n_spheres_; ++m) g[m] -= ev.f[m].contact;
+  return ev.accelerations(g, n_spheres_);
+}
+
+void CollisionModel::sphere_states(std::span<const double> y, std::array<double, 2>& z, std::array<double, 2>& u) const {
+  Evaluation ev;
+  kinematics(y, ev);
+  z = ev.z;
+  u = ev.u;
 }
 
 std::array<double, 2> Evaluation::accelerations(const std::array<double, 2>& g, std::size_t n) const {
@@ -369,7 +440,7 @@ std::array<double, 2> CollisionModel::total_forces(const Evaluation& ev) const {
   std::array<double, 2> g{};
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     const auto& f = ev.f[m];
-    g[m] = f.drag + f.lubrication + f.added_mass + f.contact + f.gravity + f.history;
+    g[m] = f.drag + f.lubrication + f.added_mass + f.contact + f.gravity + f.history + f.simulated;
   }
   return g;
 }
@@ -381,9 +452,22 @@ Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
   const auto acc = ev.accelerations(total_forces(ev), n_spheres_);
   for (std::size_t m = 0; m < n_spheres_; ++m) ev.f[m].accel = acc[m];
   // Report the full added-mass and history forces, including their acceleration parts (the mass matrix beyond m_p).
+  const bool pair = n_spheres_ == 2;
   for (std::size_t m = 0; m < n_spheres_; ++m) {
-    const double other = n_spheres_ == 2 ? ev.m_couple * acc[1 - m] : 0.0;
-    ev.f[m].added_mass -= (ev.m_eff[m] - mp_[m] - ev.m_hist[m]) * acc[m] + other;
+    const double other = pair ? ev.m_couple * acc[1 - m] : 0.0;
+    double am_accel = (ev.m_eff[m] - mp_[m] - ev.m_hist[m]) * acc[m] + other;  // the implicit added-mass force
+    if (coupled_) {
+      // Split the implicit added mass: its H share is f_THR's, the rest stands for f_SIM's (MODEL.md §5).
+      const AddedMassMatrix M = implicit_added_mass(ev.gap);
+      const double MA_a = (m == 0 ? M.m11 : M.m22) * acc[m] + (pair ? M.m12 * acc[1 - m] : 0.0);
+      const double H = ev.H;
+      const bool am_listed = scene_.has(Effect::added_mass);
+      ev.f[m].f_sim = ev.f_rest[m] - MA_a;
+      ev.f[m].simulated -= (1 - H) * MA_a;
+      am_accel -= (1 - H) * MA_a;
+      ev.f[m].f_thr = ev.thr_base[m] - (am_listed ? MA_a : 0.0) - ev.m_hist_full[m] * acc[m];
+    }
+    ev.f[m].added_mass -= am_accel;
     ev.f[m].history -= ev.m_hist[m] * acc[m];
   }
   return ev;
@@ -457,6 +541,11 @@ void CollisionModel::arm() {
   if (!u_in_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
   else if (!u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
   if (scene_.has(Effect::lubrication) && !brenner_) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
+  if (coupled_) {
+    // The ends of the blend H (MODEL.md §2.5): diagnostic, the right-hand side stays continuous there.
+    add(RootKind::blend_edge, "gap=2*delta_sl (blend edge)", 0);
+    if (phase_ != Phase::loading) add(RootKind::blend_end, "gap=0 (blend end)", 0);
+  }
 }
 
 void CollisionModel::root_values(double, std::span<const double> y, std::span<double> g) {
@@ -467,7 +556,9 @@ void CollisionModel::root_values(double, std::span<const double> y, std::span<do
     switch (armed_kind_[i]) {
       case RootKind::contact_in:
       case RootKind::contact_out: g[i] = gap - delta_ss_m_; break;
-      case RootKind::touch: g[i] = gap; break;
+      case RootKind::touch:
+      case RootKind::blend_end: g[i] = gap; break;
+      case RootKind::blend_edge: g[i] = gap - 2 * delta_sl_m_; break;
       case RootKind::unload: g[i] = u_rel; break;
       case RootKind::closest: g[i] = u_rel - stall_speed_; break;
       case RootKind::instant_in:
@@ -543,6 +634,8 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
       break;
     case RootKind::touch:
     case RootKind::lub_edge:
+    case RootKind::blend_edge:
+    case RootKind::blend_end:
       break;
   }
 }
@@ -554,7 +647,8 @@ EventAction CollisionModel::on_roots(std::span<const std::size_t> found, double 
   bool changed = false;
   for (std::size_t i : found) {
     handle(kinds.at(i), specs.at(i).name, t, y);
-    changed = changed || kinds[i] != RootKind::touch;
+    const bool diagnostic = kinds[i] == RootKind::touch || kinds[i] == RootKind::blend_edge || kinds[i] == RootKind::blend_end;
+    changed = changed || !diagnostic;
   }
   if (t >= stop_time_) return EventAction::stop;
   if (!changed) return EventAction::proceed;
@@ -605,7 +699,13 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
       c.push_back({"history.fit_error_basset", num(history_[0]->soe()->base().max_rel_error)});
     }
   }
-  c.push_back({"blend.H", "1 (reduced-order: no f_SIM)"});
+  if (coupled_) {
+    c.push_back({"blend.H", "smoothstep: H = 1 - (3t^2 - 2t^3), t = gap/(2 delta_sl) in [0, 1]"});
+    c.push_back({"blend.delta_sl_m", num(delta_sl_m_)});
+    c.push_back({"blend.added_mass_estimate", lagrangian_am_ && target_ == Target::sphere ? "lagrangian pair matrix, implicit" : "1/2 m_f (1 + 3W), implicit"});
+  } else {
+    c.push_back({"blend.H", "1 (reduced-order: no f_SIM)"});
+  }
   return c;
 }
 

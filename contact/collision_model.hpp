@@ -28,9 +28,31 @@
 
 namespace imcol::contact {
 
+/// Forces acting on one sphere (N along z). With the `flow` effect the fluid terms are the blended ones that act,
+/// H × (analytic term), and `simulated` is (1 − H) f_SIM (MODEL.md (6.10)).
 struct SphereForces {
   double drag = 0, lubrication = 0, added_mass = 0, contact = 0, gravity = 0, history = 0;  // N along z
+  double simulated = 0;
   double accel = 0;  // m/s^2
+  double f_thr = 0;  // the analytic fluid force f_THR unblended, incl. its acceleration parts (reporting)
+  double f_sim = 0;  // the flow kernel's force f_SIM, reconstructed with the current acceleration (reporting)
+};
+
+/// The simulated fluid force over one flow step (MODEL.md §5): per sphere, the flow kernel's force with the
+/// model's added-mass estimate removed, f_rest = f_SIM + M_A a_flow, linear in t between (t0, f0) and (t1, f1)
+/// (extrapolated linearly outside). The model adds (1 − H) f_rest and keeps M_A implicit in its mass matrix.
+struct SimulatedForce {
+  double t0 = 0, t1 = 1;
+  std::array<double, 2> f0{}, f1{};
+  double at(double t, std::size_t m) const {
+    const double w = t1 > t0 ? (t - t0) / (t1 - t0) : 1.0;
+    return f0[m] + w * (f1[m] - f0[m]);
+  }
+};
+
+/// The added-mass matrix the model keeps implicit (kg): [[m11, m12], [m12, m22]].
+struct AddedMassMatrix {
+  double m11 = 0, m22 = 0, m12 = 0;
 };
 
 struct Evaluation {
@@ -40,6 +62,9 @@ struct Evaluation {
   std::array<double, 2> m_eff{};  // diagonal of the velocity mass matrix, kg
   double m_couple = 0;            // its off-diagonal entry (lagrangian pair added mass), kg
   std::array<double, 2> m_hist{};  // the history force's share of m_eff (κ-like term), kg
+  double H = 1;                     // blend weight of f_THR (MODEL.md §2.5); 1 without the flow effect
+  std::array<double, 2> f_rest{};   // SimulatedForce at t (flow effect), N
+  std::array<double, 2> thr_base{}, m_hist_full{};  // unblended f_THR without acceleration parts, N; history mass, kg
   /// Solves the 2×2 mass system for the accelerations given the forces g.
   std::array<double, 2> accelerations(const std::array<double, 2>& g, std::size_t n) const;
   std::array<SphereForces, 2> f{};
@@ -75,6 +100,21 @@ class CollisionModel : public DynamicalSystem {
   double next_breakpoint(double t) const override;
   void at_breakpoint(double t, std::span<const double> y) override;
   bool modal_structure(double t, std::span<const double> y, ModalStructure& s) const override;
+
+  // ---- Coupling seam (flow effect, MODEL.md (6.10), §5) ----
+  bool coupled() const { return coupled_; }
+  /// The simulated force for the coming flow step; the right-hand side uses it from now on.
+  void set_simulated_force(const SimulatedForce& f) { sim_ = f; }
+  const SimulatedForce& simulated_force() const { return sim_; }
+  /// H(δ/δ_SL): smoothstep on [0, 2], 1 at contact, ½ at δ_SL, 0 beyond 2δ_SL (and for a free sphere).
+  double blend(double gap) const;
+  /// The added mass kept implicit at this gap, including the estimate that stands for f_SIM's (§5).
+  AddedMassMatrix implicit_added_mass(double gap) const;
+  /// Positions (z1, z2) and velocities (u1, u2) of the spheres in the state y, m and m/s.
+  void sphere_states(std::span<const double> y, std::array<double, 2>& z, std::array<double, 2>& u) const;
+  double delta_sl_m() const { return delta_sl_m_; }
+  /// Accelerations of the spheres at (t, y) without the solid contact force (m/s²): the coupling's predictor.
+  std::array<double, 2> accelerations_without_contact(double t, std::span<const double> y) const;
 
   // ---- Physics, for reporting ----
   Evaluation evaluate(double t, std::span<const double> y) const;
@@ -118,13 +158,15 @@ class CollisionModel : public DynamicalSystem {
 
  private:
   enum class Target { none, wall, sphere };
-  enum class RootKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge };
+  enum class RootKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge, blend_edge, blend_end };
 
   void arm();
   void kinematics(std::span<const double> y, Evaluation& ev) const;
   std::array<double, 2> total_forces(const Evaluation& ev) const;
   /// Forces without the added-mass acceleration terms; fills ev.f, ev.m_eff and ev.m_couple.
   void forces(double t, std::span<const double> y, Evaluation& ev) const;
+  /// Weights the analytic fluid terms by H and adds (1 − H) f_SIM (MODEL.md (6.10), §5).
+  void blend_in_simulated(double t, Evaluation& ev) const;
   double wall_function_W(double gap) const;  // W(δ**) continued linearly below dw_floor
   double history_K_H(double gap) const;
   std::span<const double> history_z(std::span<const double> y, std::size_t m) const;
@@ -135,6 +177,9 @@ class CollisionModel : public DynamicalSystem {
   void record(double t, const std::string& name, std::span<const double> y);
 
   const Scene scene_;
+  bool coupled_ = false;     // the flow effect: f_SL = H f_THR + (1 − H) f_SIM
+  double delta_sl_m_ = 0;    // δ_SL, m
+  SimulatedForce sim_;
   Target target_;
   std::size_t n_spheres_;
   std::array<double, 2> a_{}, mp_{}, mf_{};

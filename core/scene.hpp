@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/flow_spec.hpp"
+
 namespace imcol {
 
 enum class Effect { drag, lubrication, added_mass, elastic, gravity, history, flow };
@@ -88,7 +90,8 @@ struct Scene {
     double instant_gap = -1;  // units of D, gap at which e_instant is taken; <0: delta_ss
     double stall_fraction = 0.01;  // an approach without contact has stopped when U_rel < this × U_rel(0)
   } measure;
-  struct Output { double dt = 0; } output;  // s, trajectory sampling; 0 = window/100
+  struct Output { double dt = 0; } output;
+  FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect  // s, trajectory sampling; 0 = window/100
 
   bool has(Effect e) const { return effects.count(e) != 0; }
   bool two_spheres() const { return spheres.size() == 2; }

@@ -292,7 +292,25 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
   sph_ = next;
   t_ += dt;
   ++n_;
+  check_finite(info);
   return info;
+}
+
+void Solver::check_finite(const StepInfo& info) const {
+  auto fail = [&](const std::string& what) {
+    std::ostringstream os;
+    os << std::scientific << std::setprecision(4) << "flow diverged at t = " << t_ << " s (step " << n_ << "): " << what
+       << " (lower the flow time step, refine the grid, or check the scene)";
+    throw SolverError(os.str());
+  };
+  for (std::size_t b = 0; b < info.force.size(); ++b)
+    if (!std::isfinite(info.force[b])) fail("the force on sphere " + std::to_string(b + 1) + " is not finite");
+  if (!std::isfinite(info.slip)) fail("the slip velocity at the body points is not finite");
+  for (std::size_t l = 0; l < lv_.size(); ++l) {
+    double sum = 0;
+    for (double v : lv_[l].eta) sum += v * v;
+    if (!std::isfinite(sum)) fail("the vorticity on level " + std::to_string(l) + " is not finite");
+  }
 }
 
 std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {

@@ -84,9 +84,13 @@ class Solver {
  public:
   Solver(const Settings& s, std::vector<SphereState> spheres);
   /// Advances one step; `next` are the spheres at t + dt (same count and radii). Returns the forces at t + dt.
-  /// Throws SolverError if GMRES fails; the solver is then mid-step and must not be stepped again.
+  /// Throws SolverError if GMRES fails or the flow diverges (a force, the slip or the vorticity not finite); the
+  /// solver is then mid-step and must not be stepped again.
   StepInfo step(const std::vector<SphereState>& next);
 
+  /// Sets the uniform stream U∞ for the coming steps: a frame translating at −U∞ (MODEL.md §5). The vorticity is
+  /// the same in every translating frame; the force in the frame misses the frame's buoyancy-like ρ V a_frame.
+  void set_stream(double u_inf) { s_.u_inf = u_inf; }
   double time() const { return t_; }
   long steps() const { return n_; }
   long preconditioner_blocks_built() const { return prec_builds_; }  // GMRES preconditioner blocks factorised so far
@@ -111,6 +115,7 @@ class Solver {
 
  private:
   void build_points(const std::vector<SphereState>& sp);
+  void check_finite(const StepInfo& info) const;  // throws SolverError naming the quantity and the time
   void coarsify(std::vector<double> Level::*field);  // fine-to-coarse full weighting, finest first
   void solve_levels(int op, std::vector<double> Level::*rhs, std::vector<double> Level::*x);  // coarsest to finest
   /// The multi-level A⁻¹ then P⁻¹ shared by the predictor and the force correction (rhs is overwritten).

@@ -2,6 +2,8 @@
 // Time integration of a DynamicalSystem with SUNDIALS CVODE (BDF) or IDA (residual form),
 // root finding, re-initialisation after events and statistics summed over re-initialisations.
 #include <map>
+#include <memory>
+#include <span>
 #include <string>
 
 #include "core/system.hpp"
@@ -39,6 +41,33 @@ struct SolverStats {
   std::string linear_solver;   // what ran: dense | gmres
   std::size_t state_size = 0;
   std::map<std::string, long> as_map() const;
+};
+
+/// A stateful CVODE/IDA integration of one DynamicalSystem (as Cantera's Integrator driven by ReactorNet::advance):
+/// construction samples t = 0; advance(t) integrates to t or to the system's stop time, handling roots (events),
+/// re-initialisations and output samples on the way; statistics are summed over re-initialisations.
+/// The system's right-hand side may change between two advance() calls (a coupled force) as long as it stays
+/// continuous in t; call reinit() after a discontinuous change.
+class Integrator {
+ public:
+  Integrator(DynamicalSystem& sys, const IntegratorSettings& settings, Observer& observer);
+  ~Integrator();
+  Integrator(const Integrator&) = delete;
+  Integrator& operator=(const Integrator&) = delete;
+
+  /// Integrates to min(t_target, stop_time()) and returns the time reached. Throws SolverError on failure,
+  /// naming the SUNDIALS flag, the time and the state components with the largest weighted error.
+  double advance(double t_target);
+  /// Restarts the method at the current (t, y) (after the model changed discontinuously).
+  void reinit();
+  bool finished() const;  // the stop time or a stop event was reached
+  double time() const;
+  std::span<const double> state() const;
+  SolverStats stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 /// Integrates from t = 0 until the system's stop_time(). Throws SolverError on failure,

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <sstream>
@@ -395,52 +396,29 @@ using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter
 
 }  // namespace
 
-SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observer& observer) {
-  if (!(st.rtol > 0) || !(st.atol > 0)) throw SolverError("tolerances must be positive");
-  if (!(st.output_dt > 0)) throw SolverError("output interval must be positive");
-  SUNContext raw = nullptr;
-  if (SUNContext_Create(nullptr, &raw) != 0) throw SolverError("SUNContext_Create failed");
-  std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter> ctx(raw);
-
-  const auto n = static_cast<sunindextype>(sys.size());
-  VectorPtr y(N_VNew_Serial(n, ctx.get()));
-  VectorPtr abstol(N_VNew_Serial(n, ctx.get()));
-  sys.initial_state(mview(y.get()));
-  auto tol = sys.absolute_tolerances(st.atol);
-  std::copy(tol.begin(), tol.end(), mview(abstol.get()).begin());
-
-  Callback cb{&sys, nullptr, {tol.begin(), tol.end()}, 0, nullptr, {}};
+struct Integrator::Impl {
+  Impl(DynamicalSystem& s, const IntegratorSettings& settings, Observer& o) : sys(s), st(settings), observer(o) {}
+  DynamicalSystem& sys;
+  IntegratorSettings st;
+  Observer& observer;
+  std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter> ctx;
+  VectorPtr y, abstol;
+  Callback cb{};
   SchurPreconditioner prec;
-  ModalStructure probe;
-  const bool modal = sys.modal_structure(0.0, view(y.get()), probe);
-  std::string ls = st.linear_solver;
-  if (ls == "auto") ls = (st.method == "cvode" && modal && sys.size() >= st.gmres_auto_size) ? "gmres" : "dense";
-  if (ls == "gmres") {
-    if (st.method != "cvode") throw SolverError("the gmres linear solver is implemented for cvode only");
-    if (!modal) throw SolverError("the gmres linear solver needs a state with memory components (the history effect)");
-    cb.prec = &prec;
-  } else if (ls != "dense") {
-    throw SolverError("unknown linear solver '" + ls + "'");
-  }
   std::unique_ptr<Backend> be;
-  if (st.method == "cvode") be = std::make_unique<CvodeBackend>(ctx.get(), cb, st, y.get(), abstol.get());
-  else if (st.method == "ida") be = std::make_unique<IdaBackend>(ctx.get(), cb, st, y.get(), abstol.get());
-  else throw SolverError("unknown integrator '" + st.method + "'");
-
   SolverStats stats;
-  stats.linear_solver = ls;
-  stats.state_size = sys.size();
+  std::vector<std::string> names;
   double t = 0.0;
-  be->init(t, y.get());
-  be->set_roots(sys.roots());
-  observer.sample(t, view(y.get()), true);
+  long k_out = 1;  // output times k·dt, counted so that they cannot stop advancing
+  bool done = false;
 
-  const auto names = sys.component_names();
-  // An exception from the model: input and solver errors pass through, anything else becomes a
-  // SolverError that says where it happened.
-  auto rethrow_model_error = [&] {
+  /// An exception from the model: input and solver errors pass through, anything else becomes a
+  /// SolverError that says where it happened.
+  [[noreturn]] void rethrow_model_error() {
+    const auto err = cb.error;
+    cb.error = nullptr;
     try {
-      std::rethrow_exception(cb.error);
+      std::rethrow_exception(err);
     } catch (const InputError&) {
       throw;
     } catch (const SolverError&) {
@@ -450,8 +428,8 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
       os << st.method << ": the model failed near t = " << t << " s: " << e.what();
       throw SolverError(os.str());
     }
-  };
-  auto fail = [&](int flag) {
+  }
+  [[noreturn]] void fail(int flag) {
     if (cb.error) rethrow_model_error();
     std::ostringstream os;
     os << st.method << " failed at t = " << t << " s with " << be->flag_name(flag);
@@ -466,48 +444,120 @@ SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observ
     for (std::size_t k = 0; k < std::min<std::size_t>(3, idx.size()); ++k)
       os << " " << names[idx[k]] << "=" << std::abs(ws[idx[k]] * es[idx[k]]);
     throw SolverError(os.str());
-  };
+  }
+};
 
-  long k_out = 1;  // output times k·dt, counted so that they cannot stop advancing
-  while (true) {
+Integrator::Integrator(DynamicalSystem& sys, const IntegratorSettings& st, Observer& observer)
+    : impl_(std::make_unique<Impl>(sys, st, observer)) {
+  auto& m = *impl_;
+  if (!(st.rtol > 0) || !(st.atol > 0)) throw SolverError("tolerances must be positive");
+  if (!(st.output_dt > 0)) throw SolverError("output interval must be positive");
+  SUNContext raw = nullptr;
+  if (SUNContext_Create(nullptr, &raw) != 0) throw SolverError("SUNContext_Create failed");
+  m.ctx.reset(raw);
+
+  const auto n = static_cast<sunindextype>(sys.size());
+  m.y.reset(N_VNew_Serial(n, m.ctx.get()));
+  m.abstol.reset(N_VNew_Serial(n, m.ctx.get()));
+  sys.initial_state(mview(m.y.get()));
+  auto tol = sys.absolute_tolerances(st.atol);
+  std::copy(tol.begin(), tol.end(), mview(m.abstol.get()).begin());
+
+  m.cb = Callback{&sys, nullptr, {tol.begin(), tol.end()}, 0, nullptr, {}};
+  ModalStructure probe;
+  const bool modal = sys.modal_structure(0.0, view(m.y.get()), probe);
+  std::string ls = st.linear_solver;
+  if (ls == "auto") ls = (st.method == "cvode" && modal && sys.size() >= st.gmres_auto_size) ? "gmres" : "dense";
+  if (ls == "gmres") {
+    if (st.method != "cvode") throw SolverError("the gmres linear solver is implemented for cvode only");
+    if (!modal) throw SolverError("the gmres linear solver needs a state with memory components (the history effect)");
+    m.cb.prec = &m.prec;
+  } else if (ls != "dense") {
+    throw SolverError("unknown linear solver '" + ls + "'");
+  }
+  if (st.method == "cvode") m.be = std::make_unique<CvodeBackend>(m.ctx.get(), m.cb, m.st, m.y.get(), m.abstol.get());
+  else if (st.method == "ida") m.be = std::make_unique<IdaBackend>(m.ctx.get(), m.cb, m.st, m.y.get(), m.abstol.get());
+  else throw SolverError("unknown integrator '" + st.method + "'");
+
+  m.stats.linear_solver = ls;
+  m.stats.state_size = sys.size();
+  m.names = sys.component_names();
+  m.be->init(m.t, m.y.get());
+  m.be->set_roots(sys.roots());
+  observer.sample(m.t, view(m.y.get()), true);
+}
+
+Integrator::~Integrator() = default;
+
+double Integrator::time() const { return impl_->t; }
+bool Integrator::finished() const { return impl_->done; }
+std::span<const double> Integrator::state() const { return view(impl_->y.get()); }
+
+SolverStats Integrator::stats() const {
+  SolverStats s = impl_->stats;
+  impl_->be->add_stats(s);  // the counters since the last re-initialisation
+  return s;
+}
+
+void Integrator::reinit() {
+  auto& m = *impl_;
+  m.be->add_stats(m.stats);
+  ++m.stats.reinits;
+  m.be->init(m.t, m.y.get());
+  m.be->set_roots(m.sys.roots());
+}
+
+double Integrator::advance(double t_target) {
+  auto& m = *impl_;
+  auto& sys = m.sys;
+  auto& be = m.be;
+  double& t = m.t;
+  while (!m.done) {
     const double t_eps = 1e-12 * std::max(1.0, std::abs(t));  // times closer than this count as reached
     const double tstop = sys.stop_time();
-    if (t >= tstop - t_eps) break;
+    if (t >= tstop - t_eps) {
+      m.done = true;
+      break;
+    }
+    if (t >= t_target - t_eps) break;
     // The next output time must lie strictly ahead (an event may have landed on it).
-    while (k_out * st.output_dt <= t + t_eps) ++k_out;
-    const double next_out = k_out * st.output_dt;
+    while (m.k_out * m.st.output_dt <= t + t_eps) ++m.k_out;
+    const double next_out = m.k_out * m.st.output_dt;
     const double bp = sys.next_breakpoint(t);
-    const double t_limit = std::min(tstop, bp);
+    const double t_limit = std::min({tstop, bp, t_target});
     const double tout = std::min(next_out, t_limit);
-    int flag = be->solve(tout, t_limit, y.get(), t);
-    if (flag < 0) fail(flag);
-    if (cb.error) rethrow_model_error();
+    int flag = be->solve(tout, t_limit, m.y.get(), t);
+    if (flag < 0) m.fail(flag);
+    if (m.cb.error) m.rethrow_model_error();
     if (flag > 0) {
       std::vector<int> flags(sys.roots().size(), 0);
       be->root_info(flags.data());
       std::vector<std::size_t> found;
       for (std::size_t i = 0; i < flags.size(); ++i)
         if (flags[i]) found.push_back(i);
-      stats.root_events += static_cast<long>(found.size());
-      observer.sample(t, view(y.get()), true);
-      const EventAction action = sys.on_roots(found, t, mview(y.get()));
-      if (action == EventAction::stop) break;
-      if (action == EventAction::reinit) {
-        be->add_stats(stats);
-        ++stats.reinits;
-        be->init(t, y.get());
-        be->set_roots(sys.roots());
+      m.stats.root_events += static_cast<long>(found.size());
+      m.observer.sample(t, view(m.y.get()), true);
+      const EventAction action = sys.on_roots(found, t, mview(m.y.get()));
+      if (action == EventAction::stop) {
+        m.done = true;
+        break;
       }
+      if (action == EventAction::reinit) reinit();
       continue;
     }
     if (t >= bp - t_eps) {
-      sys.at_breakpoint(t, view(y.get()));
-      ++stats.breakpoints;
+      sys.at_breakpoint(t, view(m.y.get()));
+      ++m.stats.breakpoints;
     }
-    if (t >= next_out - t_eps || t >= tstop - t_eps) observer.sample(t, view(y.get()), false);
+    if (t >= next_out - t_eps || t >= tstop - t_eps) m.observer.sample(t, view(m.y.get()), false);
   }
-  be->add_stats(stats);
-  return stats;
+  return t;
+}
+
+SolverStats integrate(DynamicalSystem& sys, const IntegratorSettings& st, Observer& observer) {
+  Integrator it(sys, st, observer);
+  it.advance(std::numeric_limits<double>::infinity());
+  return it.stats();
 }
 
 }  // namespace imcol

@@ -1,0 +1,60 @@
+#include "core/flow_spec.hpp"
+
+#include "core/toml_reader.hpp"
+
+namespace imcol {
+
+const char* to_string(FlowStart s) { return s == FlowStart::impulsive ? "impulsive" : "developed"; }
+
+const char* to_string(ForceInStep s) { return s == ForceInStep::linear ? "linear" : "held"; }
+
+void read_flow_spec(TableReader& r, FlowSpec& f) {
+  auto int_in = [&](const char* key, int& field, long lo, long hi) {
+    if (auto v = r.integer(key)) {
+      if (*v < lo || *v > hi) r.fail(key, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " + std::to_string(*v) + ")");
+      field = static_cast<int>(*v);
+    }
+  };
+  int_in("cells_per_diameter", f.cells_per_diameter, 4, 512);
+  int_in("levels", f.levels, 1, 12);
+  f.r_max = r.number("r_max", f.r_max);
+  r.in_range("r_max", f.r_max, 0.6, 100.0, false, false);
+  f.ahead = r.number("ahead", f.ahead);
+  r.in_range("ahead", f.ahead, 0.1, 100.0, false, false);
+  f.behind = r.number("behind", f.behind);
+  r.in_range("behind", f.behind, 0.1, 100.0, false, false);
+  if (r.has("dt") && r.has("cfl")) r.fail("cfl", "give either dt or cfl, not both");
+  f.dt = r.number("dt", 0.0);
+  if (r.has("dt")) r.positive("dt", f.dt);
+  f.cfl = r.number("cfl", f.cfl);
+  r.in_range("cfl", f.cfl, 0.0, 1.0, true, false);
+  f.theta = r.number("theta", f.theta);
+  r.in_range("theta", f.theta, 0.5, 1.0, false, false);
+  f.krylov_tol = r.number("krylov_tol", f.krylov_tol);
+  r.in_range("krylov_tol", f.krylov_tol, 1e-14, 0.1, false, false);
+  int_in("krylov_max_iter", f.krylov_max_iter, 1, 100000);
+  int_in("krylov_restart", f.krylov_restart, 2, 1000);
+  f.ring_spacing = r.number("ring_spacing", f.ring_spacing);
+  r.in_range("ring_spacing", f.ring_spacing, 0.25, 2.0, false, false);
+  if (auto v = r.string("start")) {
+    r.one_of("start", *v, {"impulsive", "developed"});
+    f.start = *v == "impulsive" ? FlowStart::impulsive : FlowStart::developed;
+  }
+  if (r.has("developed_distance") && r.has("developed_time")) r.fail("developed_time", "give either developed_distance or developed_time, not both");
+  f.developed_distance = r.number("developed_distance", f.developed_distance);
+  r.in_range("developed_distance", f.developed_distance, 0.0, 1000.0, true, false);
+  f.developed_time = r.number("developed_time", 0.0);
+  if (r.has("developed_time")) r.positive("developed_time", f.developed_time);
+  if (f.start == FlowStart::impulsive && (r.has("developed_distance") || r.has("developed_time")))
+    r.fail(r.has("developed_time") ? "developed_time" : "developed_distance", "applies to start = \"developed\" only");
+  if (auto v = r.string("force_in_step")) {
+    r.one_of("force_in_step", *v, {"linear", "held"});
+    f.force_in_step = *v == "linear" ? ForceInStep::linear : ForceInStep::held;
+  }
+  f.min_gap_cells = r.number("min_gap_cells", f.min_gap_cells);
+  r.in_range("min_gap_cells", f.min_gap_cells, 0.0, 10.0, false, false);
+  int_in("snapshots", f.snapshots, 0, 1);
+  r.finish();
+}
+
+}  // namespace imcol

@@ -1,0 +1,49 @@
+#pragma once
+// The `[flow]` table of a collision scene: the embedded flow kernel that supplies f_SIM (MODEL.md §2, §2.5, §5).
+// Lengths in units of the impact sphere's diameter D, times in s. Read by read_flow_spec(); every key is checked.
+#include <string>
+
+namespace imcol {
+
+class TableReader;
+
+/// How the flow exists at t = 0.
+enum class FlowStart {
+  impulsive,  // fluid at rest: the spheres' initial velocities are imposed over one flow step before t = 0
+  developed   // the initial velocities are imposed over a stated distance (or time) before t = 0
+};
+const char* to_string(FlowStart s);
+
+/// How f_SIM varies inside one flow step (MODEL.md §5).
+enum class ForceInStep {
+  linear,  // linear between its values at t_n and t_{n+1}: second order in Δt
+  held     // its value at t_{n+1} over the whole step: first order
+};
+const char* to_string(ForceInStep s);
+
+struct FlowSpec {
+  int cells_per_diameter = 24;   // finest spacing h = D / cells_per_diameter
+  int levels = 4;                // nested levels, each twice the size and spacing of the one inside
+  double r_max = 1.0;            // finest level's radius, D
+  double ahead = 0.75;           // finest level beyond the leading sphere's surface, D
+  double behind = 1.25;          // finest level behind the trailing sphere's surface (its wake), D
+  double dt = 0;                 // flow step, s; 0: from cfl
+  double cfl = 0.25;             // dt = cfl h / U_ref (U_ref the largest initial sphere speed) when dt = 0
+  double theta = 0.5;            // implicit weight of the viscous term (0.5 Crank–Nicolson)
+  double krylov_tol = 1e-8;      // GMRES relative residual of the force system
+  int krylov_max_iter = 500;
+  int krylov_restart = 60;
+  double ring_spacing = 1.0;     // arc spacing of the body rings, cells
+  FlowStart start = FlowStart::developed;
+  double developed_distance = 1.0;  // developed: distance the impact sphere travels before t = 0, D
+  double developed_time = 0;        // developed: or this time, s (> 0 overrides the distance)
+  ForceInStep force_in_step = ForceInStep::linear;
+  double min_gap_cells = 1.0;    // smallest gap the kernel sees, finest cells (its rings would overlap below)
+  int snapshots = 1;             // write flow fields (gap 1 D, contact, one window after separation): 1 yes, 0 no
+  int line = 0;                  // line of the [flow] table (0: not given)
+};
+
+/// Reads the `[flow]` table (reader positioned on it) into spec; throws InputError naming file:line and key.
+void read_flow_spec(TableReader& r, FlowSpec& spec);
+
+}  // namespace imcol

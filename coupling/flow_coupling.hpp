@@ -1,0 +1,88 @@
+#pragma once
+// The coupling loop (MODEL.md §2, (6.10), §5): the flow kernel supplies f_SIM to the collision model each flow step.
+//
+// Partitioned, one pass per flow step Δt = t_{n+1} − t_n:
+//   1. predict the spheres at t_{n+1} from the ODE state at t_n: z + uΔt + ½aΔt², u + aΔt;
+//   2. step the flow kernel to t_{n+1} with the predicted spheres, in a frame that follows the pair's midpoint
+//      (the grid never loses the spheres); F_lab = F_frame + ρ V a_frame;
+//   3. remove the model's added-mass estimate: f_rest = F_lab + M_A a_flow, a_flow the kernel's velocity change
+//      over the step / Δt, M_A the added-mass matrix the model keeps implicit (so light spheres stay stable: the
+//      fluid's inertia never enters explicitly, only the difference between the kernel's and the model's);
+//   4. CVODE/IDA integrate particle and memory states over [t_n, t_{n+1}] with f_rest linear in t between its
+//      values at t_n and t_{n+1} (`flow.force_in_step = "linear"`, second order in Δt) or held at its t_{n+1} value
+//      ("held", first order); contact events inside the step are handled by the integrator as in the reduced model.
+// The flow starts impulsively (one prescribed step before t = 0) or developed (initial velocities prescribed over a
+// stated distance or time before t = 0). Near contact the gap seen by the kernel is kept at flow.min_gap_cells·h
+// or more (its rings would overlap): there H ≈ 1 and f_SIM's weight is small (documented in docs/coupling.md).
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contact/collision_model.hpp"
+#include "core/scene.hpp"
+#include "flow/solver.hpp"
+#include "integrators/integrator.hpp"
+
+namespace imcol::coupling {
+
+struct FlowRunStats {
+  long steps = 0;             // coupled flow steps
+  long pre_steps = 0;         // prescribed steps before t = 0 (start-up)
+  double dt = 0;              // flow step, s
+  double h = 0;               // finest spacing, m
+  int nr = 0, nz = 0, levels = 0, cells_per_diameter = 0;
+  double flow_seconds = 0, ode_seconds = 0, pre_seconds = 0;  // wall time in the kernel, in CVODE/IDA, in the start-up
+  long krylov_iterations = 0;
+  int max_krylov_iterations = 0;
+  double max_krylov_residual = 0, max_slip = 0;  // m/s
+  long min_gap_clamped_steps = 0;  // steps where the kernel's gap was held at min_gap_cells·h
+  double frame_travel = 0;         // m, how far the grid moved with the spheres
+  std::size_t bytes = 0;
+};
+
+/// A flow-field picture moment: its label and the kernel's fields as CSV (flow/snapshot.hpp).
+struct FlowSnapshot {
+  std::string name, label, csv;
+};
+
+class FlowCoupling {
+ public:
+  FlowCoupling(contact::CollisionModel& model, const Scene& scene);
+  ~FlowCoupling();
+  /// Runs the coupled integration to the model's stop time; returns the ODE statistics. Throws SolverError
+  /// (the kernel diverged or GMRES failed, the ODE failed) naming the time and the quantity.
+  SolverStats run(const IntegratorSettings& st, Observer& observer);
+  const FlowRunStats& stats() const { return stats_; }
+  const std::vector<FlowSnapshot>& snapshots() const { return snaps_; }
+  /// Called after every flow step with (t, t_end) for a progress line.
+  std::function<void(double, double, long)> progress;
+
+ private:
+  struct Predicted {
+    std::array<double, 2> z{}, u{};
+    double gap = 0;
+  };
+  Predicted predict(double t, std::span<const double> y, double dt) const;
+  std::vector<flow::SphereState> frame_spheres(const Predicted& p, double frame_z, double frame_u);
+  std::array<double, 2> step_kernel(const Predicted& p, double dt);
+  void start_up();
+  void maybe_snapshot(double t, double gap);
+
+  contact::CollisionModel& model_;
+  const Scene& sc_;
+  std::size_t n_ = 1;
+  std::array<double, 2> radius_{}, volume_{};
+  double D_ = 0, rho_ = 0, u_ref_ = 0;
+  std::unique_ptr<flow::Solver> kernel_;
+  double frame_z_ = 0, frame_u_ = 0;         // frame origin and velocity in the lab (m, m/s)
+  std::array<double, 2> kernel_u_{};         // lab velocities the kernel last imposed (m/s)
+  std::array<double, 2> f_rest_{};           // f_rest at the last flow time
+  bool have_f_rest_ = false;
+  FlowRunStats stats_;
+  std::vector<FlowSnapshot> snaps_;
+  bool snap_gap_ = false, snap_contact_ = false, snap_after_ = false;
+};
+
+}  // namespace imcol::coupling
