@@ -3,6 +3,10 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -49,9 +53,32 @@ void add_common(CLI::App* cmd, CommonOptions& c) {
 
 std::string json_num(const nlohmann::ordered_json& j, int prec) { return j.is_null() ? "n/a" : fixed(j.get<double>(), prec); }
 
+/// A progress line on a terminal for coupled runs that take more than a few seconds: simulated time, flow steps,
+/// estimated time left. Silent when stderr is not a terminal.
+ProgressFn terminal_progress() {
+  if (!isatty(fileno(stderr))) return nullptr;
+  auto start = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
+  auto last = std::make_shared<double>(0.0);
+  return [start, last](double t, double t_end, long steps) {
+    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - *start).count();
+    if (el < 2.0 || el - *last < 0.5) return;
+    *last = el;
+    const double left = t > 0 ? el * (t_end - t) / t : 0.0;
+    std::fprintf(stderr, "\r  t = %.4g / %.4g s, %ld flow steps, %.0f s elapsed, about %.0f s left (at most, the run may stop earlier)   ",
+                 t, t_end, steps, el, left);
+    if (t >= t_end) std::fprintf(stderr, "\n");
+  };
+}
+
+/// Ends a progress line, if one was drawn.
+void end_progress() {
+  if (isatty(fileno(stderr))) std::fprintf(stderr, "\r%120s\r", "");
+}
+
 int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet) {
   Scene sc = load_scene(scene_path, c.overrides());
-  RunResult r = simulate(sc);
+  RunResult r = simulate(sc, quiet ? nullptr : terminal_progress());
+  if (!quiet) end_progress();
   fs::path dir = out.empty() ? fs::path("out") / sc.name : fs::path(out);
   write_outputs(r, dir);
   if (!quiet) std::cout << human_summary(r) << "  wrote " << (dir / "trajectory.csv").string() << " and " << (dir / "summary.json").string() << "\n";
@@ -59,8 +86,21 @@ int cmd_run(const std::string& scene_path, const std::string& out, const CommonO
 }
 
 /// Runs the six Table 6.1 scenes and prints St_B and e beside the seed's values.
-int cmd_validate(const std::string& what, const std::string& out, const CommonOptions& c) {
+int cmd_validate_flow(const std::string& out, const CommonOptions& c);
+
+/// The scene with the `flow` effect added to its effects (coupled runs of the shipped reduced-order scenes).
+Scene with_flow(const std::string& path, std::vector<Override> ov) {
+  const Scene plain = load_scene(path, ov);
+  std::string list = "[";
+  for (Effect e : plain.effects) list += std::string("\"") + to_string(e) + "\",";
+  list += "\"flow\"]";
+  ov.push_back({"effects", list});
+  return load_scene(path, ov);
+}
+
+int cmd_validate(const std::string& what, const std::string& out, const CommonOptions& c, bool flow) {
   if (what != "seed") throw InputError("validate", what, "unknown validation set (expected 'seed')");
+  if (flow) return cmd_validate_flow(out, c);
   const std::string table = data_dir() + "/reference/li_2010_table_6_1.csv";
   std::ifstream in(table);
   if (!in) throw InputError(table, "", "cannot open the reference table");
@@ -91,6 +131,49 @@ int cmd_validate(const std::string& what, const std::string& out, const CommonOp
         << s["solver"]["steps"] << "," << s["wall_time_s"] << "\n";
   }
   fs::path dir = out.empty() ? fs::path("out") / "validate_seed" : fs::path(out);
+  write_file_atomic(dir / "validate_seed.csv", csv.str());
+  std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";
+  return 0;
+}
+
+/// Table 6.1 with the flow kernel coupled (MODEL.md (6.10)) beside the seed and the reduced-order model.
+int cmd_validate_flow(const std::string& out, const CommonOptions& c) {
+  const std::string table = data_dir() + "/reference/li_2010_table_6_1.csv";
+  std::ifstream in(table);
+  if (!in) throw InputError(table, "", "cannot open the reference table");
+  std::cout << "Seed Table 6.1 (Li 2010): coupled model (f_SIM from the flow kernel, blended by H) and reduced-order model\n";
+  std::cout << std::left << std::setw(5) << "run" << std::setw(13) << "pair" << std::right << std::setw(10) << "St_B seed"
+            << std::setw(8) << "St_B" << std::setw(8) << "e seed" << std::setw(9) << "e flow" << std::setw(10) << "e_inst"
+            << std::setw(10) << "e reduced" << std::setw(10) << "U_G mm/s" << std::setw(9) << "wall s" << std::setw(11) << "ms/step" << "\n";
+  std::ostringstream csv;
+  csv << "run,pair,St_B_seed,St_B,e_seed,e,e_instant,Re_seed,Re,group_velocity_m_s,steps,wall_time_s,"
+         "e_reduced_order,St_B_reduced_order,wall_time_reduced_order_s,flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s\n";
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("run,", 0) == 0) continue;
+    std::vector<std::string> cell;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) cell.push_back(x);
+    if (cell.size() < 9) throw InputError(table, "", "malformed row: " + line);
+    const std::string run = cell[0], pair = cell[8];
+    const std::string path = data_dir() + "/scenes/seed_run" + run + ".toml";
+    const RunResult red = simulate(load_scene(path, c.overrides()));
+    const RunResult r = simulate(with_flow(path, c.overrides()), terminal_progress());
+    end_progress();
+    const auto& s = r.summary;
+    const auto& f = s["flow"];
+    std::cout << std::left << std::setw(5) << run << std::setw(13) << pair << std::right << std::setw(10) << cell[6]
+              << std::setw(8) << json_num(s["St"], 1) << std::setw(8) << cell[7] << std::setw(9) << json_num(s["e"], 3)
+              << std::setw(10) << json_num(s["e_instant"], 3) << std::setw(10) << json_num(red.summary["e"], 3) << std::setw(10)
+              << (s["group_velocity_m_s"].is_null() ? std::string("-") : fixed(1e3 * s["group_velocity_m_s"].get<double>(), 2))
+              << std::setw(9) << fixed(s["wall_time_s"].get<double>(), 2) << std::setw(11) << fixed(f["ms_per_step"].get<double>(), 1) << "\n";
+    csv << run << "," << pair << "," << cell[6] << "," << s["St"] << "," << cell[7] << "," << s["e"] << ","
+        << s["e_instant"] << "," << cell[5] << "," << s["Re"] << "," << s["group_velocity_m_s"] << ","
+        << s["solver"]["steps"] << "," << s["wall_time_s"] << "," << red.summary["e"] << "," << red.summary["St"] << ","
+        << red.summary["wall_time_s"] << "," << f["steps"] << "," << f["ms_per_step"] << ","
+        << f["grid"]["cells_per_diameter"] << "," << f["dt_s"] << "\n";
+  }
+  fs::path dir = out.empty() ? fs::path("out") / "validate_seed_flow" : fs::path(out);
   write_file_atomic(dir / "validate_seed.csv", csv.str());
   std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";
   return 0;
@@ -187,7 +270,9 @@ int run_cli(int argc, char** argv) {
   std::string what, vout;
   auto* val = app.add_subcommand("validate", "run a validation set and compare with its reference ('seed': Table 6.1)");
   val->add_option("set", what, "validation set: seed")->required();
-  val->add_option("--out", vout, "output directory (default out/validate_seed)");
+  val->add_option("--out", vout, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)");
+  bool val_flow = false;
+  val->add_flag("--flow", val_flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
   add_common(val, val_opt);
 
   std::string bscene;
@@ -277,7 +362,7 @@ int run_cli(int argc, char** argv) {
 
   try {
     if (*run) return cmd_run(scene, out, run_opt, quiet);
-    if (*val) return cmd_validate(what, vout, val_opt);
+    if (*val) return cmd_validate(what, vout, val_opt, val_flow);
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
     if (*effects) return cmd_effects(escene, eff_opt);
     if (*flowc) {

@@ -398,6 +398,7 @@ double CollisionModel::blend(double gap) const {
 }
 
 AddedMassMatrix CollisionModel::implicit_added_mass(double gap) const {
+  if (coupled_ && !scene_.flow.added_mass_estimate) return {};  // f_SIM used explicitly (a demonstration setting)
   // The model's own added mass (MODEL.md §2.2): the seed's per-sphere ½ m_f (1 + 3W) or the lagrangian pair form.
   const bool pair = target_ == Target::sphere;
   const double W = has_target() ? wall_function_W(gap) : 0.0;

@@ -51,6 +51,7 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
     r.one_of("force_in_step", *v, {"linear", "held"});
     f.force_in_step = *v == "linear" ? ForceInStep::linear : ForceInStep::held;
   }
+  f.added_mass_estimate = r.boolean("added_mass_estimate", f.added_mass_estimate);
   f.min_gap_cells = r.number("min_gap_cells", f.min_gap_cells);
   r.in_range("min_gap_cells", f.min_gap_cells, 0.0, 10.0, false, false);
   int_in("snapshots", f.snapshots, 0, 1);

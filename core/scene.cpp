@@ -331,6 +331,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     Reader r(*t, "flow", path);
     if (!sc.has(Effect::flow)) top.fail("flow", "a [flow] table needs the 'flow' effect in `effects`");
     read_flow_spec(r, sc.flow);
+    if (!sc.flow.added_mass_estimate && sc.has(Effect::added_mass))
+      r.fail("added_mass_estimate", "false needs a scene without the 'added_mass' effect (its added mass is implicit anyway)");
   }
 
   if (const auto* t = top.table("output")) {
