@@ -96,6 +96,13 @@ nlohmann::ordered_json or_null(const std::optional<double>& v) {
   return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
 }
 
+/// When the relative velocity of a pair first vanished: the first loading -> unloading switch, or the stopped approach.
+std::optional<double> group_moment(const CollisionModel& model) {
+  for (const auto& ev : model.events())
+    if (ev.name.rfind("u_rel=0", 0) == 0) return ev.t;
+  return model.t_closest();
+}
+
 }  // namespace
 
 RunResult simulate(const Scene& sc) { return simulate(sc, nullptr); }
@@ -147,7 +154,7 @@ RunResult simulate(const Scene& sc, const ProgressFn& progress) {
   s["scene_file"] = sc.path;
   s["configuration"] = !model.has_target() ? "free sphere" : (model.has_wall() ? "sphere-wall" : "sphere-sphere");
 
-  std::optional<double> e, e_inst, St, St_62, Re, U_G;
+  std::optional<double> e, e_inst, St, St_62, Re, U_G, t_group;
   // St in the reported convention: eq. (6.2) for a wall, half of it for a pair (seed Table 6.1).
   auto stokes = [&](double u_rel) {
     const double st62 = stokes_number(model.m_star(), u_rel, sc.fluid->viscosity, model.a_star());
@@ -205,8 +212,19 @@ RunResult simulate(const Scene& sc, const ProgressFn& progress) {
           // Group velocity: the pair's centre-of-mass velocity, when the two move together.
           const double m1 = model.mass(0), m2 = model.mass(1);
           const double ug = (m1 * *u_r1 + m2 * *u_r2) / (m1 + m2);
-          if (std::abs(closing) <= 0.1 * std::abs(ug)) U_G = ug;
-          else {
+          if (std::abs(closing) <= 0.1 * std::abs(ug)) {
+            // U_G at a stated moment, not at t_end (the pair keeps slowing down under drag): the centre-of-mass
+            // velocity when the relative velocity first vanished (the loading -> unloading switch after contact,
+            // or the stopped approach without contact), where the two spheres move together.
+            t_group = group_moment(model);
+            if (t_group) {
+              for (const auto& row : res.rows)
+                if (row[0] == *t_group) {
+                  U_G = (m1 * row[2] + m2 * row[5]) / (m1 + m2);
+                  break;
+                }
+            }
+          } else {
             std::ostringstream os;
             os << "no group velocity: the spheres' velocities still differ by " << closing
                << " m/s over the last window (centre-of-mass velocity " << ug << " m/s)";
@@ -265,6 +283,7 @@ RunResult simulate(const Scene& sc, const ProgressFn& progress) {
   s["min_gap_m"] = model.has_target() ? nlohmann::ordered_json(rec.min_gap_) : nlohmann::ordered_json(nullptr);
   s["max_contact_force_N"] = rec.max_force_;
   s["group_velocity_m_s"] = or_null(U_G);
+  if (U_G) s["group_velocity_at_s"] = *t_group;
   if (sc.has(Effect::history)) s["max_history_force_N"] = rec.max_history_;  // at the output samples and events
   if (!res.rows.empty()) {
     s["u1_final_m_s"] = res.rows.back()[2];
@@ -343,7 +362,9 @@ std::string human_summary(const RunResult& r) {
   os << "scene " << s["scene"].get<std::string>() << " (" << s["configuration"].get<std::string>() << ")\n";
   os << "  e = " << num(s["e"]) << "   e_instant = " << num(s["e_instant"]) << "   St = " << num(s["St"])
      << "   Re = " << num(s["Re"]) << "\n";
-  if (!s["group_velocity_m_s"].is_null()) os << "  group velocity = " << num(s["group_velocity_m_s"]) << " m/s (no separation)\n";
+  if (!s["group_velocity_m_s"].is_null())
+    os << "  group velocity = " << num(s["group_velocity_m_s"]) << " m/s (no separation; centre-of-mass velocity at t = "
+       << num(s["group_velocity_at_s"]) << " s, when the relative velocity vanished)\n";
   if (!s["min_gap_m"].is_null()) os << "  min gap = " << num(s["min_gap_m"]) << " m, max contact force = " << num(s["max_contact_force_N"]) << " N\n";
   std::string eff;
   for (const auto& x : s["effects"]) eff += (eff.empty() ? "" : ", ") + x.get<std::string>();

@@ -34,6 +34,7 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   r.in_range("krylov_tol", f.krylov_tol, 1e-14, 0.1, false, false);
   int_in("krylov_max_iter", f.krylov_max_iter, 1, 100000);
   int_in("krylov_restart", f.krylov_restart, 2, 1000);
+  int_in("preconditioner_bins", f.preconditioner_bins, 1, 64);
   f.ring_spacing = r.number("ring_spacing", f.ring_spacing);
   r.in_range("ring_spacing", f.ring_spacing, 0.25, 2.0, false, false);
   if (auto v = r.string("start")) {

@@ -152,6 +152,7 @@ void FlowCoupling::start_up() {
   s.krylov_max_iter = fs.krylov_max_iter;
   s.krylov_restart = fs.krylov_restart;
   s.ring_spacing = fs.ring_spacing;
+  s.preconditioner_bins = fs.preconditioner_bins;
   stats_.dt = dt;
   stats_.h = h;
   stats_.nr = s.nr;

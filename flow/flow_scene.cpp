@@ -183,8 +183,12 @@ FlowScene load_flow_scene(const std::string& path) {
     if (!(sc.theta >= 0.5 && sc.theta <= 1)) r.fail("theta", "must be in [0.5, 1] (0.5 = Crank–Nicolson)");
     r.finish();
   }
-  if (const toml::table* so = top.table("solver")) {
-    Reader r(*so, "solver", path);
+  // [flow] holds the kernel's solver settings, as in collision scenes; [solver] is the ODE solver there.
+  if (top.has("solver"))
+    top.fail("solver", "the flow kernel's settings (krylov_tol, krylov_max_iter, krylov_restart, ring_spacing, "
+                       "direct_when_fixed, fft_plan) are in the [flow] table ([solver] is the ODE solver of collision scenes)");
+  if (const toml::table* so = top.table("flow")) {
+    Reader r(*so, "flow", path);
     sc.krylov_tol = r.number("krylov_tol", sc.krylov_tol);
     r.positive("krylov_tol", sc.krylov_tol);
     if (sc.krylov_tol >= 1) r.fail("krylov_tol", "must be < 1");

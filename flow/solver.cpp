@@ -20,6 +20,7 @@ Solver::Solver(const Settings& s, std::vector<SphereState> spheres) : s_(s), sph
   if (s.nr < 4 || s.nr % 2 || s.nz < 8 || s.nz % 4) throw std::invalid_argument("flow: nr must be even >= 4, nz a multiple of 4 >= 8");
   if (s.levels < 1) throw std::invalid_argument("flow: levels must be >= 1");
   if (!(s.theta >= 0.5 && s.theta <= 1)) throw std::invalid_argument("flow: theta must be in [0.5, 1]");
+  if (s.preconditioner_bins < 1) throw std::invalid_argument("flow: preconditioner_bins must be >= 1");
   if (!(s.krylov_tol > 0) || s.krylov_max_iter < 1) throw std::invalid_argument("flow: krylov_tol must be > 0, krylov_max_iter >= 1");
   for (int l = 0; l < s.levels; ++l) {
     Level L;
@@ -229,7 +230,7 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     g_ = lu_->solve(rhs);
   } else {  // GMRES, warm start, right-preconditioned by each sphere's own block of Q
     // preconditioner: each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of
-    // kPrecBins bins, built the first time a sphere is there): the rings' pattern relative to the grid repeats when
+    // preconditioner_bins bins, built the first time a sphere is there): the rings' pattern relative to the grid repeats when
     // a sphere moves by whole cells, and the multi-level Q is nearly translation invariant
     prec_.clear();
     const LevelGeometry& G = lv_[0].g;
@@ -239,10 +240,11 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       const int b = pts_.body[k];
       const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
       const double x = (next[b].z - G.z0) / G.h;
-      const int bin = static_cast<int>(std::lround((x - std::floor(x)) * kPrecBins)) % kPrecBins;
+      const int bins = s_.preconditioner_bins;
+      const int bin = static_cast<int>(std::lround((x - std::floor(x)) * bins)) % bins;
       if (prec_cache_.size() < next.size()) prec_cache_.resize(next.size());
       auto& slot = prec_cache_[b];
-      if (slot.size() != static_cast<std::size_t>(kPrecBins)) slot.assign(kPrecBins, nullptr);
+      if (slot.size() != static_cast<std::size_t>(bins)) slot.assign(bins, nullptr);
       if (!slot[bin] || slot[bin]->rows() != n) {
         Eigen::MatrixXd blk(n, n);
         for (Eigen::Index c = 0; c < n; ++c) blk.col(c) = apply_Q(Eigen::VectorXd::Unit(m, o + c)).segment(o, n);

@@ -55,6 +55,7 @@ struct Settings {
   int krylov_restart = 60;        // GMRES: Krylov vectors kept before a restart
   double ring_spacing = 1.0;  // arc spacing of the body rings, units of h
   bool direct_when_fixed = true;  // LU of Q while the bodies stay put
+  int preconditioner_bins = 16;   // GMRES: sub-cell offsets per finest cell with their own preconditioner block
   bool measure_plans = false;     // FFTW_MEASURE instead of FFTW_ESTIMATE
 };
 
@@ -132,7 +133,6 @@ class Solver {
   Eigen::VectorXd g_, g_prev_;  // ring forces of the last two steps (warm start)
   using BlockLU = Eigen::PartialPivLU<Eigen::MatrixXd>;
   struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; };
-  static constexpr int kPrecBins = 16;  // sub-cell offsets per finest cell with their own preconditioner block
   std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
   std::vector<std::vector<std::shared_ptr<BlockLU>>> prec_cache_;  // [sphere][offset bin]
   long prec_builds_ = 0;

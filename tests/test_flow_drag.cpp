@@ -352,7 +352,7 @@ levels = 2
 [time]
 dt = 0.01
 t_end = 1.0
-[solver]
+[flow]
 krylov_tol = 1e-8
 )";
   const fs::path p = fs::temp_directory_path() / "imcol_flow_scene_test.toml";
@@ -376,7 +376,8 @@ krylov_tol = 1e-8
   };
   expect_error(replace("viscosity = 0.01", "viscosity = -0.01"), "fluid.viscosity", ":3");
   expect_error(replace("levels = 2", "levels = 2\nlevles = 3"), "grid.levles", ":12");
-  expect_error(replace("krylov_tol = 1e-8", "krylov_tol = 0"), "solver.krylov_tol", ":16");
+  expect_error(replace("krylov_tol = 1e-8", "krylov_tol = 0"), "flow.krylov_tol", ":16");
+  expect_error(replace("[flow]", "[solver]"), "solver", ":15");  // [solver] is the ODE solver of collision scenes
   expect_error(replace("position = 0.0", "position = 9.0"), "sphere[0]", ":6");       // outside the finest level
   expect_error(replace("t_end = 1.0", "t_end = 0.001"), "time.dt", ":13");          // dt > t_end
   expect_error(replace("velocity = 1.0", "velocity = 0.0"), "stream.velocity", ":5");  // no relative motion
