@@ -16,8 +16,9 @@ const char* to_string(FlowStart s);
 
 /// How f_SIM varies inside one flow step (MODEL.md §5).
 enum class ForceInStep {
-  linear,  // linear between its values at t_n and t_{n+1} (measured order in Δt ≈ 0.8)
-  held     // the kernel's step force over the whole step: its impulse is exchanged exactly (measured order ≈ 1.3)
+  linear,  // linear between its values at t_n and t_{n+1}: damps the alternating mode (measured order in Δt ≈ 0.8)
+  held     // the kernel's step force over the whole step (order ≈ 1.3), but an alternating instability grows for
+           // light spheres (density ratio 0.5 at 24 cells/D): docs/coupling.md
 };
 const char* to_string(ForceInStep s);
 
@@ -38,7 +39,7 @@ struct FlowSpec {
   FlowStart start = FlowStart::developed;
   double developed_distance = 1.0;  // developed: distance the impact sphere travels before t = 0, D
   double developed_time = 0;        // developed: or this time, s (> 0 overrides the distance)
-  ForceInStep force_in_step = ForceInStep::held;
+  ForceInStep force_in_step = ForceInStep::linear;
   bool added_mass_estimate = true;  // keep the model's added mass implicit and remove it from f_SIM (false: f_SIM explicit,
                                     // unstable for light spheres; only without the added_mass effect; MODEL.md §5)
   double min_gap_cells = 1.0;    // smallest gap the kernel sees, finest cells (its rings would overlap below)

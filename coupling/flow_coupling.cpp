@@ -236,6 +236,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     sf.f1 = f1;
     sf.f0 = (have_f_rest_ && sc_.flow.force_in_step == ForceInStep::linear) ? f_rest_ : f1;
     model_.set_simulated_force(sf);
+    if (sf.f0 != f_rest_ || n == 0) integ.reinit();  // the force jumps at t_n: restart the method there
     f_rest_ = f1;
     have_f_rest_ = true;
     const auto t0 = Clock::now();
