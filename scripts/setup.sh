@@ -90,15 +90,18 @@ if [[ $(id -u) -eq 0 ]] && command -v apt-get >/dev/null; then
     cmake ninja-build g++ dpkg-dev libeigen3-dev libfftw3-dev libcli11-dev libtomlplusplus-dev \
     nlohmann-json3-dev libgtest-dev libbenchmark-dev libcerf-dev python3-matplotlib >/dev/null
   t0=$SECONDS
+  mkdir -p "$DEPS"
+  log=$DEPS/sundials-build.log
   set +e  # a failure anywhere in build_sundials ends only its subshell (-e is off inside `if` conditions)
-  SUNDIALS_PREFIX=$(set -e; build_sundials)
+  SUNDIALS_PREFIX=$(set -e; build_sundials 2>"$log")
   rc=$?
   set -e
   if [[ $rc -eq 0 && -n $SUNDIALS_PREFIX ]]; then
-    echo "setup.sh: optimised SUNDIALS in $SUNDIALS_PREFIX ($((SECONDS - t0)) s)"
+    echo "setup.sh: optimised SUNDIALS in $SUNDIALS_PREFIX ($((SECONDS - t0)) s; log $log)"
   else
     SUNDIALS_PREFIX=""
-    warn "building SUNDIALS from Debian's source package failed; using Debian's libsundials-dev (unoptimised, slower)"
+    tail -n 15 "$log" >&2 || true
+    warn "building SUNDIALS from Debian's source package failed (log: $log); using Debian's libsundials-dev (unoptimised, slower)"
     apt-get install -y -qq --no-install-recommends libsundials-dev >/dev/null
   fi
 else
