@@ -3,6 +3,8 @@
 #include <fftw3.h>
 
 #include <cmath>
+#include <mutex>
+#include <new>
 #include <stdexcept>
 
 namespace imcol::flow {
@@ -21,15 +23,35 @@ void apply_stokes_operator(const LevelGeometry& g, const std::vector<double>& x,
   }
 }
 
+namespace {
+std::mutex& planner_mutex() {  // FFTW's planner (plan creation and destruction) is not thread-safe
+  static std::mutex m;
+  return m;
+}
+}  // namespace
+
 FastSolver::FastSolver(const LevelGeometry& g, std::vector<Op> ops, bool measure_plans) : g_(g), ops_(std::move(ops)) {
   if (g.nr < 2 || g.nz < 2) throw std::invalid_argument("FastSolver: grid needs at least 2 cells each way");
   m_ = g.nz - 1;
   n_ = g.nr - 1;
-  buf_ = static_cast<double*>(fftw_malloc(sizeof(double) * static_cast<std::size_t>(m_) * n_));
-  const fftw_r2r_kind kind = FFTW_RODFT00;
-  plan_ = fftw_plan_many_r2r(1, &m_, n_, buf_, nullptr, 1, m_, buf_, nullptr, 1, m_, &kind,
-                             measure_plans ? FFTW_MEASURE : FFTW_ESTIMATE);
-  if (!plan_) throw std::runtime_error("FFTW could not plan the sine transform");
+  len_ = 2 * (m_ + 1);
+  const std::size_t nc = static_cast<std::size_t>(len_ / 2 + 1);
+  buf_ = fftw_alloc_real(static_cast<std::size_t>(m_) * n_);
+  ext_ = fftw_alloc_real(static_cast<std::size_t>(len_) * n_);
+  spec_ = reinterpret_cast<double*>(fftw_alloc_complex(nc * n_));
+  if (!buf_ || !ext_ || !spec_) {
+    release();
+    throw std::bad_alloc();
+  }
+  {
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    plan_ = fftw_plan_many_dft_r2c(1, &len_, n_, ext_, nullptr, 1, len_, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1,
+                                   static_cast<int>(nc), measure_plans ? FFTW_MEASURE : FFTW_ESTIMATE);
+  }
+  if (!plan_) {
+    release();
+    throw std::runtime_error("FFTW could not plan the sine transform");
+  }
   const double ih2 = 1.0 / (g.h * g.h);
   for (const Op& op : ops_) {
     std::vector<double> lower(n_ + 1), inv_den(static_cast<std::size_t>(n_) * m_), cp(static_cast<std::size_t>(n_) * m_);
@@ -56,19 +78,43 @@ FastSolver::FastSolver(const LevelGeometry& g, std::vector<Op> ops, bool measure
   }
 }
 
-FastSolver::~FastSolver() {
-  if (plan_) fftw_destroy_plan(plan_);
-  if (buf_) fftw_free(buf_);
+FastSolver::~FastSolver() { release(); }
+
+void FastSolver::release() {
+  if (plan_) {
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    fftw_destroy_plan(plan_);
+    plan_ = nullptr;
+  }
+  fftw_free(buf_);
+  fftw_free(ext_);
+  fftw_free(spec_);
+  buf_ = ext_ = spec_ = nullptr;
 }
 
 std::size_t FastSolver::bytes() const {
-  return sizeof(double) * static_cast<std::size_t>(m_) * n_ * (1 + 2 * ops_.size());
+  const std::size_t lines = static_cast<std::size_t>(n_);
+  return sizeof(double) * (lines * m_ * (1 + 2 * ops_.size()) + lines * len_ + lines * 2 * (len_ / 2 + 1));
 }
 
-void FastSolver::forward(const std::vector<double>& f) {
-  for (int ii = 0; ii < n_; ++ii)
-    for (int k = 0; k < m_; ++k) buf_[static_cast<std::size_t>(ii) * m_ + k] = f[g_.at(ii + 1, k + 1)];
+void FastSolver::dst(const double* src, std::size_t src_stride, double* dst, std::size_t dst_stride, double s) {
+  const std::size_t nc = static_cast<std::size_t>(len_ / 2 + 1);
+  for (int ii = 0; ii < n_; ++ii) {
+    const double* x = src + ii * src_stride;
+    double* z = ext_ + static_cast<std::size_t>(ii) * len_;
+    z[0] = 0.0;
+    z[m_ + 1] = 0.0;
+    for (int k = 0; k < m_; ++k) {
+      z[k + 1] = x[k];
+      z[len_ - 1 - k] = -x[k];
+    }
+  }
   fftw_execute(plan_);
+  for (int ii = 0; ii < n_; ++ii) {
+    const double* c = spec_ + 2 * (ii * nc + 1) + 1;  // Im Z_1, Im Z_2, ... at stride 2
+    double* y = dst + ii * dst_stride;
+    for (int k = 0; k < m_; ++k) y[k] = s * -c[2 * k];
+  }
 }
 
 void FastSolver::tridiag(int op) {
@@ -92,13 +138,6 @@ void FastSolver::tridiag(int op) {
   }
 }
 
-void FastSolver::backward(std::vector<double>& x) {
-  fftw_execute(plan_);
-  const double s = 1.0 / (2.0 * (m_ + 1));
-  for (int ii = 0; ii < n_; ++ii)
-    for (int k = 0; k < m_; ++k) x[g_.at(ii + 1, k + 1)] = s * buf_[static_cast<std::size_t>(ii) * m_ + k];
-}
-
 void FastSolver::solve(int op, const std::vector<double>& f, std::vector<double>& x) {
   const double b = ops_.at(op).b, ih2 = 1.0 / (g_.h * g_.h);
   // move the boundary values of x to the right-hand side
@@ -115,25 +154,24 @@ void FastSolver::solve(int op, const std::vector<double>& f, std::vector<double>
     double* row = buf_ + static_cast<std::size_t>(n_ - 1) * m_;
     for (int k = 0; k < m_; ++k) row[k] -= b * ih2 * cplus * x[g_.at(g_.nr, k + 1)];
   }
-  fftw_execute(plan_);
+  const std::size_t W = static_cast<std::size_t>(g_.nz + 1);
+  dst(buf_, m_, buf_, m_, 1.0);
   tridiag(op);
-  backward(x);
+  dst(buf_, m_, &x[g_.at(1, 1)], W, 1.0 / (2.0 * (m_ + 1)));
   for (int j = 0; j <= g_.nz; ++j) x[g_.at(0, j)] = 0.0;  // axis
 }
 
 void FastSolver::solve_chain(const std::vector<int>& chain, const std::vector<double>& f,
-                             std::vector<std::vector<double>*> out) {
-  forward(f);
-  std::vector<double>& saved = saved_;
+                             const std::vector<std::vector<double>*>& out) {
+  const std::size_t W = static_cast<std::size_t>(g_.nz + 1);
+  dst(&f[g_.at(1, 1)], W, buf_, m_, 1.0);
   for (std::size_t c = 0; c < chain.size(); ++c) {
     tridiag(chain[c]);
-    if (out[c]) {
-      if (c + 1 < chain.size()) saved.assign(buf_, buf_ + static_cast<std::size_t>(m_) * n_);
+    if (out[c]) {  // the inverse transform reads buf_ without changing it
       out[c]->resize(g_.size());
       for (int j = 0; j <= g_.nz; ++j) (*out[c])[g_.at(0, j)] = (*out[c])[g_.at(g_.nr, j)] = 0.0;
       for (int i = 0; i <= g_.nr; ++i) (*out[c])[g_.at(i, 0)] = (*out[c])[g_.at(i, g_.nz)] = 0.0;
-      backward(*out[c]);
-      if (c + 1 < chain.size()) std::copy(saved.begin(), saved.end(), buf_);
+      dst(buf_, m_, &(*out[c])[g_.at(1, 1)], W, 1.0 / (2.0 * (m_ + 1)));
     }
   }
 }

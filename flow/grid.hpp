@@ -7,6 +7,11 @@
 // which is symmetric after division by r_i. Fast solve (Colonius & Taira, CMAME 197, 2008, §3 idea; our own code):
 // a DST-I in z (FFTW_RODFT00, eigenvalues (2cos(πk/nz) − 2)/h²) turns it into one tridiagonal system in r
 // per mode, solved by the Thomas algorithm. ψ = 0 on the axis (i = 0); other boundary values are data.
+// The DST-I of length m (FFTW's RODFT00, unnormalised) is computed as one real-to-complex FFT of length
+// 2(m+1) of the odd extension [0, x, 0, −x reversed] per radial line, all lines in one FFTW many-plan:
+// RODFT00(x)_k = −Im Z_{k+1}. Plans and buffers are made once per FastSolver: a solve allocates nothing
+// (FFTW's own RODFT00 algorithms allocate a buffer on every call). FFTW's planner is not thread-safe:
+// plan creation and destruction hold one process-wide mutex.
 #include <cstddef>
 #include <vector>
 
@@ -41,20 +46,23 @@ class FastSolver {
   void solve(int op, const std::vector<double>& f, std::vector<double>& x);
   /// x = op_chain[n−1]⁻¹ ⋯ op_chain[0]⁻¹ f with zero boundary values, for each chained result:
   /// out[m] receives the product of the first m+1 inverses (one transform pair in all).
-  void solve_chain(const std::vector<int>& chain, const std::vector<double>& f, std::vector<std::vector<double>*> out);
+  void solve_chain(const std::vector<int>& chain, const std::vector<double>& f, const std::vector<std::vector<double>*>& out);
   const LevelGeometry& geometry() const { return g_; }
   std::size_t bytes() const;
 
  private:
-  void forward(const std::vector<double>& f);  // interior of f -> buf_ (transformed)
+  // DST-I of n_ lines of m_ values, line ii at src + ii·src_stride, into line ii at dst + ii·dst_stride, times s
+  void dst(const double* src, std::size_t src_stride, double* dst, std::size_t dst_stride, double s);
   void tridiag(int op);                        // buf_ <- op⁻¹ buf_ in mode space
-  void backward(std::vector<double>& x);       // inverse transform of buf_ into interior of x
+  void release();                              // plan and buffers
   LevelGeometry g_;
   std::vector<Op> ops_;
   int m_ = 0, n_ = 0;                         // modes (nz−1), radial unknowns (nr−1)
+  int len_ = 0;                               // FFT length 2(m_+1)
   double* buf_ = nullptr;                     // n_ × m_, row i, mode k contiguous
+  double* ext_ = nullptr;                     // n_ × len_: odd extensions
+  double* spec_ = nullptr;                    // n_ × (len_/2 + 1) complex (re, im): their spectra
   fftw_plan_s* plan_ = nullptr;
-  std::vector<double> saved_;
   std::vector<std::vector<double>> lower_, inv_den_, cp_;  // per op: lower[i], inv_den[i·m+k], cp[i·m+k]
 };
 

@@ -69,11 +69,16 @@ void Solver::nonlinear(const Level& L, double u_inf, std::vector<double>& out) {
   const LevelGeometry& g = L.g;
   const int nr = g.nr, nz = g.nz, W = nz + 1;
   const double h = g.h;
-  // face velocities: uz at (i+½, j) [i < nr], ur at (i, j+½) [j < nz], ω at vertices
+  // face velocities: uz at (i+½, j) [i < nr], ur at (i, j+½) [j < nz], ω at vertices. Scratch kept per thread:
+  // sized once, then only the entries read below are written (ur, ω on the axis are 0)
   thread_local std::vector<double> uz, ur, om;
-  uz.assign(g.size(), 0.0);
-  ur.assign(g.size(), 0.0);
-  om.assign(g.size(), 0.0);
+  if (uz.size() < g.size()) {
+    uz.resize(g.size());
+    ur.resize(g.size());
+    om.resize(g.size());
+  }
+  std::fill_n(ur.begin(), W, 0.0);
+  std::fill_n(om.begin(), W, 0.0);
   const double* psi = L.psi.data();
   for (int i = 0; i < nr; ++i) {
     const double c = 1.0 / (h * g.r(i + 0.5));
@@ -84,7 +89,9 @@ void Solver::nonlinear(const Level& L, double u_inf, std::vector<double>& out) {
     for (int j = 0; j < nz; ++j) ur[i * W + j] = (psi[i * W + j + 1] - psi[i * W + j]) * c;
     for (int j = 0; j <= nz; ++j) om[i * W + j] = L.eta[i * W + j] * ir;
   }
-  out.assign(g.size(), 0.0);
+  if (out.size() != g.size()) out.assign(g.size(), 0.0);
+  std::fill_n(out.begin(), W, 0.0);  // boundary: axis, outer line, bottom and top
+  std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(nr) * W, W, 0.0);
   for (int i = 1; i < nr; ++i) {
     const double f = -g.r(i) / h;
     const double* uzm = &uz[(i - 1) * W];
@@ -105,6 +112,7 @@ void Solver::nonlinear(const Level& L, double u_inf, std::vector<double>& out) {
       const double fr = uro * 0.5 * (om0[j] + omp[j]) - uri * 0.5 * (om0[j] + omm[j]);
       o[j] = f * (fz + fr);
     }
+    o[0] = o[nz] = 0.0;
   }
 }
 
