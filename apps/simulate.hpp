@@ -17,7 +17,8 @@ struct RunResult {
 };
 
 /// Runs one scene. Throws InputError (bad scene), SolverError (integration failed).
-RunResult simulate(const Scene& scene);
+/// `progress`: a run still going after 2 s shows a progress line on a terminal (stderr).
+RunResult simulate(const Scene& scene, bool progress = false);
 
 /// DIR/trajectory.csv and DIR/summary.json, each written completely or not at all.
 void write_outputs(const RunResult& r, const std::filesystem::path& dir);
