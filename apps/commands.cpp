@@ -3,10 +3,6 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <memory>
-#include <unistd.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +13,8 @@
 
 #include "apps/compare_history.hpp"
 #include "apps/format.hpp"
+#include "apps/plot.hpp"
+#include "core/toml_reader.hpp"
 #include "apps/flow_command.hpp"
 #include "apps/simulate.hpp"
 #include "apps/sweep.hpp"
@@ -53,35 +51,27 @@ void add_common(CLI::App* cmd, CommonOptions& c) {
 
 std::string json_num(const nlohmann::ordered_json& j, int prec) { return j.is_null() ? "n/a" : fixed(j.get<double>(), prec); }
 
-/// A progress line on a terminal for coupled runs that take more than a few seconds: simulated time, flow steps,
-/// estimated time left. Silent when stderr is not a terminal.
-ProgressFn terminal_progress() {
-  if (!isatty(fileno(stderr))) return nullptr;
-  auto start = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
-  auto last = std::make_shared<double>(0.0);
-  return [start, last](double t, double t_end, long steps) {
-    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - *start).count();
-    if (el < 2.0 || el - *last < 0.5) return;
-    *last = el;
-    const double left = t > 0 ? el * (t_end - t) / t : 0.0;
-    std::fprintf(stderr, "\r  t = %.4g / %.4g s, %ld flow steps, %.0f s elapsed, about %.0f s left (at most, the run may stop earlier)   ",
-                 t, t_end, steps, el, left);
-    if (t >= t_end) std::fprintf(stderr, "\n");
-  };
+/// The output directory, created before anything runs (a bad --out or name fails at once, exit 2).
+fs::path prepare_out_dir(const std::string& out, const fs::path& fallback) {
+  const fs::path dir = out.empty() ? fallback : fs::path(out);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw InputError(out.empty() ? "scene key 'name'" : "command line", out.empty() ? "name" : "--out",
+                     "cannot create the output directory '" + dir.string() + "'" + (ec ? ": " + ec.message() : ""));
+  return dir;
 }
 
-/// Ends a progress line, if one was drawn.
-void end_progress() {
-  if (isatty(fileno(stderr))) std::fprintf(stderr, "\r%120s\r", "");
-}
-
-int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet) {
+int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet, bool plot) {
   Scene sc = load_scene(scene_path, c.overrides());
-  RunResult r = simulate(sc, quiet ? nullptr : terminal_progress());
-  if (!quiet) end_progress();
-  fs::path dir = out.empty() ? fs::path("out") / sc.name : fs::path(out);
+  const fs::path dir = prepare_out_dir(out, fs::path("out") / sc.name);
+  RunResult r = simulate(sc, !quiet);
   write_outputs(r, dir);
   if (!quiet) std::cout << human_summary(r) << "  wrote " << (dir / "trajectory.csv").string() << " and " << (dir / "summary.json").string() << "\n";
+  if (plot) {
+    std::cout.flush();
+    run_plot_script("plot_run.py", dir, "trajectory.png", quiet);
+  }
   return 0;
 }
 
@@ -158,8 +148,7 @@ int cmd_validate_flow(const std::string& out, const CommonOptions& c) {
     const std::string run = cell[0], pair = cell[8];
     const std::string path = data_dir() + "/scenes/seed_run" + run + ".toml";
     const RunResult red = simulate(load_scene(path, c.overrides()));
-    const RunResult r = simulate(with_flow(path, c.overrides()), terminal_progress());
-    end_progress();
+    const RunResult r = simulate(with_flow(path, c.overrides()), true);
     const auto& s = r.summary;
     const auto& f = s["flow"];
     std::cout << std::left << std::setw(5) << run << std::setw(13) << pair << std::right << std::setw(10) << cell[6]
@@ -222,6 +211,14 @@ int cmd_bench(const std::string& scene_path, const std::vector<double>& rtols, i
 /// Which effect does what: the scene with all its effects, then without each one in turn.
 int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
   const Scene full = load_scene(scene_path, c.overrides());
+  if (full.has_target() && !full.has(Effect::gravity)) {
+    // Without gravity nothing can start an approach: no collision, nothing to compare.
+    const double u_rel0 = full.spheres[0].velocity - (full.two_spheres() ? full.spheres[1].velocity : 0.0);
+    if (!(u_rel0 > 0))
+      throw InputError(full.path, "sphere[0].velocity",
+                       "the spheres are not approaching (U_rel(0) = " + fmt_number(u_rel0) +
+                           " m/s, no gravity): there is no collision, so no e to compare");
+  }
   std::vector<std::pair<std::string, std::set<Effect>>> variants = {{"all", full.effects}};
   for (Effect e : full.effects) {
     if (e == Effect::elastic && full.has_target()) continue;  // required: the solids would pass through
@@ -236,15 +233,21 @@ int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
             << std::setw(10) << "St" << std::setw(13) << "min gap um" << std::setw(13) << "max F_c N" << std::setw(8)
             << "steps" << "\n";
   double e_all = NAN;
+  bool first = true;
   for (const auto& [label, effects] : variants) {
     Scene sc = full;  // the scene as read, with fewer effects (its tables for them are simply unused)
     sc.effects = effects;
     const RunResult r = simulate(sc);
     const auto& s = r.summary;
     const double e = free ? s.value("u1_final_m_s", NAN) : (s["e"].is_null() ? NAN : s["e"].get<double>());
+    if (first && !free && std::isnan(e))
+      throw InputError(full.path, "solver.t_end",
+                       "no collision by t_end = " + fmt_number(full.solver.t_end) + " s with all effects: e is undefined (raise solver.t_end)");
+    first = false;
     if (label == "all") e_all = e;
-    std::cout << std::left << std::setw(24) << label << std::right << std::setw(10) << fixed(e, free ? 6 : 4) << std::setw(10)
-              << (label == "all" ? std::string("-") : fixed(e - e_all, free ? 6 : 4)) << std::setw(10) << json_num(s["St"], 1)
+    auto cell = [&](double v) { return std::isnan(v) ? std::string("n/a") : fixed(v, free ? 6 : 4); };
+    std::cout << std::left << std::setw(24) << label << std::right << std::setw(10) << cell(e) << std::setw(10)
+              << (label == "all" ? std::string("-") : cell(e - e_all)) << std::setw(10) << json_num(s["St"], 1)
               << std::setw(13) << (s["min_gap_m"].is_null() ? std::string("n/a") : fixed(1e6 * s["min_gap_m"].get<double>(), 3))
               << std::setw(13) << fixed(s["max_contact_force_N"].get<double>(), 3) << std::setw(8)
               << s["solver"]["steps"].get<long>() << "\n";
@@ -257,14 +260,16 @@ int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
 int run_cli(int argc, char** argv) {
   CLI::App app{"imcol: head-on collisions of spheres immersed in a viscous liquid"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("imcol ") + IMCOL_VERSION);
 
   CommonOptions run_opt, val_opt, bench_opt;
   std::string scene, out;
-  bool quiet = false;
+  bool quiet = false, run_no_plot = false;
   auto* run = app.add_subcommand("run", "simulate one scene; writes DIR/trajectory.csv and DIR/summary.json");
   run->add_option("scene", scene, "scene file (TOML)")->required();
   run->add_option("--out", out, "output directory (default out/<scene name>)");
-  run->add_flag("--quiet", quiet, "print nothing on success");
+  run->add_flag("--quiet", quiet, "print nothing on success (no progress line)");
+  run->add_flag("--no-plot", run_no_plot, "skip DIR/trajectory.png");
   add_common(run, run_opt);
 
   std::string what, vout;
@@ -308,10 +313,13 @@ int run_cli(int argc, char** argv) {
   auto* flowc = app.add_subcommand("flow", "immersed-boundary flow around spheres on the axis: force history, C_D, snapshots");
   flowc->add_option("scene", fscene, "flow scene file (TOML, data/scenes/flow/)")->required();
   flowc->add_option("--out", fopt.out, "output directory (default out/<scene name>)");
-  flowc->add_option("--cells", fopt.cells_per_diameter, "override grid.cells_per_diameter");
-  flowc->add_option("--levels", fopt.levels, "override grid.levels");
-  flowc->add_option("--dt", fopt.dt, "override time.dt");
-  flowc->add_option("--t-end", fopt.t_end, "override time.t_end");
+  long f_cells = 0, f_levels = 0;
+  double f_dt = 0, f_t_end = 0;
+  auto* o_cells = flowc->add_option("--cells", f_cells, "override grid.cells_per_diameter");
+  auto* o_levels = flowc->add_option("--levels", f_levels, "override grid.levels");
+  auto* o_dt = flowc->add_option("--dt", f_dt, "override time.dt");
+  auto* o_t_end = flowc->add_option("--t-end", f_t_end, "override time.t_end");
+  flowc->add_flag("--allow-long", fopt.allow_long, "run even if the estimated wall time exceeds an hour");
   flowc->add_flag("--no-plot", f_no_plot, "skip the PNG plots");
 
   std::string wscene;
@@ -351,9 +359,25 @@ int run_cli(int argc, char** argv) {
   sw->add_flag("--no-plot", sw_no_plot, "skip the PNG plot");
   add_common(sw, sw_opt);
 
+  // An unknown subcommand is named as such (CLI11 would only say that a subcommand is required).
+  if (argc >= 2 && argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+      found = found || sub->get_name() == argv[1];
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!found) {
+      std::cerr << "imcol: error: " << InputError("command line", "", std::string("unknown subcommand '") + argv[1] + "' (expected " + known + ")").what() << "\n";
+      return 2;
+    }
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);
@@ -361,12 +385,16 @@ int run_cli(int argc, char** argv) {
   }
 
   try {
-    if (*run) return cmd_run(scene, out, run_opt, quiet);
+    if (*run) return cmd_run(scene, out, run_opt, quiet, !run_no_plot);
     if (*val) return cmd_validate(what, vout, val_opt, val_flow);
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
     if (*effects) return cmd_effects(escene, eff_opt);
     if (*flowc) {
       fopt.plot = !f_no_plot;
+      if (o_cells->count()) fopt.cells_per_diameter = f_cells;
+      if (o_levels->count()) fopt.levels = f_levels;
+      if (o_dt->count()) fopt.dt = f_dt;
+      if (o_t_end->count()) fopt.t_end = f_t_end;
       return cmd_flow(fscene, fopt);
     }
     if (*sw) {
@@ -388,6 +416,9 @@ int run_cli(int argc, char** argv) {
   } catch (const SolverError& e) {
     std::cerr << "imcol: solver failure: " << e.what() << "\n";
     return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "imcol: error: out of memory\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "imcol: error: " << e.what() << "\n";
     return 1;

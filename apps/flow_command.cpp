@@ -8,11 +8,13 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <unistd.h>
 
 #include "apps/plot.hpp"
 #include "contact/formulas.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
+#include "core/toml_reader.hpp"
 #include "flow/flow_scene.hpp"
 #include "flow/snapshot.hpp"
 #include "flow/solver.hpp"
@@ -41,15 +43,68 @@ std::pair<double, double> f_thr_pair(double mu, double rho, double a1, double a2
   return {one(a1, u1) + lub, one(a2, u2) - lub};
 }
 
+/// The command-line options replace scene keys; each gets the scene key's check (exit 2 naming the option).
+void apply_overrides(flow::FlowScene& sc, const FlowCommandOptions& opt) {
+  auto positive = [](const char* option, const char* key, double v) {
+    if (!(std::isfinite(v) && v >= 1e-30 && v <= 1e30))
+      throw InputError(std::string("command line (") + option + ")", key, "must be a finite number in [1e-30, 1e30] (got " + fmt_number(v) + ")");
+  };
+  auto in_range = [](const char* option, const char* key, long v, long lo, long hi) {
+    if (v < lo || v > hi)
+      throw InputError(std::string("command line (") + option + ")", key,
+                       "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " + std::to_string(v) + ")");
+  };
+  if (opt.t_end) positive("--t-end", "time.t_end", *opt.t_end), sc.t_end = *opt.t_end, sc.overridden.insert("--t-end");
+  if (opt.dt) positive("--dt", "time.dt", *opt.dt), sc.dt = *opt.dt, sc.overridden.insert("--dt");
+  if (opt.cells_per_diameter) {
+    in_range("--cells", "grid.cells_per_diameter", *opt.cells_per_diameter, 4, 4096);
+    sc.cells_per_diameter = static_cast<int>(*opt.cells_per_diameter);
+    sc.overridden.insert("--cells");
+  }
+  if (opt.levels) {
+    in_range("--levels", "grid.levels", *opt.levels, 1, 16);
+    sc.levels = static_cast<int>(*opt.levels);
+    sc.overridden.insert("--levels");
+  }
+}
+
+/// Memory and wall time estimated before anything is allocated. Memory: ~100 bytes per vertex and level
+/// (measured: 3.5 MB for 3 levels of 64 x 192 cells) plus the force solver's dense matrices (Q of the body
+/// points, LU, and up to 16 cached preconditioner blocks per moving sphere); beyond half the physical memory
+/// the run is refused. Time: ~50 ns per vertex, level and step (twice that with moving bodies); beyond an
+/// hour the run needs --allow-long.
+void check_cost(const flow::FlowScene& sc, const FlowCommandOptions& opt) {
+  const flow::Settings set = sc.settings();
+  const double vertices = double(set.nr + 1) * double(set.nz + 1) * set.levels;
+  double points = 0;
+  bool moving = false;
+  for (const auto& p : sc.spheres) {
+    points += std::max(2.0, std::ceil(M_PI * 0.5 * p.diameter / (sc.ring_spacing * set.h)));
+    moving = moving || p.velocity != 0 || p.amplitude != 0;
+  }
+  const double q_bytes = 8.0 * (2 * points) * (2 * points);
+  const double bytes = 100.0 * vertices + q_bytes * (moving ? 18.0 : 2.0);
+  const double phys = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE));
+  const std::string where = sc.overridden.empty() ? sc.path : "command line (--cells/--levels)";
+  if (phys > 0 && bytes > 0.5 * phys)
+    throw InputError(sc.overridden.count("--cells") || sc.overridden.count("--levels") ? where : sc.path, "grid.cells_per_diameter",
+                     "the grid needs about " + fmt_number(bytes / 1e9) + " GB (" + fmt_number(vertices) + " vertices, " + fmt_number(points) +
+                         " body points), more than half of this machine's " + fmt_number(phys / 1e9) + " GB: use fewer cells or levels");
+  const double steps = std::ceil(sc.t_end / sc.dt - 1e-9);
+  const double seconds = steps * vertices * 5e-8 * (moving ? 2.0 : 1.0);
+  if (seconds > 3600 && !opt.allow_long)
+    throw InputError(sc.overridden.count("--dt") || sc.overridden.count("--t-end") ? "command line (--dt/--t-end)" : sc.path, "time.dt",
+                     "an estimated " + fmt_number(seconds / 3600) + " hours (" + fmt_number(steps) + " steps of " + fmt_number(vertices) +
+                         " vertices): raise time.dt, lower time.t_end or the grid, or pass --allow-long to run anyway");
+}
+
 }  // namespace
 
 nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowCommandOptions& opt) {
   flow::FlowScene sc = flow::load_flow_scene(scene_path);
-  if (opt.t_end > 0) sc.t_end = opt.t_end, sc.overridden.insert("--t-end");
-  if (opt.dt > 0) sc.dt = opt.dt, sc.overridden.insert("--dt");
-  if (opt.cells_per_diameter > 0) sc.cells_per_diameter = opt.cells_per_diameter, sc.overridden.insert("--cells");
-  if (opt.levels > 0) sc.levels = opt.levels, sc.overridden.insert("--levels");
+  apply_overrides(sc, opt);
   flow::check_flow_scene(sc);
+  check_cost(sc, opt);
   const fs::path dir = opt.out.empty() ? fs::path("out") / sc.name : fs::path(opt.out);
   const flow::Settings set = sc.settings();
   const int nb = static_cast<int>(sc.spheres.size());
@@ -147,7 +202,9 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
       const double gap = next[1].z - next[0].z - next[0].radius - next[1].radius;
       while (!report_gaps.empty() && gap <= report_gaps.front() * D) {
         const auto [t1, t2] = f_thr_pair(mu, sc.density, next[0].radius, next[1].radius, next[0].u, next[1].u, gap);
-        thr_rows.push_back({{"gap_D", gap / D}, {"F1", info.force[0]}, {"F_THR1", t1}, {"F2", info.force[1]}, {"F_THR2", t2}});
+        // the two spheres' delta kernels (3 h wide each) overlap below a 3-cell gap: f_SIM is not resolved there
+        thr_rows.push_back({{"gap_D", gap / D}, {"gap_cells", gap / set.h}, {"resolved", gap >= 3 * set.h}, {"F1", info.force[0]},
+                            {"F_THR1", t1}, {"F2", info.force[1]}, {"F_THR2", t2}});
         report_gaps.erase(report_gaps.begin());
       }
     }
@@ -164,6 +221,9 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     if (nb > 1) {
       double gap = INFINITY;
       for (int b = 0; b + 1 < nb; ++b) gap = std::min(gap, next[b + 1].z - next[b].z - 0.5 * (sc.spheres[b].diameter + sc.spheres[b + 1].diameter));
+      if (gap < 3 * set.h && min_gap_seen >= 3 * set.h && !opt.quiet)
+        std::cerr << "imcol: warning: at t = " << t << " the gap " << gap / D << " D is below 3 cells (h = " << set.h
+                  << "): the spheres' delta kernels overlap and the forces are not resolved (refine the grid)\n";
       min_gap_seen = std::min(min_gap_seen, gap);
       if (sc.min_gap > 0 && gap < sc.min_gap * D) break;
     }
@@ -173,10 +233,14 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     write_file_atomic(dir / ("snapshot_" + std::string(snap < 10 ? "0" : "") + std::to_string(snap) + ".csv"), snapshot_csv(solver));
 
   // the standard (steady) drag curve is a reference only for one sphere at constant velocity whose drag has settled:
-  // C_D changed by less than 0.5 % over the last tenth of the run
+  // at least 100 steps, the fluid has passed at least 5 D (t U / D >= 5), and the change over the last tenth of the run,
+  // read as the tail of an unsteady-Stokes decay C_D = C_inf + c t^(-1/2) (which changes by 5.4 % of what is left over
+  // t in [0.9 t_end, t_end]), leaves less than 0.5 % to come: change < 0.027 %
   const std::size_t k90 = cds.size() - 1 - (cds.size() - 1) / 10;
   const double cd_change = cds.empty() ? NAN : std::abs(last_cd - cds[k90]) / std::abs(last_cd);
-  const bool settled = nb == 1 && !osc && s0.amplitude == 0 && cds.size() >= 10 && cd_change < 0.005;
+  const double cd_left = cd_change / (1 / std::sqrt(0.9) - 1);
+  const double passed_D = steps_done * sc.dt * U / D;
+  const bool settled = nb == 1 && !osc && s0.amplitude == 0 && cds.size() >= 100 && passed_D >= 5 && cd_left < 0.005;
   nlohmann::ordered_json j;
   j["scene"] = sc.path;
   j["name"] = sc.name;
@@ -184,6 +248,8 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   j["drag_coefficient"] = last_cd;
   j["drag_change_last_tenth_percent"] = 100 * cd_change;
   j["drag_settled"] = settled;
+  j["drag_left_to_settle_percent"] = 100 * cd_left;  // extrapolated, t^(-1/2) tail
+  j["distance_passed_D"] = passed_D;
   j["drag_coefficient_standard"] = !settled || std::isnan(cd_ref) ? nlohmann::ordered_json() : nlohmann::ordered_json(cd_ref);
   j["drag_error_percent"] = !settled || std::isnan(cd_ref) ? nlohmann::ordered_json() : nlohmann::ordered_json(100 * (last_cd - cd_ref) / cd_ref);
   j["stokes_drag_ratio"] = drag_sign * last_force[0] / f_stokes;  // F / 6πμaU
@@ -206,7 +272,10 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
                               {"max_rel_error", basset_err}};
   }
   j["forces_N"] = last_force;
-  if (nb > 1) j["min_gap_D"] = min_gap_seen / D;
+  if (nb > 1) {
+    j["min_gap_D"] = min_gap_seen / D;
+    j["gap_resolved"] = min_gap_seen >= 3 * set.h;  // false: the forces below a 3-cell gap are not resolved
+  }
   if (nb == 2) j["f_sim_vs_f_thr"] = thr_rows;
   if (osc) j["oscillating"] = {{"reference", "F = -6 pi mu a (1 + a/delta) U - 3 pi a^2 sqrt(2 mu rho/omega) (1 + 2a/(9 delta)) dU/dt, at mid-step"},
                                {"delta_over_a", delta / a},
@@ -252,7 +321,8 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
   if (j.contains("f_sim_vs_f_thr"))
     for (const auto& r : j["f_sim_vs_f_thr"])
       std::cout << "gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR " << r["F_THR1"].get<double>()
-                << "), F2 = " << r["F2"].get<double>() << " (f_THR " << r["F_THR2"].get<double>() << ") N\n";
+                << "), F2 = " << r["F2"].get<double>() << " (f_THR " << r["F_THR2"].get<double>() << ") N"
+                << (r["resolved"].get<bool>() ? "" : "  [not resolved: gap below 3 cells]") << "\n";
   if (j.contains("oscillating"))
     std::cout << "oscillating sphere vs unsteady Stokes (delta/a = " << j["oscillating"]["delta_over_a"].get<double>()
               << "): max error over the last period " << 100 * j["oscillating"]["max_error_last_period_rel_amplitude"].get<double>()

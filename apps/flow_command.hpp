@@ -1,6 +1,7 @@
 #pragma once
 // `imcol flow SCENE [--out DIR] [--no-plot]`: runs a flow scene (data/scenes/flow/) with the immersed-boundary
 // kernel and writes DIR/forces.csv, DIR/summary.json, DIR/snapshot_NN.csv (+ PNGs via scripts/plot_flow.py).
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -11,10 +12,12 @@ struct FlowCommandOptions {
   std::string out;            // default out/<scene name>
   bool plot = true;           // run scripts/plot_flow.py with /usr/bin/python3
   bool quiet = false;         // no progress lines
-  double t_end = 0;           // > 0: overrides time.t_end
-  int cells_per_diameter = 0; // > 0: overrides grid.cells_per_diameter
-  int levels = 0;             // > 0: overrides grid.levels
-  double dt = 0;              // > 0: overrides time.dt
+  // Command-line overrides, checked like the scene keys they replace (bad values: exit 2 naming the option).
+  std::optional<double> t_end;            // time.t_end
+  std::optional<long> cells_per_diameter; // grid.cells_per_diameter
+  std::optional<long> levels;             // grid.levels
+  std::optional<double> dt;               // time.dt
+  bool allow_long = false;    // run even if the estimated wall time exceeds an hour
 };
 
 /// Runs the scene; returns the summary written to DIR/summary.json.

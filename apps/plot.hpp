@@ -5,8 +5,8 @@
 
 namespace imcol {
 
-/// Runs scripts/<script> DIR; prints "wrote DIR/<png>" or a warning (the data files stay complete).
-/// Returns true if the script succeeded.
-bool run_plot_script(const std::string& script, const std::filesystem::path& dir, const std::string& png);
+/// Runs scripts/<script> DIR; prints "wrote DIR/<png>" (unless quiet) or a warning that quotes the script's
+/// last output line (a Python error), the data files staying complete. Returns true if the script succeeded.
+bool run_plot_script(const std::string& script, const std::filesystem::path& dir, const std::string& png, bool quiet = false);
 
 }  // namespace imcol

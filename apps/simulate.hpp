@@ -1,7 +1,6 @@
 #pragma once
 // One collision run: build the model the scene calls for, integrate, measure, report.
 #include <filesystem>
-#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -19,11 +18,8 @@ struct RunResult {
 };
 
 /// Runs one scene. Throws InputError (bad scene), SolverError (integration failed).
-RunResult simulate(const Scene& scene);
-
-/// Called after every flow step of a coupled run with (t, t_end, flow steps); none for the reduced-order model.
-using ProgressFn = std::function<void(double, double, long)>;
-RunResult simulate(const Scene& scene, const ProgressFn& progress);
+/// `progress`: a run still going after 2 s shows a progress line on a terminal (stderr).
+RunResult simulate(const Scene& scene, bool progress = false);
 
 /// DIR/trajectory.csv and DIR/summary.json (and a coupled run's flow fields), each written completely or not at all.
 void write_outputs(const RunResult& r, const std::filesystem::path& dir);

@@ -161,6 +161,15 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   }
 
   const fs::path dir = opt.out.empty() ? fs::path("out") / base.name / ("sweep_" + opt.vary) : fs::path(opt.out);
+  // A previous run's results go first, and a marker says that sweep.csv is partial until the sweep completes:
+  // a killed run leaves sweep.partial beside its partial sweep.csv, never a stale sweep.json or sweep.png.
+  {
+    std::error_code ec;
+    for (const char* f : {"sweep.json", "sweep.png", "sweep.csv"}) fs::remove(dir / f, ec);
+    write_file_atomic(dir / "sweep.partial",
+                      "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
+                          "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
+  }
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = std::min(opt.points, opt.jobs > 0 ? opt.jobs : static_cast<int>(hw));
   const bool tty = opt.progress && isatty(STDERR_FILENO);
@@ -256,7 +265,12 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   j["failures"] = failures;
   j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : pts[0].summary["St_convention"];
   if (!pts.empty() && pts[0].ok) j["effects"] = pts[0].summary["effects"];
+  j["complete"] = true;  // every point ran (or failed with its reason)
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
+  {
+    std::error_code ec;
+    fs::remove(dir / "sweep.partial", ec);
+  }
   std::cout << "wrote " << (dir / "sweep.csv").string() << " and " << (dir / "sweep.json").string() << "\n";
   if (opt.plot) run_plot_script("plot_sweep.py", dir, "sweep.png");
   return failed ? 3 : 0;

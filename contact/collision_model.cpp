@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <iomanip>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -92,6 +93,16 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   // Cap the step so that the contact zone cannot be crossed (in and out) inside one step.
   max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step
                                      : (has_target() ? 0.25 * delta_ss_m_ / u_ref_ : sc.solver.t_end / 100);
+  // The step cap forces at least t_end / max_step steps if the run lasts to t_end (it usually stops
+  // earlier): refuse a run that could cost far more than usual unless solver.step_budget allows it.
+  if (has_target() && sc.solver.t_end / max_step_ > sc.solver.step_budget) {
+    std::ostringstream os;
+    os << "the step cap " << max_step_ << " s (" << (sc.solver.max_step > 0 ? "solver.max_step" : "a quarter of the time to cross the contact zone")
+       << ") allows up to " << sc.solver.t_end / max_step_ << " steps to t_end = " << sc.solver.t_end
+       << " s, beyond solver.step_budget = " << sc.solver.step_budget
+       << ": lower solver.t_end, or raise solver.step_budget to run anyway";
+    throw InputError(sc.path, "solver.t_end", os.str());
+  }
   stop_time_ = sc.solver.t_end;
   stall_speed_ = sc.measure.stall_fraction * std::max(0.0, u_rel0_);
   // Build the lookup tables now, not inside the first right-hand side.
@@ -586,10 +597,13 @@ void CollisionModel::freeze_contact(double t, double u_rel) {
   } else {
     std::ostringstream os;
     os << "at t = " << t << " s the Hertz indentation " << eps_max << " m for U_c = " << u_rel
-       << " m/s cannot be stored by the ramp over delta_ss*D = " << delta_ss_m_ << " m; increase delta_ss";
+       << " m/s cannot be stored by the ramp over delta_ss*D = " << delta_ss_m_ << " m: set delta_ss (units of D) above "
+       << std::setprecision(3) << 0.8 * eps_max / D_ << " in the scene's [contact] table (now " << scene_.contact.delta_ss
+       << "), or lower the impact speed";
     throw InputError(scene_.path, "contact.delta_ss", os.str());
   }
   factor_ = 1.0;
+  contact_max_step_ = std::min(contact_max_step_, hertz_contact_time(m_star_, std::abs(u_rel), E_star_, a_star_) / kContactSteps);
   if (contacts_ == 0) {
     W_o_ = W_now_;
     beta_ = beta_now_;
@@ -638,6 +652,26 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
     case RootKind::blend_edge:
     case RootKind::blend_end:
       break;
+  }
+}
+
+void CollisionModel::observe(double t, const Evaluation& ev) {
+  if (at_rest_ || !has_target() || phase_ != Phase::unloading) {
+    if (!at_rest_) quiet_since_.reset();
+    return;
+  }
+  const double s = scene_.measure.stall_fraction * std::max(std::abs(U_c_), std::abs(u_rel0_));
+  const double a_rel = ev.f[0].accel - (n_spheres_ > 1 ? ev.f[1].accel : 0.0);
+  const double window = scene_.measure.window;
+  if (!(std::abs(ev.u_rel) < s && std::abs(a_rel) * window < s)) {
+    quiet_since_.reset();
+    return;
+  }
+  if (!quiet_since_) quiet_since_ = t;
+  if (t - *quiet_since_ >= window * (1 - 1e-9)) {
+    at_rest_ = true;
+    stop_time_ = std::min(stop_time_, t);
+    events_.push_back({t, "at rest (|U_rel| and |dU_rel/dt| window below stall_fraction x impact speed for one window)", ev.gap, ev.u_rel});
   }
 }
 

@@ -118,11 +118,7 @@ Override parse_override(const std::string& text) {
 }
 
 Scene load_scene(const std::string& path, const std::vector<Override>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path, overrides);
+  return parse_scene(read_scene_file(path), path, overrides);
 }
 
 Scene parse_scene(const std::string& text, const std::string& path, const std::vector<Override>& overrides) {
@@ -142,6 +138,9 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   if (auto v = top.string("name")) {
     if (v->empty() || v->find_first_of("/\\") != std::string::npos || *v == "." || *v == "..")
       top.fail("name", "must be a plain file name (it names the default output directory)");
+    if (v->size() > 200) top.fail("name", "must be at most 200 bytes (it names the default output directory; got " + std::to_string(v->size()) + ")");
+    for (unsigned char c : *v)
+      if (c < 0x20 || c == 0x7f) top.fail("name", "must not contain control characters (it names the default output directory)");
     sc.name = *v;
   }
   if (auto v = top.string("description")) sc.description = *v;
@@ -271,11 +270,12 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     h.tolerance = r.number("tolerance", h.tolerance);
     r.in_range("tolerance", h.tolerance, 1e-13, 0.1, false, true);
     if (auto v = r.integer("modes")) h.modes = *v;
-    if (r.has("modes") && (h.modes < 2 || h.modes > 400)) r.fail("modes", "must be in [2, 400] (got " + std::to_string(h.modes) + ")");
+    if (r.has("modes") && h.modes != 0 && (h.modes < 2 || h.modes > 400))
+      r.fail("modes", "must be 0 (automatic, from tolerance) or in [2, 400] (got " + std::to_string(h.modes) + ")");
     h.min_lag = r.number("min_lag", 0.0);
-    if (r.has("min_lag")) r.positive("min_lag", h.min_lag);
+    if (h.min_lag != 0) r.positive("min_lag", h.min_lag);  // 0 = automatic
     h.horizon = r.number("horizon", 0.0);
-    if (r.has("horizon")) r.positive("horizon", h.horizon);
+    if (h.horizon != 0) r.positive("horizon", h.horizon);  // 0 = solver.t_end
     if (auto v = r.string("start")) h.start = *v;
     r.one_of("start", h.start, {"steady", "impulsive"});
     if (auto v = r.string("reynolds")) h.reynolds = *v;
@@ -283,7 +283,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     if (auto v = r.string("wall_correction")) h.wall_correction = *v;
     r.one_of("wall_correction", h.wall_correction, {"none", "added-mass"});
     h.direct_step = r.number("direct_step", 0.0);
-    if (r.has("direct_step")) r.positive("direct_step", h.direct_step);
+    if (h.direct_step != 0) r.positive("direct_step", h.direct_step);  // 0 = automatic
     if (h.min_lag > 0 && h.horizon > 0 && h.horizon < 10 * h.min_lag)
       r.fail("horizon", "must be at least 10 × min_lag (" + fmt_number(h.min_lag) + " s)");
     r.finish();
@@ -304,9 +304,11 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     sc.solver.t_end = r.number("t_end", sc.solver.t_end);
     r.positive("t_end", sc.solver.t_end);
     sc.solver.max_step = r.number("max_step", sc.solver.max_step);
-    if (r.has("max_step")) r.positive("max_step", sc.solver.max_step);
+    if (sc.solver.max_step != 0) r.positive("max_step", sc.solver.max_step);  // 0 = automatic
     if (auto v = r.integer("max_steps")) sc.solver.max_steps = *v;
     if (sc.solver.max_steps < 1) r.fail("max_steps", "must be >= 1");
+    sc.solver.step_budget = r.number("step_budget", sc.solver.step_budget);
+    r.positive("step_budget", sc.solver.step_budget);
     // Tolerances: rtol must be positive and above what double precision can deliver.
     r.in_range("rtol", sc.solver.rtol, 1e-14, 1.0, false, true);
     r.in_range("atol", sc.solver.atol, 0.0, 1.0, true, true);

@@ -84,6 +84,7 @@ struct Scene {
     double t_end = 1.0;       // s
     double max_step = 0;      // s; 0 = automatic (a fraction of the contact-zone crossing time)
     long max_steps = 100000;  // internal steps between two outputs or events
+    double step_budget = 1e7;  // a run whose step cap forces more than this many steps up to t_end is refused
   } solver;
   struct Measure {
     double window = 0.010;    // s, least-squares windows before and after contact

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <initializer_list>
 #include <optional>
 #include <set>
@@ -20,6 +22,28 @@ inline std::string fmt_number(double v) {
   std::ostringstream os;
   os << v;
   return os.str();
+}
+
+/// The text of a scene file: a regular file of at most 1 MiB (a directory, a device such as /dev/zero or
+/// a huge file is refused with exit status 2 before anything is read into memory).
+inline std::string read_scene_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  constexpr std::uintmax_t kMaxBytes = 1u << 20;
+  std::error_code ec;
+  const auto st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) throw InputError(path, "", "cannot open the scene file (no such file)");
+  if (fs::is_directory(st)) throw InputError(path, "", "is a directory, not a scene file");
+  if (!fs::is_regular_file(st)) throw InputError(path, "", "is not a regular file (a scene is a TOML text file)");
+  const auto size = fs::file_size(path, ec);
+  if (ec) throw InputError(path, "", "cannot read the scene file: " + ec.message());
+  if (size > kMaxBytes)
+    throw InputError(path, "", "the scene file has " + std::to_string(size) + " bytes, more than the 1 MiB a scene may have");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open the scene file");
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(size));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return text;
 }
 
 class TableReader {

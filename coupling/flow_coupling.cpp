@@ -223,7 +223,6 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
   start_up();
   Integrator integ(model_, st, observer);
   const double dt = stats_.dt;
-  const double t_end = model_.stop_time();
   double t = 0;
   long n = 0;
   while (!integ.finished()) {
@@ -248,7 +247,6 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     model_.sphere_states(integ.state(), z, u);
     const double gap = n_ == 2 ? z[1] - z[0] - radius_[0] - radius_[1] : std::numeric_limits<double>::infinity();
     maybe_snapshot(t, gap);
-    if (progress) progress(t, t_end, n);
     if (t < t1 - 1e-12 * std::max(1.0, t1) && !integ.finished())
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }

@@ -18,7 +18,6 @@
 // stated distance or time before t = 0). Near contact the gap seen by the kernel is kept at flow.min_gap_cells·h
 // or more (its rings would overlap): there H ≈ 1 and f_SIM's weight is small (documented in docs/coupling.md).
 #include <chrono>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,8 +58,6 @@ class FlowCoupling {
   SolverStats run(const IntegratorSettings& st, Observer& observer);
   const FlowRunStats& stats() const { return stats_; }
   const std::vector<FlowSnapshot>& snapshots() const { return snaps_; }
-  /// Called after every flow step with (t, t_end) for a progress line.
-  std::function<void(double, double, long)> progress;
 
  private:
   struct Predicted {

@@ -112,7 +112,7 @@ void check_flow_scene(const FlowScene& sc) {
 FlowScene load_flow_scene(const std::string& path) {
   toml::table root;
   try {
-    root = toml::parse_file(path);
+    root = toml::parse(read_scene_file(path), path);
   } catch (const toml::parse_error& e) {
     throw InputError(path + ":" + std::to_string(e.source().begin.line), "", "TOML syntax error: " + std::string(e.description()));
   }

@@ -22,8 +22,13 @@ def out_dir(doc: str) -> Optional[Path]:
 
 
 def save_png(fig, path: Path, dpi: int = 120) -> None:
-    """Writes the figure completely or not at all (temporary file, then rename), and closes it."""
-    tmp = path.with_name(path.name + ".tmp.png")
-    fig.savefig(tmp, dpi=dpi)
-    plt.close(fig)
-    os.replace(tmp, path)
+    """Writes the figure completely or not at all (a temporary file unique to this process, then rename),
+    and closes it; concurrent writers into one folder never share a temporary file."""
+    tmp = path.with_name(f"{path.name}.tmp.{os.getpid()}.png")
+    try:
+        fig.savefig(tmp, dpi=dpi)
+        os.replace(tmp, path)
+    finally:
+        plt.close(fig)
+        if tmp.exists():
+            tmp.unlink()

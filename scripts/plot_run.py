@@ -37,10 +37,11 @@ def main() -> int:
     ax[2].set_ylabel("force (N)")
     ax[2].set_xlabel("t (ms)")
     contact = summary.get("contact") or {}
-    for key in ("t_contact_s", "t_separation_s"):
+    marks = (("t_contact_s", "contact (gap = delta_SS)", ":"), ("t_separation_s", "separation", "--"))
+    for key, label, ls in marks:
         if contact.get(key) is not None:
             for a in ax:
-                a.axvline(1e3 * contact[key], color="grey", lw=0.8, ls=":")
+                a.axvline(1e3 * contact[key], color="grey", lw=0.8, ls=ls, label=label)
     for a in ax:
         a.legend(fontsize=8)
         a.grid(alpha=0.3)
@@ -49,7 +50,7 @@ def main() -> int:
     title = f"{summary['scene']}: e = {e:.3f}" if e is not None else summary["scene"]
     if st is not None:
         title += f", St = {st:.1f}"
-    ax[0].set_title(title + "   effects: " + ", ".join(summary["effects"]))
+    ax[0].set_title(title + "\neffects: " + ", ".join(summary["effects"]), fontsize=10)
     fig.tight_layout()
     save_png(fig, out / "trajectory.png", dpi=100)
     print(f"wrote {out / 'trajectory.png'}")

@@ -125,8 +125,12 @@ TEST(Coupling, PairCollisionMovesTheTargetBeforeContact) {
   for (const auto& row : r.rows) {
     ASSERT_GE(row[iH], 0.0);
     ASSERT_LE(row[iH], 1.0);
-    if (row[ig] >= 2 * 0.1 * 0.0127) ASSERT_EQ(row[iH], 0.0);
-    if (row[ig] <= 0) ASSERT_EQ(row[iH], 1.0);
+    if (row[ig] >= 2 * 0.1 * 0.0127) {
+      ASSERT_EQ(row[iH], 0.0);
+    }
+    if (row[ig] <= 0) {
+      ASSERT_EQ(row[iH], 1.0);
+    }
   }
   bool edge = false;
   for (const auto& ev : s["events"]) edge = edge || ev["event"].get<std::string>().find("blend edge") != std::string::npos;

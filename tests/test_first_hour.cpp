@@ -1,0 +1,238 @@
+// What a new user meets in the first hour, and the defects of issue 13: bad command-line values, runaway
+// runs, plots written concurrently, killed sweeps, loose tolerances, unresolved flow gaps, odd scene files.
+// Each test runs the imcol program and checks its exit status, its message (problem and place) and its files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "apps/plot.hpp"
+#include "core/materials.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Outcome {
+  int status;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+fs::path tmp(const std::string& name) { return fs::temp_directory_path() / ("imcol_fh_" + std::to_string(::getpid()) + "_" + name); }
+
+/// Runs `imcol ARGS` (from the source tree, so that scene paths may be relative) and keeps stdout and stderr.
+Outcome run_imcol(const std::string& args) {
+  const fs::path o = tmp("stdout"), e = tmp("stderr");
+  const std::string cmd = "cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && " + IMCOL_BINARY + " " + args + " >" +
+                          o.string() + " 2>" + e.string();
+  const int raw = std::system(cmd.c_str());
+  Outcome r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(o), slurp(e)};
+  fs::remove(o);
+  fs::remove(e);
+  return r;
+}
+
+void expect_input_error(const Outcome& r, const std::string& place, const std::string& problem) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find(place), std::string::npos) << "place '" << place << "' not named: " << r.err;
+  EXPECT_NE(r.err.find(problem), std::string::npos) << "problem '" << problem << "' not named: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+nlohmann::json summary(const fs::path& dir) { return nlohmann::json::parse(slurp(dir / "summary.json")); }
+
+const std::string kRe100 = "data/scenes/flow/fixed_sphere_re100.toml";
+
+}  // namespace
+
+// 1. Every `imcol flow` option gets the checks its scene key gets.
+TEST(FirstHour, FlowOptionsAreCheckedLikeSceneKeys) {
+  const std::string out = " --no-plot --out " + tmp("flow").string();
+  expect_input_error(run_imcol("flow " + kRe100 + " --cells 0" + out), "--cells", "must be in [4, 4096] (got 0)");
+  expect_input_error(run_imcol("flow " + kRe100 + " --levels 0" + out), "--levels", "must be in [1, 16] (got 0)");
+  expect_input_error(run_imcol("flow " + kRe100 + " --dt -0.01" + out), "--dt", "got -0.01");
+  expect_input_error(run_imcol("flow " + kRe100 + " --t-end nan" + out), "--t-end", "got nan");
+  EXPECT_FALSE(fs::exists(tmp("flow") / "summary.json"));
+}
+
+// 3. Runaway runs: a flow run far beyond the usual cost, or a grid beyond the memory, is refused before it starts.
+TEST(FirstHour, FlowRunsFarBeyondTheUsualCostAreRefused) {
+  const std::string out = " --no-plot --out " + tmp("flow").string();
+  expect_input_error(run_imcol("flow " + kRe100 + " --dt 1e-9" + out), "--dt", "--allow-long");
+  expect_input_error(run_imcol("flow " + kRe100 + " --cells 4096 --levels 16" + out), "--cells", "GB");
+}
+
+// 3. A tiny sphere that sticks to the wall: the run ends once it is at rest, not at t_end.
+TEST(FirstHour, ASphereAtRestOnTheWallEndsTheRun) {
+  const fs::path dir = tmp("stick");
+  const Outcome r = run_imcol("run data/scenes/default.toml --no-plot --quiet --out " + dir.string() +
+                      " --set 'sphere[0].diameter=1e-4' --set 'sphere[0].position=-1e-4'"
+                      " --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\",\"history\"]'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto s = summary(dir);
+  ASSERT_FALSE(s["at_rest_since_s"].is_null());
+  EXPECT_EQ(s["e"].get<double>(), 0.0);
+  EXPECT_FALSE(s["t_end_too_short"].get<bool>());
+  EXPECT_LT(s["solver"]["t_final_s"].get<double>(), 0.1);  // t_end is 1 s: it was 706 000 steps to get there
+  EXPECT_LT(s["solver"]["steps"].get<long>(), 100000);
+  fs::remove_all(dir);
+}
+
+// 3. A run whose step cap could force more than solver.step_budget steps is refused (the same at D = 1 µm ran 828 s).
+TEST(FirstHour, ARunBeyondTheStepBudgetIsRefused) {
+  const std::string args = "run data/scenes/default.toml --no-plot --out " + tmp("budget").string() +
+                           " --set 'sphere[0].diameter=1e-6' --set 'sphere[0].position=-1e-6'";
+  expect_input_error(run_imcol(args), "solver.t_end", "solver.step_budget");
+}
+
+// 4. Plots written concurrently into one folder all succeed; a failing plot quotes the Python error.
+TEST(FirstHour, ConcurrentPlotsIntoOneFolderAllSucceed) {
+  const fs::path dir = tmp("plots");
+  ASSERT_EQ(run_imcol("run data/scenes/gg3462.toml --no-plot --quiet --out " + dir.string()).status, 0);
+  const std::string script = (fs::path(imcol::data_dir()).parent_path() / "scripts" / "plot_run.py").string();
+  const fs::path sh = tmp("plots.sh");
+  {
+    std::ofstream f(sh);
+    for (int k = 0; k < 3; ++k) f << "/usr/bin/python3 '" << script << "' '" << dir.string() << "' >/dev/null 2>&1 & p" << k << "=$!\n";
+    f << "fails=0; for p in $p0 $p1 $p2; do wait $p || fails=$((fails+1)); done; exit $fails\n";
+  }
+  const int raw = std::system(("bash " + sh.string()).c_str());
+  fs::remove(sh);
+  EXPECT_EQ(WEXITSTATUS(raw), 0) << "concurrent plots failed";
+  EXPECT_TRUE(fs::exists(dir / "trajectory.png"));
+  for (const auto& f : fs::directory_iterator(dir)) EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
+  fs::remove_all(dir);
+}
+
+TEST(FirstHour, AFailingPlotQuotesThePythonError) {
+  const fs::path dir = tmp("noplot");
+  fs::create_directories(dir);  // no trajectory.csv: the script fails
+  testing::internal::CaptureStderr();
+  const bool ok = imcol::run_plot_script("plot_run.py", dir, "trajectory.png", true);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(ok);
+  EXPECT_NE(err.find("FileNotFoundError"), std::string::npos) << err;
+  EXPECT_NE(err.find("trajectory.csv"), std::string::npos) << err;
+  fs::remove_all(dir);
+}
+
+// 5. A killed sweep leaves sweep.partial beside its partial sweep.csv and no stale sweep.json or sweep.png.
+TEST(FirstHour, AKilledSweepIsMarkedPartial) {
+  const fs::path dir = tmp("sweep");
+  fs::create_directories(dir);
+  std::ofstream(dir / "sweep.json") << "{\"stale\": true}\n";
+  std::ofstream(dir / "sweep.png") << "stale";
+  const std::string cmd = "cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && timeout -s KILL 2.5 " + IMCOL_BINARY +
+                          " sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 3000 --jobs 1 --no-plot"
+                          " --no-progress --out " + dir.string() + " >/dev/null 2>&1";
+  const int raw = std::system(cmd.c_str());
+  ASSERT_FALSE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << "the sweep finished before it was killed";
+  EXPECT_TRUE(fs::exists(dir / "sweep.partial"));
+  EXPECT_FALSE(fs::exists(dir / "sweep.json"));
+  EXPECT_FALSE(fs::exists(dir / "sweep.png"));
+  // A complete sweep removes the marker and says so.
+  const Outcome r = run_imcol("sweep data/scenes/gg3462.toml --vary velocity --from 0.2 --to 0.4 --points 3 --no-plot --no-progress --out " +
+                      dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "sweep.partial"));
+  EXPECT_TRUE(nlohmann::json::parse(slurp(dir / "sweep.json"))["complete"].get<bool>());
+  fs::remove_all(dir);
+}
+
+// 6. `imcol effects` on a scene without a collision says so instead of printing a table of nan.
+TEST(FirstHour, EffectsWithoutACollisionIsAnError) {
+  const Outcome r = run_imcol("effects data/scenes/default.toml --set 'sphere[0].velocity=0'");
+  expect_input_error(r, "sphere[0].velocity", "not approaching");
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+}
+
+// 7. A loose tolerance no longer gives a grossly wrong e (it was 0.4975 against 0.8896, and 0.38 against 0.914), and warns.
+TEST(FirstHour, LooseTolerancesGiveANearlyRightEAndWarn) {
+  auto e_of = [](const std::string& scene, const std::string& tol) {
+    const fs::path dir = tmp("loose");
+    const Outcome r = run_imcol("run " + scene + " --no-plot --quiet --out " + dir.string() + " " + tol);
+    EXPECT_EQ(r.status, 0) << r.err;
+    const auto s = summary(dir);
+    fs::remove_all(dir);
+    return s;
+  };
+  const double e_def = e_of("data/scenes/default.toml", "--rtol 1e-10")["e"];
+  const auto loose = e_of("data/scenes/default.toml", "--rtol 1e-2");
+  EXPECT_NEAR(loose["e"].get<double>(), e_def, 0.05 * e_def);
+  EXPECT_NE(loose["warnings"].dump().find("loose tolerances"), std::string::npos);
+  const double e_gg = e_of("data/scenes/gg3462.toml", "--rtol 1e-10")["e"];
+  EXPECT_NEAR(e_of("data/scenes/gg3462.toml", "--rtol 1e-3 --atol 1e-3")["e"].get<double>(), e_gg, 0.03 * e_gg);
+}
+
+// 8. A short flow run is not called steady; a gap below 3 cells is flagged unresolved.
+TEST(FirstHour, FlowDoesNotCallAShortRunSteadyNorAnUnresolvedGapResolved) {
+  const fs::path dir = tmp("flow8");
+  Outcome r = run_imcol("flow " + kRe100 + " --cells 8 --t-end 1 --no-plot --out " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(summary(dir)["drag_settled"].get<bool>());
+  EXPECT_TRUE(summary(dir)["drag_error_percent"].is_null());
+  r = run_imcol("flow data/scenes/flow/two_spheres_approach_re10.toml --cells 8 --no-plot --out " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto s = summary(dir);
+  EXPECT_FALSE(s["gap_resolved"].get<bool>());
+  EXPECT_FALSE(s["f_sim_vs_f_thr"].back()["resolved"].get<bool>());
+  EXPECT_NE(r.err.find("not resolved"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
+// 9. The smaller items.
+TEST(FirstHour, VersionAndUnknownSubcommand) {
+  Outcome r = run_imcol("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("imcol ", 0), 0u) << r.out;
+  r = run_imcol("bogus");
+  expect_input_error(r, "command line", "unknown subcommand 'bogus'");
+}
+
+TEST(FirstHour, ScenePathsThatAreNotSceneFilesAreRefused) {
+  expect_input_error(run_imcol("run /dev/zero --no-plot"), "/dev/zero", "not a regular file");
+  expect_input_error(run_imcol("run data/scenes --no-plot"), "data/scenes", "is a directory");
+  const fs::path big = tmp("big.toml");
+  std::ofstream(big) << std::string(2 << 20, '#');
+  expect_input_error(run_imcol("run " + big.string() + " --no-plot"), big.string(), "1 MiB");
+  fs::remove(big);
+}
+
+TEST(FirstHour, ContactZoneTooSmallNamesTheContactTable) {
+  expect_input_error(run_imcol("run data/scenes/default.toml --no-plot --out " + tmp("fast").string() + " --set 'sphere[0].velocity=30'"),
+                     "contact.delta_ss", "[contact] table");
+}
+
+TEST(FirstHour, BadNamesAreRefusedBeforeRunning) {
+  const fs::path cwd = tmp("names");
+  fs::create_directories(cwd);
+  const Outcome r = run_imcol("run data/scenes/default.toml --no-plot --set name=" + std::string(10000, 'a'));
+  expect_input_error(r, "name", "at most 200 bytes");
+  expect_input_error(run_imcol("run data/scenes/default.toml --no-plot --set 'name=\"a\\u0000b\"'"), "name", "control characters");
+  EXPECT_FALSE(fs::exists(fs::path(imcol::data_dir()).parent_path() / "out" / "a"));
+  fs::remove_all(cwd);
+}
+
+TEST(FirstHour, NoApproachIsNotATooShortRun) {
+  for (const char* v : {"0", "-0.1"}) {
+    const fs::path dir = tmp("away");
+    const Outcome r = run_imcol("run data/scenes/default.toml --no-plot --quiet --out " + dir.string() + " --set 'sphere[0].velocity=" + v + "'");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto s = summary(dir);
+    EXPECT_TRUE(s["e"].is_null());
+    EXPECT_FALSE(s["t_end_too_short"].get<bool>()) << "velocity " << v;
+    fs::remove_all(dir);
+  }
+}
