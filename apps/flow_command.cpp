@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "apps/plot.hpp"
+#include "contact/collision_model.hpp"
 #include "contact/formulas.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
@@ -26,22 +27,34 @@ namespace {
 namespace fs = std::filesystem;
 using flow::Solver;
 
-/// f_THR of the reduced-order model for two spheres at constant velocities (seed eqs. 6.7–6.9 with dU/dt = 0):
-/// Schiller–Naumann drag, the asymptotic gap lubrication (h_c = a*), the velocity part of the added mass (6.8).
-/// History forces are left out (they decay after the impulsive start). Returns N along +z on each sphere.
-using namespace contact;
-std::pair<double, double> f_thr_pair(double mu, double rho, double a1, double a2, double u1, double u2, double gap) {
-  const double a_star = reduced(a1, a2), u_rel = u1 - u2, d = gap / a_star;
-  const double R = asymptotic_resistance(gap, a_star, lubrication_log_coefficient(a1, a2), a_star);
-  const double lub = -6 * M_PI * mu * R * u_rel;
-  const double dW = added_mass_dW(d);
-  auto one = [&](double a, double u) {
-    const double Re = rho * 2 * a * std::abs(u) / mu;
-    const double ml = rho * 4.0 / 3.0 * M_PI * a * a * a;
-    return -6 * M_PI * mu * a * u * drag_factor(DragLaw::schiller_naumann, Re) + 0.75 * ml * u * (u_rel / a_star) * dW;
-  };
-  return {one(a1, u1) + lub, one(a2, u2) - lub};
-}
+/// f_THR of two spheres on the scene's prescribed paths, from the collision model's own code
+/// (CollisionModel::analytic_fluid_force): Schiller–Naumann drag, the asymptotic gap lubrication, the added mass's
+/// velocity part (accelerations taken as zero: the paths are at constant velocity). History forces are left out
+/// (they decay after the impulsive start). N along +z on each sphere.
+class AnalyticPairForce {
+ public:
+  explicit AnalyticPairForce(const flow::FlowScene& sc) : model_(collision_scene(sc)) {}
+  std::pair<double, double> at(const std::vector<flow::SphereState>& s) const {
+    const double gap = s[1].z - s[0].z - s[0].radius - s[1].radius;
+    const std::array<double, 4> y = {gap, s[0].u, s[1].z, s[1].u};
+    const auto f = model_.analytic_fluid_force(0.0, y, {0.0, 0.0});
+    return {f[0], f[1]};
+  }
+
+ private:
+  static Scene collision_scene(const flow::FlowScene& sc) {
+    std::ostringstream t;
+    t << std::setprecision(17);
+    t << "effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n[fluid]\ndensity = " << sc.density
+      << "\nviscosity = " << sc.viscosity << "\n";
+    for (const auto& b : sc.spheres)
+      t << "[[sphere]]\ndensity = " << 2 * sc.density << "\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\ne_dry = 1.0\ndiameter = "
+        << b.diameter << "\nposition = " << b.position << "\nvelocity = " << b.velocity << "\n";
+    t << "[drag]\nlaw = \"schiller-naumann\"\n";
+    return parse_scene(t.str(), sc.path + " (its f_THR)");
+  }
+  contact::CollisionModel model_;
+};
 
 /// The command-line options replace scene keys; each gets the scene key's check (exit 2 naming the option).
 void apply_overrides(flow::FlowScene& sc, const FlowCommandOptions& opt) {
@@ -117,6 +130,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
 
   const auto t0 = std::chrono::steady_clock::now();
   Solver solver(set, sc.spheres_at(0.0));
+  const auto thr = nb == 2 ? std::make_unique<AnalyticPairForce>(sc) : nullptr;
   if (!opt.quiet)
     std::cout << "flow " << sc.name << ": Re = " << Re << ", " << sc.cells_per_diameter << " cells/D, " << set.levels << " levels of "
               << set.nr << " x " << set.nz << " cells, dt = " << sc.dt << " s, " << nsteps << " steps\n";
@@ -193,7 +207,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
       if (osc) hist << ',' << f_osc(t - 0.5 * sc.dt);
       if (nb == 2) {
         const double gap = next[1].z - next[0].z - next[0].radius - next[1].radius;
-        const auto [t1, t2] = f_thr_pair(mu, sc.density, next[0].radius, next[1].radius, next[0].u, next[1].u, gap);
+        const auto [t1, t2] = thr->at(next);
         hist << ',' << gap / D << ',' << t1 << ',' << t2;
       }
       hist << '\n';
@@ -201,7 +215,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     if (nb == 2) {
       const double gap = next[1].z - next[0].z - next[0].radius - next[1].radius;
       while (!report_gaps.empty() && gap <= report_gaps.front() * D) {
-        const auto [t1, t2] = f_thr_pair(mu, sc.density, next[0].radius, next[1].radius, next[0].u, next[1].u, gap);
+        const auto [t1, t2] = thr->at(next);
         // the two spheres' delta kernels (3 h wide each) overlap below a 3-cell gap: f_SIM is not resolved there
         thr_rows.push_back({{"gap_D", gap / D}, {"gap_cells", gap / set.h}, {"resolved", gap >= 3 * set.h}, {"F1", info.force[0]},
                             {"F_THR1", t1}, {"F2", info.force[1]}, {"F_THR2", t2}});
@@ -337,6 +351,7 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
   if (opt.plot) {
     std::cout.flush();
     run_plot_script("plot_flow.py", dir, "forces.png");  // also snapshot_NN.png
+    if (j.contains("f_sim_vs_f_thr")) run_plot_script("plot_force_vs_gap.py", dir, "forces_vs_gap.png");  // seed Fig. 6.4
   }
   return 0;
 }

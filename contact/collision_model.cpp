@@ -426,6 +426,25 @@ AddedMassMatrix CollisionModel::implicit_added_mass(double gap) const {
   return M;
 }
 
+double CollisionModel::analytic_fluid_force(const Evaluation& ev, const std::array<double, 2>& a, std::size_t m) const {
+  const auto& f = ev.f[m];
+  const double base = coupled_ ? ev.thr_base[m] : f.drag + f.lubrication + f.added_mass + f.history;
+  const double m_hist = coupled_ ? ev.m_hist_full[m] : ev.m_hist[m];
+  double am = 0;
+  if (scene_.has(Effect::added_mass)) {
+    const AddedMassMatrix M = implicit_added_mass(ev.gap);
+    am = (m == 0 ? M.m11 : M.m22) * a[m] + (n_spheres_ == 2 ? M.m12 * a[1 - m] : 0.0);
+  }
+  return base - am - m_hist * a[m];
+}
+
+std::array<double, 2> CollisionModel::analytic_fluid_force(double t, std::span<const double> y, const std::array<double, 2>& a) const {
+  Evaluation ev;
+  kinematics(y, ev);
+  forces(t, y, ev);
+  return {analytic_fluid_force(ev, a, 0), n_spheres_ == 2 ? analytic_fluid_force(ev, a, 1) : 0.0};
+}
+
 std::array<double, 2> CollisionModel::accelerations_without_contact(double t, std::span<const double> y) const {
   Evaluation ev;
   kinematics(y, ev);
@@ -477,7 +496,7 @@ Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
       ev.f[m].f_sim = ev.f_rest[m] - MA_a;
       ev.f[m].simulated -= (1 - H) * MA_a;
       am_accel -= (1 - H) * MA_a;
-      ev.f[m].f_thr = ev.thr_base[m] - (am_listed ? MA_a : 0.0) - ev.m_hist_full[m] * acc[m];
+      ev.f[m].f_thr = analytic_fluid_force(ev, acc, m);
     }
     ev.f[m].added_mass -= am_accel;
     ev.f[m].history -= ev.m_hist[m] * acc[m];

@@ -120,6 +120,9 @@ class CollisionModel : public DynamicalSystem {
   /// Positions (z1, z2) and velocities (u1, u2) of the spheres in the state y, m and m/s.
   void sphere_states(std::span<const double> y, std::array<double, 2>& z, std::array<double, 2>& u) const;
   double delta_sl_m() const { return delta_sl_m_; }
+  /// The analytic fluid force f_THR on each sphere, unblended (MODEL.md (6.10): drag, lubrication, added mass and
+  /// history as the scene lists them) at (t, y) with the accelerations a (m/s²), N. The Fig. 6.4 comparison uses it.
+  std::array<double, 2> analytic_fluid_force(double t, std::span<const double> y, const std::array<double, 2>& a) const;
   /// Accelerations of the spheres at (t, y) without the solid contact force (m/s²): the coupling's predictor.
   std::array<double, 2> accelerations_without_contact(double t, std::span<const double> y) const;
 
@@ -180,6 +183,8 @@ class CollisionModel : public DynamicalSystem {
   void forces(double t, std::span<const double> y, Evaluation& ev) const;
   /// Weights the analytic fluid terms by H and adds (1 − H) f_SIM (MODEL.md (6.10), §5).
   void blend_in_simulated(double t, Evaluation& ev) const;
+  /// f_THR of sphere m from an evaluated state (forces() done) and the accelerations.
+  double analytic_fluid_force(const Evaluation& ev, const std::array<double, 2>& a, std::size_t m) const;
   double wall_function_W(double gap) const;  // W(δ**) continued linearly below dw_floor
   double history_K_H(double gap) const;
   std::span<const double> history_z(std::span<const double> y, std::size_t m) const;

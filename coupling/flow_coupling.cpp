@@ -125,6 +125,7 @@ void FlowCoupling::start_up() {
   }
   const long n_pre = std::max(1L, std::lround(t_pre / dt));
   t_pre = static_cast<double>(n_pre) * dt;
+  t_pre_ = t_pre;
   double sep = 0;  // centre distance
   if (n_ == 2) {
     const double s0 = sc_.spheres[1].position - sc_.spheres[0].position;
@@ -198,12 +199,14 @@ void FlowCoupling::start_up() {
   stats_.frame_travel = 0;
 }
 
+flow::SnapshotFrame FlowCoupling::lab_frame() const { return {frame_z_, frame_u_, -t_pre_}; }
+
 void FlowCoupling::maybe_snapshot(double t, double gap) {
   if (!sc_.flow.snapshots) return;
   auto take = [&](const char* name, const std::string& label) {
     std::ostringstream os;
-    os << std::setprecision(4) << label << " (t = " << t << " s)";
-    snaps_.push_back({name, os.str(), flow::snapshot_csv(*kernel_, frame_z_, os.str())});
+    os << std::setprecision(4) << label << ",";
+    snaps_.push_back({name, os.str(), flow::snapshot_csv(*kernel_, lab_frame(), os.str())});
   };
   if (n_ == 2 && !snap_gap_ && gap <= D_) {
     snap_gap_ = true;
@@ -251,9 +254,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
   if (sc_.flow.snapshots) {
-    std::ostringstream os;
-    os << std::setprecision(4) << "end of run (t = " << t << " s)";
-    snaps_.push_back({"flow_end", os.str(), flow::snapshot_csv(*kernel_, frame_z_, os.str())});
+    snaps_.push_back({"flow_end", "end of run", flow::snapshot_csv(*kernel_, lab_frame(), "end of run,")});
   }
   return integ.stats();
 }

@@ -24,6 +24,7 @@
 
 #include "contact/collision_model.hpp"
 #include "core/scene.hpp"
+#include "flow/snapshot.hpp"
 #include "flow/solver.hpp"
 #include "integrators/integrator.hpp"
 
@@ -69,6 +70,7 @@ class FlowCoupling {
   std::array<double, 2> step_kernel(const Predicted& p, double dt);
   void start_up();
   void maybe_snapshot(double t, double gap);
+  flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
 
   contact::CollisionModel& model_;
   const Scene& sc_;
@@ -77,6 +79,7 @@ class FlowCoupling {
   double D_ = 0, rho_ = 0, u_ref_ = 0;
   std::unique_ptr<flow::Solver> kernel_;
   double frame_z_ = 0, frame_u_ = 0;         // frame origin and velocity in the lab (m, m/s)
+  double t_pre_ = 0;                         // start-up time before t = 0, s
   std::array<double, 2> kernel_u_{};         // lab velocities the kernel last imposed (m/s)
   std::array<double, 2> f_rest_{};           // f_rest at the last flow time
   bool have_f_rest_ = false;

@@ -8,6 +8,7 @@ namespace imcol::flow {
 namespace {
 
 void write_level(std::ostringstream& os, int l, const Level& L, double u_inf, double z_shift) {
+  // u_inf: the uniform stream as seen from the frame the fields are written in
   const auto& g = L.g;
   auto uzf = [&](int i, int j) { return (L.psi[g.at(i + 1, j)] - L.psi[g.at(i, j)]) / (g.h * g.r(i + 0.5)) + u_inf; };
   auto urf = [&](int i, int j) { return i == 0 ? 0.0 : -(L.psi[g.at(i, j + 1)] - L.psi[g.at(i, j)]) / (g.h * g.r(i)); };
@@ -29,17 +30,17 @@ void write_level(std::ostringstream& os, int l, const Level& L, double u_inf, do
 
 }  // namespace
 
-std::string snapshot_csv(const Solver& s, double z_shift, const std::string& label) {
+std::string snapshot_csv(const Solver& s, const SnapshotFrame& f, const std::string& label) {
   std::ostringstream os;
   os << std::setprecision(9);
-  os << "# t = " << s.time() << " s; level 0 is the finest; psi is the total Stokes streamfunction (m^3/s); z_shift = "
-     << z_shift << " m; spheres (z, d) =";
-  for (const auto& b : s.spheres()) os << " " << b.z + z_shift << " " << 2 * b.radius;
-  if (!label.empty()) os << "; " << label;
+  os << "# " << (label.empty() ? std::string("t = ") : label + " t = ") << s.time() + f.t_shift
+     << " s; level 0 is the finest; psi is the total Stokes streamfunction (m^3/s); z_shift = " << f.z_shift
+     << " m; spheres (z, d) =";
+  for (const auto& b : s.spheres()) os << " " << b.z + f.z_shift << " " << 2 * b.radius;
   os << "\n";
   os << "level,r,z,psi,omega,u_r,u_z\n";
   for (std::size_t l = 0; l < s.levels().size(); ++l)
-    write_level(os, static_cast<int>(l), s.levels()[l], s.settings().u_inf, z_shift);
+    write_level(os, static_cast<int>(l), s.levels()[l], s.settings().u_inf + f.u_frame, f.z_shift);
   return os.str();
 }
 

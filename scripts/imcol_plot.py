@@ -32,3 +32,14 @@ def save_png(fig, path: Path, dpi: int = 120) -> None:
         plt.close(fig)
         if tmp.exists():
             tmp.unlink()
+
+
+def write_text(path: Path, text: str) -> None:
+    """Writes a text file completely or not at all (a temporary file unique to this process, then rename)."""
+    tmp = path.with_name(f"{path.name}.tmp.{os.getpid()}")
+    try:
+        tmp.write_text(text)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
