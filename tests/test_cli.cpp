@@ -93,7 +93,8 @@ TEST(Cli, RunWritesCompleteOutputs) {
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header.rfind("t,z1,u1,gap", 0), 0u) << header;
-  // No temporary files left behind.
+  // run draws its own picture (--no-plot skips it), and leaves no temporary files behind.
+  EXPECT_TRUE(fs::exists(out / "trajectory.png"));
   for (const auto& f : fs::directory_iterator(out)) EXPECT_EQ(f.path().string().find(".tmp"), std::string::npos);
   // Velocity override took effect: the first row's u1.
   std::string row;
