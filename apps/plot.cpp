@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 #include <sys/wait.h>
 
 #include "core/materials.hpp"
@@ -31,16 +32,11 @@ bool run_plot_script(const std::string& script, const std::filesystem::path& dir
     if (!quiet) std::cout << "wrote " << (dir / png).string() << "\n";
     return true;
   }
-  // The script's own last line (a Python exception names its type and cause), on one line.
+  // The script's own last non-empty line (a Python exception names its type and cause), on one line.
   std::string last;
-  for (std::size_t end = output.size(); end > 0 && last.empty();) {
-    const std::size_t start = output.rfind('\n', end - 1 == 0 ? 0 : end - 2);
-    const std::size_t b = start == std::string::npos ? 0 : start + 1;
-    last = output.substr(b, end - b);
-    while (!last.empty() && (last.back() == '\n' || last.back() == ' ')) last.pop_back();
-    if (b == 0) break;
-    end = b;
-  }
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);)
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
   if (last.empty()) last = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status)) : "did not run";
   std::cerr << "imcol: warning: the plot " << (dir / png).string() << " failed (/usr/bin/python3 scripts/" << script << "): " << last
             << "; the data files are complete\n";

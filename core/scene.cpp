@@ -196,11 +196,13 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
       sc.effects.insert(*e);
     }
   } else {
-    sc.effects.insert(Effect::elastic);
+    // The seed's whole model (f_THR = f_D + f_AM + f_H, lubrication, the contact ramp), gravity where the scene sets it.
+    if (sc.has_target()) sc.effects.insert(Effect::elastic);
     if (sc.fluid) {
       sc.effects.insert(Effect::drag);
-      sc.effects.insert(Effect::lubrication);
+      if (sc.has_target()) sc.effects.insert(Effect::lubrication);
       sc.effects.insert(Effect::added_mass);
+      sc.effects.insert(Effect::history);
     }
     if (top.has("gravity")) sc.effects.insert(Effect::gravity);
   }

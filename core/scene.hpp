@@ -54,7 +54,7 @@ struct Scene {
     double h_c = 1.0;         // asymptotic model acts for h < h_c, units of a*
   } lubrication;
   struct AddedMass {
-    std::string model = "seed";  // seed (6.8, per sphere) | lagrangian (pair kinetic energy; same for a wall)
+    std::string model = "lagrangian";  // lagrangian (pair kinetic energy; = seed for a wall and equal spheres) | seed (6.8, per sphere)
     double dw_floor = -1;        // units of a*; <0: delta_ss
   } added_mass;
   struct Contact {

@@ -39,7 +39,8 @@ def plot_snapshot(path: Path, spheres) -> None:
         P = np.concatenate([psi[:0:-1], psi])
         W = np.concatenate([-om[:0:-1], om])
         lim = np.percentile(np.abs(W), 99.5) or 1.0
-        ax.pcolormesh(z, R, W, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="auto")
+        mesh = ax.pcolormesh(z, R, W, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="auto")
+        fig.colorbar(mesh, ax=ax, shrink=0.8, label="vorticity ω (colour scale clipped at 99.5 %)")
         # streamlines: levels even in sqrt|psi| (psi ~ r^2), with the recirculation (psi < 0) and psi = 0
         pos = np.linspace(0, np.sqrt(max(P.max(), 0)), 31)[1:-1] ** 2
         neg = -(np.linspace(0, np.sqrt(max(-P.min(), 0)), 7)[1:-1] ** 2)
@@ -49,7 +50,9 @@ def plot_snapshot(path: Path, spheres) -> None:
         ax.set_aspect("equal")
         ax.set_xlabel("z")
         ax.set_ylabel("r (mirrored)")
-        ax.set_title(f"level {level}: vorticity (colour), streamlines")
+        ax.set_title(f"level {level}: vorticity (colour), streamlines", fontsize=10)
+        ax.legend(handles=[plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)"),
+                           plt.Line2D([], [], color="g", lw=1.2, label="sphere surface")], fontsize=7, loc="upper right")
     fig.suptitle(title)
     fig.tight_layout()
     save_png(fig, path.with_suffix(".png"), dpi=130)
@@ -79,17 +82,31 @@ def main() -> int:
         for b in range(nb):
             ax.plot(t, [float(r[f"F_THR{b + 1}"]) for r in rows], "--", label=f"F{b + 1}: f_THR (reduced-order, no history)")
     if nb == 1:
-        fsb = np.array([float(r["F_stokes_basset"]) for r in rows])
-        cds = np.array([float(r["C_D_standard"]) for r in rows])
-        sign = np.sign(np.mean([float(r["F1"]) for r in rows]))
-        if summary["Re"] <= 1:
-            ax.plot(t, sign * fsb, "--", label="Stokes + Basset, impulsive start")
-        if np.isfinite(cds).all():
-            q = abs(float(last["F1"]) / float(last["C_D"]))
-            ax.axhline(sign * cds[0] * q, color="k", ls=":", label="standard drag curve (steady)")
-        lo, hi = np.percentile([float(r["F1"]) for r in rows], [2, 98])
+        # reference curves only where they apply (the summary says so) and where they lie on the axes
+        f1 = np.array([float(r["F1"]) for r in rows])
+        lo, hi = np.percentile(f1, [2, 98])
         pad = 0.3 * (hi - lo) + 1e-12
-        ax.set_ylim(lo - pad, hi + pad)
+        ylo, yhi = lo - pad, hi + pad
+        ax.set_ylim(ylo, yhi)
+        sign = np.sign(np.mean(f1))
+
+        def on_axes(y):
+            y = np.atleast_1d(y)
+            return np.any((y > ylo) & (y < yhi))
+
+        if "impulsive_start" in summary:
+            fsb = sign * np.array([float(r["F_stokes_basset"]) for r in rows])
+            if on_axes(fsb):
+                ax.plot(t, fsb, "--", label="Stokes + Basset, impulsive start")
+        if "F_stokes_oscillating" in rows[0]:
+            fo = np.array([float(r["F_stokes_oscillating"]) for r in rows])
+            if on_axes(fo):
+                ax.plot(t, fo, "--", label="unsteady Stokes, oscillating sphere")
+        if summary.get("drag_coefficient_standard") is not None:
+            q = abs(float(last["F1"]) / float(last["C_D"]))
+            y = sign * summary["drag_coefficient_standard"] * q
+            if on_axes(y):
+                ax.axhline(y, color="k", ls=":", label="standard drag curve (steady)")
     ax.set_xlabel("t")
     ax.set_ylabel("force along +z [N]")
     ax.set_title(f"{summary['name']}: Re = {summary['Re']:.3g}")

@@ -31,9 +31,11 @@ def main() -> int:
     if meta["configuration"] == "sphere-sphere" and SEED_TABLE.exists():
         seed = read_csv(SEED_TABLE)
         ax.semilogx([float(r["St_B"]) for r in seed], [float(r["e"]) for r in seed], "s", color="k", mfc="none", ms=7,
-                    label="Li (2010) Table 6.1, simulated (St_B)")
-        for r in seed:
-            ax.annotate(r["pair"], (float(r["St_B"]), float(r["e"])), fontsize=7, xytext=(4, -10), textcoords="offset points")
+                    label="Li (2010) Table 6.1, simulated (St_B; run numbers)")
+        # run numbers, alternately above and below their points so that neighbours' labels do not overlap
+        for i, r in enumerate(sorted(seed, key=lambda r: float(r["St_B"]))):
+            ax.annotate(f"run {r['run']}", (float(r["St_B"]), float(r["e"])), fontsize=7,
+                        xytext=(4, 8 if i % 2 else -12), textcoords="offset points")
     ax.set_xlabel("St (%s)" % (meta.get("St_convention") or "see summary"), fontsize=8)
     ax.set_ylabel("e")
     ax.set_ylim(-0.02, 1.02)

@@ -10,7 +10,7 @@ out=$(mktemp -d)
   echo "scene,e,St,min_gap_m"
   for f in data/scenes/*.toml; do
     name=$(basename "$f" .toml)
-    ./build/bin/imcol run "$f" --rtol 1e-10 --out "$out/$name" --quiet
+    ./build/bin/imcol run "$f" --rtol 1e-10 --out "$out/$name" --quiet --no-plot
     /usr/bin/python3 - "$out/$name/summary.json" "$name" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))

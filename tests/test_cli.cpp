@@ -93,7 +93,8 @@ TEST(Cli, RunWritesCompleteOutputs) {
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header.rfind("t,z1,u1,gap", 0), 0u) << header;
-  // No temporary files left behind.
+  // run draws its own picture (--no-plot skips it), and leaves no temporary files behind.
+  EXPECT_TRUE(fs::exists(out / "trajectory.png"));
   for (const auto& f : fs::directory_iterator(out)) EXPECT_EQ(f.path().string().find(".tmp"), std::string::npos);
   // Velocity override took effect: the first row's u1.
   std::string row;
@@ -104,7 +105,7 @@ TEST(Cli, RunWritesCompleteOutputs) {
 TEST(Cli, SolverFailureIsReportedWithItsCause) {
   const fs::path p = write_scene("fail", kScene);
   const Result r = run_imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_fail").string() +
-                         " --set solver.max_steps=3");
+                         " --set solver.max_steps=3 --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
   EXPECT_EQ(r.status, 3) << r.err;
   EXPECT_NE(r.err.find("CV_TOO_MUCH_WORK"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("gap="), std::string::npos) << r.err;  // names the state components
@@ -171,7 +172,7 @@ TEST(Cli, WorkPrecisionErrorsFallAsTheToleranceTightens) {
   const fs::path out = fs::temp_directory_path() / "imcol_cli_wp";
   fs::remove_all(out);
   const Result r = run_imcol("work-precision " + imcol::data_dir() + "/scenes/default.toml --out " + out.string() +
-                             " --rtols 1e-4,1e-6,1e-8 --integrators cvode-dense,ida --repeat 1 --ref-rtol 1e-11 --no-plot");
+                             " --rtols 1e-4,1e-6,1e-8 --integrators cvode-dense,ida --repeat 1 --ref-rtol 1e-11 --no-plot --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto rows = read_csv(out / "work_precision.csv");
   ASSERT_EQ(rows.size(), 6u);
@@ -189,7 +190,7 @@ TEST(Cli, WorkPrecisionErrorsFallAsTheToleranceTightens) {
   EXPECT_FALSE(j["cheapest"]["1e-03"].is_null());
   // gmres without history cannot run: skipped with its reason, not an error.
   const Result g = run_imcol("work-precision " + imcol::data_dir() + "/scenes/default.toml --out " + out.string() +
-                             " --rtols 1e-6 --integrators cvode-gmres,cvode-dense --repeat 1 --ref-rtol 1e-10 --no-plot");
+                             " --rtols 1e-6 --integrators cvode-gmres,cvode-dense --repeat 1 --ref-rtol 1e-10 --no-plot --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
   EXPECT_EQ(g.status, 0) << g.err;
   EXPECT_EQ(read_csv(out / "work_precision.csv").size(), 1u);
   const Result bad = run_imcol("work-precision " + imcol::data_dir() + "/scenes/default.toml --integrators lsoda --out " + out.string());
@@ -217,7 +218,7 @@ TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
   // The very viscous point needs < 70 steps between outputs, the least viscous > 150: with 100 allowed, one fails.
   fs::remove_all(out);
   const Result f = run_imcol("sweep " + scene + " --vary viscosity --from 0.001 --to 0.1 --points 2 --no-plot --out " + out.string() +
-                             " --set solver.max_steps=100");
+                             " --set solver.max_steps=100 --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
   EXPECT_EQ(f.status, 3) << f.err;
   rows = read_csv(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 2u);

@@ -135,7 +135,7 @@ TEST(FirstHour, AKilledSweepIsMarkedPartial) {
   std::ofstream(dir / "sweep.json") << "{\"stale\": true}\n";
   std::ofstream(dir / "sweep.png") << "stale";
   const std::string cmd = "cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && timeout -s KILL 2.5 " + IMCOL_BINARY +
-                          " sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 3000 --jobs 1 --no-plot"
+                          " sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 2000 --jobs 1 --no-plot"
                           " --no-progress --out " + dir.string() + " >/dev/null 2>&1";
   const int raw = std::system(cmd.c_str());
   ASSERT_FALSE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << "the sweep finished before it was killed";

@@ -119,7 +119,7 @@ TEST(Scene, HistorySettingsAreReadAndChecked) {
   expect_error(fx + "[history]\ntolerance = 0.0\n", {"history.tolerance"});
   expect_error(fx + "[history]\nmin_lag = 1e-3\nhorizon = 1e-3\n", {"history.horizon", "10 × min_lag"});
   expect_error(fx + "[history]\nmemory = 3\n", {"history.memory", "unknown key"});
-  expect_error(kWall + "[history]\nkernel = \"basset\"\n", {"history.kernel", "needs the 'history' effect"});
+  expect_error("effects = [\"drag\", \"elastic\"]\n" + kWall + "[history]\nkernel = \"basset\"\n", {"history.kernel", "needs the 'history' effect"});
   expect_error(kWall + "[solver]\nintegrator = \"ida\"\nlinear_solver = \"gmres\"\n", {"solver.linear_solver", "cvode integrator only"});
 }
 
