@@ -81,7 +81,10 @@ int cmd_validate_flow(const std::string& out, const CommonOptions& c);
 
 /// The scene with the `flow` effect added to its effects (coupled runs of the shipped reduced-order scenes).
 Scene with_flow(const std::string& path, std::vector<Override> ov) {
-  const Scene plain = load_scene(path, ov);
+  std::vector<Override> plain_ov;  // the scene's own effects: read without the [flow] overrides
+  for (const auto& o : ov)
+    if (o.key.rfind("flow.", 0) != 0) plain_ov.push_back(o);
+  const Scene plain = load_scene(path, plain_ov);
   std::string list = "[";
   for (Effect e : plain.effects) list += std::string("\"") + to_string(e) + "\",";
   list += "\"flow\"]";

@@ -65,6 +65,7 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   }
   delta_ss_m_ = sc.contact.delta_ss * D_;
   coupled_ = sc.has(Effect::flow);
+  arm_gap_ = initial_gap();
   delta_sl_m_ = sc.contact.delta_sl * D_;
   // A start inside the contact zone (the reader admits it only while approaching): the zone is
   // shortened to the initial gap, so that the ramp stores no energy at t = 0 and the contact begins.
@@ -573,9 +574,11 @@ void CollisionModel::arm() {
   else if (!u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
   if (scene_.has(Effect::lubrication) && !brenner_) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
   if (coupled_) {
-    // The ends of the blend H (MODEL.md §2.5): diagnostic, the right-hand side stays continuous there.
-    add(RootKind::blend_edge, "gap=2*delta_sl (blend edge)", 0);
-    if (phase_ != Phase::loading) add(RootKind::blend_end, "gap=0 (blend end)", 0);
+    // The ends of the blend H (MODEL.md §2.5): diagnostic, the right-hand side stays continuous there. Not armed
+    // while the gap sits on one of them (a start at 2δ_SL: CVODE refuses a root at the initial time).
+    const double tiny = 1e-9 * D_;
+    if (std::abs(arm_gap_ - 2 * delta_sl_m_) > tiny) add(RootKind::blend_edge, "gap=2*delta_sl (blend edge)", 0);
+    if (phase_ != Phase::loading && std::abs(arm_gap_) > tiny) add(RootKind::blend_end, "gap=0 (blend end)", 0);
   }
 }
 
@@ -602,6 +605,7 @@ void CollisionModel::root_values(double, std::span<const double> y, std::span<do
 void CollisionModel::record(double t, const std::string& name, std::span<const double> y) {
   Evaluation ev;
   kinematics(y, ev);
+  arm_gap_ = ev.gap;
   events_.push_back({t, name, ev.gap, ev.u_rel});
 }
 

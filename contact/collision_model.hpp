@@ -197,6 +197,7 @@ class CollisionModel : public DynamicalSystem {
   const Scene scene_;
   bool coupled_ = false;     // the flow effect: f_SL = H f_THR + (1 − H) f_SIM
   double delta_sl_m_ = 0;    // δ_SL, m
+  double arm_gap_ = 0;       // the gap where the roots were last armed (t = 0 or the last event), m
   SimulatedForce sim_;
   Target target_;
   std::size_t n_spheres_;

@@ -55,8 +55,12 @@ std::vector<flow::SphereState> FlowCoupling::frame_spheres(const Predicted& p, d
     const double gap = std::max(p.gap, g_min);
     if (p.gap < g_min) ++stats_.min_gap_clamped_steps;
     const double mid = 0.5 * (p.z[0] + p.z[1]) - frame_z, c = radius_[0] + radius_[1] + gap;
-    s[0] = {radius_[0], mid - 0.5 * c, p.u[0] - frame_u};
-    s[1] = {radius_[1], mid + 0.5 * c, p.u[1] - frame_u};
+    // With the gap held, the kernel's spheres move together at the midpoint's velocity: their velocities must
+    // match the geometry it sees (a relative velocity across a held gap would squeeze a film that does not thin).
+    const double u_mid = 0.5 * (p.u[0] + p.u[1]);
+    const bool held = p.gap < g_min;
+    s[0] = {radius_[0], mid - 0.5 * c, (held ? u_mid : p.u[0]) - frame_u};
+    s[1] = {radius_[1], mid + 0.5 * c, (held ? u_mid : p.u[1]) - frame_u};
   } else {
     s[0] = {radius_[0], p.z[0] - frame_z, p.u[0] - frame_u};
   }
@@ -74,8 +78,9 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   kernel_->set_stream(-frame_u_);
   const auto t0 = Clock::now();
   flow::StepInfo info;
+  const std::vector<flow::SphereState> imposed = frame_spheres(p, frame_z_, frame_u_);
   try {
-    info = kernel_->step(frame_spheres(p, frame_z_, frame_u_));
+    info = kernel_->step(imposed);
   } catch (const SolverError&) {
     throw;
   } catch (const std::exception& e) {
@@ -94,8 +99,9 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   const contact::AddedMassMatrix M = model_.implicit_added_mass(p.gap);
   std::array<double, 2> a_flow{}, f{};
   for (std::size_t m = 0; m < n_; ++m) {
-    a_flow[m] = (p.u[m] - kernel_u_[m]) / dt;
-    kernel_u_[m] = p.u[m];
+    const double u_imposed = imposed[m].u + frame_u_;  // lab velocity the kernel gave sphere m
+    a_flow[m] = (u_imposed - kernel_u_[m]) / dt;
+    kernel_u_[m] = u_imposed;
   }
   for (std::size_t m = 0; m < n_; ++m) {
     const double F_lab = info.force[m] + rho_ * volume_[m] * a_frame;
