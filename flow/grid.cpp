@@ -52,7 +52,16 @@ FastSolver::FastSolver(const LevelGeometry& g, std::vector<Op> ops, bool measure
     release();
     throw std::runtime_error("FFTW could not plan the sine transform");
   }
-  const double ih2 = 1.0 / (g.h * g.h);
+  try {
+    build_tables();
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+void FastSolver::build_tables() {
+  const double ih2 = 1.0 / (g_.h * g_.h);
   for (const Op& op : ops_) {
     std::vector<double> lower(n_ + 1), inv_den(static_cast<std::size_t>(n_) * m_), cp(static_cast<std::size_t>(n_) * m_);
     for (int k = 0; k < m_; ++k) {

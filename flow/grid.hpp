@@ -54,6 +54,7 @@ class FastSolver {
   // DST-I of n_ lines of m_ values, line ii at src + ii·src_stride, into line ii at dst + ii·dst_stride, times s
   void dst(const double* src, std::size_t src_stride, double* dst, std::size_t dst_stride, double s);
   void tridiag(int op);                        // buf_ <- op⁻¹ buf_ in mode space
+  void build_tables();                         // per op: the Thomas factors of every mode
   void release();                              // plan and buffers
   LevelGeometry g_;
   std::vector<Op> ops_;

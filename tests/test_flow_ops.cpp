@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <thread>
 
 #include "flow/grid.hpp"
 #include "flow/ib.hpp"
@@ -75,6 +76,44 @@ TEST(FlowOps, SolveThenApplyReturnsInput) {
     EXPECT_LT(err / fmax, 1e-10);
     EXPECT_EQ(bnd_err, 0.0);
   }
+}
+
+TEST(FlowOps, SolveChainEqualsSuccessiveSolves) {
+  const auto g = tiny(12, 20, 0.05, -0.5);
+  FastSolver fs(g, {{0.0, 1.0}, {1.0, -0.37}});
+  const auto f = random_field(g, 31);
+  std::vector<double> c1, c2;
+  fs.solve_chain({1, 0}, f, {&c1, &c2});
+  std::vector<double> x1(g.size(), 0.0), x2(g.size(), 0.0);  // zero boundary values
+  fs.solve(1, f, x1);
+  fs.solve(0, x1, x2);
+  double e1 = 0, e2 = 0, s = 0;
+  for (std::size_t p = 0; p < g.size(); ++p) {
+    e1 = std::max(e1, std::abs(c1[p] - x1[p]));
+    e2 = std::max(e2, std::abs(c2[p] - x2[p]));
+    s = std::max(s, std::abs(x2[p]));
+  }
+  EXPECT_LT(e1, 1e-12 * s);
+  EXPECT_LT(e2, 1e-12 * s);
+}
+
+TEST(FlowOps, FastSolversPlannedOnSeveralThreadsAgree) {  // FFTW planning is serialised by FastSolver
+  const auto g = tiny(16, 24, 0.05, -0.6);
+  const auto f = random_field(g, 41);
+  std::vector<double> ref(g.size(), 0.0);
+  FastSolver(g, {{1.0, -0.2}}, true).solve(0, f, ref);
+  std::vector<std::vector<double>> out(4, std::vector<double>(g.size(), 0.0));
+  std::vector<std::thread> th;
+  for (int t = 0; t < 4; ++t)
+    th.emplace_back([&, t] {
+      for (int rep = 0; rep < 20; ++rep) {
+        FastSolver fs(g, {{1.0, -0.2}});
+        fs.solve(0, f, out[t]);
+      }
+    });
+  for (auto& t : th) t.join();
+  for (const auto& o : out)
+    for (std::size_t p = 0; p < g.size(); ++p) EXPECT_NEAR(o[p], ref[p], 1e-12 * (1 + std::abs(ref[p])));
 }
 
 TEST(FlowOps, StokesOperatorIsSecondOrderOnManufacturedSolution) {
