@@ -80,11 +80,16 @@ int cmd_run(const std::string& scene_path, const std::string& out, const CommonO
 int cmd_validate_flow(const std::string& out, const CommonOptions& c);
 
 /// The scene with the `flow` effect added to its effects (coupled runs of the shipped reduced-order scenes).
-Scene with_flow(const std::string& path, std::vector<Override> ov) {
-  std::vector<Override> plain_ov;  // the scene's own effects: read without the [flow] overrides
+/// The overrides without the [flow] ones (for the reduced-order runs beside coupled ones).
+std::vector<Override> without_flow_keys(const std::vector<Override>& ov) {
+  std::vector<Override> out;
   for (const auto& o : ov)
-    if (o.key.rfind("flow.", 0) != 0) plain_ov.push_back(o);
-  const Scene plain = load_scene(path, plain_ov);
+    if (o.key.rfind("flow.", 0) != 0) out.push_back(o);
+  return out;
+}
+
+Scene with_flow(const std::string& path, std::vector<Override> ov) {
+  const Scene plain = load_scene(path, without_flow_keys(ov));  // the scene's own effects
   std::string list = "[";
   for (Effect e : plain.effects) list += std::string("\"") + to_string(e) + "\",";
   list += "\"flow\"]";
@@ -151,7 +156,7 @@ int cmd_validate_flow(const std::string& out, const CommonOptions& c) {
     if (cell.size() < 9) throw InputError(table, "", "malformed row: " + line);
     const std::string run = cell[0], pair = cell[8];
     const std::string path = data_dir() + "/scenes/seed_run" + run + ".toml";
-    const RunResult red = simulate(load_scene(path, c.overrides()));
+    const RunResult red = simulate(load_scene(path, without_flow_keys(c.overrides())));
     const RunResult r = simulate(with_flow(path, c.overrides()), true);
     const auto& s = r.summary;
     const auto& f = s["flow"];

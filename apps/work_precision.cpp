@@ -1,4 +1,5 @@
 #include "apps/work_precision.hpp"
+#include "apps/work_precision_flow.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -97,6 +98,11 @@ std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>&
 
 int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
   Scene base = load_scene(scene_path, overrides);
+  if (base.has(Effect::flow)) {  // a coupled scene: the ladder is the grid and the flow step
+    FlowLadderOptions fo;
+    fo.out = opt.out;
+    return work_precision_flow(base, overrides, fo);
+  }
   if (opt.repeat < 1) throw InputError("--repeat", "repeat", "must be >= 1");
   if (opt.rtols.empty()) throw InputError("--rtols", "rtols", "give at least one tolerance");
   for (double r : opt.rtols)

@@ -1,0 +1,22 @@
+#pragma once
+// `imcol work-precision` on a coupled scene (the `flow` effect): what the flow kernel's accuracy costs. The ladder is
+// the grid (cells per diameter) at the scene's flow step rule, then the flow step (cfl) at the scene's grid, each run
+// compared with the finest run of its ladder (MODEL.md §5: convergence is in cells per diameter and in Δt).
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace imcol {
+
+struct FlowLadderOptions {
+  std::string out;                                 // default out/<scene>/work_precision
+  std::vector<int> cells = {16, 24, 32, 48};       // cells per diameter; the last is the grid ladder's reference
+  std::vector<double> cfls = {1.0, 0.5, 0.25};     // flow step dt = cfl h / U; the last is the step ladder's reference
+};
+
+/// Prints both ladders (e, |e − e_finest|, e_instant, wall time, flow steps, ms per flow step) and writes
+/// DIR/work_precision_flow.csv and .json.
+int work_precision_flow(const Scene& base, const std::vector<Override>& overrides, const FlowLadderOptions& opt);
+
+}  // namespace imcol
