@@ -186,3 +186,24 @@ position = 0.02
 )";
   EXPECT_NE(error_of(wall).find("not implemented yet"), std::string::npos);
 }
+
+TEST(Coupling, DevelopedStartHasItsBoundaryLayerAtTimeZero) {
+  // Impulsive: the fluid starts at rest one flow step before t = 0, so the early drag is the impulsive start's
+  // (Stokes + Basset ~ 1/sqrt(t)); developed: 1 D of travel before t = 0, so the drag at t = 0 is nearly steady.
+  auto first_and_last = [](const std::string& start) {
+    const Scene sc = load_scene(scene_path("seed_run4.toml"), {{"effects", R"(["drag","lubrication","added_mass","elastic","flow"])"},
+                                                               {"flow.cells_per_diameter", "16"},
+                                                               {"flow.start", "\"" + start + "\""},
+                                                               {"solver.t_end", "0.01"}});
+    const RunResult r = simulate(sc);
+    const std::size_t i = column(r, "f_sim1");
+    EXPECT_EQ(r.summary["flow"]["start"].get<std::string>(), start);
+    return std::make_pair(r.rows[1][i], r.rows.back()[i]);
+  };
+  const auto [imp0, imp1] = first_and_last("impulsive");
+  const auto [dev0, dev1] = first_and_last("developed");
+  EXPECT_LT(dev0, 0.0);
+  EXPECT_GT(imp0 / dev0, 1.5);                 // the impulsive start's drag is far larger at first
+  EXPECT_NEAR(dev0 / dev1, 1.0, 0.2);          // the developed one is close to its value 10 ms later
+  EXPECT_GT(std::abs(imp0), 1.2 * std::abs(imp1));  // and the impulsive one decays
+}
