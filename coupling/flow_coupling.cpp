@@ -81,11 +81,13 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   const std::vector<flow::SphereState> imposed = frame_spheres(p, frame_z_, frame_u_);
   try {
     info = kernel_->step(imposed);
-  } catch (const SolverError&) {
-    throw;
+  } catch (const SolverError& e) {
+    std::ostringstream os;  // the kernel counts time from its start-up; the run from the collision's t = 0
+    os << "coupled run, flow step to t = " << kernel_->time() + dt - t_pre_ << " s: " << e.what();
+    throw SolverError(os.str());
   } catch (const std::exception& e) {
     std::ostringstream os;
-    os << "flow kernel failed at t = " << kernel_->time() << " s: " << e.what()
+    os << "coupled run, flow step to t = " << kernel_->time() + dt - t_pre_ << " s: the flow kernel failed: " << e.what()
        << " (raise flow.ahead / flow.behind / flow.r_max, or shorten solver.t_end)";
     throw SolverError(os.str());
   }
