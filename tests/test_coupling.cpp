@@ -207,3 +207,13 @@ TEST(Coupling, DevelopedStartHasItsBoundaryLayerAtTimeZero) {
   EXPECT_NEAR(dev0 / dev1, 1.0, 0.2);          // the developed one is close to its value 10 ms later
   EXPECT_GT(std::abs(imp0), 1.2 * std::abs(imp1));  // and the impulsive one decays
 }
+
+TEST(Coupling, CvodeAndIdaAgreeInACoupledRun) {
+  // The same flow steps and f_SIM; the two integrators differ only by their own error (rtol 1e-8).
+  auto e_of = [](const std::string& integrator) {
+    const Scene sc = load_scene(scene_path("coupled/gg3462.toml"),
+                                {{"flow.cells_per_diameter", "16"}, {"flow.snapshots", "0"}, {"solver.integrator", "\"" + integrator + "\""}});
+    return simulate(sc).summary["e"].get<double>();
+  };
+  EXPECT_NEAR(e_of("cvode"), e_of("ida"), 1e-6);
+}
