@@ -422,6 +422,15 @@ std::string human_summary(const RunResult& r) {
     os << "; peak |f_H| = " << num(s["max_history_force_N"]) << " N; " << sol["linear_solver"].get<std::string>()
        << " linear solver, state size " << sol["state_size"].get<long>() << "\n";
   }
+  if (s.contains("flow")) {
+    const auto& f = s["flow"];
+    os << "  flow: " << f["grid"]["cells_per_diameter"].get<int>() << " cells/D, " << f["grid"]["levels"].get<int>() << " levels, "
+       << f["steps"].get<long>() << " flow steps of " << std::setprecision(3) << 1e3 * f["dt_s"].get<double>() << " ms, "
+       << f["ms_per_step"].get<double>() << " ms per step, " << f["krylov_iterations_per_step"].get<double>()
+       << " GMRES iterations per step; of the wall time " << std::setprecision(2) << 100 * f["flow_share"].get<double>()
+       << " % in the flow kernel, " << 100 * f["start_up_time_s"].get<double>() / s["wall_time_s"].get<double>()
+       << " % in its start-up (" << f["start_up_steps"].get<long>() << " steps, " << f["start"].get<std::string>() << ")\n";
+  }
   for (const auto& w : s["warnings"]) os << "  warning: " << w.get<std::string>() << "\n";
   return os.str();
 }
