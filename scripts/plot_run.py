@@ -21,7 +21,8 @@ def main() -> int:
     col = {k: [float(r[k]) for r in rows] for k in rows[0]}
     t_ms = [1e3 * x for x in col["t"]]
 
-    fig, ax = plt.subplots(3, 1, figsize=(8, 10), sharex=True)
+    coupled = "H" in col  # the flow effect: f_SIM against f_THR and the blend in a panel of their own
+    fig, ax = plt.subplots(4 if coupled else 3, 1, figsize=(8, 13 if coupled else 10), sharex=True)
     for k in ("z1", "z2"):
         if k in col:
             ax[0].plot(t_ms, [1e3 * v for v in col[k]], label=k)
@@ -31,11 +32,22 @@ def main() -> int:
         ax[1].plot(t_ms, col["u2"], label="u2")
     ax[1].set_ylabel("velocity (m/s)")
     for k in col:
-        if k.startswith("f_"):
+        if k.startswith("f_") and not k.startswith(("f_sim", "f_thr")):
             ax[2].plot(t_ms, col[k], label=k)
     ax[2].set_yscale("symlog", linthresh=1e-4)
-    ax[2].set_ylabel("force (N)")
-    ax[2].set_xlabel("t (ms)")
+    ax[2].set_ylabel("force acting (N)" + (": fluid terms x H" if coupled else ""))
+    if coupled:
+        for k, ls in (("f_sim1", "-"), ("f_thr1", "--"), ("f_sim2", "-"), ("f_thr2", "--")):
+            if k in col:
+                ax[3].plot(t_ms, col[k], ls=ls, label=k + (" (flow kernel)" if "sim" in k else " (analytic)"))
+        ax[3].set_yscale("symlog", linthresh=1e-4)
+        ax[3].set_ylabel("fluid force (N)")
+        h = ax[3].twinx()
+        h.plot(t_ms, col["H"], color="k", lw=0.8, label="H (weight of f_THR)")
+        h.set_ylim(-0.05, 1.05)
+        h.set_ylabel("H")
+        h.legend(fontsize=8, loc="lower right")
+    ax[-1].set_xlabel("t (ms)")
     contact = summary.get("contact") or {}
     marks = (("t_contact_s", "contact (gap = delta_SS)", ":"), ("t_separation_s", "separation", "--"))
     for key, label, ls in marks:
