@@ -25,7 +25,7 @@ const char* to_string(ForceInStep s);
 struct FlowSpec {
   int cells_per_diameter = 32;   // finest spacing h = D / cells_per_diameter
   int levels = 4;                // nested levels, each twice the size and spacing of the one inside
-  double r_max = 1.0;            // finest level's radius, D
+  double r_max = 1.0;            // finest level's radius, D (at least r_max × the larger sphere's diameter)
   double ahead = 0.75;           // finest level beyond the leading sphere's surface, D
   double behind = 1.25;          // finest level behind the trailing sphere's surface (its wake), D
   double dt = 0;                 // flow step, s; 0: from cfl
@@ -37,7 +37,7 @@ struct FlowSpec {
   double ring_spacing = 1.0;     // arc spacing of the body rings, cells
   int preconditioner_bins = 4;   // GMRES: sub-cell offsets with their own preconditioner block (each costs 2N force solves)
   FlowStart start = FlowStart::developed;
-  double developed_distance = 1.0;  // developed: distance the impact sphere travels before t = 0, D
+  double developed_distance = 1.0;  // developed: distance the faster sphere travels before t = 0, D
   double developed_time = 0;        // developed: or this time, s (> 0 overrides the distance)
   ForceInStep force_in_step = ForceInStep::linear;
   bool added_mass_estimate = true;  // keep the model's added mass implicit and remove it from f_SIM (false: f_SIM explicit,

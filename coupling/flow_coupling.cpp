@@ -129,7 +129,7 @@ void FlowCoupling::start_up() {
   double t_pre = dt;  // impulsive: one prescribed step
   if (fs.start == FlowStart::developed) {
     if (fs.developed_time > 0) t_pre = fs.developed_time;
-    else if (std::abs(sc_.spheres[0].velocity) > 0) t_pre = fs.developed_distance * D_ / std::abs(sc_.spheres[0].velocity);
+    else if (u_ref_ > 0) t_pre = fs.developed_distance * D_ / u_ref_;  // the faster sphere travels that far
   }
   const long n_pre = std::max(1L, std::lround(t_pre / dt));
   t_pre = static_cast<double>(n_pre) * dt;
@@ -152,7 +152,9 @@ void FlowCoupling::start_up() {
   s.dt = dt;
   s.theta = fs.theta;
   s.h = h;
-  s.nr = 2 * static_cast<int>(std::ceil(fs.r_max * D_ / h / 2));
+  // r_max is in units of sphere 1's D; a larger target gets the same room relative to its own size.
+  const double r_finest = std::max(fs.r_max * D_, fs.r_max * 2 * a_max);
+  s.nr = 2 * static_cast<int>(std::ceil(r_finest / h / 2));
   s.nz = 4 * static_cast<int>(std::ceil((z_hi - z_lo) / h / 4));
   s.levels = fs.levels;
   s.z_center = 0.5 * (z_lo + z_hi);
