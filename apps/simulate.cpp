@@ -89,7 +89,7 @@ class Recorder : public Observer {
 
   /// Clears the progress line, if one was shown.
   void finish_progress() {
-    if (shown_) std::cerr << "\r" << std::string(72, ' ') << "\r" << std::flush;
+    if (shown_) std::cerr << "\r" << std::string(96, ' ') << "\r" << std::flush;
   }
 
   std::vector<std::string> columns_;
@@ -104,8 +104,10 @@ class Recorder : public Observer {
     last_ = now;
     shown_ = true;
     const double t_end = sc_.solver.t_end;
+    const double left = t > 0 ? run * (t_end - t) / t : 0.0;  // at most: the run may stop once e is measured
     std::cerr << "\r  t = " << std::setprecision(4) << t << " s of t_end " << t_end << " s (" << std::fixed << std::setprecision(1)
-              << 100 * t / t_end << " %), " << run << " s elapsed   " << std::defaultfloat << std::flush;
+              << 100 * t / t_end << " %), " << run << " s elapsed, at most " << left << " s left   " << std::defaultfloat
+              << std::flush;
   }
 
   CollisionModel& model_;
