@@ -86,7 +86,7 @@ void Solver::build_wall() {
     // touches vertices I ≥ nr/2)
     const double sp = s_.ring_spacing * g.h;
     double r = l == 0 ? 0.5 * sp : (g.nr / 2 + 1) * g.h;
-    const double rmax = g.r(g.nr) - 1.5 * g.h;
+    const double rmax = g.r(g.nr) - 2.5 * g.h;
     auto& P = wall_pts_[l];
     for (; r <= rmax * (1 + 1e-12); r += sp) {
       P.r.push_back(r);

@@ -121,6 +121,8 @@ class Solver {
   /// The wall's points on level ℓ (empty without a wall); their positions are in metres on that level.
   const std::vector<BodyPoints>& wall_points() const { return wall_pts_; }
   std::size_t wall_unknowns() const { return 2 * wall_count_; }
+  /// The last step's point forces (m⁴/s², kinematic): (r, z) of each sphere point, then of each wall point by level.
+  const Eigen::VectorXd& point_forces() const { return g_; }
   /// Axial velocity on the axis of the finest level (extrapolated from r = h/2, 3h/2), at z_j, m/s.
   std::vector<double> axis_velocity() const;
   /// Recirculation length behind sphere s (downstream of its rear, in the stream direction), m; 0 if none.

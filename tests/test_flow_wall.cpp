@@ -61,6 +61,9 @@ TEST(FlowWall, QuasiSteadyForceFollowsBrenner) {
   // grid's free-sphere value (its +2–6 % first-order bias)
   const double free16 = steady(16, false, 3.0, -1.0).F / kStokes;
   std::printf("16 cells/D, free sphere F/6 pi mu a U = %.4f\n", free16);
+  // measured (16 cells/D, 8 levels): raw +6.2, +8.0, +12.1, +22.8 %; bias-corrected +0.9, +2.6, +6.5, +16.7 % (first
+  // order: the regularised delta thickens both the sphere and the wall by a fraction of a cell; 0.25 D is 4 cells)
+  const std::map<double, std::pair<double, double>> bound = {{2.0, {0.08, 0.015}}, {1.0, {0.10, 0.035}}, {0.5, {0.145, 0.08}}, {0.25, {0.26, 0.20}}};
   double prev = 0;
   for (double gap : {2.0, 1.0, 0.5, 0.25}) {
     const double lam = imcol::contact::brenner_lambda(2 * gap), F = steady(16, true, gap, -1.0).F / kStokes;
@@ -68,8 +71,8 @@ TEST(FlowWall, QuasiSteadyForceFollowsBrenner) {
                 100 * (F / lam - 1), 100 * (F / free16 / lam - 1));
     EXPECT_GT(F, prev);  // the force grows as the gap closes
     prev = F;
-    EXPECT_LT(std::abs(F / free16 / lam - 1), TOL_BIAS);
-    EXPECT_LT(std::abs(F / lam - 1), TOL_RAW);
+    EXPECT_LT(std::abs(F / lam - 1), bound.at(gap).first);
+    EXPECT_LT(std::abs(F / free16 / lam - 1), bound.at(gap).second);
   }
 }
 
@@ -80,16 +83,17 @@ TEST(FlowWall, ErrorFallsWithTheGrid) {
   const double e32 = std::abs(steady(32, true, 0.5, -1.0).F / kStokes / lam - 1);
   std::printf("h/a = 1: error %.2f %% (16 cells/D), %.2f %% (32 cells/D)\n", 100 * e16, 100 * e32);
   EXPECT_LT(e32, 0.7 * e16);
-  EXPECT_LT(e32, TOL_32);
+  EXPECT_LT(e32, 0.065);  // measured 12.1 % and 5.3 %
 }
 
 TEST(FlowWall, WallForceBalancesTheSphereForce) {
   // steady Stokes flow: the fluid's momentum is constant and the stresses far away fall off fast next to a no-slip
-  // wall, so the force on the wall is minus the force on the sphere
+  // wall, so the force on the wall is minus the force on the sphere. Measured −F_wall/F = 1.086 (1 D) and 1.029
+  // (0.25 D): the plate takes 3–9 % too much, from the junctions between levels (docs/flow-kernel.md), not falling with h
   for (double gap : {1.0, 0.25}) {
     const Steady r = steady(16, true, gap, -1.0);
     std::printf("gap %.2f D: sphere %.4f N, wall %.4f N, -wall/sphere %.4f\n", gap, r.F, r.wall, -r.wall / r.F);
-    EXPECT_NEAR(-r.wall / r.F, 1.0, TOL_BAL);
+    EXPECT_NEAR(-r.wall / r.F, 1.0, 0.12);
   }
 }
 
@@ -98,7 +102,7 @@ TEST(FlowWall, SpheresFrameMatchesLabFrame) {
   // sphere moving at −U in fluid at rest: the same Stokes problem; at Re = 0.1 they differ by the advection, O(Re)
   const double lab = steady(16, true, 0.5, -1.0).F, frame = steady(16, true, 0.5, 0.0, 1.0).F;
   std::printf("gap 0.5 D: lab frame %.5f, sphere's frame %.5f, difference %.3f %%\n", lab, frame, 100 * (frame / lab - 1));
-  EXPECT_NEAR(frame / lab, 1.0, TOL_FRAME);
+  EXPECT_NEAR(frame / lab, 1.0, 1e-3);  // measured 1e-4
 }
 
 TEST(FlowWall, KrylovWithWallPreconditionerMatchesDirect) {
