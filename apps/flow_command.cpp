@@ -195,7 +195,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     const double cd = drag_sign * info.force[0] / q;
     // impulsively started sphere (Stokes + Basset, t > 0): F = 6πμaU (1 + a/√(πνt))
     const double fsb = f_stokes * (1 + a / std::sqrt(M_PI * nu * t));
-    if (nb == 1 && !osc && Re <= 1 && t >= basset_t0 - 1e-12 * basset_t0 && t <= basset_t1 * (1 + 1e-12)) {
+    if (nb == 1 && !osc && !sc.wall_position && Re <= 1 && t >= basset_t0 - 1e-12 * basset_t0 && t <= basset_t1 * (1 + 1e-12)) {
       basset_err = std::max(basset_err, std::abs(drag_sign * info.force[0] - fsb) / fsb);
       basset_any = true;
     }

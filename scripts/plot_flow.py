@@ -2,7 +2,9 @@
 """Plot an `imcol flow` run: vorticity and streamlines of each snapshot, and the force history.
 
 Usage: /usr/bin/python3 scripts/plot_flow.py DIR
-Reads DIR/snapshot_NN.csv and DIR/forces.csv; writes DIR/snapshot_NN.png and DIR/forces.png.
+Reads DIR/snapshot_NN.csv and DIR/forces.csv; writes DIR/snapshot_NN.png and DIR/forces.png; for a sphere
+approaching a wall also DIR/forces_vs_gap.png and DIR/forces_vs_gap.csv (f_SIM against Brenner's f_THR, like the
+seed's Fig. 6.4 for pairs).
 Needs Debian's python3-matplotlib and numpy (importable from /usr/bin/python3 only).
 """
 import csv
@@ -11,7 +13,45 @@ from pathlib import Path
 
 import numpy as np
 
-from imcol_plot import out_dir, plt, save_png
+from imcol_plot import out_dir, plt, save_png, write_text
+
+
+def plot_wall_gap(out: Path, rows, summary) -> None:
+    """f_SIM against f_THR (Brenner) and the force on the wall, against the wall gap (gap <= 2 D)."""
+    rows = [r for r in rows if 0 < float(r["wall_gap_D"]) <= 2.0]
+    if not rows:
+        return
+    keys = ("wall_gap_D", "F1", "F_THR_wall", "F_wall")
+    write_text(out / "forces_vs_gap.csv", "\n".join([",".join(keys)] + [",".join(r[k] for k in keys) for r in rows]) + "\n")
+    gap = np.array([float(r["wall_gap_D"]) for r in rows])
+    fs, ft, fw = (np.array([float(r[k]) for r in rows]) for k in ("F1", "F_THR_wall", "F_wall"))
+    h = summary["grid"]["h"] / (summary["grid"]["h"] * summary["grid"]["cells_per_diameter"])  # cell / D
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    ax = axes[0]
+    ax.plot(gap, fs, label="f_SIM (flow kernel)")
+    ax.plot(gap, ft, "--", label="f_THR: Brenner λ(h/a) 6πμaU (quasi-steady Stokes)")
+    ax.plot(gap, -fw, ":", label="−(force on the wall)")
+    ax.axvline(3 * h, color="grey", lw=0.8, ls=":", label="3 cells (below: not resolved)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.invert_xaxis()
+    ax.set_xlabel("gap / D")
+    ax.set_ylabel("force along +z [N]")
+    ax.set_title("(a) hydrodynamic force on the sphere approaching the wall")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    ax = axes[1]
+    ax.plot(gap, 100 * (fs / ft - 1))
+    ax.axvline(3 * h, color="grey", lw=0.8, ls=":")
+    ax.set_xscale("log")
+    ax.invert_xaxis()
+    ax.set_xlabel("gap / D")
+    ax.set_ylabel("f_SIM / f_THR − 1 [%]")
+    ax.set_title(f"(b) difference ({summary['grid']['cells_per_diameter']} cells/D)")
+    ax.grid(alpha=0.3, which="both")
+    fig.suptitle(f"{summary['name']}: Re = {summary['Re']:.3g}")
+    fig.tight_layout()
+    save_png(fig, out / "forces_vs_gap.png", dpi=130)
 
 
 def read_level(path: Path, level: int):
@@ -114,6 +154,8 @@ def main() -> int:
     ax.legend()
     fig.tight_layout()
     save_png(fig, out / "forces.png", dpi=130)
+    if "wall_gap_D" in rows[0]:
+        plot_wall_gap(out, rows, summary)
     return 0
 
 
