@@ -83,7 +83,10 @@ void Solver::build_wall() {
       throw std::invalid_argument("flow: the wall z = " + std::to_string(zw) + " must lie inside the finest level, 3 cells clear");
     // finest level from the axis out; each coarser level outside the finer one (its source is never overwritten by
     // coarsify: restrict_interior writes coarse vertices I < nr/2 only, and the stencil of a ring at r ≥ (nr/2 + 1)H
-    // touches vertices I ≥ nr/2)
+    // touches vertices I ≥ nr/2); each level's out to R − 2.5H, where a ring's stencil still ends on interior
+    // vertices (i ≤ nr − 1) that the full weighting carries to the coarser level: with rings closer to the edge the
+    // plate's edge vorticity was dropped and a uniform pressure jump across it became nearly invisible (a spurious
+    // uniform load, 6 times the sphere's force)
     const double sp = s_.ring_spacing * g.h;
     double r = l == 0 ? 0.5 * sp : (g.nr / 2 + 1) * g.h;
     const double rmax = g.r(g.nr) - 2.5 * g.h;

@@ -31,10 +31,12 @@
 //
 // Wall (Settings::wall_z): a plane no-slip wall normal to the axis made of immersed points, a thin plate at z = z_w
 // (fluid on both sides; a sphere on one side sees a no-slip plane). Rings of points (u_r = 0, u_z = wall_velocity)
-// on every level, each in its own level's spacing: the finest level's from r = ½h out to R₀ − 1.5h (R_ℓ = nr·2^ℓh
+// on every level, each in its own level's spacing: the finest level's from r = ½h out to R₀ − 2.5h (R_ℓ = nr·2^ℓh
 // the level's radius), level ℓ ≥ 1's from R_{ℓ−1} + 2^ℓh (outside the finer level, so that coarsify never
-// overwrites their source) out to R_ℓ − 1.5·2^ℓh; the coarsest level's zero far field (ψ = 0 at r = R_{L−1}) closes
-// it. So the plate spans the whole domain, with a gap of 1.75 coarse cells between the rings of adjacent levels.
+// overwrites their source) out to R_ℓ − 2.5·2^ℓh (so that the plate edge's vorticity source lands on interior
+// vertices that the restriction also carries down); the coarsest level's zero far field (ψ = 0 at r = R_{L−1})
+// closes it. So the plate spans the whole domain, with a gap of 2.25 coarse cells between the rings of adjacent
+// levels (the plate's force there is 1–9 % off the sphere's: docs/flow-kernel.md).
 // Coarse rings spread and interpolate on their own level (B_ℓ from that level's ψ); the force system grows by the
 // wall's unknowns (ordering: sphere points, then the wall level by level). The wall's own block of Q never changes:
 // it is LU-factorised once and preconditions GMRES for moving spheres next to each sphere's block.
