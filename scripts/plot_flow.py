@@ -62,9 +62,15 @@ def read_level(path: Path, level: int):
     return r, z, rows[:, 3].reshape(shape), rows[:, 4].reshape(shape)
 
 
-def plot_snapshot(path: Path, spheres) -> None:
+def plot_snapshot(path: Path, spheres, wall=None) -> None:
+    """spheres: a list of (z, D), or a function of the snapshot's time t giving it (moving spheres)."""
     with open(path) as f:
         title = f.readline().lstrip("# ").split(";")[0]
+    if callable(spheres):
+        try:
+            spheres = spheres(float(title.split("=")[1].split()[0]))
+        except (IndexError, ValueError):
+            spheres = spheres(None)
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.2))
     for ax, level in zip(axes, (0, 1)):
         try:
@@ -87,12 +93,17 @@ def plot_snapshot(path: Path, spheres) -> None:
         ax.contour(z, R, P, levels=np.unique(np.concatenate([neg, [0.0], pos])), colors="k", linewidths=0.5)
         for zc, d in spheres:
             ax.add_patch(plt.Circle((zc, 0), d / 2, fill=False, color="g", lw=1.2))
+        if wall is not None:
+            ax.axvline(wall, color="m", lw=1.5)
         ax.set_aspect("equal")
         ax.set_xlabel("z")
         ax.set_ylabel("r (mirrored)")
         ax.set_title(f"level {level}: vorticity (colour), streamlines", fontsize=10)
-        ax.legend(handles=[plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)"),
-                           plt.Line2D([], [], color="g", lw=1.2, label="sphere surface")], fontsize=7, loc="upper right")
+        handles = [plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)"),
+                   plt.Line2D([], [], color="g", lw=1.2, label="sphere surface")]
+        if wall is not None:
+            handles.append(plt.Line2D([], [], color="m", lw=1.5, label="wall"))
+        ax.legend(handles=handles, fontsize=7, loc="upper right")
     fig.suptitle(title)
     fig.tight_layout()
     save_png(fig, path.with_suffix(".png"), dpi=130)
@@ -113,8 +124,15 @@ def main() -> int:
     summary = json.loads((out / "summary.json").read_text())
     d = summary["grid"]["h"] * summary["grid"]["cells_per_diameter"]
     spheres = [(zc, d) for zc, _ in spheres]
+    def spheres_at(ts):  # the spheres at the forces.csv row nearest to the snapshot's time (moving spheres)
+        if ts is None:
+            return spheres
+        row = min(rows, key=lambda r: abs(float(r["t"]) - ts))
+        return [(float(row[f"z{b + 1}"]), d) for b in range(nb)]
+
+    wall = summary.get("wall", {}).get("position")
     for snap in sorted(out.glob("snapshot_*.csv")):
-        plot_snapshot(snap, spheres)
+        plot_snapshot(snap, spheres_at, wall)
     fig, ax = plt.subplots(figsize=(9, 5))
     for b in range(nb):
         ax.plot(t, [float(r[f"F{b + 1}"]) for r in rows], label=f"F{b + 1} (simulation)")
