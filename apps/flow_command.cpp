@@ -95,6 +95,8 @@ void check_cost(const flow::FlowScene& sc, const FlowCommandOptions& opt) {
     points += std::max(2.0, std::ceil(M_PI * 0.5 * p.diameter / (sc.ring_spacing * set.h)));
     moving = moving || p.velocity != 0 || p.amplitude != 0;
   }
+  if (sc.wall_position)  // the wall's rings: ~nr on the finest level, ~nr/2 on each coarser one
+    points += (set.nr + (set.levels - 1) * (set.nr / 2 - 1)) / sc.ring_spacing;
   const double q_bytes = 8.0 * (2 * points) * (2 * points);
   const double bytes = 100.0 * vertices + q_bytes * (moving ? 18.0 : 2.0);
   const double phys = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE));
@@ -160,6 +162,14 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   double osc_err = 0, osc_amp = 0;
   if (osc) hist << ",F_stokes_oscillating";
   if (nb == 2) hist << ",gap_D,F_THR1,F_THR2";
+  // one sphere and a wall: f_THR = Brenner's quasi-steady Stokes force −λ(h/a) 6πμaU (no inertia, no history)
+  const bool wall1 = nb == 1 && sc.wall_position.has_value();
+  auto f_thr_wall = [&](const flow::SphereState& b) {
+    const double gap = b.z - b.radius - *sc.wall_position;
+    return -contact::brenner_lambda(gap / b.radius) * 6 * M_PI * mu * b.radius * b.u;
+  };
+  if (sc.wall_position) hist << ",F_wall";
+  if (wall1) hist << ",wall_gap_D,F_THR_wall";
   hist << "\n";
   // two spheres: simulated vs reduced-order force at a few gaps (the seed's Fig. 6.4)
   std::vector<double> report_gaps = {1.0, 0.5, 0.25, 0.1, 0.05};
@@ -169,6 +179,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   int krylov_max = 0;
   double slip_max = 0, last_cd = NAN, min_gap_seen = INFINITY;
   std::vector<double> last_force(nb, 0.0);
+  double last_wall_force = 0;
   int snap = 0;
   long steps_done = 0;
   // impulsive start: compared over 0.8 ≤ νt/a² ≤ 4 (the window of tests/test_flow_drag.cpp)
@@ -184,7 +195,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     const double cd = drag_sign * info.force[0] / q;
     // impulsively started sphere (Stokes + Basset, t > 0): F = 6πμaU (1 + a/√(πνt))
     const double fsb = f_stokes * (1 + a / std::sqrt(M_PI * nu * t));
-    if (nb == 1 && !osc && Re <= 1 && t >= basset_t0 - 1e-12 * basset_t0 && t <= basset_t1 * (1 + 1e-12)) {
+    if (nb == 1 && !osc && !sc.wall_position && Re <= 1 && t >= basset_t0 - 1e-12 * basset_t0 && t <= basset_t1 * (1 + 1e-12)) {
       basset_err = std::max(basset_err, std::abs(drag_sign * info.force[0] - fsb) / fsb);
       basset_any = true;
     }
@@ -197,6 +208,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     walls.push_back(wall);
     last_cd = cd;
     last_force = info.force;
+    last_wall_force = info.wall_force;
     krylov_total += info.krylov_iterations;
     krylov_max = std::max(krylov_max, info.krylov_iterations);
     slip_max = std::max(slip_max, info.slip);
@@ -210,6 +222,8 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
         const auto [t1, t2] = thr->at(next);
         hist << ',' << gap / D << ',' << t1 << ',' << t2;
       }
+      if (sc.wall_position) hist << ',' << info.wall_force;
+      if (wall1) hist << ',' << (next[0].z - next[0].radius - *sc.wall_position) / D << ',' << f_thr_wall(next[0]);
       hist << '\n';
     }
     if (nb == 2) {
@@ -220,6 +234,23 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
         thr_rows.push_back({{"gap_D", gap / D}, {"gap_cells", gap / set.h}, {"resolved", gap >= 3 * set.h}, {"F1", info.force[0]},
                             {"F_THR1", t1}, {"F2", info.force[1]}, {"F_THR2", t2}});
         report_gaps.erase(report_gaps.begin());
+      }
+    }
+    if (wall1) {
+      const double gap = next[0].z - next[0].radius - *sc.wall_position;
+      while (!report_gaps.empty() && gap <= report_gaps.front() * D) {
+        // the sphere's and the wall's delta kernels (3 h wide each) overlap below a 3-cell gap
+        thr_rows.push_back({{"gap_D", gap / D}, {"gap_cells", gap / set.h}, {"resolved", gap >= 3 * set.h}, {"F1", info.force[0]},
+                            {"F_THR1", f_thr_wall(next[0])}, {"F_wall", info.wall_force}});
+        report_gaps.erase(report_gaps.begin());
+      }
+      if (gap < 3 * set.h && min_gap_seen >= 3 * set.h && !opt.quiet)
+        std::cerr << "imcol: warning: at t = " << t << " the wall gap " << gap / D << " D is below 3 cells (h = " << set.h
+                  << "): the sphere's and the wall's delta kernels overlap and the force is not resolved (refine the grid)\n";
+      min_gap_seen = std::min(min_gap_seen, gap);
+      if (sc.min_gap > 0 && gap < sc.min_gap * D) {
+        if (!opt.quiet) std::cout << "  t = " << t << ": wall gap " << gap / D << " D < output.min_gap, stop\n";
+        break;
       }
     }
     if (!opt.quiet && (n % std::max(1L, nsteps / 10) == 0 || n == nsteps)) {
@@ -286,11 +317,13 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
                               {"max_rel_error", basset_err}};
   }
   j["forces_N"] = last_force;
-  if (nb > 1) {
+  if (nb > 1 || wall1) {
     j["min_gap_D"] = min_gap_seen / D;
     j["gap_resolved"] = min_gap_seen >= 3 * set.h;  // false: the forces below a 3-cell gap are not resolved
   }
-  if (nb == 2) j["f_sim_vs_f_thr"] = thr_rows;
+  if (nb == 2 || wall1) j["f_sim_vs_f_thr"] = thr_rows;
+  if (sc.wall_position) j["wall"] = {{"position", *sc.wall_position}, {"force_N", last_wall_force},
+                                      {"f_thr", wall1 ? "Brenner (1961): -lambda(h/a) 6 pi mu a U, quasi-steady Stokes" : ""}};
   if (osc) j["oscillating"] = {{"reference", "F = -6 pi mu a (1 + a/delta) U - 3 pi a^2 sqrt(2 mu rho/omega) (1 + 2a/(9 delta)) dU/dt, at mid-step"},
                                {"delta_over_a", delta / a},
                                {"max_error_last_period_rel_amplitude", osc_amp > 0 ? osc_err / osc_amp : NAN}};
@@ -334,9 +367,15 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
   if (j.contains("wake_length_D") && j["wake_length_D"].is_number()) std::cout << "wake length = " << j["wake_length_D"].get<double>() << " D\n";
   if (j.contains("f_sim_vs_f_thr"))
     for (const auto& r : j["f_sim_vs_f_thr"])
-      std::cout << "gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR " << r["F_THR1"].get<double>()
-                << "), F2 = " << r["F2"].get<double>() << " (f_THR " << r["F_THR2"].get<double>() << ") N"
-                << (r["resolved"].get<bool>() ? "" : "  [not resolved: gap below 3 cells]") << "\n";
+      if (r.contains("F_wall"))
+        std::cout << "wall gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR Brenner " << r["F_THR1"].get<double>()
+                  << ", " << std::setprecision(3) << 100 * (r["F1"].get<double>() / r["F_THR1"].get<double>() - 1) << std::setprecision(5)
+                  << " %), wall " << r["F_wall"].get<double>() << " N" << (r["resolved"].get<bool>() ? "" : "  [not resolved: gap below 3 cells]")
+                  << "\n";
+      else
+        std::cout << "gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR " << r["F_THR1"].get<double>()
+                  << "), F2 = " << r["F2"].get<double>() << " (f_THR " << r["F_THR2"].get<double>() << ") N"
+                  << (r["resolved"].get<bool>() ? "" : "  [not resolved: gap below 3 cells]") << "\n";
   if (j.contains("oscillating"))
     std::cout << "oscillating sphere vs unsteady Stokes (delta/a = " << j["oscillating"]["delta_over_a"].get<double>()
               << "): max error over the last period " << 100 * j["oscillating"]["max_error_last_period_rel_amplitude"].get<double>()
@@ -351,7 +390,8 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
   if (opt.plot) {
     std::cout.flush();
     run_plot_script("plot_flow.py", dir, "forces.png");  // also snapshot_NN.png
-    if (j.contains("f_sim_vs_f_thr")) run_plot_script("plot_force_vs_gap.py", dir, "forces_vs_gap.png");  // seed Fig. 6.4
+    if (j.contains("f_sim_vs_f_thr") && !j.contains("wall"))
+      run_plot_script("plot_force_vs_gap.py", dir, "forces_vs_gap.png");  // seed Fig. 6.4 (a wall: plot_flow.py draws it)
   }
   return 0;
 }

@@ -6,6 +6,10 @@
 // drag curve, the observed order from successive refinements and a first-order Richardson extrapolation.
 //   imcol_flow_cost [--cells 32,64,128] [--levels 1,2,3] [--steps 20] [--steady [--steady-cells 48]]
 //   imcol_flow_cost --refine data/scenes/flow/fixed_sphere_re20.toml --cells 32,48,64
+// (--wall) the plane no-slip wall: the quasi-steady Stokes force on a sphere moving toward the wall at fixed gaps
+// against Brenner's λ(h/a), the force on the wall, the same in the sphere's frame (wall and far fluid moving), and the
+// cost per step with and without the wall (fixed and moving sphere).
+//   imcol_flow_cost --wall --cells 16,32 [--levels 8] [--re 0.1] [--gaps 3,2,1,0.5,0.25,0.125,0.1,0.05] [--steps 100]
 #include <sys/resource.h>
 
 #include <chrono>
@@ -17,12 +21,19 @@
 #include <vector>
 
 #include "apps/flow_command.hpp"
+#include "contact/formulas.hpp"
 #include "flow/flow_scene.hpp"
 #include "flow/solver.hpp"
 
 using namespace imcol::flow;
 
 namespace {
+std::vector<double> parse_dlist(const char* s) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  for (std::string x; std::getline(ss, x, ',');) v.push_back(std::atof(x.c_str()));
+  return v;
+}
 std::vector<int> parse_list(const char* s) {
   std::vector<int> v;
   std::stringstream ss(s);
@@ -34,13 +45,106 @@ long peak_rss_kb() {
   getrusage(RUSAGE_SELF, &u);
   return u.ru_maxrss;
 }
+// D = 1, U = 1, ρ = 1, ν = 1/Re; wall at z = 0 (sphere on its +z side), finest level r < 1.5 D, −0.5 D < z < 4.5 D.
+// Backward Euler with Δt = 1.6 to the steady state (as the Stokes-drag test).
+Settings wall_settings(double Re, int cpd, int levels, bool wall, double dt = 1.6, double theta = 1.0) {
+  Settings s;
+  s.nu = 1.0 / Re;
+  s.dt = dt;
+  s.theta = theta;
+  s.h = 1.0 / cpd;
+  s.nr = static_cast<int>(std::lround(1.5 * cpd));
+  s.nr += s.nr % 2;
+  s.nz = static_cast<int>(std::lround(5.0 * cpd));
+  s.nz += (4 - s.nz % 4) % 4;
+  s.levels = levels;
+  s.z_center = -0.5 + 0.5 * s.nz * s.h;
+  if (wall) s.wall_z = 0.0;
+  return s;
+}
+
+struct WallRun { double F, F_half, wall_force; double setup_s; };
+/// Sphere (a = ½) held at surface gap `gap` with surface velocity u_sphere along +z, the wall's surface at u_wall, the
+/// far fluid at u_inf: steps until the steady state; F (N along +z), F after half the steps (settling), wall force.
+WallRun wall_run(const Settings& base, double gap, double u_sphere, double u_frame, int steps) {
+  Settings s = base;
+  s.u_inf = u_frame;
+  s.wall_velocity = u_frame;
+  const SphereState sp{0.5, 0.5 + gap, u_sphere};
+  Solver solver(s, {sp});
+  WallRun r{};
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int n = 1; n <= steps; ++n) {
+    const auto info = solver.step({sp});
+    if (n == 1) r.setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (n == steps / 2) r.F_half = info.force[0];
+    r.F = info.force[0];
+    r.wall_force = info.wall_force;
+  }
+  return r;
+}
+
+int wall_mode(const std::vector<int>& cells, int levels, double Re, const std::vector<double>& gaps, int steps) {
+  std::printf("plane wall z = 0, sphere D = 1 moving toward it at U = 1 held at each gap (quasi-steady), Re = %g, %d levels, "
+              "finest r < 1.5 D, -0.5 D < z < 4.5 D; backward Euler dt = 1.6, %d steps\n", Re, levels, steps);
+  const double mu = 1.0 / Re, a = 0.5, Fst = 6 * M_PI * mu * a;
+  for (int c : cells) {
+    // the same grid's free sphere (no wall; the same frozen-position set-up) for its bias
+    const WallRun free = wall_run(wall_settings(Re, c, levels, false), 3.0, -1.0, 0.0, steps);
+    const double S = free.F / Fst;
+    std::printf("\n%d cells/D: free sphere (no wall) F/6 pi mu a U = %.4f (the grid's bias), settled to %.1e\n", c, S,
+                std::abs(free.F / free.F_half - 1));
+    std::printf("%7s %6s %7s %9s %9s %9s %9s %11s %9s %9s %9s\n", "gap/D", "h/a", "cells", "Brenner", "computed", "error%",
+                "/free", "err/free%", "-Fwall/F", "frame F", "settle");
+    for (double gap : gaps) {
+      const double ha = 2 * gap, lam = imcol::contact::brenner_lambda(ha);
+      const WallRun w = wall_run(wall_settings(Re, c, levels, true), gap, -1.0, 0.0, steps);
+      // the sphere's frame: sphere at rest, the wall and the far fluid moving at +U toward it
+      const WallRun f = wall_run(wall_settings(Re, c, levels, true), gap, 0.0, 1.0, steps);
+      const double lsim = w.F / Fst;
+      std::printf("%7.3f %6.3f %7.2f %9.4f %9.4f %9.2f %9.4f %11.2f %9.4f %9.4f %9.1e%s\n", gap, ha, gap * c, lam, lsim,
+                  100 * (lsim / lam - 1), lsim / S, 100 * (lsim / S / lam - 1), -w.wall_force / w.F, f.F / Fst,
+                  std::abs(w.F / w.F_half - 1), gap * c < 3 ? "  (gap < 3 cells)" : "");
+    }
+  }
+  // cost per step: fixed sphere (LU) and moving sphere (GMRES), with and without the wall, 32 cells/D (or the last)
+  const int c = cells.back();
+  std::printf("\ncost per step, %d cells/D, %d levels, Crank-Nicolson dt = 0.01, sphere from a 2 D gap (median of 20 steps after 60 warm-up steps, so that the moving sphere's 16 preconditioner blocks are built; setup = step 1)\n",
+              c, levels);
+  std::printf("%8s %8s %12s %10s %10s %12s %12s\n", "sphere", "wall", "unknowns", "setup s", "ms/step", "gmres it", "solver MB");
+  for (bool moving : {false, true})
+    for (bool wall : {false, true}) {
+      Settings s = wall_settings(Re, c, levels, wall, 0.01, 0.5);
+      SphereState sp{0.5, 0.5 + 2.0, -1.0};
+      Solver solver(s, {sp});
+      auto adv = [&]() { if (moving) sp.z += sp.u * s.dt; return solver.step({sp}); };
+      const auto t0 = std::chrono::steady_clock::now();
+      adv();
+      const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      for (int n = 0; n < 59; ++n) adv();
+      std::vector<double> t;
+      long it = 0;
+      for (int n = 0; n < 20; ++n) {
+        const auto t1 = std::chrono::steady_clock::now();
+        it += adv().krylov_iterations;
+        t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
+      }
+      std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+      std::printf("%8s %8s %12zu %10.2f %10.3f %12.1f %12.2f\n", moving ? "moving" : "fixed", wall ? "yes" : "no",
+                  2 * solver.points().size() + solver.wall_unknowns(), setup, t[t.size() / 2], it / 20.0, solver.bytes() / 1048576.0);
+    }
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<int> cells = {32, 64, 128}, levels = {1, 2, 3};
   int steps = 20, steady_cells = 0;
-  bool steady = false;
+  bool steady = false, wall = false;
   std::string refine;
+  int wall_levels = 8, wall_steps = 100;
+  double wall_re = 0.1;
+  std::vector<double> gaps = {3, 2, 1, 0.5, 0.25, 0.125, 0.1, 0.05};
   for (int k = 1; k < argc; ++k) {
     const std::string a = argv[k];
     if (a == "--cells" && k + 1 < argc) cells = parse_list(argv[++k]);
@@ -49,11 +153,17 @@ int main(int argc, char** argv) {
     else if (a == "--steady") steady = true;
     else if (a == "--refine" && k + 1 < argc) refine = argv[++k];
     else if (a == "--steady-cells" && k + 1 < argc) steady_cells = std::atoi(argv[++k]);
+    else if (a == "--wall") wall = true;
+    else if (a == "--re" && k + 1 < argc) wall_re = std::atof(argv[++k]);
+    else if (a == "--gaps" && k + 1 < argc) gaps = parse_dlist(argv[++k]);
+    else if (a == "--wall-levels" && k + 1 < argc) wall_levels = std::atoi(argv[++k]);
+    else if (a == "--wall-steps" && k + 1 < argc) wall_steps = std::atoi(argv[++k]);
     else {
       std::fprintf(stderr, "usage: %s [--cells 32,64,128] [--levels 1,2,3] [--steps N] [--steady [--steady-cells C]]\n", argv[0]);
       return 2;
     }
   }
+  if (wall) return wall_mode(cells, wall_levels, wall_re, gaps, wall_steps);
   if (!refine.empty()) {
     const imcol::flow::FlowScene sc = imcol::flow::load_flow_scene(refine);
     std::printf("%s: Re = %g, %d levels, finest r < %g D, %g D < z < %g D; dt = %g x (%d / cells)\n", sc.name.c_str(), sc.Re(),

@@ -46,6 +46,7 @@ Settings FlowScene::settings() const {
   s.ring_spacing = ring_spacing;
   s.direct_when_fixed = direct_when_fixed;
   s.measure_plans = measure_plans;
+  s.wall_z = wall_position;
   return s;
 }
 
@@ -65,6 +66,12 @@ std::string FlowScene::where(int line, std::initializer_list<const char*> opts) 
     if (overridden.count(o)) cl += (cl.empty() ? "" : ", ") + std::string(o);
   if (!cl.empty()) return "command line (" + cl + ")";
   return line > 0 ? path + ":" + std::to_string(line) : path;
+}
+
+double wall_gap(const FlowScene& sc, std::size_t i, double t) {
+  if (!sc.wall_position) return INFINITY;
+  const auto& p = sc.spheres[i];
+  return p.position + p.velocity * t - 0.5 * p.diameter - *sc.wall_position;
 }
 
 void check_flow_scene(const FlowScene& sc) {
@@ -95,6 +102,28 @@ void check_flow_scene(const FlowScene& sc) {
   // every sphere inside the finest level over the whole run, 3 cells clear of its edges
   const Settings s = sc.settings();
   const double zlo = s.z_center - 0.5 * s.nz * s.h, zhi = s.z_center + 0.5 * s.nz * s.h, rhi = s.nr * s.h;
+  if (sc.wall_position) {
+    const double zw = *sc.wall_position;
+    if (sc.stream != 0)
+      throw InputError(sc.where(sc.line_stream), "stream.velocity",
+                       "a stream cannot be combined with a [wall] (the fluid far away is at rest with the wall; move the sphere instead)");
+    if (zw < zlo + 3 * s.h || zw > zhi - 3 * s.h)
+      throw InputError(sc.where(sc.line_wall, {"--cells"}), "wall.position",
+                       "the wall z = " + fmt_number(zw) + " must lie inside the finest grid (z in [" + fmt_number(zlo) + ", " + fmt_number(zhi) +
+                           "], 3 cells clear)");
+    for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
+      const auto& p = sc.spheres[i];
+      for (double t : {0.0, sc.t_end}) {
+        if (t > 0 && sc.min_gap > 0) continue;
+        const double gap = wall_gap(sc, i, t) - (t > 0 ? std::abs(p.amplitude) : 0.0);
+        if (gap <= 0)
+          throw InputError(t > 0 ? sc.where(p.line, {"--t-end"}) : sc.where(p.line), "sphere[" + std::to_string(i) + "]",
+                           t > 0 ? "sphere " + std::to_string(i + 1) + " would reach the wall by t = " + fmt_number(t) +
+                                       " (shorten time.t_end or set output.min_gap)"
+                                 : "sphere " + std::to_string(i + 1) + " touches the wall or is below it at t = 0 (spheres go on the wall's +z side)");
+      }
+    }
+  }
   for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
     const auto& p = sc.spheres[i];
     const double a = 0.5 * p.diameter;
@@ -135,6 +164,15 @@ FlowScene load_flow_scene(const std::string& path) {
     sc.stream = r.number("velocity", 0.0);
     const toml::node* v = st->get("velocity");
     sc.line_stream = static_cast<int>((v ? v->source() : st->source()).begin.line);
+    r.finish();
+  }
+  if (const toml::table* w = top.table("wall")) {
+    Reader r(*w, "wall", path);
+    const toml::node* v = w->get("position");
+    sc.line_wall = static_cast<int>((v ? v->source() : w->source()).begin.line);
+    if (!v) throw InputError(sc.where(sc.line_wall), "wall.position", "missing (the wall's z, m; spheres on its +z side)");
+    sc.wall_position = r.number("position", 0.0);
+    if (!std::isfinite(*sc.wall_position)) r.fail("position", "must be a finite number");
     r.finish();
   }
   const toml::node* sn = top.node("sphere");

@@ -1,8 +1,10 @@
 #pragma once
-// Flow scenes (data/scenes/flow/*.toml): spheres on the axis, fixed or on prescribed trajectories
+// Flow scenes (data/scenes/flow/*.toml): spheres on the axis, fixed or on prescribed trajectories, optionally above a
+// plane no-slip wall ([wall] position = z_w: the spheres on its +z side, the fluid far away at rest, no stream)
 // z(t) = position + velocity·t + amplitude·(1 − cos 2π frequency t) (from rest), optionally in a uniform stream; the grid, time step and solver settings.
 // Parsed with toml++; bad input throws InputError naming file:line and key. SI units (any consistent units work).
 #include <initializer_list>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -25,6 +27,9 @@ struct FlowScene {
   double density = 0, viscosity = 0;  // kg/m³, Pa s
   double stream = 0;                  // uniform stream along +z, m/s
   std::vector<FlowSphere> spheres;
+  // optional plane no-slip wall z = wall_position (m), normal to the axis; every sphere stays on its +z side
+  std::optional<double> wall_position;
+  int line_wall = 0;  // line of the [wall] table (or of its position key)
   // grid (lengths in units of the first sphere's diameter D)
   int cells_per_diameter = 32;
   int levels = 3;
@@ -60,6 +65,8 @@ struct FlowScene {
 };
 
 FlowScene load_flow_scene(const std::string& path);
+/// Surface gap of sphere i (0-based) to the wall at time t (without its oscillation), m; +inf without a wall.
+double wall_gap(const FlowScene& sc, std::size_t i, double t);
 /// Relative motion present; dt ≤ t_end; spheres apart at t = 0 and t_end (unless a min_gap stop); every sphere inside
 /// the finest level (3 cells clear) at t = 0 and t_end. Throws InputError naming file:line, or the command-line option
 /// that caused the problem.

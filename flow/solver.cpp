@@ -37,6 +37,7 @@ Solver::Solver(const Settings& s, std::vector<SphereState> spheres) : s_(s), sph
   }
   // before the first step the fluid (inside the spheres too) moves with the initial flow: ψ = 0, velocity U∞
   u_in_.assign(sph_.size(), s.u_inf);
+  build_wall();
   build_points(sph_);
 }
 
@@ -45,6 +46,8 @@ std::size_t Solver::bytes() const {
   for (const auto& L : lv_) b += 7 * L.g.size() * sizeof(double) + L.fast->bytes();
   b += static_cast<std::size_t>(B_.nonZeros()) * (sizeof(double) + sizeof(int));
   if (lu_) b += static_cast<std::size_t>(lu_->matrixLU().size()) * sizeof(double);
+  for (const auto& B : Bw_) b += static_cast<std::size_t>(B.nonZeros()) * (sizeof(double) + sizeof(int));
+  if (wall_lu_) b += static_cast<std::size_t>(wall_lu_->matrixLU().size()) * sizeof(double);
   for (const auto& bins : prec_cache_)
     for (const auto& blk : bins)
       if (blk) b += static_cast<std::size_t>(blk->matrixLU().size()) * sizeof(double);
@@ -60,9 +63,58 @@ void Solver::build_points(const std::vector<SphereState>& sp) {
     if (!(b.radius > 0)) throw std::invalid_argument("flow: sphere radius must be > 0");
     if (b.z - b.radius < g.z0 + margin || b.z + b.radius > g.z(g.nz) - margin || b.radius > g.r(g.nr) - margin)
       throw std::runtime_error("flow: sphere " + std::to_string(k + 1) + " leaves the finest grid (keep 3 cells clear)");
+    if (s_.wall_z && std::abs(b.z - *s_.wall_z) <= b.radius)
+      throw std::runtime_error("flow: sphere " + std::to_string(k + 1) + " touches or crosses the wall at z = " + std::to_string(*s_.wall_z));
     add_sphere_rings(pts_, b.radius, b.z, g.h, s_.ring_spacing, static_cast<int>(k));
   }
   B_ = velocity_at_points(g, pts_);
+}
+
+void Solver::build_wall() {
+  wall_pts_.assign(lv_.size(), BodyPoints{});
+  Bw_.clear();
+  wall_count_ = 0;
+  if (!s_.wall_z) return;
+  const double zw = *s_.wall_z;
+  if (!std::isfinite(zw)) throw std::invalid_argument("flow: wall_z must be finite");
+  for (std::size_t l = 0; l < lv_.size(); ++l) {
+    const LevelGeometry& g = lv_[l].g;
+    if (zw < g.z0 + 3 * g.h || zw > g.z(g.nz) - 3 * g.h)
+      throw std::invalid_argument("flow: the wall z = " + std::to_string(zw) + " must lie inside the finest level, 3 cells clear");
+    // finest level from the axis out; each coarser level outside the finer one (its source is never overwritten by
+    // coarsify: restrict_interior writes coarse vertices I < nr/2 only, and the stencil of a ring at r ≥ (nr/2 + 1)H
+    // touches vertices I ≥ nr/2); each level's out to R − 2.5H, where a ring's stencil still ends on interior
+    // vertices (i ≤ nr − 1) that the full weighting carries to the coarser level: with rings closer to the edge the
+    // plate's edge vorticity was dropped and a uniform pressure jump across it became nearly invisible (a spurious
+    // uniform load, 6 times the sphere's force)
+    const double sp = s_.ring_spacing * g.h;
+    double r = l == 0 ? 0.5 * sp : (g.nr / 2 + 1) * g.h;
+    const double rmax = g.r(g.nr) - 2.5 * g.h;
+    auto& P = wall_pts_[l];
+    for (; r <= rmax * (1 + 1e-12); r += sp) {
+      P.r.push_back(r);
+      P.z.push_back(zw);
+      P.ds.push_back(sp);
+      P.body.push_back(-1);
+    }
+    Bw_.push_back(velocity_at_points(g, P));
+    wall_count_ += P.size();
+  }
+}
+
+Eigen::VectorXd Solver::point_velocity(std::vector<double> Level::*psi) const {
+  const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
+  Eigen::VectorXd u(ns + static_cast<Eigen::Index>(2 * wall_count_));
+  Eigen::Map<const Eigen::VectorXd> p0((lv_[0].*psi).data(), static_cast<Eigen::Index>((lv_[0].*psi).size()));
+  u.head(ns) = B_ * p0;
+  Eigen::Index o = ns;
+  for (std::size_t l = 0; l < Bw_.size(); ++l) {
+    Eigen::Map<const Eigen::VectorXd> pl((lv_[l].*psi).data(), static_cast<Eigen::Index>((lv_[l].*psi).size()));
+    const Eigen::Index n = Bw_[l].rows();
+    u.segment(o, n) = Bw_[l] * pl;
+    o += n;
+  }
+  return u;
 }
 
 void Solver::nonlinear(const Level& L, double u_inf, std::vector<double>& out) {
@@ -169,21 +221,34 @@ void Solver::solve_levels(int op, std::vector<double> Level::*rhs, std::vector<d
 
 Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
   // source on the finest level: Δt R Bᵀg/(2πh²) at interior vertices; restricted onto every coarser level
-  Level& F = lv_[0];
-  const LevelGeometry& G = F.g;
-  Eigen::Map<Eigen::VectorXd> s(F.src.data(), static_cast<Eigen::Index>(F.src.size()));
-  s.noalias() = B_.transpose() * g;
-  const double scale = s_.dt / (2 * M_PI * G.h * G.h);
-  for (int i = 0; i <= G.nr; ++i)
-    for (int j = 0; j <= G.nz; ++j) F.src[G.at(i, j)] *= (i == 0 || i == G.nr || j == 0 || j == G.nz) ? 0.0 : scale * G.r(i);
-  for (std::size_t l = 1; l < lv_.size(); ++l) std::fill(lv_[l].src.begin(), lv_[l].src.end(), 0.0);
+  // (with a wall: each level's wall rings spread onto their own level too, outside the finer level)
+  const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
+  Eigen::Index o = ns;
+  for (std::size_t l = 0; l < lv_.size(); ++l) {
+    Level& L = lv_[l];
+    const LevelGeometry& G = L.g;
+    Eigen::Map<Eigen::VectorXd> s(L.src.data(), static_cast<Eigen::Index>(L.src.size()));
+    if (l == 0)
+      s.noalias() = B_.transpose() * g.head(ns);
+    else
+      s.setZero();
+    if (l < Bw_.size()) {
+      const Eigen::Index n = Bw_[l].rows();
+      s.noalias() += Bw_[l].transpose() * g.segment(o, n);
+      o += n;
+    } else if (l > 0) {
+      continue;
+    }
+    const double scale = s_.dt / (2 * M_PI * G.h * G.h);
+    for (int i = 0; i <= G.nr; ++i)
+      for (int j = 0; j <= G.nz; ++j) L.src[G.at(i, j)] *= (i == 0 || i == G.nr || j == 0 || j == G.nz) ? 0.0 : scale * G.r(i);
+  }
   viscous_then_streamfunction(&Level::src, &Level::etac, &Level::psic);  // η_c, ψ_c: the same operator as the step's
-  Eigen::Map<const Eigen::VectorXd> px(F.psic.data(), static_cast<Eigen::Index>(F.psic.size()));
-  return B_ * px;
+  return point_velocity(&Level::psic);
 }
 
 Eigen::MatrixXd Solver::force_matrix() {
-  const Eigen::Index m = static_cast<Eigen::Index>(2 * pts_.size());
+  const Eigen::Index m = static_cast<Eigen::Index>(2 * (pts_.size() + wall_count_));
   Eigen::MatrixXd Q(m, m);
   for (Eigen::Index c = 0; c < m; ++c) Q.col(c) = apply_Q(Eigen::VectorXd::Unit(m, c));
   return Q;
@@ -191,6 +256,8 @@ Eigen::MatrixXd Solver::force_matrix() {
 
 StepInfo Solver::step(const std::vector<SphereState>& next) {
   if (next.size() != sph_.size()) throw std::invalid_argument("flow: sphere count changed");
+  if (s_.wall_z && s_.u_inf != s_.wall_velocity)
+    throw std::invalid_argument("flow: with a wall the far fluid must move with it (u_inf = wall_velocity): a stream cannot cross the plate");
   const int NL = static_cast<int>(lv_.size());
   const double dt = s_.dt, nu = s_.nu, th = s_.theta;
   // 1. explicit part of the vorticity equation on every level (advection AB2, viscous (1 − θ)), then the finer
@@ -213,15 +280,15 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
   bool moved = false;
   for (std::size_t k = 0; k < next.size(); ++k) moved = moved || next[k].z != sph_[k].z;
   if (moved || pts_.size() == 0) build_points(next);
-  Level& F = lv_[0];
-  const Eigen::Index m = static_cast<Eigen::Index>(2 * pts_.size());
+  const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
+  const Eigen::Index m = ns + static_cast<Eigen::Index>(2 * wall_count_);
   Eigen::VectorXd rhs(m);
+  auto target_uz = [&](Eigen::Index k) { return (k < ns / 2 ? next[pts_.body[k]].u : s_.wall_velocity) - s_.u_inf; };
   {
-    Eigen::Map<const Eigen::VectorXd> ps(F.psi.data(), static_cast<Eigen::Index>(F.psi.size()));
-    Eigen::VectorXd u = B_ * ps;
-    for (std::size_t k = 0; k < pts_.size(); ++k) {
+    const Eigen::VectorXd u = point_velocity(&Level::psi);
+    for (Eigen::Index k = 0; k < m / 2; ++k) {
       rhs[2 * k] = -u[2 * k];
-      rhs[2 * k + 1] = next[pts_.body[k]].u - s_.u_inf - u[2 * k + 1];
+      rhs[2 * k + 1] = target_uz(k) - u[2 * k + 1];
     }
   }
   if (g_.size() != m) {
@@ -262,6 +329,16 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       prec_.push_back({o, n, slot[bin]});
       k = e;
     }
+    if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the whole run
+      const Eigen::Index nw = static_cast<Eigen::Index>(2 * wall_count_);
+      if (!wall_lu_ || wall_lu_->rows() != nw) {
+        Eigen::MatrixXd blk(nw, nw);
+        for (Eigen::Index c = 0; c < nw; ++c) blk.col(c) = apply_Q(Eigen::VectorXd::Unit(m, ns + c)).segment(ns, nw);
+        wall_lu_ = std::make_shared<BlockLU>(blk);
+        ++prec_builds_;
+      }
+      prec_.push_back({ns, nw, wall_lu_});
+    }
     if (g_prev_.size() == m) {  // warm start: linear extrapolation of the last two steps' forces
       const Eigen::VectorXd g1 = g_;
       g_ = 2 * g_ - g_prev_;
@@ -282,17 +359,17 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       L.psi[p] += L.psic[p];
     }
   {
-    Eigen::Map<const Eigen::VectorXd> ps(F.psi.data(), static_cast<Eigen::Index>(F.psi.size()));
-    Eigen::VectorXd u = B_ * ps;
-    for (std::size_t k = 0; k < pts_.size(); ++k) {
+    const Eigen::VectorXd u = point_velocity(&Level::psi);
+    for (Eigen::Index k = 0; k < m / 2; ++k) {
       info.slip = std::max(info.slip, std::abs(u[2 * k]));
-      info.slip = std::max(info.slip, std::abs(u[2 * k + 1] + s_.u_inf - next[pts_.body[k]].u));
+      info.slip = std::max(info.slip, std::abs(u[2 * k + 1] - target_uz(k)));
     }
   }
   // 5. forces on the spheres: ring forces + the momentum change of the fluid inside (from u_in to U^{n+1})
   info.force.assign(next.size(), 0.0);
   info.internal.assign(next.size(), 0.0);
   for (std::size_t k = 0; k < pts_.size(); ++k) info.force[pts_.body[k]] -= s_.density * g_[2 * k + 1];
+  for (Eigen::Index k = ns / 2; k < m / 2; ++k) info.wall_force -= s_.density * g_[2 * k + 1];
   for (std::size_t b = 0; b < next.size(); ++b) {
     const double V = 4.0 / 3.0 * M_PI * std::pow(next[b].radius, 3);
     info.internal[b] = s_.density * V * (next[b].u - u_in_[b]) / dt;
@@ -315,6 +392,7 @@ void Solver::check_finite(const StepInfo& info) const {
   };
   for (std::size_t b = 0; b < info.force.size(); ++b)
     if (!std::isfinite(info.force[b])) fail("the force on sphere " + std::to_string(b + 1) + " is not finite");
+  if (!std::isfinite(info.wall_force)) fail("the force on the wall is not finite");
   if (!std::isfinite(info.slip)) fail("the slip velocity at the body points is not finite");
   for (std::size_t l = 0; l < lv_.size(); ++l) {
     double sum = 0;

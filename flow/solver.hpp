@@ -28,10 +28,23 @@
 // the initial flow (ψ = 0, so u_in = U∞, the stream); after every step no-slip makes it move with the sphere
 // (u_in = U_s). A sphere prescribed at U from t = 0 in fluid at rest therefore gets ρVU/Δt on step 1, and the
 // step-1 impulse is ρVU (fluid inside) + ½ρVU (added mass) + viscous, as for a real impulsive start.
+//
+// Wall (Settings::wall_z): a plane no-slip wall normal to the axis made of immersed points, a thin plate at z = z_w
+// (fluid on both sides; a sphere on one side sees a no-slip plane). Rings of points (u_r = 0, u_z = wall_velocity)
+// on every level, each in its own level's spacing: the finest level's from r = ½h out to R₀ − 2.5h (R_ℓ = nr·2^ℓh
+// the level's radius), level ℓ ≥ 1's from R_{ℓ−1} + 2^ℓh (outside the finer level, so that coarsify never
+// overwrites their source) out to R_ℓ − 2.5·2^ℓh (so that the plate edge's vorticity source lands on interior
+// vertices that the restriction also carries down); the coarsest level's zero far field (ψ = 0 at r = R_{L−1})
+// closes it. So the plate spans the whole domain, with a gap of 2.25 coarse cells between the rings of adjacent
+// levels (the plate's force there is 1–9 % off the sphere's: docs/flow-kernel.md).
+// Coarse rings spread and interpolate on their own level (B_ℓ from that level's ψ); the force system grows by the
+// wall's unknowns (ordering: sphere points, then the wall level by level). The wall's own block of Q never changes:
+// it is LU-factorised once and preconditions GMRES for moving spheres next to each sphere's block.
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -57,6 +70,10 @@ struct Settings {
   bool direct_when_fixed = true;  // LU of Q while the bodies stay put
   int preconditioner_bins = 16;   // GMRES: sub-cell offsets per finest cell with their own preconditioner block
   bool measure_plans = false;     // FFTW_MEASURE instead of FFTW_ESTIMATE
+  // Optional plane no-slip wall z = wall_z normal to the axis (immersed points, see "Wall" above). Its surface moves
+  // along +z at wall_velocity (normally 0; the plate itself stays at wall_z). No sphere may cross the plane.
+  std::optional<double> wall_z;
+  double wall_velocity = 0;       // m/s
 };
 
 /// One sphere on the axis at one instant.
@@ -68,6 +85,7 @@ struct SphereState {
 
 struct StepInfo {
   std::vector<double> force;     // N on each sphere along +z (ring forces + internal fluid)
+  double wall_force = 0;         // N on the wall along +z (both faces of the plate; 0 without a wall)
   std::vector<double> internal;  // N, the internal-fluid part ρ V dU/dt
   int krylov_iterations = 0;         // GMRES iterations, 0 with the direct solve
   double krylov_residual = 0;        // relative
@@ -92,6 +110,9 @@ class Solver {
   /// Sets the uniform stream U∞ for the coming steps: a frame translating at −U∞ (MODEL.md §5). The vorticity is
   /// the same in every translating frame; the force in the frame misses the frame's buoyancy-like ρ V a_frame.
   void set_stream(double u_inf) { s_.u_inf = u_inf; }
+  /// Sets the wall's surface velocity (along +z) for the coming steps; with a wall, set_stream and set_wall_velocity
+  /// move together (a translating frame moves the wall's surface and the far fluid alike).
+  void set_wall_velocity(double u) { s_.wall_velocity = u; }
   double time() const { return t_; }
   long steps() const { return n_; }
   long preconditioner_blocks_built() const { return prec_builds_; }  // GMRES preconditioner blocks factorised so far
@@ -99,6 +120,11 @@ class Solver {
   const std::vector<Level>& levels() const { return lv_; }
   const std::vector<SphereState>& spheres() const { return sph_; }
   const BodyPoints& points() const { return pts_; }
+  /// The wall's points on level ℓ (empty without a wall); their positions are in metres on that level.
+  const std::vector<BodyPoints>& wall_points() const { return wall_pts_; }
+  std::size_t wall_unknowns() const { return 2 * wall_count_; }
+  /// The last step's point forces (m⁴/s², kinematic): (r, z) of each sphere point, then of each wall point by level.
+  const Eigen::VectorXd& point_forces() const { return g_; }
   /// Axial velocity on the axis of the finest level (extrapolated from r = h/2, 3h/2), at z_j, m/s.
   std::vector<double> axis_velocity() const;
   /// Recirculation length behind sphere s (downstream of its rear, in the stream direction), m; 0 if none.
@@ -116,6 +142,9 @@ class Solver {
 
  private:
   void build_points(const std::vector<SphereState>& sp);
+  void build_wall();
+  /// Velocities at all points (sphere points from the finest ψ, then wall points from their level's ψ).
+  Eigen::VectorXd point_velocity(std::vector<double> Level::*psi) const;
   void check_finite(const StepInfo& info) const;  // throws SolverError naming the quantity and the time
   void coarsify(std::vector<double> Level::*field);  // fine-to-coarse full weighting, finest first
   void solve_levels(int op, std::vector<double> Level::*rhs, std::vector<double> Level::*x);  // coarsest to finest
@@ -136,6 +165,10 @@ class Solver {
   std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
   std::vector<std::vector<std::shared_ptr<BlockLU>>> prec_cache_;  // [sphere][offset bin]
   long prec_builds_ = 0;
+  std::vector<BodyPoints> wall_pts_;  // per level
+  std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>> Bw_;  // per level: velocity at its wall points
+  std::size_t wall_count_ = 0;        // wall points over all levels
+  std::shared_ptr<BlockLU> wall_lu_;  // the wall's own block of Q (GMRES preconditioner), built once
   std::vector<double> fixed_z_;  // sphere positions of the factorised Q
   std::unique_ptr<Eigen::PartialPivLU<Eigen::MatrixXd>> lu_;
   std::vector<double> u_in_;  // velocity of the fluid inside each sphere at t^n (see the convention above)

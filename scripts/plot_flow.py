@@ -2,7 +2,9 @@
 """Plot an `imcol flow` run: vorticity and streamlines of each snapshot, and the force history.
 
 Usage: /usr/bin/python3 scripts/plot_flow.py DIR
-Reads DIR/snapshot_NN.csv and DIR/forces.csv; writes DIR/snapshot_NN.png and DIR/forces.png.
+Reads DIR/snapshot_NN.csv and DIR/forces.csv; writes DIR/snapshot_NN.png and DIR/forces.png; for a sphere
+approaching a wall also DIR/forces_vs_gap.png and DIR/forces_vs_gap.csv (f_SIM against Brenner's f_THR, like the
+seed's Fig. 6.4 for pairs).
 Needs Debian's python3-matplotlib and numpy (importable from /usr/bin/python3 only).
 """
 import csv
@@ -11,7 +13,45 @@ from pathlib import Path
 
 import numpy as np
 
-from imcol_plot import out_dir, plt, save_png
+from imcol_plot import out_dir, plt, save_png, write_text
+
+
+def plot_wall_gap(out: Path, rows, summary) -> None:
+    """f_SIM against f_THR (Brenner) and the force on the wall, against the wall gap (gap <= 2 D)."""
+    rows = [r for r in rows if 0 < float(r["wall_gap_D"]) <= 2.0]
+    if not rows:
+        return
+    keys = ("wall_gap_D", "F1", "F_THR_wall", "F_wall")
+    write_text(out / "forces_vs_gap.csv", "\n".join([",".join(keys)] + [",".join(r[k] for k in keys) for r in rows]) + "\n")
+    gap = np.array([float(r["wall_gap_D"]) for r in rows])
+    fs, ft, fw = (np.array([float(r[k]) for r in rows]) for k in ("F1", "F_THR_wall", "F_wall"))
+    h = summary["grid"]["h"] / (summary["grid"]["h"] * summary["grid"]["cells_per_diameter"])  # cell / D
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    ax = axes[0]
+    ax.plot(gap, fs, label="f_SIM (flow kernel)")
+    ax.plot(gap, ft, "--", label="f_THR: Brenner λ(h/a) 6πμaU (quasi-steady Stokes)")
+    ax.plot(gap, -fw, ":", label="−(force on the wall)")
+    ax.axvline(3 * h, color="grey", lw=0.8, ls=":", label="3 cells (below: not resolved)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.invert_xaxis()
+    ax.set_xlabel("gap / D")
+    ax.set_ylabel("force along +z [N]")
+    ax.set_title("(a) hydrodynamic force on the sphere approaching the wall")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    ax = axes[1]
+    ax.plot(gap, 100 * (fs / ft - 1))
+    ax.axvline(3 * h, color="grey", lw=0.8, ls=":")
+    ax.set_xscale("log")
+    ax.invert_xaxis()
+    ax.set_xlabel("gap / D")
+    ax.set_ylabel("f_SIM / f_THR − 1 [%]")
+    ax.set_title(f"(b) difference ({summary['grid']['cells_per_diameter']} cells/D)")
+    ax.grid(alpha=0.3, which="both")
+    fig.suptitle(f"{summary['name']}: Re = {summary['Re']:.3g}")
+    fig.tight_layout()
+    save_png(fig, out / "forces_vs_gap.png", dpi=130)
 
 
 def read_level(path: Path, level: int):
@@ -22,9 +62,15 @@ def read_level(path: Path, level: int):
     return r, z, rows[:, 3].reshape(shape), rows[:, 4].reshape(shape)
 
 
-def plot_snapshot(path: Path, spheres) -> None:
+def plot_snapshot(path: Path, spheres, wall=None) -> None:
+    """spheres: a list of (z, D), or a function of the snapshot's time t giving it (moving spheres)."""
     with open(path) as f:
         title = f.readline().lstrip("# ").split(";")[0]
+    if callable(spheres):
+        try:
+            spheres = spheres(float(title.split("=")[1].split()[0]))
+        except (IndexError, ValueError):
+            spheres = spheres(None)
     fig, axes = plt.subplots(1, 2, figsize=(12, 5.2))
     for ax, level in zip(axes, (0, 1)):
         try:
@@ -47,12 +93,17 @@ def plot_snapshot(path: Path, spheres) -> None:
         ax.contour(z, R, P, levels=np.unique(np.concatenate([neg, [0.0], pos])), colors="k", linewidths=0.5)
         for zc, d in spheres:
             ax.add_patch(plt.Circle((zc, 0), d / 2, fill=False, color="g", lw=1.2))
+        if wall is not None:
+            ax.axvline(wall, color="m", lw=1.5)
         ax.set_aspect("equal")
         ax.set_xlabel("z")
         ax.set_ylabel("r (mirrored)")
         ax.set_title(f"level {level}: vorticity (colour), streamlines", fontsize=10)
-        ax.legend(handles=[plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)"),
-                           plt.Line2D([], [], color="g", lw=1.2, label="sphere surface")], fontsize=7, loc="upper right")
+        handles = [plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)"),
+                   plt.Line2D([], [], color="g", lw=1.2, label="sphere surface")]
+        if wall is not None:
+            handles.append(plt.Line2D([], [], color="m", lw=1.5, label="wall"))
+        ax.legend(handles=handles, fontsize=7, loc="upper right")
     fig.suptitle(title)
     fig.tight_layout()
     save_png(fig, path.with_suffix(".png"), dpi=130)
@@ -73,8 +124,15 @@ def main() -> int:
     summary = json.loads((out / "summary.json").read_text())
     d = summary["grid"]["h"] * summary["grid"]["cells_per_diameter"]
     spheres = [(zc, d) for zc, _ in spheres]
+    def spheres_at(ts):  # the spheres at the forces.csv row nearest to the snapshot's time (moving spheres)
+        if ts is None:
+            return spheres
+        row = min(rows, key=lambda r: abs(float(r["t"]) - ts))
+        return [(float(row[f"z{b + 1}"]), d) for b in range(nb)]
+
+    wall = summary.get("wall", {}).get("position")
     for snap in sorted(out.glob("snapshot_*.csv")):
-        plot_snapshot(snap, spheres)
+        plot_snapshot(snap, spheres_at, wall)
     fig, ax = plt.subplots(figsize=(9, 5))
     for b in range(nb):
         ax.plot(t, [float(r[f"F{b + 1}"]) for r in rows], label=f"F{b + 1} (simulation)")
@@ -114,6 +172,8 @@ def main() -> int:
     ax.legend()
     fig.tight_layout()
     save_png(fig, out / "forces.png", dpi=130)
+    if "wall_gap_D" in rows[0]:
+        plot_wall_gap(out, rows, summary)
     return 0
 
 
