@@ -48,7 +48,7 @@ def main() -> int:
     ax.set_ylabel("e")
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="lower right")
     n_fail = len(meta["failures"])
     ax.set_title("%s: e vs St, %d points%s" % (meta["scene"], meta["points"], ", %d failed" % n_fail if n_fail else ""))
     fig.tight_layout()
