@@ -1,5 +1,6 @@
 #include "apps/simulate.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -127,6 +128,176 @@ std::optional<double> group_moment(const CollisionModel& model) {
   return model.t_closest();
 }
 
+/// The samples one contact's measures read: time, gap and U_rel (> 0 approaching).
+struct Track {
+  std::vector<double> t, gap, u;
+  /// Time where the gap crosses g between samples i−1 and i (linear).
+  double cross(std::size_t i, double g) const {
+    const double w = (g - gap[i - 1]) / (gap[i] - gap[i - 1]);
+    return t[i - 1] + w * (t[i] - t[i - 1]);
+  }
+  double u_at(std::size_t i, double g) const {
+    const double w = (g - gap[i - 1]) / (gap[i] - gap[i - 1]);
+    return u[i - 1] + w * (u[i] - u[i - 1]);
+  }
+  std::size_t first_at_or_after(double t0) const { return std::lower_bound(t.begin(), t.end(), t0) - t.begin(); }
+};
+
+/// U_rel from the least-squares slope of the gap over [t0, t1] (the gap closes at U_rel).
+std::optional<double> fitted_u(const Track& tr, double t0, double t1) {
+  if (!(t1 > t0)) return std::nullopt;
+  auto f = fit_line_continuous(tr.t, tr.gap, t0, t1);
+  if (!f) return std::nullopt;
+  return -f->slope;
+}
+
+nlohmann::ordered_json null_or(const std::optional<double>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+/// e from an impact and a rebound U_rel (< 0 moving apart): negative values are clipped to 0 and say why.
+void put_e(nlohmann::ordered_json& j, std::optional<double> u_in, std::optional<double> u_out, const char* why_negative) {
+  if (!u_in || !u_out || !(*u_in > 0)) {
+    j["e"] = nullptr;
+    return;
+  }
+  const double e = -*u_out / *u_in;
+  j["e"] = std::max(0.0, e);
+  if (e < 0) {
+    j["e_raw"] = e;
+    j["note"] = why_negative;
+  }
+}
+
+/// One object per contact (docs/bounces.md): times, velocities, apex and every named measure of e.
+nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene& sc, const Track& tr, std::vector<std::string>& warnings) {
+  struct Contact {
+    double t_in, u_in;
+    std::optional<double> t_out;
+  };
+  std::vector<Contact> cs;
+  struct Crossing {
+    double t, u;
+    bool in;
+  };
+  std::vector<Crossing> inst;
+  for (const auto& ev : model.events()) {
+    if (ev.name == "gap=delta_ss (in)" || ev.name == "start inside the contact zone") cs.push_back({ev.t, ev.u_rel, std::nullopt});
+    else if (ev.name == "gap=delta_ss (out)" && !cs.empty() && !cs.back().t_out) cs.back().t_out = ev.t;
+    else if (ev.name == "gap=instant_gap (in)") inst.push_back({ev.t, ev.u_rel, true});
+    else if (ev.name == "gap=instant_gap (out)") inst.push_back({ev.t, ev.u_rel, false});
+  }
+  if (model.started_in_contact() && !cs.empty()) cs.front().u_in = model.initial_u_rel();
+  const double D = 2 * model.radius(0), W = sc.measure.window;
+  const double d_fit = sc.measure.fit_distance * D, g_at = sc.measure.at_gap * D, g_ss = model.delta_ss_m();
+  const double t_final = tr.t.empty() ? 0.0 : tr.t.back();
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  bool any_clipped = false;
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const Contact& c = cs[k];
+    const double t_from = k == 0 ? 0.0 : cs[k - 1].t_out.value_or(cs[k - 1].t_in);  // this approach's flight begins
+    const double t_next = k + 1 < cs.size() ? cs[k + 1].t_in : t_final;               // the rebound's flight ends
+    const bool sep = c.t_out.has_value();
+    const double t_sep = c.t_out.value_or(t_next);
+    // Samples of the approach flight [t_from, t_in] and of the rebound flight [t_sep, t_next].
+    const std::size_t a0 = tr.first_at_or_after(t_from), a1 = tr.first_at_or_after(c.t_in);
+    const std::size_t r0 = tr.first_at_or_after(t_sep), r1 = std::min(tr.first_at_or_after(t_next), tr.t.size() - 1);
+    const std::size_t c1 = std::min(tr.first_at_or_after(t_next), tr.t.size() - 1);
+    nlohmann::ordered_json b;
+    b["contact"] = k + 1;
+    b["t_contact_s"] = c.t_in;
+    b["t_separation_s"] = null_or(c.t_out);
+    b["impact_speed_at_delta_ss_m_s"] = c.u_in;
+
+    // fit_time: windows of W before the contact and after the separation, both shortened alike to the flights.
+    nlohmann::ordered_json ft;
+    double Wk = std::min(W, c.t_in - t_from);
+    if (sep) Wk = std::min(Wk, t_next - t_sep);
+    const bool started = model.started_in_contact() && k == 0;
+    std::optional<double> ui = started ? std::optional<double>(c.u_in) : fitted_u(tr, c.t_in - Wk, c.t_in);
+    std::optional<double> ur = sep ? fitted_u(tr, t_sep, t_sep + Wk) : std::optional<double>(0.0);
+    put_e(ft, ui, ur, "the rebound fit's slope points toward the target: the sphere fell back within the window; e clipped to 0");
+    ft["window_s"] = Wk;
+    if (!sep && ft["e"].is_number()) ft["e"] = 0.0;
+    if (ft.contains("e_raw")) any_clipped = true;
+    b["impact_velocity_m_s"] = null_or(ui);
+    b["rebound_velocity_m_s"] = sep ? null_or(ur) : nlohmann::ordered_json(nullptr);
+    b["e"] = ft["e"];
+
+    // e_instant: the U_rel at the inward crossing of instant_gap and at the next outward one.
+    std::optional<double> ii, io;
+    for (const auto& x : inst) {
+      if (x.in && x.t >= t_from && x.t <= t_sep) ii = x.u;
+      if (!x.in && ii && !io && x.t >= c.t_in && x.t <= t_next) io = x.u;
+    }
+    if (ii && io) b["e_instant"] = std::max(0.0, -*io / *ii);
+    else b["e_instant"] = ii && !sep ? nlohmann::ordered_json(0.0) : nlohmann::ordered_json(nullptr);
+
+    // Apex: the largest gap between this contact and the next one (or the end).
+    std::size_t ia = tr.first_at_or_after(c.t_in);
+    for (std::size_t i = ia; i <= c1; ++i)
+      if (tr.gap[i] > tr.gap[ia]) ia = i;
+    b["apex_gap_m"] = tr.gap[ia];
+    b["t_apex_s"] = tr.t[ia];
+
+    // fit_distance: from the last inward crossing of delta_ss + d to the contact, and from the separation to the first outward one.
+    nlohmann::ordered_json fd;
+    const double g_fd = g_ss + d_fit;
+    std::optional<double> fd_in, fd_out;
+    std::optional<double> ta;
+    for (std::size_t i = std::max<std::size_t>(a0, 1); i <= a1 && i < tr.t.size(); ++i)
+      if (tr.gap[i - 1] >= g_fd && tr.gap[i] < g_fd) ta = tr.cross(i, g_fd);
+    if (started) fd_in = c.u_in;
+    else if (ta) fd_in = fitted_u(tr, *ta, c.t_in);
+    std::optional<double> tb;
+    if (sep)
+      for (std::size_t i = std::max<std::size_t>(r0, 1); i <= r1 && !tb; ++i)
+        if (tr.gap[i - 1] < g_fd && tr.gap[i] >= g_fd) tb = tr.cross(i, g_fd);
+    if (sep && tb) fd_out = fitted_u(tr, t_sep, *tb);
+    else if (!sep) fd_out = 0.0;
+    put_e(fd, fd_in, fd_out, "the fitted rebound moves toward the target; e clipped to 0");
+    fd["distance_m"] = d_fit;
+    if (!fd_in && !started) fd["missing"] = "the approach did not start beyond delta_ss + fit_distance";
+    else if (sep && !tb) fd["missing"] = "the rebound did not reach delta_ss + fit_distance (apex below it, or the run ended)";
+
+    // at_gap: U_rel where the gap last crossed g inward before the separation and first crossed it outward after the contact.
+    nlohmann::ordered_json ag;
+    std::optional<double> ag_in, ag_out;
+    const std::size_t s1 = std::min(tr.first_at_or_after(t_sep), tr.t.size() - 1);
+    for (std::size_t i = std::max<std::size_t>(a0, 1); i <= s1; ++i)
+      if (tr.gap[i - 1] >= g_at && tr.gap[i] < g_at) ag_in = tr.u_at(i, g_at);
+    if (started && !ag_in && model.initial_gap() <= g_at) ag_in = c.u_in;
+    if (sep) {
+      for (std::size_t i = std::max<std::size_t>(a1, 1); i <= r1 && !ag_out; ++i)
+        if (tr.gap[i - 1] < g_at && tr.gap[i] >= g_at) ag_out = tr.u_at(i, g_at);
+    } else {
+      ag_out = 0.0;
+    }
+    put_e(ag, ag_in, ag_out, "");
+    ag["gap_m"] = g_at;
+    if (!ag_in) ag["missing"] = "the approach did not cross at_gap inward";
+    else if (sep && !ag_out) ag["missing"] = "the rebound did not reach at_gap (apex below it, or the run ended)";
+
+    // peak_rebound: the largest rebound speed over the rebound's flight / the largest approach speed over the approach's flight.
+    nlohmann::ordered_json pr;
+    double u_max_in = started ? c.u_in : 0.0, u_max_out = 0.0;
+    for (std::size_t i = a0; i <= a1 && i < tr.t.size(); ++i) u_max_in = std::max(u_max_in, tr.u[i]);
+    if (sep)
+      for (std::size_t i = r0; i <= r1; ++i) u_max_out = std::max(u_max_out, -tr.u[i]);
+    put_e(pr, u_max_in > 0 ? std::optional<double>(u_max_in) : std::nullopt, -u_max_out, "");
+    pr["impact_speed_m_s"] = u_max_in;
+    pr["rebound_speed_m_s"] = u_max_out;
+
+    b["e_measures"] = {{"fit_time", ft}, {"fit_distance", fd}, {"at_gap", ag}, {"peak_rebound", pr},
+                       {"instant", {{"e", b["e_instant"]}, {"gap_m", sc.measure.instant_gap * D}}}};
+    out.push_back(b);
+  }
+  if (any_clipped)
+    warnings.push_back("a rebound fit over measure.window points toward the target (the sphere fell back within the window): "
+                       "that contact's e is clipped to 0 (e_raw in its e_measures.fit_time)");
+  return out;
+}
+
 }  // namespace
 
 RunResult simulate(const Scene& sc, bool progress) {
@@ -181,6 +352,7 @@ RunResult simulate(const Scene& sc, bool progress) {
   s["scene_file"] = sc.path;
   s["configuration"] = !model.has_target() ? "free sphere" : (model.has_wall() ? "sphere-wall" : "sphere-sphere");
 
+  std::optional<double> e_fit_raw;
   std::optional<double> e, e_inst, St, St_62, Re, U_G, t_group;
   // St in the reported convention: eq. (6.2) for a wall, half of it for a pair (seed Table 6.1).
   auto stokes = [&](double u_rel) {
@@ -205,7 +377,16 @@ RunResult simulate(const Scene& sc, bool progress) {
     const double t_ref = model.t_contact().value_or(*model.t_closest());
     // A short approach shortens both windows alike, so that they stay symmetric in time.
     const bool in_contact = model.started_in_contact();
-    const double Wfit = in_contact ? W : std::min(W, t_ref);
+    double Wfit = in_contact ? W : std::min(W, t_ref);
+    // All bounces: the rebound window ends at the next contact at the latest (both shortened alike).
+    if (separated) {
+      int n_in = 0;
+      for (const auto& x : model.events())
+        if (x.name == "gap=delta_ss (in)" && ++n_in == (in_contact ? 1 : 2)) {
+          Wfit = std::min(Wfit, x.t - *model.t_separation());
+          break;
+        }
+    }
     if (in_contact) {
       // No approach to fit: the impact velocities are the initial ones.
       u_i1 = sc.spheres[0].velocity;
@@ -237,8 +418,17 @@ RunResult simulate(const Scene& sc, bool progress) {
       warnings.push_back("t_end cut the rebound fit window short");
     }
     if (u_i1 && u_r1) {
-      if (separated) e = restitution(*u_i1, *u_i2, *u_r1, *u_r2);
-      else {
+      if (separated) {
+        e = restitution(*u_i1, *u_i2, *u_r1, *u_r2);
+        if (*e < 0) {
+          e_fit_raw = e;
+          e = 0.0;
+          std::ostringstream os;
+          os << "e = " << *e_fit_raw << " from the fits: the rebound fit's slope points toward the target (the sphere fell back "
+             << "within measure.window); e is clipped to 0 (e_fit_raw); e_measures.at_gap and peak_rebound do not have this defect";
+          warnings.push_back(os.str());
+        }
+      } else {
         e = 0.0;  // never separated
         const double closing = *u_r1 - *u_r2;  // > 0: still approaching over the last window
         if (pair) {
@@ -302,9 +492,34 @@ RunResult simulate(const Scene& sc, bool progress) {
        << "): e may be off by several per cent (up to 20 % at 1e-2 on the shipped scenes); use rtol and atol <= 1e-4 for e to ~1e-3";
     warnings.push_back(os.str());
   }
+  // Every contact (docs/bounces.md), from the gap and U_rel samples (events included).
+  nlohmann::ordered_json bounces = nlohmann::ordered_json::array();
+  if (model.has_target() && sc.has(Effect::elastic)) {
+    Track tr;
+    const std::size_t iu = pair ? 6 : 4;
+    for (const auto& r : res.rows) {
+      tr.t.push_back(r[0]);
+      tr.gap.push_back(r[3]);
+      tr.u.push_back(r[iu]);
+    }
+    if (!tr.t.empty()) bounces = measure_bounces(model, sc, tr, warnings);
+  }
   s["e"] = or_null(e);
+  s["e_is"] = "fit_time (velocities fitted over measure.window before the first contact and after its separation)";
+  if (e_fit_raw) s["e_fit_raw"] = *e_fit_raw;
   s["e_instant"] = or_null(e_inst);
   s["e_instant_gap_m"] = sc.measure.instant_gap * 2 * model.radius(0);
+  // The named measures of the first contact (each contact's are in `bounces`).
+  if (!bounces.empty()) {
+    auto m = bounces[0]["e_measures"];
+    m["fit_time"]["e"] = or_null(e);  // as `e` (symmetric windows, also for pairs)
+    m["fit_time"]["window_s"] = fit_window;
+    s["e_measures"] = m;
+  } else {
+    s["e_measures"] = nullptr;
+  }
+  s["bounces_mode"] = sc.measure.bounces;
+  s["bounces"] = bounces;
   s["St"] = or_null(St);
   if (pair) {
     s["St_convention"] = "seed Table 6.1: half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
@@ -432,6 +647,14 @@ std::string human_summary(const RunResult& r) {
        << " GMRES iterations per step; of the wall time " << std::setprecision(2) << 100 * f["flow_share"].get<double>()
        << " % in the flow kernel, " << 100 * f["start_up_time_s"].get<double>() / s["wall_time_s"].get<double>()
        << " % in its start-up (" << f["start_up_steps"].get<long>() << " steps, " << f["start"].get<std::string>() << ")\n";
+  }
+  if (s.contains("bounces_mode") && s["bounces_mode"] == "all" && !s["bounces"].empty()) {
+    os << "  bounces: contact   t_contact (s)   impact (m/s)   e       apex gap (mm)   t_apex (s)\n";
+    for (const auto& b : s["bounces"])
+      os << "           " << std::setw(7) << b["contact"].get<int>() << "   " << std::setw(13) << num(b["t_contact_s"], 5) << "   "
+         << std::setw(12) << num(b["impact_velocity_m_s"]) << "   " << std::setw(5) << num(b["e"], 3) << "   " << std::setw(13)
+         << (b["apex_gap_m"].is_null() ? "n/a" : num(nlohmann::ordered_json(1e3 * b["apex_gap_m"].get<double>()))) << "   "
+         << num(b["t_apex_s"], 5) << "\n";
   }
   for (const auto& w : s["warnings"]) os << "  warning: " << w.get<std::string>() << "\n";
   return os.str();

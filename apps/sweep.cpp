@@ -66,18 +66,23 @@ std::string csv_cell(const nlohmann::ordered_json& j) {
   return j.dump();
 }
 
-const char* kCsvHeader = "point,{},St,St_B_eq_6_2,St_initial,Re,e,e_instant,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
+const char* kCsvHeader = "point,{},St,St_B_eq_6_2,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
 
 /// One finished point's CSV row (formatted once: the file is rewritten after every point).
 std::string csv_row(std::size_t i, const PointResult& p) {
   const auto& s = p.summary;
   auto get = [&](const char* k) { return s.contains(k) ? csv_cell(s[k]) : std::string(); };
+  // The named measures of e (docs/bounces.md); `e` is fit_time.
+  auto measure = [&](const char* k) {
+    return s.contains("e_measures") && s["e_measures"].is_object() ? csv_cell(s["e_measures"][k]["e"]) : std::string();
+  };
   std::string msg = p.message;
   for (char& c : msg)
     if (c == ',' || c == '\n') c = ';';
   std::ostringstream csv;
   csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_eq_6_2") << "," << get("St_initial")
-      << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << get("separated") << "," << get("min_gap_m") << ","
+      << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << measure("fit_distance") << "," << measure("at_gap") << ","
+      << measure("peak_rebound") << "," << get("separated") << "," << get("min_gap_m") << ","
       << (p.ok ? csv_cell(s["solver"]["steps"]) : "") << "," << (p.ok ? csv_cell(s["solver"]["rhs_evals"]) : "") << ","
       << get("wall_time_s") << "," << (p.ok ? "ok" : "failed") << "," << msg << "\n";
   return csv.str();

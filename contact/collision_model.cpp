@@ -72,6 +72,9 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   const bool start_inside = has_target() && sc.has(Effect::elastic) && initial_gap() <= delta_ss_m_;
   if (start_inside) delta_ss_m_ = initial_gap();
   instant_gap_m_ = sc.measure.instant_gap * D_;
+  all_bounces_ = sc.measure.bounces == "all";
+  instant_inside_ = has_target() && initial_gap() <= instant_gap_m_;
+  measure_gap_m_ = std::max(sc.measure.at_gap * D_, delta_ss_m_ + sc.measure.fit_distance * D_);
   h_min_ = sc.lubrication.cutoff * D_;
   h_c_ = sc.lubrication.h_c * a_star_;
   dw_floor_ = sc.added_mass.dw_floor > 0 ? sc.added_mass.dw_floor : sc.contact.delta_ss * D_ / a_star_;
@@ -559,6 +562,12 @@ void CollisionModel::arm() {
     case Phase::separated:
       if (elastic) add(RootKind::contact_in, "gap=delta_ss (in)", -1);
       if (before_first_contact && !t_closest_) add(RootKind::closest, "u_rel=stall_fraction*U_rel0 (approach stopped)", -1);
+      if (phase_ == Phase::separated && all_bounces_ && !apex_seen_) add(RootKind::apex, "u_rel=0 (apex)", +1);
+      if (phase_ == Phase::separated && !all_bounces_) {
+        // The first rebound runs on until its measurement gaps are passed, or until it stalls (docs/bounces.md).
+        if (!measure_out_) add(RootKind::measure_out, "gap=max(at_gap, delta_ss+fit_distance) (out)", +1);
+        if (!rebound_stalled_) add(RootKind::rebound_stalled, "u_rel=-stall_fraction*U_c (rebound stalled)", +1);
+      }
       break;
     case Phase::loading:
       add(RootKind::unload, "u_rel=0 (loading->unloading)", -1);
@@ -570,7 +579,10 @@ void CollisionModel::arm() {
       break;
   }
   // e_instant: the first inward crossing of instant_gap, then the next outward one (either side of δ_SS).
-  if (!u_in_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
+  // All bounces: every crossing, alternately inward and outward.
+  if (all_bounces_) add(instant_inside_ ? RootKind::instant_out : RootKind::instant_in,
+                        instant_inside_ ? "gap=instant_gap (out)" : "gap=instant_gap (in)", instant_inside_ ? +1 : -1);
+  else if (!u_in_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
   else if (!u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
   if (scene_.has(Effect::lubrication) && !brenner_) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
   if (coupled_) {
@@ -593,7 +605,10 @@ void CollisionModel::root_values(double, std::span<const double> y, std::span<do
       case RootKind::touch:
       case RootKind::blend_end: g[i] = gap; break;
       case RootKind::blend_edge: g[i] = gap - 2 * delta_sl_m_; break;
-      case RootKind::unload: g[i] = u_rel; break;
+      case RootKind::unload:
+      case RootKind::apex: g[i] = u_rel; break;
+      case RootKind::rebound_stalled: g[i] = u_rel + scene_.measure.stall_fraction * std::abs(U_c_); break;
+      case RootKind::measure_out: g[i] = gap - measure_gap_m_; break;
       case RootKind::closest: g[i] = u_rel - stall_speed_; break;
       case RootKind::instant_in:
       case RootKind::instant_out: g[i] = gap - instant_gap_m_; break;
@@ -646,6 +661,13 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
       freeze_contact(t, ev.u_rel);
       phase_ = Phase::loading;
       if (t_closest_ && !t_separation_) stop_time_ = scene_.solver.t_end;  // a contact after all
+      if (all_bounces_ && contacts_ > 1 && ev.u_rel < scene_.measure.stall_fraction * std::abs(U_c_)) {
+        // At rest: a contact slower than stall_fraction × the first impact speed ends a run of all bounces.
+        at_rest_ = true;
+        quiet_since_ = t;
+        stop_time_ = std::min(stop_time_, t);
+        events_.push_back({t, "at rest (impact speed below stall_fraction x the first impact speed)", ev.gap, ev.u_rel});
+      }
       break;
     case RootKind::unload:
       factor_ = e_dry_ * e_dry_;
@@ -653,10 +675,12 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
       break;
     case RootKind::contact_out:
       phase_ = Phase::separated;
+      apex_seen_ = false;
       if (!t_separation_) {
         t_separation_ = t;
-        // Stop once the rebound window is complete and e_instant's gap has been passed (or at t_end).
-        if (u_out_ || !u_in_) stop_time_ = std::min(stop_time_, t + window);
+        // Stop once the rebound window is complete and the measurement gaps have been passed (or at t_end).
+        if (ev.u_rel > -scene_.measure.stall_fraction * std::abs(U_c_)) rebound_stalled_ = true;
+        first_bounce_stop(t);
       }
       break;
     case RootKind::closest:
@@ -664,11 +688,24 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
       stop_time_ = std::min(stop_time_, t + window);
       break;
     case RootKind::instant_in:
-      u_in_ = ev.u_rel;
+      if (!u_in_) u_in_ = ev.u_rel;
+      instant_inside_ = true;
       break;
     case RootKind::instant_out:
-      u_out_ = ev.u_rel;
-      if (t_separation_) stop_time_ = std::min(scene_.solver.t_end, std::max(t, *t_separation_ + window));
+      if (!u_out_ && u_in_) u_out_ = ev.u_rel;
+      instant_inside_ = false;
+      first_bounce_stop(t);
+      break;
+    case RootKind::apex:
+      apex_seen_ = true;
+      break;
+    case RootKind::measure_out:
+      measure_out_ = true;
+      first_bounce_stop(t);
+      break;
+    case RootKind::rebound_stalled:
+      rebound_stalled_ = true;
+      first_bounce_stop(t);
       break;
     case RootKind::touch:
     case RootKind::lub_edge:
@@ -678,8 +715,16 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
   }
 }
 
+void CollisionModel::first_bounce_stop(double t) {
+  if (all_bounces_ || !t_separation_) return;
+  const bool pending = (u_in_ && !u_out_) || !measure_out_;
+  if (pending && !rebound_stalled_) return;
+  stop_time_ = std::min(scene_.solver.t_end, std::max(t, *t_separation_ + scene_.measure.window));
+}
+
 void CollisionModel::observe(double t, const Evaluation& ev) {
-  if (at_rest_ || !has_target() || phase_ != Phase::unloading) {
+  const bool watched = phase_ == Phase::unloading || (all_bounces_ && phase_ == Phase::separated);
+  if (at_rest_ || !has_target() || !watched) {
     if (!at_rest_) quiet_since_.reset();
     return;
   }
@@ -705,7 +750,8 @@ EventAction CollisionModel::on_roots(std::span<const std::size_t> found, double 
   bool changed = false;
   for (std::size_t i : found) {
     handle(kinds.at(i), specs.at(i).name, t, y);
-    const bool diagnostic = kinds[i] == RootKind::touch || kinds[i] == RootKind::blend_edge || kinds[i] == RootKind::blend_end;
+    const bool diagnostic = kinds[i] == RootKind::touch || kinds[i] == RootKind::blend_edge || kinds[i] == RootKind::blend_end ||
+                            kinds[i] == RootKind::apex || kinds[i] == RootKind::measure_out || kinds[i] == RootKind::rebound_stalled;
     changed = changed || !diagnostic;
   }
   if (t >= stop_time_) return EventAction::stop;

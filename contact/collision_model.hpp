@@ -128,7 +128,9 @@ class CollisionModel : public DynamicalSystem {
 
   // ---- Physics, for reporting ----
   Evaluation evaluate(double t, std::span<const double> y) const;
-  /// Called with each output sample. After the first U_rel = 0 in contact (unloading, not separated), a pair with
+  bool all_bounces() const { return all_bounces_; }
+  /// Called with each output sample. After the first U_rel = 0 in contact (unloading, not separated; with
+  /// measure.bounces = "all" also in flight after a contact), a pair with
   /// |U_rel| < s and |dU_rel/dt|·window < s, s = measure.stall_fraction × the impact speed, throughout one
   /// measure.window is at rest on the wall or moving with its partner: the run ends there (a longer run cannot
   /// change e = 0, and a stiff contact would otherwise be integrated to t_end at minute steps).
@@ -174,7 +176,8 @@ class CollisionModel : public DynamicalSystem {
 
  private:
   enum class Target { none, wall, sphere };
-  enum class RootKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge, blend_edge, blend_end };
+  enum class RootKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge, blend_edge, blend_end,
+                        apex, rebound_stalled, measure_out };
 
   void arm();
   void kinematics(std::span<const double> y, Evaluation& ev) const;
@@ -193,6 +196,8 @@ class CollisionModel : public DynamicalSystem {
   void freeze_contact(double t, double u_rel);
   void handle(RootKind kind, const std::string& name, double t, std::span<const double> y);
   void record(double t, const std::string& name, std::span<const double> y);
+  /// bounces = "first": the stop time once the rebound's measurements are complete (or can no longer be).
+  void first_bounce_stop(double t);
 
   const Scene scene_;
   bool coupled_ = false;     // the flow effect: f_SL = H f_THR + (1 − H) f_SIM
@@ -230,6 +235,11 @@ class CollisionModel : public DynamicalSystem {
   double stop_time_ = 0, max_step_ = 0, contact_max_step_ = std::numeric_limits<double>::infinity();
   std::optional<double> quiet_since_;  // observe(): start of the current quiet stretch
   bool at_rest_ = false;
+  // measure.bounces (docs/bounces.md)
+  bool all_bounces_ = false;
+  bool instant_inside_ = false;  // all bounces: inside instant_gap (the next instant root is outward)
+  double measure_gap_m_ = 0;     // first bounce: the rebound must pass this gap for at_gap and fit_distance, m
+  bool measure_out_ = false, rebound_stalled_ = false, apex_seen_ = false;  // since the last separation
 };
 
 }  // namespace imcol::contact

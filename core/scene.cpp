@@ -325,6 +325,12 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     if (r.has("instant_gap")) r.positive("instant_gap", sc.measure.instant_gap);
     sc.measure.stall_fraction = r.number("stall_fraction", sc.measure.stall_fraction);
     r.in_range("stall_fraction", sc.measure.stall_fraction, 0.0, 1.0, false, true);
+    if (auto v = r.string("bounces")) sc.measure.bounces = *v;
+    r.one_of("bounces", sc.measure.bounces, {"first", "all"});
+    sc.measure.fit_distance = r.number("fit_distance", sc.measure.fit_distance);
+    r.positive("fit_distance", sc.measure.fit_distance);
+    sc.measure.at_gap = r.number("at_gap", sc.measure.at_gap);
+    r.positive("at_gap", sc.measure.at_gap);
     r.finish();
   }
   if (sc.measure.instant_gap < 0) sc.measure.instant_gap = sc.contact.delta_ss;

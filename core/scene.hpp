@@ -90,6 +90,9 @@ struct Scene {
     double window = 0.010;    // s, least-squares windows before and after contact
     double instant_gap = -1;  // units of D, gap at which e_instant is taken; <0: delta_ss
     double stall_fraction = 0.01;  // an approach without contact has stopped when U_rel < this × U_rel(0)
+    std::string bounces = "first";  // first (stop after the first rebound is measured) | all (follow every contact)
+    double fit_distance = 0.1;  // units of D: e_measures.fit_distance fits z over this distance beyond delta_ss
+    double at_gap = 0.1;        // units of D: e_measures.at_gap takes the velocities at this gap
   } measure;
   struct Output { double dt = 0; } output;
   FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect  // s, trajectory sampling; 0 = window/100

@@ -54,6 +54,19 @@ def main() -> int:
         if contact.get(key) is not None:
             for a in ax:
                 a.axvline(1e3 * contact[key], color="grey", lw=0.8, ls=ls, label=label)
+    # Every contact (summary `bounces`): contacts as vertical lines, apexes as markers on the position.
+    bounces = summary.get("bounces") or []
+    if len(bounces) > 1:
+        for i, b in enumerate(bounces):
+            for a in ax:
+                a.axvline(1e3 * b["t_contact_s"], color="red", lw=0.6, ls=":", label="contacts" if i == 0 and a is ax[0] else None)
+        tz = {round(t, 12): z for t, z in zip(col["t"], col["z1"])}
+        bounces = [b for b in bounces if b.get("t_separation_s") is not None]  # apexes of the rebounds
+        ax_t = [1e3 * b["t_apex_s"] for b in bounces if b.get("t_apex_s") is not None]
+        ax_z = [1e3 * tz.get(round(b["t_apex_s"], 12), float("nan")) for b in bounces if b.get("t_apex_s") is not None]
+        ax[0].plot(ax_t, ax_z, "v", color="k", ms=6, label="apexes (largest gap before the next contact)")
+        for b, t, z in zip(bounces, ax_t, ax_z):
+            ax[0].annotate("%.2f mm" % (1e3 * b["apex_gap_m"]), (t, z), fontsize=7, xytext=(3, 5), textcoords="offset points")
     for a in ax:
         a.legend(fontsize=8)
         a.grid(alpha=0.3)

@@ -27,7 +27,15 @@ def main() -> int:
     rows.sort(key=lambda r: float(r["St"]))
     fig, ax = plt.subplots(figsize=(8, 5.5))
     ax.semilogx([float(r["St"]) for r in rows], [float(r["e"]) for r in rows], "o-", ms=4,
-                label="imcol: %s swept (%s)" % (meta["vary"], ", ".join(meta.get("effects", []))))
+                label="imcol e (fit over measure.window): %s swept (%s)" % (meta["vary"], ", ".join(meta.get("effects", []))))
+    # The other named measures of e (docs/bounces.md), where the sweep has them.
+    for key, label, mk in (("e_instant", "e_instant (at measure.instant_gap)", "x"),
+                           ("e_fit_distance", "fit over measure.fit_distance", "^"),
+                           ("e_at_gap", "velocities at measure.at_gap", "v"),
+                           ("e_peak_rebound", "largest rebound / largest approach speed", "d")):
+        pts = [(float(r["St"]), float(r[key])) for r in rows if r.get(key)]
+        if pts:
+            ax.semilogx(*zip(*pts), mk + "--", ms=4, lw=0.8, label=label)
     if meta["configuration"] == "sphere-sphere" and SEED_TABLE.exists():
         seed = read_csv(SEED_TABLE)
         ax.semilogx([float(r["St_B"]) for r in seed], [float(r["e"]) for r in seed], "s", color="k", mfc="none", ms=7,
@@ -40,7 +48,7 @@ def main() -> int:
     ax.set_ylabel("e")
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="lower right")
     n_fail = len(meta["failures"])
     ax.set_title("%s: e vs St, %d points%s" % (meta["scene"], meta["points"], ", %d failed" % n_fail if n_fail else ""))
     fig.tight_layout()

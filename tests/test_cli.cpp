@@ -238,3 +238,14 @@ TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
   EXPECT_EQ(neg.status, 2) << neg.err;
   EXPECT_NE(neg.err.find("fluid.viscosity"), std::string::npos) << neg.err;
 }
+
+TEST(Cli, BadBouncesValueNamesFileLineAndKey) {
+  const std::string text = kScene + "[measure]\nbounces = \"every\"\n";
+  const fs::path p = write_scene("bounces", text);
+  const Result r = run_imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_out").string());
+  EXPECT_EQ(r.status, 2) << r.err;
+  const int line = static_cast<int>(std::count(text.begin(), text.end(), '\n'));  // the last line holds the key
+  EXPECT_NE(r.err.find(p.string() + ":" + std::to_string(line)), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("measure.bounces"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("first | all"), std::string::npos) << r.err;
+}
