@@ -209,9 +209,6 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   for (Effect e : {Effect::drag, Effect::lubrication, Effect::added_mass, Effect::history, Effect::flow})
     if (sc.has(e) && !sc.fluid)
       top.fail("effects", std::string("effect '") + to_string(e) + "' needs a [fluid] table");
-  if (sc.has(Effect::flow) && sc.wall)
-    top.fail("effects", "effect 'flow' with a [wall] is not implemented yet (the flow kernel has no wall): "
-                        "remove 'flow' for the reduced-order model");
   if ((sc.has(Effect::lubrication) || sc.has(Effect::elastic)) && !sc.has_target())
     top.fail("effects", "lubrication and elastic need a target sphere or a [wall]");
   if (sc.has_target() && !sc.has(Effect::elastic))

@@ -42,8 +42,14 @@ FlowCoupling::Predicted FlowCoupling::predict(double t, std::span<const double> 
     p.z[m] = z[m] + u[m] * dt + 0.5 * a[m] * dt * dt;
     p.u[m] = u[m] + a[m] * dt;
   }
-  p.gap = n_ == 2 ? p.z[1] - p.z[0] - radius_[0] - radius_[1] : std::numeric_limits<double>::infinity();
+  p.gap = gap_of(p.z);
   return p;
+}
+
+double FlowCoupling::gap_of(const std::array<double, 2>& z) const {
+  if (n_ == 2) return z[1] - z[0] - radius_[0] - radius_[1];
+  if (sc_.wall) return sc_.wall->position - z[0] - radius_[0];
+  return std::numeric_limits<double>::infinity();
 }
 
 std::vector<flow::SphereState> FlowCoupling::frame_spheres(const Predicted& p, double frame_z, double frame_u) {
@@ -61,6 +67,13 @@ std::vector<flow::SphereState> FlowCoupling::frame_spheres(const Predicted& p, d
     const bool held = p.gap < g_min;
     s[0] = {radius_[0], mid - 0.5 * c, (held ? u_mid : p.u[0]) - frame_u};
     s[1] = {radius_[1], mid + 0.5 * c, (held ? u_mid : p.u[1]) - frame_u};
+  } else if (sc_.wall) {
+    // The same rule against the wall: the kernel's sphere stops min_gap_cells·h short of it, at rest with it.
+    const double g_min = sc_.flow.min_gap_cells * h;
+    const bool held = p.gap < g_min;
+    if (held) ++stats_.min_gap_clamped_steps;
+    const double z = held ? sc_.wall->position - radius_[0] - g_min : p.z[0];
+    s[0] = {radius_[0], z - frame_z, (held ? 0.0 : p.u[0]) - frame_u};
   } else {
     s[0] = {radius_[0], p.z[0] - frame_z, p.u[0] - frame_u};
   }
@@ -68,8 +81,9 @@ std::vector<flow::SphereState> FlowCoupling::frame_spheres(const Predicted& p, d
 }
 
 std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
-  // The frame follows the spheres' midpoint (one sphere: its centre), so the grid never loses them.
-  const double mid = n_ == 2 ? 0.5 * (p.z[0] + p.z[1]) : p.z[0];
+  // The frame follows the spheres' midpoint (one sphere: its centre), so the grid never loses them; with a wall
+  // it is the lab (the wall is fixed in the grid, which spans the sphere's path).
+  const double mid = sc_.wall ? frame_z_ : (n_ == 2 ? 0.5 * (p.z[0] + p.z[1]) : p.z[0]);
   const double new_u = (mid - frame_z_) / dt;
   const double a_frame = (new_u - frame_u_) / dt;
   stats_.frame_travel += std::abs(mid - frame_z_);
@@ -167,7 +181,6 @@ void FlowCoupling::start_up() {
   stats_.dt = dt;
   stats_.h = h;
   stats_.nr = s.nr;
-  stats_.nz = s.nz;
   stats_.levels = s.levels;
   stats_.cells_per_diameter = fs.cells_per_diameter;
   stats_.pre_steps = n_pre;
@@ -179,11 +192,23 @@ void FlowCoupling::start_up() {
       p.z[m] = sc_.spheres[m].position + sc_.spheres[m].velocity * t;
       p.u[m] = sc_.spheres[m].velocity;
     }
-    p.gap = n_ == 2 ? p.z[1] - p.z[0] - radius_[0] - radius_[1] : std::numeric_limits<double>::infinity();
+    p.gap = gap_of(p.z);
     return p;
   };
   frame_z_ = mid0 - u_mid * t_pre;
   frame_u_ = u_mid;
+  if (sc_.wall) {  // the lab frame; the finest level from behind the sphere's start to beyond the wall
+    frame_z_ = 0;
+    frame_u_ = 0;
+    const double a = radius_[0];
+    const double z_start = std::min(sc_.spheres[0].position, sc_.spheres[0].position - sc_.spheres[0].velocity * t_pre);
+    const double lo = z_start - a - fs.behind * D_, hi = sc_.wall->position + fs.ahead * D_;
+    s.z_center = 0.5 * (lo + hi);
+    s.nz = 4 * static_cast<int>(std::ceil((hi - lo) / h / 4));
+    s.u_inf = 0;
+    s.wall_z = sc_.wall->position;
+  }
+  stats_.nz = s.nz;
   try {
     kernel_ = std::make_unique<flow::Solver>(s, frame_spheres(prescribed(-t_pre), frame_z_, frame_u_));
   } catch (const std::exception& e) {
@@ -218,7 +243,7 @@ void FlowCoupling::maybe_snapshot(double t, double gap) {
     os << std::setprecision(4) << label << ",";
     snaps_.push_back({name, os.str(), flow::snapshot_csv(*kernel_, lab_frame(), os.str())});
   };
-  if (n_ == 2 && !snap_gap_ && gap <= D_) {
+  if (std::isfinite(gap) && !snap_gap_ && gap <= D_) {
     snap_gap_ = true;
     take("flow_gap_1D", "gap 1 D");
   }
@@ -258,8 +283,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     stats_.steps = n;
     std::array<double, 2> z{}, u{};
     model_.sphere_states(integ.state(), z, u);
-    const double gap = n_ == 2 ? z[1] - z[0] - radius_[0] - radius_[1] : std::numeric_limits<double>::infinity();
-    maybe_snapshot(t, gap);
+    maybe_snapshot(t, gap_of(z));
     if (t < t1 - 1e-12 * std::max(1.0, t1) && !integ.finished())
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }

@@ -66,6 +66,7 @@ class FlowCoupling {
     double gap = 0;
   };
   Predicted predict(double t, std::span<const double> y, double dt) const;
+  double gap_of(const std::array<double, 2>& z) const;  // surface gap to the target sphere or the wall; ∞ if none
   std::vector<flow::SphereState> frame_spheres(const Predicted& p, double frame_z, double frame_u);
   std::array<double, 2> step_kernel(const Predicted& p, double dt);
   void start_up();
