@@ -1,5 +1,5 @@
 // Cost of one whole collision, simulate() on data/scenes/default.toml (steel onto a wall), per
-// integrator (cvode dense, cvode gmres, ida) and rtol, without and with the history effect
+// integrator (cvode dense, cvode gmres, cvode schur, ida) and rtol, without and with the history effect
 // (sum of exponentials at its default tolerance). Counters: e, the integrator's steps, the state
 // size and the last run's model construction time (included in the timing).
 // One warm-up run per case keeps the one-off lookup tables out of the timing.
@@ -34,7 +34,8 @@ void run(benchmark::State& state, const Scene& sc) {
 int main(int argc, char** argv) {
   struct Integrator { const char* name; const char* method; const char* linear_solver; bool needs_history; };
   const Integrator integrators[] = {{"cvode_dense", "cvode", "dense", false},
-                                    {"cvode_gmres", "cvode", "gmres", true},  // gmres needs memory states
+                                    {"cvode_gmres", "cvode", "gmres", true},  // gmres and schur need memory states
+                                    {"cvode_schur", "cvode", "schur", true},
                                     {"ida", "ida", "dense", false}};
   for (bool history : {false, true})
     for (const auto& in : integrators)

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "contact/table_data.hpp"
 #include "contact/tables.hpp"
 
 namespace imcol::contact {
@@ -98,25 +99,32 @@ double brenner_lambda_series(double h_over_a) {
 }
 
 namespace {
-constexpr double brenner_min = 1e-5, brenner_max = 1e3;
+double brenner_dlambda_fd(double x) {
+  const double h = 1e-5 * x;
+  return (brenner_lambda_series(x + h) - brenner_lambda_series(x - h)) / (2 * h);
+}
+using table_data::brenner_min, table_data::brenner_max, table_data::w_min, table_data::w_max;
+// Shipped nodes (contact/table_data.cpp, written by imcol_gen_tables from the series below; a test
+// recomputes them): building them at start-up took 50–90 ms.
 const LogTable& brenner_table() {
-  static const LogTable t(
-      brenner_lambda_series,
-      [](double x) {
-        const double h = 1e-5 * x;
-        return (brenner_lambda_series(x + h) - brenner_lambda_series(x - h)) / (2 * h);
-      },
-      brenner_min, brenner_max, 641);
+  static const LogTable t(table_data::brenner_nodes, brenner_min, brenner_max, table_data::brenner_n);
   return t;
 }
 double brenner_asymptote(double d) { return 1.0 / d + 0.2 * std::log(1.0 / d); }
 
-constexpr double w_min = 1e-6, w_max = 1e3;
 const LogTable& w_table() {
-  static const LogTable t(added_mass_W_series, added_mass_dW_series, w_min, w_max, 721);
+  static const LogTable t(table_data::w_nodes, w_min, w_max, table_data::w_n);
   return t;
 }
 }  // namespace
+
+std::array<double, 2> table_node(TableKind kind, int i) {
+  const bool w = kind == TableKind::added_mass_W;
+  const double x = w ? LogTable::node_x(w_min, w_max, table_data::w_n, i)
+                     : LogTable::node_x(brenner_min, brenner_max, table_data::brenner_n, i);
+  if (w) return {added_mass_W_series(x), x * added_mass_dW_series(x)};
+  return {brenner_lambda_series(x), x * brenner_dlambda_fd(x)};
+}
 
 double brenner_lambda(double h_over_a) {
   if (!(h_over_a > 0)) throw std::domain_error("brenner_lambda: h/a must be > 0");

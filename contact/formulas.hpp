@@ -1,5 +1,6 @@
 #pragma once
 // Analytic force laws of the reduced-order collision model (MODEL.md §2). SI units throughout.
+#include <array>
 #include <string>
 
 namespace imcol::contact {
@@ -60,5 +61,9 @@ double added_mass_dW_series(double delta);  // dW/dδ, direct summation
 /// Fast versions (tabulated for 1e-6 ≤ δ ≤ 1e3, far-field series above, linear to W(0) below).
 double added_mass_W(double delta);
 double added_mass_dW(double delta);
+
+/// Node i of the shipped interpolation tables, {f, x df/dx}, recomputed from the series (generator and test).
+enum class TableKind { brenner_lambda, added_mass_W };
+std::array<double, 2> table_node(TableKind kind, int i);
 
 }  // namespace imcol::contact

@@ -293,9 +293,9 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     if (auto v = r.string("integrator")) sc.solver.integrator = *v;
     r.one_of("integrator", sc.solver.integrator, {"cvode", "ida"});
     if (auto v = r.string("linear_solver")) sc.solver.linear_solver = *v;
-    r.one_of("linear_solver", sc.solver.linear_solver, {"auto", "dense", "gmres"});
-    if (sc.solver.linear_solver == "gmres" && sc.solver.integrator != "cvode")
-      r.fail("linear_solver", "'gmres' is implemented for the cvode integrator only");
+    r.one_of("linear_solver", sc.solver.linear_solver, {"auto", "dense", "schur", "gmres"});
+    if ((sc.solver.linear_solver == "gmres" || sc.solver.linear_solver == "schur") && sc.solver.integrator != "cvode")
+      r.fail("linear_solver", "'" + sc.solver.linear_solver + "' is implemented for the cvode integrator only");
     sc.solver.krylov_tol = r.number("krylov_tol", sc.solver.krylov_tol);
     r.in_range("krylov_tol", sc.solver.krylov_tol, 0.0, 1.0, true, false);
     sc.solver.rtol = r.number("rtol", sc.solver.rtol);

@@ -12,10 +12,10 @@ namespace imcol {
 
 struct IntegratorSettings {
   std::string method = "cvode";  // cvode | ida
-  std::string linear_solver = "auto";  // dense | gmres (cvode only) | auto: gmres when the state is large
+  std::string linear_solver = "auto";  // dense | schur | gmres (cvode only) | auto: schur when the state is large
   double krylov_tol = 0.05;      // gmres: CVodeSetEpsLin
   int gmres_max_krylov = 5;      // gmres: Krylov subspace size
-  std::size_t gmres_auto_size = 24;  // auto: gmres from this state size on (cvode, modal structure present)
+  std::size_t gmres_auto_size = 24;  // auto: schur from this state size on (cvode, modal structure present)
   double rtol = 1e-8;
   double atol = 1e-10;           // dimensionless, see DynamicalSystem::absolute_tolerances
   double output_dt = 1e-4;       // s, sampling interval passed to the observer
@@ -38,7 +38,7 @@ struct SolverStats {
   long prec_setups = 0;        // Schur-complement preconditioner set-ups (with a Jacobian evaluation)
   long prec_solves = 0;
   long breakpoints = 0;        // stops on the system's fixed grid (direct history evaluator)
-  std::string linear_solver;   // what ran: dense | gmres
+  std::string linear_solver;   // what ran: dense | schur | gmres
   std::size_t state_size = 0;
   std::map<std::string, long> as_map() const;
 };

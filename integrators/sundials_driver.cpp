@@ -3,6 +3,8 @@
 #include <ida/ida.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
+#include <sundials/sundials_iterative.h>
+#include <sundials/sundials_linearsolver.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -103,27 +105,31 @@ class SchurPreconditioner {
   void solve(std::span<const double> r, std::span<double> x, double gamma) {
     const std::size_t p = ms_.core, S = ms_.groups, nm = ms_.rate.size();
     if (gamma != gamma_) factor(gamma);
-    Eigen::VectorXd rhs(p + S);
-    for (std::size_t k = 0; k < p; ++k) rhs[k] = r[k];
-    for (std::size_t g = 0; g < S; ++g) rhs[p + g] = 0;
-    for (std::size_t i = 0; i < nm; ++i) rhs[p + ms_.group[i]] += ms_.gain[i] * r[p + i] / (1 + gamma * ms_.rate[i]);
-    const Eigen::VectorXd sol = lu_.solve(rhs);
-    std::vector<double> q(S);
+    rhs_.resize(p + S);
+    q_.resize(S);
+    for (std::size_t k = 0; k < p; ++k) rhs_[k] = r[k];
+    for (std::size_t g = 0; g < S; ++g) rhs_[p + g] = 0;
+    for (std::size_t i = 0; i < nm; ++i) rhs_[p + ms_.group[i]] += ms_.gain[i] * r[p + i] * inv_[i];
+    sol_.noalias() = lu_.solve(rhs_);
     for (std::size_t g = 0; g < S; ++g) {
       double v = 0;
-      for (std::size_t l = 0; l < p; ++l) v += Jpp_(src_[g], l) * sol[l];
-      for (std::size_t h = 0; h < S; ++h) v += B_(src_[g], h) * sol[p + h];
-      q[g] = v;
+      for (std::size_t l = 0; l < p; ++l) v += Jpp_(src_[g], l) * sol_[l];
+      for (std::size_t h = 0; h < S; ++h) v += B_(src_[g], h) * sol_[p + h];
+      q_[g] = gamma * v;
     }
-    for (std::size_t k = 0; k < p; ++k) x[k] = sol[k];
-    for (std::size_t i = 0; i < nm; ++i) x[p + i] = (r[p + i] + gamma * q[ms_.group[i]]) / (1 + gamma * ms_.rate[i]);
+    for (std::size_t k = 0; k < p; ++k) x[k] = sol_[k];
+    for (std::size_t i = 0; i < nm; ++i) x[p + i] = (r[p + i] + q_[ms_.group[i]]) * inv_[i];
   }
 
  private:
   void factor(double gamma) {
     const std::size_t p = ms_.core, S = ms_.groups;
     std::vector<double> sigma(S, 0.0);
-    for (std::size_t i = 0; i < ms_.rate.size(); ++i) sigma[ms_.group[i]] += ms_.gain[i] / (1 + gamma * ms_.rate[i]);
+    inv_.resize(ms_.rate.size());
+    for (std::size_t i = 0; i < ms_.rate.size(); ++i) {
+      inv_[i] = 1 / (1 + gamma * ms_.rate[i]);
+      sigma[ms_.group[i]] += ms_.gain[i] * inv_[i];
+    }
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(p + S, p + S);
     A.topLeftCorner(p, p) = Eigen::MatrixXd::Identity(p, p) - gamma * Jpp_;
     A.topRightCorner(p, S) = -gamma * B_;
@@ -140,8 +146,58 @@ class SchurPreconditioner {
   std::vector<std::size_t> src_;
   Eigen::MatrixXd Jpp_, B_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  Eigen::VectorXd rhs_, sol_;       // solve() scratch
+  std::vector<double> q_, inv_;     // inv_i = 1/(1 + γλ_i) at the factored γ
   double gamma_ = -1;
 };
+
+/// The `schur` linear solver: CVODE sees an iterative solver (so it keeps its Jacobian-age heuristics
+/// and hands over the current γ), but the solve is one application of the exact Schur-complement solve
+/// above, without Krylov iterations (GMRES converged in about one, which cost a second solve, a J·v
+/// product and the orthogonalisation).
+struct SchurDirectContent {
+  void* P_data = nullptr;
+  SUNPSetupFn pset = nullptr;
+  SUNPSolveFn psol = nullptr;
+  int last_flag = 0;
+};
+SchurDirectContent* schur_content(SUNLinearSolver S) { return static_cast<SchurDirectContent*>(S->content); }
+
+SUNLinearSolver make_schur_direct(SUNContext ctx) {
+  SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
+  if (!S) return nullptr;
+  S->content = new SchurDirectContent;
+  S->ops->gettype = [](SUNLinearSolver) { return SUNLINEARSOLVER_ITERATIVE; };
+  S->ops->setatimes = [](SUNLinearSolver, void*, SUNATimesFn) { return 0; };
+  S->ops->setpreconditioner = [](SUNLinearSolver S, void* P, SUNPSetupFn ps, SUNPSolveFn pv) {
+    auto* c = schur_content(S);
+    c->P_data = P, c->pset = ps, c->psol = pv;
+    return 0;
+  };
+  S->ops->setscalingvectors = [](SUNLinearSolver, N_Vector, N_Vector) { return 0; };
+  S->ops->setzeroguess = [](SUNLinearSolver, sunbooleantype) { return 0; };
+  S->ops->initialize = [](SUNLinearSolver) { return 0; };
+  S->ops->setup = [](SUNLinearSolver S, SUNMatrix) {
+    auto* c = schur_content(S);
+    c->last_flag = c->pset ? c->pset(c->P_data) : 0;
+    return c->last_flag == 0 ? 0 : (c->last_flag < 0 ? SUNLS_PSET_FAIL_UNREC : SUNLS_PSET_FAIL_REC);
+  };
+  S->ops->solve = [](SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, sunrealtype tol) {
+    auto* c = schur_content(S);
+    c->last_flag = c->psol(c->P_data, b, x, tol, SUN_PREC_LEFT);
+    return c->last_flag == 0 ? 0 : (c->last_flag < 0 ? SUNLS_PSOLVE_FAIL_UNREC : SUNLS_PSOLVE_FAIL_REC);
+  };
+  S->ops->numiters = [](SUNLinearSolver) { return 0; };
+  S->ops->lastflag = [](SUNLinearSolver S) { return static_cast<sunindextype>(schur_content(S)->last_flag); };
+  S->ops->free = [](SUNLinearSolver S) {
+    if (!S) return 0;
+    delete schur_content(S);
+    S->content = nullptr;
+    SUNLinSolFreeEmpty(S);
+    return 0;
+  };
+  return S;
+}
 
 /// State shared with the C callbacks. Exceptions never cross SUNDIALS: they are stored and rethrown.
 struct Callback {
@@ -234,11 +290,12 @@ class CvodeBackend : public Backend {
     check(CVodeSetUserData(mem_, &cb_), "CVodeSetUserData");
     check(CVodeSVtolerances(mem_, st.rtol, abstol_), "CVodeSVtolerances");
     if (cb_.prec) {
-      LS_ = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, st.gmres_max_krylov, ctx);
-      if (!LS_) throw SolverError("SUNLinSol_SPGMR failed");
+      const bool direct = st.linear_solver == "schur";
+      LS_ = direct ? make_schur_direct(ctx) : SUNLinSol_SPGMR(y, SUN_PREC_LEFT, st.gmres_max_krylov, ctx);
+      if (!LS_) throw SolverError("creating the linear solver failed");
       check(CVodeSetLinearSolver(mem_, LS_, nullptr), "CVodeSetLinearSolver");
       check(CVodeSetPreconditioner(mem_, cv_psetup, cv_psolve), "CVodeSetPreconditioner");
-      check(CVodeSetEpsLin(mem_, st.krylov_tol), "CVodeSetEpsLin");
+      if (!direct) check(CVodeSetEpsLin(mem_, st.krylov_tol), "CVodeSetEpsLin");
     } else {
       A_ = SUNDenseMatrix(N_VGetLength(y), N_VGetLength(y), ctx);
       LS_ = SUNLinSol_Dense(y, A_, ctx);
@@ -467,14 +524,15 @@ Integrator::Integrator(DynamicalSystem& sys, const IntegratorSettings& st, Obser
   ModalStructure probe;
   const bool modal = sys.modal_structure(0.0, view(m.y.get()), probe);
   std::string ls = st.linear_solver;
-  if (ls == "auto") ls = (st.method == "cvode" && modal && sys.size() >= st.gmres_auto_size) ? "gmres" : "dense";
-  if (ls == "gmres") {
-    if (st.method != "cvode") throw SolverError("the gmres linear solver is implemented for cvode only");
-    if (!modal) throw SolverError("the gmres linear solver needs a state with memory components (the history effect)");
+  if (ls == "auto") ls = (st.method == "cvode" && modal && sys.size() >= st.gmres_auto_size) ? "schur" : "dense";
+  if (ls == "gmres" || ls == "schur") {
+    if (st.method != "cvode") throw SolverError("the " + ls + " linear solver is implemented for cvode only");
+    if (!modal) throw SolverError("the " + ls + " linear solver needs a state with memory components (the history effect)");
     m.cb.prec = &m.prec;
   } else if (ls != "dense") {
     throw SolverError("unknown linear solver '" + ls + "'");
   }
+  m.st.linear_solver = ls;
   if (st.method == "cvode") m.be = std::make_unique<CvodeBackend>(m.ctx.get(), m.cb, m.st, m.y.get(), m.abstol.get());
   else if (st.method == "ida") m.be = std::make_unique<IdaBackend>(m.ctx.get(), m.cb, m.st, m.y.get(), m.abstol.get());
   else throw SolverError("unknown integrator '" + st.method + "'");

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "contact/formulas.hpp"
+#include "contact/table_data.hpp"
 
 using namespace imcol::contact;
 
@@ -194,4 +195,20 @@ TEST(Drag, Laws) {
   EXPECT_DOUBLE_EQ(drag_factor(DragLaw::stokes, 100), 1.0);
   EXPECT_NEAR(drag_factor(DragLaw::schiller_naumann, 100), 4.5489, 1e-4);  // 1 + 0.15·100^0.687, evaluated independently
   EXPECT_DOUBLE_EQ(drag_factor(DragLaw::schiller_naumann, 0), 1.0);
+}
+
+TEST(Tables, ShippedNodesMatchTheSeries) {
+  // contact/table_data.cpp holds the nodes imcol_gen_tables computed; recompute every one.
+  using table_data::brenner_n;
+  using table_data::w_n;
+  for (int i = 0; i < w_n; ++i) {
+    const auto v = table_node(TableKind::added_mass_W, i);
+    EXPECT_NEAR(table_data::w_nodes[i][0] / v[0], 1.0, 1e-13) << i;
+    EXPECT_NEAR(table_data::w_nodes[i][1] / v[1], 1.0, 1e-12) << i;
+  }
+  for (int i = 0; i < brenner_n; ++i) {
+    const auto v = table_node(TableKind::brenner_lambda, i);
+    EXPECT_NEAR(table_data::brenner_nodes[i][0] / v[0], 1.0, 1e-13) << i;
+    EXPECT_NEAR(table_data::brenner_nodes[i][1] / v[1], 1.0, 1e-9) << i;  // central differences
+  }
 }
