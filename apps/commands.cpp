@@ -16,7 +16,7 @@
 #include "apps/plot.hpp"
 #include "core/toml_reader.hpp"
 #include "apps/flow_command.hpp"
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "apps/sweep.hpp"
 #include "apps/work_precision.hpp"
 #include "core/errors.hpp"

@@ -13,7 +13,7 @@
 
 #include "apps/format.hpp"
 #include "apps/plot.hpp"
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "contact/collision_model.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"

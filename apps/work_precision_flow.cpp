@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "apps/format.hpp"
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
 

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "bench/bench_scenes.hpp"
 
 namespace {

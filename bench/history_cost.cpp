@@ -11,7 +11,7 @@
 #include <sstream>
 #include <vector>
 
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "contact/history_kernel.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"

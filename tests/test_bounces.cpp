@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"
 #include "tests/scene_text.hpp"

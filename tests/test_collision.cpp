@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"
 #include "tests/scene_text.hpp"

@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/scene.hpp"
 #include "flow/flow_scene.hpp"

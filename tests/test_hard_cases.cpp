@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <map>
 
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "contact/collision_model.hpp"
 #include "contact/history_force.hpp"
 #include "contact/history_kernel.hpp"

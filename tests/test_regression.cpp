@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-#include "apps/simulate.hpp"
+#include "run/simulate.hpp"
 #include "core/materials.hpp"
 
 using namespace imcol;

@@ -1,5 +1,6 @@
 #pragma once
-// One collision run: build the model the scene calls for, integrate, measure, report.
+// One collision run (the layer above coupling/): build the model the scene calls for, integrate (alone or
+// coupled to the flow kernel), measure the contacts, report. Used by every command, the benchmarks and the tests.
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>

@@ -1,0 +1,36 @@
+#pragma once
+// The first contact of a run measured as the seed does (MODEL.md §3): impact and rebound velocities from
+// least-squares fits over measure.window (m/s), e (seed 6.1), e_instant at measure.instant_gap, St (6.2) and
+// Re at impact, the group velocity of a pair that moves on together; with the warnings that qualify them.
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "contact/collision_model.hpp"
+#include "core/scene.hpp"
+
+namespace imcol::run {
+
+struct FirstContact {
+  std::optional<double> e, e_fit_raw, e_instant;
+  std::optional<double> St, St_62, Re;
+  std::optional<double> u_i1, u_i2, u_r1, u_r2;  // fitted, m/s
+  std::optional<double> group_velocity, t_group;  // m/s, s
+  double fit_window = 0;                          // s, as used (shortened to a short approach)
+  bool separated = false;
+  bool t_end_too_short = false;
+};
+
+/// St in the reported convention (eq. 6.2 for a wall, half of it for a pair: seed Table 6.1) and St by (6.2).
+std::pair<double, double> stokes_numbers(const contact::CollisionModel& model, const Scene& sc, double u_rel);
+
+/// Measures the first contact on the trajectory rows (columns t, z1, u1, …, z2 at 4 and u2 at 5 for a pair).
+FirstContact measure_first_contact(const contact::CollisionModel& model, const Scene& sc,
+                                   const std::vector<std::vector<double>>& rows, std::vector<std::string>& warnings);
+
+/// Warnings for an e that cannot be trusted: above e_dry (energy created), or from loose tolerances.
+void check_plausibility(const contact::CollisionModel& model, const Scene& sc, const FirstContact& m,
+                        std::vector<std::string>& warnings);
+
+}  // namespace imcol::run

@@ -1,0 +1,96 @@
+#include "run/recorder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <unistd.h>
+
+namespace imcol::run {
+
+using contact::Evaluation;
+
+Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress)
+    : model_(model), sc_(sc), min_gap_(INFINITY), progress_(progress && ::isatty(2)) {
+  const bool pair = model.n_spheres() == 2;
+  columns_ = {"t", "z1", "u1"};
+  if (model.has_target()) columns_.push_back("gap");
+  if (pair) {
+    columns_.push_back("z2");
+    columns_.push_back("u2");
+  }
+  if (model.has_target()) columns_.push_back("u_rel");
+  for (int m = 1; m <= static_cast<int>(model.n_spheres()); ++m) {
+    const std::string k = std::to_string(m);
+    if (sc.has(Effect::drag)) columns_.push_back("f_drag" + k);
+    if (sc.has(Effect::lubrication)) columns_.push_back("f_lub" + k);
+    if (sc.has(Effect::added_mass)) columns_.push_back("f_am" + k);
+    if (sc.has(Effect::elastic)) columns_.push_back("f_contact" + k);
+    if (sc.has(Effect::gravity)) columns_.push_back("f_grav" + k);
+    if (sc.has(Effect::history)) columns_.push_back("f_hist" + k);
+    if (sc.has(Effect::flow)) {
+      columns_.push_back("f_sim" + k);
+      columns_.push_back("f_thr" + k);
+    }
+    columns_.push_back("a" + k);
+  }
+  if (sc.has(Effect::flow)) columns_.push_back("H");
+  columns_.push_back("event");
+}
+
+void Recorder::sample(double t, std::span<const double> y, bool at_event) {
+  const Evaluation ev = model_.evaluate(t, y);
+  std::vector<double> r;
+  r.reserve(columns_.size());
+  r.insert(r.end(), {t, ev.z[0], ev.u[0]});
+  const bool pair = model_.n_spheres() == 2;
+  if (model_.has_target()) r.push_back(ev.gap);
+  if (pair) {
+    r.push_back(ev.z[1]);
+    r.push_back(ev.u[1]);
+  }
+  if (model_.has_target()) r.push_back(ev.u_rel);
+  for (std::size_t m = 0; m < model_.n_spheres(); ++m) {
+    const auto& f = ev.f[m];
+    if (sc_.has(Effect::drag)) r.push_back(f.drag);
+    if (sc_.has(Effect::lubrication)) r.push_back(f.lubrication);
+    if (sc_.has(Effect::added_mass)) r.push_back(f.added_mass);
+    if (sc_.has(Effect::elastic)) r.push_back(f.contact);
+    if (sc_.has(Effect::gravity)) r.push_back(f.gravity);
+    if (sc_.has(Effect::history)) r.push_back(f.history);
+    if (sc_.has(Effect::flow)) {
+      r.push_back(f.f_sim);
+      r.push_back(f.f_thr);
+    }
+    r.push_back(f.accel);
+    max_history_ = std::max(max_history_, std::abs(f.history));
+  }
+  if (sc_.has(Effect::flow)) r.push_back(ev.H);
+  r.push_back(at_event ? 1.0 : 0.0);
+  rows_.push_back(std::move(r));
+  model_.observe(t, ev);  // may end the run: at rest on the wall, or moving with its partner
+  if (progress_) show_progress(t);
+  if (model_.has_target()) {
+    min_gap_ = std::min(min_gap_, ev.gap);
+    max_force_ = std::max(max_force_, std::abs(ev.f[0].contact));
+  }
+}
+
+void Recorder::finish_progress() {
+  if (shown_) std::cerr << "\r" << std::string(96, ' ') << "\r" << std::flush;
+}
+
+void Recorder::show_progress(double t) {
+  const auto now = std::chrono::steady_clock::now();
+  const double run = std::chrono::duration<double>(now - start_).count();
+  if (run < 2.0 || std::chrono::duration<double>(now - last_).count() < 0.5) return;
+  last_ = now;
+  shown_ = true;
+  const double t_end = sc_.solver.t_end;
+  const double left = t > 0 ? run * (t_end - t) / t : 0.0;  // at most: the run may stop once e is measured
+  std::cerr << "\r  t = " << std::setprecision(4) << t << " s of t_end " << t_end << " s (" << std::fixed << std::setprecision(1)
+            << 100 * t / t_end << " %), " << run << " s elapsed, at most " << left << " s left   " << std::defaultfloat
+            << std::flush;
+}
+
+}  // namespace imcol::run

@@ -1,0 +1,42 @@
+#pragma once
+// Samples a collision run into trajectory rows (one per output time and event) with the force terms of the
+// effects that ran, lets the model observe each sample (it may end the run: at rest), and shows progress.
+#include <chrono>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "contact/collision_model.hpp"
+#include "core/scene.hpp"
+#include "core/system.hpp"
+
+namespace imcol::run {
+
+class Recorder : public Observer {
+ public:
+  /// `progress`: a run still going after 2 s shows a progress line on stderr (a terminal only).
+  Recorder(contact::CollisionModel& model, const Scene& sc, bool progress);
+
+  void sample(double t, std::span<const double> y, bool at_event) override;
+  /// Clears the progress line, if one was shown.
+  void finish_progress();
+
+  const std::vector<std::string>& columns() const { return columns_; }
+  std::vector<std::vector<double>>& rows() { return rows_; }
+  double min_gap() const { return min_gap_; }          // m, over the samples
+  double max_contact_force() const { return max_force_; }  // N, sphere 1
+  double max_history_force() const { return max_history_; }  // N, any sphere
+
+ private:
+  void show_progress(double t);
+
+  contact::CollisionModel& model_;
+  const Scene& sc_;
+  std::vector<std::string> columns_;
+  std::vector<std::vector<double>> rows_;
+  double min_gap_, max_force_ = 0, max_history_ = 0;
+  bool progress_ = false, shown_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
+};
+
+}  // namespace imcol::run

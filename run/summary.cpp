@@ -1,0 +1,146 @@
+#include "run/summary.hpp"
+
+#include <iomanip>
+#include <sstream>
+
+#include "run/json_util.hpp"
+
+namespace imcol::run {
+
+using contact::CollisionModel;
+
+void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, const Scene& sc, const FirstContact& m,
+                      const nlohmann::ordered_json& bounces, const Recorder& rec, const std::vector<std::vector<double>>& rows) {
+  const bool pair = model.n_spheres() == 2;
+  s["e"] = or_null(m.e);
+  s["e_is"] = "fit_time (velocities fitted over measure.window before the first contact and after its separation)";
+  if (m.e_fit_raw) s["e_fit_raw"] = *m.e_fit_raw;
+  s["e_instant"] = or_null(m.e_instant);
+  s["e_instant_gap_m"] = sc.measure.instant_gap * 2 * model.radius(0);
+  // The named measures of the first contact (each contact's are in `bounces`).
+  if (!bounces.empty()) {
+    auto em = bounces[0]["e_measures"];
+    em["fit_time"]["e"] = or_null(m.e);  // as `e` (symmetric windows, also for pairs)
+    em["fit_time"]["window_s"] = m.fit_window;
+    s["e_measures"] = em;
+  } else {
+    s["e_measures"] = nullptr;
+  }
+  s["bounces_mode"] = sc.measure.bounces;
+  s["bounces"] = bounces;
+  s["St"] = or_null(m.St);
+  if (pair) {
+    s["St_convention"] = "seed Table 6.1: half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
+    s["St_B_eq_6_2"] = or_null(m.St_62);
+  } else {
+    s["St_convention"] = "m U / (6 pi mu a^2)";
+  }
+  s["Re"] = or_null(m.Re);
+  if (sc.fluid && model.has_target()) s["St_initial"] = stokes_numbers(model, sc, model.initial_u_rel()).first;  // nominal, same convention
+  s["separated"] = m.separated;
+  // The run ended because the pair came to rest (MODEL.md §3 has no event for it; see CollisionModel::observe).
+  s["at_rest_since_s"] = or_null(model.t_at_rest());
+  s["t_end_too_short"] = m.t_end_too_short;
+  if (model.has_target()) s["final_phase"] = contact::to_string(model.phase());
+  s["contacts"] = model.contacts();
+  s["velocities_m_s"] = {{"U_i1", or_null(m.u_i1)}, {"U_i2", or_null(m.u_i2)}, {"U_r1", or_null(m.u_r1)}, {"U_r2", or_null(m.u_r2)}};
+  s["fit_window_s"] = m.fit_window;
+  s["min_gap_m"] = model.has_target() ? nlohmann::ordered_json(rec.min_gap()) : nlohmann::ordered_json(nullptr);
+  s["max_contact_force_N"] = rec.max_contact_force();
+  s["group_velocity_m_s"] = or_null(m.group_velocity);
+  if (m.group_velocity) s["group_velocity_at_s"] = *m.t_group;
+  if (sc.has(Effect::history)) s["max_history_force_N"] = rec.max_history_force();  // at the output samples and events
+  if (!rows.empty()) {
+    s["u1_final_m_s"] = rows.back()[2];
+    if (pair) s["u2_final_m_s"] = rows.back()[5];
+  }
+}
+
+nlohmann::ordered_json contact_block(const CollisionModel& model) {
+  return {{"t_contact_s", or_null(model.t_contact())},
+          {"t_separation_s", or_null(model.t_separation())},
+          {"impact_speed_m_s", model.t_contact() ? nlohmann::ordered_json(model.impact_speed()) : nullptr},
+          {"W_o_N", model.t_contact() ? nlohmann::ordered_json(model.W_o()) : nullptr},
+          {"beta", model.t_contact() ? nlohmann::ordered_json(model.beta()) : nullptr},
+          {"e_dry", model.e_dry()},
+          {"delta_ss_m", model.delta_ss_m()}};
+}
+
+nlohmann::ordered_json solver_block(const CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats, double t_final) {
+  nlohmann::ordered_json sol = {{"integrator", st.method}, {"linear_solver", stats.linear_solver},
+                                {"rtol", st.rtol}, {"atol", st.atol},
+                                {"absolute_tolerances", model.absolute_tolerances(st.atol)},
+                                {"state", model.component_names()}, {"max_step_s", model.max_step()},
+                                {"t_final_s", t_final}};
+  for (const auto& [k, v] : stats.as_map()) sol[k] = v;
+  return sol;
+}
+
+nlohmann::ordered_json flow_block(const coupling::FlowRunStats& fs, const Scene& sc, double wall) {
+  const double ms = fs.steps ? 1e3 * fs.flow_seconds / fs.steps : 0.0;
+  return {{"grid", {{"cells_per_diameter", fs.cells_per_diameter}, {"h_m", fs.h}, {"nr", fs.nr}, {"nz", fs.nz},
+                    {"levels", fs.levels}, {"memory_MB", fs.bytes / 1e6}}},
+          {"dt_s", fs.dt}, {"start", to_string(sc.flow.start)}, {"start_up_steps", fs.pre_steps},
+          {"force_in_step", to_string(sc.flow.force_in_step)}, {"steps", fs.steps}, {"ms_per_step", ms},
+          {"krylov_iterations", fs.krylov_iterations},
+          {"krylov_iterations_per_step", fs.steps ? double(fs.krylov_iterations) / fs.steps : 0.0},
+          {"max_krylov_iterations", fs.max_krylov_iterations}, {"max_krylov_residual", fs.max_krylov_residual},
+          {"max_slip_m_s", fs.max_slip}, {"min_gap_clamped_steps", fs.min_gap_clamped_steps},
+          {"frame_travel_m", fs.frame_travel}, {"start_up_time_s", fs.pre_seconds},
+          {"flow_time_s", fs.flow_seconds}, {"ode_time_s", fs.ode_seconds},
+          {"flow_share", wall > 0 ? fs.flow_seconds / wall : 0.0}, {"ode_share", wall > 0 ? fs.ode_seconds / wall : 0.0}};
+}
+
+std::string human_summary(const nlohmann::ordered_json& s) {
+  std::ostringstream os;
+  auto num = [](const nlohmann::ordered_json& j, int prec = 4) {
+    if (j.is_null()) return std::string("n/a");
+    std::ostringstream o;
+    o << std::setprecision(prec) << j.get<double>();
+    return o.str();
+  };
+  os << "scene " << s["scene"].get<std::string>() << " (" << s["configuration"].get<std::string>() << ")\n";
+  os << "  e = " << num(s["e"]) << "   e_instant = " << num(s["e_instant"]) << "   St = " << num(s["St"])
+     << "   Re = " << num(s["Re"]) << "\n";
+  if (!s["group_velocity_m_s"].is_null())
+    os << "  group velocity = " << num(s["group_velocity_m_s"]) << " m/s (no separation; centre-of-mass velocity at t = "
+       << num(s["group_velocity_at_s"]) << " s, when the relative velocity vanished)\n";
+  if (!s["min_gap_m"].is_null()) os << "  min gap = " << num(s["min_gap_m"]) << " m, max contact force = " << num(s["max_contact_force_N"]) << " N\n";
+  std::string eff;
+  for (const auto& x : s["effects"]) eff += (eff.empty() ? "" : ", ") + x.get<std::string>();
+  os << "  effects: " << eff << "\n";
+  const auto& sol = s["solver"];
+  os << "  " << sol["integrator"].get<std::string>() << " rtol " << sol["rtol"].get<double>() << ": "
+     << sol["steps"].get<long>() << " steps, " << sol["rhs_evals"].get<long>() << " rhs evals, "
+     << sol["root_events"].get<long>() << " events, " << sol["error_test_fails"].get<long>() << " error-test fails; "
+     << std::setprecision(3) << s["wall_time_s"].get<double>() * 1e3 << " ms\n";
+  const auto& mod = s["model"];
+  if (mod.contains("history.kernel")) {
+    os << "  history: " << mod["history.kernel"].get<std::string>() << " kernel, " << mod["history.evaluator"].get<std::string>()
+       << " evaluator";
+    if (mod.contains("history.modes")) os << ", " << mod["history.modes"].get<std::string>() << " modes";
+    os << "; peak |f_H| = " << num(s["max_history_force_N"]) << " N; " << sol["linear_solver"].get<std::string>()
+       << " linear solver, state size " << sol["state_size"].get<long>() << "\n";
+  }
+  if (s.contains("flow")) {
+    const auto& f = s["flow"];
+    os << "  flow: " << f["grid"]["cells_per_diameter"].get<int>() << " cells/D, " << f["grid"]["levels"].get<int>() << " levels, "
+       << f["steps"].get<long>() << " flow steps of " << std::setprecision(3) << 1e3 * f["dt_s"].get<double>() << " ms, "
+       << f["ms_per_step"].get<double>() << " ms per step, " << f["krylov_iterations_per_step"].get<double>()
+       << " GMRES iterations per step; of the wall time " << std::setprecision(2) << 100 * f["flow_share"].get<double>()
+       << " % in the flow kernel, " << 100 * f["start_up_time_s"].get<double>() / s["wall_time_s"].get<double>()
+       << " % in its start-up (" << f["start_up_steps"].get<long>() << " steps, " << f["start"].get<std::string>() << ")\n";
+  }
+  if (s.contains("bounces_mode") && s["bounces_mode"] == "all" && !s["bounces"].empty()) {
+    os << "  bounces: contact   t_contact (s)   impact (m/s)   e       apex gap (mm)   t_apex (s)\n";
+    for (const auto& b : s["bounces"])
+      os << "           " << std::setw(7) << b["contact"].get<int>() << "   " << std::setw(13) << num(b["t_contact_s"], 5) << "   "
+         << std::setw(12) << num(b["impact_velocity_m_s"]) << "   " << std::setw(5) << num(b["e"], 3) << "   " << std::setw(13)
+         << (b["apex_gap_m"].is_null() ? "n/a" : num(nlohmann::ordered_json(1e3 * b["apex_gap_m"].get<double>()))) << "   "
+         << num(b["t_apex_s"], 5) << "\n";
+  }
+  for (const auto& w : s["warnings"]) os << "  warning: " << w.get<std::string>() << "\n";
+  return os.str();
+}
+
+}  // namespace imcol::run

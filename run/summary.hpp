@@ -1,0 +1,33 @@
+#pragma once
+// summary.json of a collision run, block by block, and the short text `imcol run` prints.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "contact/collision_model.hpp"
+#include "core/scene.hpp"
+#include "coupling/flow_coupling.hpp"
+#include "integrators/integrator.hpp"
+#include "run/first_contact.hpp"
+#include "run/recorder.hpp"
+
+namespace imcol::run {
+
+/// e, e_instant, the named measures, St, Re, velocities, group velocity, contact extremes: the measurements.
+void put_measurements(nlohmann::ordered_json& s, const contact::CollisionModel& model, const Scene& sc, const FirstContact& m,
+                      const nlohmann::ordered_json& bounces, const Recorder& rec,
+                      const std::vector<std::vector<double>>& rows);
+
+/// The `contact` block: times, impact speed, W_o, β, e_dry, δ_SS.
+nlohmann::ordered_json contact_block(const contact::CollisionModel& model);
+
+/// The `solver` block: settings, tolerances, state names and statistics.
+nlohmann::ordered_json solver_block(const contact::CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats,
+                                    double t_final);
+
+/// The `flow` block of a coupled run: grid, step, Krylov statistics, wall-time shares (`wall`: the run's, s).
+nlohmann::ordered_json flow_block(const coupling::FlowRunStats& fs, const Scene& sc, double wall);
+
+/// What `imcol run` prints, from summary.json.
+std::string human_summary(const nlohmann::ordered_json& s);
+
+}  // namespace imcol::run
