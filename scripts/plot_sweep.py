@@ -1,14 +1,16 @@
 #!/usr/bin/python3
 """Plot e against St for `imcol sweep`, with the seed's Table 6.1 overlaid for a sphere pair.
 
-Usage: /usr/bin/python3 scripts/plot_sweep.py DIR   (reads DIR/sweep.csv and DIR/sweep.json, writes DIR/sweep.png)
+Usage: /usr/bin/python3 scripts/plot_sweep.py DIR [--compare DIR2]... [--out PNG]
+(reads DIR/sweep.csv and DIR/sweep.json, writes DIR/sweep.png; --compare draws another sweep dashed beside it)
 """
+import argparse
 import csv
 import json
 import sys
 from pathlib import Path
 
-from imcol_plot import out_dir, plt, save_png
+from imcol_plot import plt, save_png
 
 SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li_2010_table_6_1.csv"
 
@@ -18,24 +20,43 @@ def read_csv(path):
         return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
-def main() -> int:
-    out = out_dir(__doc__)
-    if out is None:
-        return 2
-    meta = json.loads((out / "sweep.json").read_text())
-    rows = [r for r in read_csv(out / "sweep.csv") if r["status"] == "ok" and r["St"] and r["e"]]
+MEASURES = (("e", "e (fit over measure.window)", "o"),
+            ("e_instant", "e_instant (at measure.instant_gap)", "x"),
+            ("e_fit_distance", "fit over measure.fit_distance", "^"),
+            ("e_at_gap", "velocities at measure.at_gap", "v"),
+            ("e_peak_rebound", "largest rebound / largest approach speed", "d"))
+
+
+def sweep_label(meta) -> str:
+    effects = meta.get("effects", [])
+    return ("coupled" if "flow" in effects else "reduced-order") + " (%s swept)" % meta["vary"]
+
+
+def plot_sweep(ax, folder: Path, meta, style: str, tag: str) -> None:
+    """Every named measure of one sweep: one colour per measure, `style` per sweep."""
+    rows = [r for r in read_csv(folder / "sweep.csv") if r["status"] == "ok" and r["St"] and r["e"]]
     rows.sort(key=lambda r: float(r["St"]))
-    fig, ax = plt.subplots(figsize=(8, 5.5))
-    ax.semilogx([float(r["St"]) for r in rows], [float(r["e"]) for r in rows], "o-", ms=4,
-                label="imcol e (fit over measure.window): %s swept (%s)" % (meta["vary"], ", ".join(meta.get("effects", []))))
-    # The other named measures of e (docs/bounces.md), where the sweep has them.
-    for key, label, mk in (("e_instant", "e_instant (at measure.instant_gap)", "x"),
-                           ("e_fit_distance", "fit over measure.fit_distance", "^"),
-                           ("e_at_gap", "velocities at measure.at_gap", "v"),
-                           ("e_peak_rebound", "largest rebound / largest approach speed", "d")):
+    for i, (key, label, mk) in enumerate(MEASURES):
         pts = [(float(r["St"]), float(r[key])) for r in rows if r.get(key)]
         if pts:
-            ax.semilogx(*zip(*pts), mk + "--", ms=4, lw=0.8, label=label)
+            ax.semilogx(*zip(*pts), mk + style, color="C%d" % i, ms=4, lw=1.2 if key == "e" else 0.8,
+                        mfc="none" if tag else None, label=(tag + label) if tag else label)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
+    ap.add_argument("dir", type=Path, help="a sweep's output folder (sweep.csv, sweep.json)")
+    ap.add_argument("--compare", type=Path, action="append", default=[],
+                    help="another sweep's folder, drawn dashed in the same axes (e.g. coupled beside reduced-order)")
+    ap.add_argument("--out", type=Path, help="the PNG to write (default DIR/sweep.png)")
+    args = ap.parse_args()
+    out = args.dir
+    meta = json.loads((out / "sweep.json").read_text())
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    others = [(d, json.loads((d / "sweep.json").read_text())) for d in args.compare]
+    plot_sweep(ax, out, meta, "-", sweep_label(meta) + ": " if others else "")
+    for d, m in others:
+        plot_sweep(ax, d, m, "--", sweep_label(m) + ": ")
     if meta["configuration"] == "sphere-sphere" and SEED_TABLE.exists():
         seed = read_csv(SEED_TABLE)
         ax.semilogx([float(r["St_B"]) for r in seed], [float(r["e"]) for r in seed], "s", color="k", mfc="none", ms=7,
@@ -48,11 +69,13 @@ def main() -> int:
     ax.set_ylabel("e")
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
-    n_fail = len(meta["failures"])
-    ax.set_title("%s: e vs St, %d points%s" % (meta["scene"], meta["points"], ", %d failed" % n_fail if n_fail else ""))
+    ax.legend(fontsize=7 if others else 8, loc="lower right")
+    n_fail = len(meta["failures"]) + sum(len(m["failures"]) for _, m in others)
+    what = "%d points" % meta["points"] if not others else "%d sweeps" % (1 + len(others))
+    ax.set_title("%s: e vs St (%s), %s%s" % (meta["scene"], ", ".join(meta.get("effects", [])) if not others else "each named measure",
+                                             what, ", %d failed" % n_fail if n_fail else ""), fontsize=10)
     fig.tight_layout()
-    save_png(fig, out / "sweep.png")
+    save_png(fig, args.out or out / "sweep.png")
     return 0
 
 
