@@ -272,7 +272,13 @@ class Backend {
   virtual ~Backend() = default;
   virtual void init(double t, N_Vector y) = 0;  // (re)initialise at (t, y)
   virtual void set_roots(const std::vector<RootSpec>& roots) = 0;
-  virtual int solve(double tout, double tstop, N_Vector y, double& t) = 0;  // >0 root, 0 ok, <0 fail
+  /// One internal step toward tstop (tout only sizes the first step after an initialisation):
+  /// >0 a root at t (y = y(t)), 0 a step to t = the internal time (y = y(t)), <0 failure.
+  virtual int step(double tout, double tstop, N_Vector y, double& t) = 0;
+  /// The solver's interpolant at t within the last step (CVodeGetDky / IDAGetDky).
+  virtual void interpolate(double t, N_Vector y) = 0;
+  virtual double internal_time() = 0;
+  virtual int too_much_work() = 0;  // the solver's flag for more than max_steps steps between two returns
   virtual void root_info(int* found) = 0;
   virtual void add_stats(SolverStats& s) = 0;
   virtual std::string flag_name(int flag) = 0;
@@ -322,12 +328,19 @@ class CvodeBackend : public Backend {
     for (const auto& r : roots) dir.push_back(r.direction);
     check(CVodeSetRootDirection(mem_, dir.data()), "CVodeSetRootDirection");
   }
-  int solve(double tout, double tstop, N_Vector y, double& t) override {
+  int step(double tout, double tstop, N_Vector y, double& t) override {
     check(CVodeSetStopTime(mem_, tstop), "CVodeSetStopTime");
-    int flag = CVode(mem_, tout, y, &t, CV_NORMAL);
+    int flag = CVode(mem_, tout, y, &t, CV_ONE_STEP);
     if (flag == CV_ROOT_RETURN) return 1;
     return flag < 0 ? flag : 0;
   }
+  void interpolate(double t, N_Vector y) override { check(CVodeGetDky(mem_, t, 0, y), "CVodeGetDky"); }
+  double internal_time() override {
+    double t = 0;
+    CVodeGetCurrentTime(mem_, &t);
+    return t;
+  }
+  int too_much_work() override { return CV_TOO_MUCH_WORK; }
   void root_info(int* found) override { CVodeGetRootInfo(mem_, found); }
   void add_stats(SolverStats& s) override {
     long v = 0;
@@ -403,12 +416,19 @@ class IdaBackend : public Backend {
     for (const auto& r : roots) dir.push_back(r.direction);
     check(IDASetRootDirection(mem_, dir.data()), "IDASetRootDirection");
   }
-  int solve(double tout, double tstop, N_Vector y, double& t) override {
+  int step(double tout, double tstop, N_Vector y, double& t) override {
     check(IDASetStopTime(mem_, tstop), "IDASetStopTime");
-    int flag = IDASolve(mem_, tout, &t, y, yp_, IDA_NORMAL);
+    int flag = IDASolve(mem_, tout, &t, y, yp_, IDA_ONE_STEP);
     if (flag == IDA_ROOT_RETURN) return 1;
     return flag < 0 ? flag : 0;
   }
+  void interpolate(double t, N_Vector y) override { check(IDAGetDky(mem_, t, 0, y), "IDAGetDky"); }
+  double internal_time() override {
+    double t = 0;
+    IDAGetCurrentTime(mem_, &t);
+    return t;
+  }
+  int too_much_work() override { return IDA_TOO_MUCH_WORK; }
   void root_info(int* found) override { IDAGetRootInfo(mem_, found); }
   void add_stats(SolverStats& s) override {
     long v = 0;
@@ -459,7 +479,7 @@ struct Integrator::Impl {
   IntegratorSettings st;
   Observer& observer;
   std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter> ctx;
-  VectorPtr y, abstol;
+  VectorPtr y, abstol, yi;  // yi: interpolated output samples
   Callback cb{};
   SchurPreconditioner prec;
   std::unique_ptr<Backend> be;
@@ -467,7 +487,30 @@ struct Integrator::Impl {
   std::vector<std::string> names;
   double t = 0.0;
   long k_out = 1;  // output times k·dt, counted so that they cannot stop advancing
+  double t_sampled = -1;  // time of the last output sample
+  long quiet_steps = 0;   // internal steps since the last output sample, event or stop (solver.max_steps bounds them)
   bool done = false;
+
+  /// Samples the output times k·dt in (t, t_upto) (strict) or (t, t_upto] from the solver's interpolant,
+  /// without stopping the solver there. If the system's stop time falls to a sample (the observer ended the
+  /// run), the state becomes the one at that sample and true is returned.
+  bool emit_outputs(double t_upto, bool strict) {
+    const double t_eps = 1e-12 * std::max(1.0, std::abs(t));
+    while (k_out * st.output_dt <= t + t_eps) ++k_out;
+    for (;; ++k_out) {
+      const double tau = k_out * st.output_dt;
+      if (strict ? tau >= t_upto : tau > t_upto) return false;
+      be->interpolate(tau, yi.get());
+      observer.sample(tau, view(yi.get()), false);
+      t_sampled = tau;
+      if (tau >= sys.stop_time() - 1e-12 * std::max(1.0, std::abs(tau))) {
+        N_VScale(1.0, yi.get(), y.get());
+        t = tau;
+        ++k_out;
+        return true;
+      }
+    }
+  }
 
   /// An exception from the model: input and solver errors pass through, anything else becomes a
   /// SolverError that says where it happened.
@@ -516,6 +559,7 @@ Integrator::Integrator(DynamicalSystem& sys, const IntegratorSettings& st, Obser
   const auto n = static_cast<sunindextype>(sys.size());
   m.y.reset(N_VNew_Serial(n, m.ctx.get()));
   m.abstol.reset(N_VNew_Serial(n, m.ctx.get()));
+  m.yi.reset(N_VNew_Serial(n, m.ctx.get()));
   sys.initial_state(mview(m.y.get()));
   auto tol = sys.absolute_tolerances(st.atol);
   std::copy(tol.begin(), tol.end(), mview(m.abstol.get()).begin());
@@ -570,6 +614,8 @@ double Integrator::advance(double t_target) {
   auto& sys = m.sys;
   auto& be = m.be;
   double& t = m.t;
+  // One internal step per solver call (CV_ONE_STEP / IDA_ONE_STEP): the output samples are interpolated
+  // (CVodeGetDky / IDAGetDky) within each step, so the output grid never makes the solver return.
   while (!m.done) {
     const double t_eps = 1e-12 * std::max(1.0, std::abs(t));  // times closer than this count as reached
     const double tstop = sys.stop_time();
@@ -578,15 +624,28 @@ double Integrator::advance(double t_target) {
       break;
     }
     if (t >= t_target - t_eps) break;
-    // The next output time must lie strictly ahead (an event may have landed on it).
-    while (m.k_out * m.st.output_dt <= t + t_eps) ++m.k_out;
-    const double next_out = m.k_out * m.st.output_dt;
     const double bp = sys.next_breakpoint(t);
     const double t_limit = std::min({tstop, bp, t_target});
-    const double tout = std::min(next_out, t_limit);
-    int flag = be->solve(tout, t_limit, m.y.get(), t);
-    if (flag < 0) m.fail(flag);
-    if (m.cb.error) m.rethrow_model_error();
+    double t_new = t;
+    int flag = 0;
+    if (t_limit < be->internal_time()) {
+      // The solver has stepped past t_limit (an event or a sample moved the stop time back, which CVODE's
+      // stop time cannot follow): the samples and the state at t_limit come from its interpolant.
+      t_new = t_limit;
+      if (m.emit_outputs(t_new, false)) continue;
+      be->interpolate(t_new, m.y.get());
+    } else {
+      while (m.k_out * m.st.output_dt <= t + t_eps) ++m.k_out;
+      const double tout = std::min(m.k_out * m.st.output_dt, t_limit);  // sizes the first step after a (re)start
+      if (m.quiet_steps >= m.st.max_steps) m.fail(be->too_much_work());
+      flag = be->step(tout, t_limit, m.y.get(), t_new);
+      if (flag < 0) m.fail(flag);
+      if (m.cb.error) m.rethrow_model_error();
+      const double sampled = m.t_sampled;
+      if (m.emit_outputs(t_new, flag > 0)) continue;  // the observer ended the run at a sample (y is there)
+      m.quiet_steps = (flag != 0 || m.t_sampled != sampled || t_new >= t_limit) ? 0 : m.quiet_steps + 1;
+    }
+    t = t_new;
     if (flag > 0) {
       std::vector<int> flags(sys.roots().size(), 0);
       be->root_info(flags.data());
@@ -603,11 +662,12 @@ double Integrator::advance(double t_target) {
       if (action == EventAction::reinit) reinit();
       continue;
     }
-    if (t >= bp - t_eps) {
+    const double t_eps_new = 1e-12 * std::max(1.0, std::abs(t));
+    if (t >= bp - t_eps_new) {
       sys.at_breakpoint(t, view(m.y.get()));
       ++m.stats.breakpoints;
     }
-    if (t >= next_out - t_eps || t >= tstop - t_eps) m.observer.sample(t, view(m.y.get()), false);
+    if (t >= sys.stop_time() - t_eps_new && !(std::abs(m.t_sampled - t) <= t_eps_new)) m.observer.sample(t, view(m.y.get()), false);
   }
   return t;
 }
