@@ -2,11 +2,54 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <stdexcept>
+#include <tuple>
 
 #include "contact/formulas.hpp"
 
 namespace imcol::contact {
+
+namespace {
+struct SoeCache {
+  using Key = std::tuple<int, double, double, double, double, double, int>;
+  std::mutex mu;
+  std::map<Key, std::shared_ptr<const SoeKernel>> kernels;
+  SoeCacheStats stats;
+};
+SoeCache& soe_cache() {
+  static SoeCache c;
+  return c;
+}
+}  // namespace
+
+std::shared_ptr<const SoeKernel> shared_soe_kernel(const HistoryOptions& opt, double D, double nu) {
+  const SoeCache::Key key{static_cast<int>(opt.kernel), D, nu, opt.min_lag, opt.horizon, opt.modes > 0 ? 0.0 : opt.tolerance,
+                          opt.modes > 0 ? opt.modes : 0};
+  auto& c = soe_cache();
+  {
+    const std::lock_guard<std::mutex> lock(c.mu);
+    if (auto it = c.kernels.find(key); it != c.kernels.end()) {
+      ++c.stats.reused;
+      return it->second;
+    }
+  }
+  // Built outside the lock: other threads keep running; two threads building the same key keep the first.
+  const auto base = opt.modes > 0 ? inverse_sqrt_soe_modes(opt.min_lag, opt.horizon, opt.modes)
+                                  : inverse_sqrt_soe(opt.min_lag, opt.horizon, opt.tolerance);
+  auto k = std::make_shared<const SoeKernel>(HistoryKernel(opt.kernel, D, nu), base);
+  const std::lock_guard<std::mutex> lock(c.mu);
+  ++c.stats.built;
+  if (c.kernels.size() >= 256) c.kernels.clear();  // bounded: a long sweep of distinct scenes
+  return c.kernels.emplace(key, std::move(k)).first->second;
+}
+
+SoeCacheStats soe_cache_stats() {
+  auto& c = soe_cache();
+  const std::lock_guard<std::mutex> lock(c.mu);
+  return c.stats;
+}
 
 SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, double rho_f, double U0)
     : kernel_(opt.kernel, 2 * a, mu / rho_f),
@@ -23,9 +66,7 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
     grid_u_.push_back(U0);  // U(0+)
     return;
   }
-  const auto base = opt.modes > 0 ? inverse_sqrt_soe_modes(opt.min_lag, opt.horizon, opt.modes)
-                                  : inverse_sqrt_soe(opt.min_lag, opt.horizon, opt.tolerance);
-  soe_ = std::make_unique<SoeKernel>(kernel_, base);
+  soe_ = shared_soe_kernel(opt, 2 * a, mu / rho_f);
   w_.assign(soe_->modes(), 0.0);
 }
 

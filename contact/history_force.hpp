@@ -38,6 +38,15 @@ struct HistoryOptions {
   double direct_step = 0;      // s (resolved, > 0) for the direct evaluator
 };
 
+/// The sum-of-exponentials kernel for these options, built once per process and per (kernel, D, ν, min_lag,
+/// horizon, tolerance | modes) and reused by every later run and sweep point (thread-safe; at most 256 kept).
+std::shared_ptr<const SoeKernel> shared_soe_kernel(const HistoryOptions& opt, double D, double nu);
+/// Kernels built (cache misses) and reused (hits) so far in this process.
+struct SoeCacheStats {
+  long built = 0, reused = 0;
+};
+SoeCacheStats soe_cache_stats();
+
 class SphereHistory {
  public:
   /// a [m], μ [Pa s], ρ_f [kg/m³], U0 [m/s] the initial velocity.
@@ -81,7 +90,7 @@ class SphereHistory {
   double start_floor() const;
 
   HistoryKernel kernel_;
-  std::unique_ptr<SoeKernel> soe_;
+  std::shared_ptr<const SoeKernel> soe_;  // shared through the process-wide cache (shared_soe_kernel)
   bool direct_;
   bool impulsive_, initial_re_;
   double c_;        // 6πμa [kg/s]
