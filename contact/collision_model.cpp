@@ -25,6 +25,7 @@ double sphere_volume(double a) { return 4.0 / 3.0 * pi * a * a * a; }
 }  // namespace
 
 CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
+  for (Effect e : sc.effects) effects_ |= 1u << static_cast<unsigned>(e);
   target_ = sc.two_spheres() ? Target::sphere : (sc.wall ? Target::wall : Target::none);
   n_spheres_ = sc.spheres.size();
   if (sc.fluid) {
@@ -64,12 +65,12 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
     e_dry_ = e;
   }
   delta_ss_m_ = sc.contact.delta_ss * D_;
-  coupled_ = sc.has(Effect::flow);
+  coupled_ = has(Effect::flow);
   arm_gap_ = initial_gap();
   delta_sl_m_ = sc.contact.delta_sl * D_;
   // A start inside the contact zone (the reader admits it only while approaching): the zone is
   // shortened to the initial gap, so that the ramp stores no energy at t = 0 and the contact begins.
-  const bool start_inside = has_target() && sc.has(Effect::elastic) && initial_gap() <= delta_ss_m_;
+  const bool start_inside = has_target() && has(Effect::elastic) && initial_gap() <= delta_ss_m_;
   if (start_inside) delta_ss_m_ = initial_gap();
   instant_gap_m_ = sc.measure.instant_gap * D_;
   all_bounces_ = sc.measure.bounces == "all";
@@ -90,8 +91,8 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   // the accuracy of e.
   gap_scale_ = D_;
   if (has_target()) {
-    if (sc.has(Effect::lubrication)) gap_scale_ = std::min(gap_scale_, h_min_);
-    if (sc.has(Effect::elastic) && u_rel0_ != 0)
+    if (has(Effect::lubrication)) gap_scale_ = std::min(gap_scale_, h_min_);
+    if (has(Effect::elastic) && u_rel0_ != 0)
       gap_scale_ = std::min(gap_scale_, hertz_max_indentation(m_star_, std::abs(u_rel0_), E_star_, a_star_));
   }
   // Cap the step so that the contact zone cannot be crossed (in and out) inside one step.
@@ -110,12 +111,12 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   stop_time_ = sc.solver.t_end;
   stall_speed_ = sc.measure.stall_fraction * std::max(0.0, u_rel0_);
   // Build the lookup tables now, not inside the first right-hand side.
-  if (sc.has(Effect::added_mass) && has_target()) {
+  if (has(Effect::added_mass) && has_target()) {
     w_floor_ = added_mass_W(dw_floor_);
     dw_slope_ = added_mass_dW(dw_floor_);
   }
-  if (sc.has(Effect::lubrication) && brenner_) brenner_lambda(1.0);
-  if (sc.has(Effect::history)) setup_history();
+  if (has(Effect::lubrication) && brenner_) brenner_lambda(1.0);
+  if (has(Effect::history)) setup_history();
   if (start_inside) {
     // The contact begins at t = 0 with W_o and β frozen at the initial speed.
     const double eps_max = hertz_max_indentation(m_star_, u_rel0_, E_star_, a_star_);
@@ -166,7 +167,7 @@ void CollisionModel::setup_history() {
     t_fast = std::min(t_fast, (mp_[m] + 0.5 * mf_[m]) / (6 * pi * mu_ * a_[m]));
   }
   if (has_target()) t_fast = std::min(t_fast, delta_ss_m_ / u_ref_);
-  if (has_target() && scene_.has(Effect::elastic) && u_rel0_ > 0)
+  if (has_target() && has(Effect::elastic) && u_rel0_ > 0)
     t_fast = std::min(t_fast, hertz_contact_time(m_star_, u_rel0_, E_star_, a_star_));
   o.horizon = h.horizon > 0 ? h.horizon : scene_.solver.t_end;
   o.min_lag = h.min_lag > 0 ? h.min_lag : 1e-3 * t_fast;
@@ -320,7 +321,7 @@ void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev)
   // the W used in the mass, so the added-mass forces stay conservative (½ m_a(δ) U² is conserved in
   // an ideal fluid; bounding dW/dδ alone would create energy on approach).
   double W = 0, dW = 0;
-  const bool am = sc.has(Effect::added_mass) && has_target();
+  const bool am = has(Effect::added_mass) && has_target();
   if (am) {
     const double d = ev.gap / a_star_;
     W = wall_function_W(ev.gap);
@@ -331,13 +332,13 @@ void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev)
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     auto& f = ev.f[m];
     f = SphereForces{};
-    if (sc.has(Effect::drag)) {
+    if (has(Effect::drag)) {
       const double Re = rho_f_ * 2 * a_[m] * std::abs(ev.u[m]) / mu_;
       f.drag = -six_pi_mu * a_[m] * ev.u[m] * drag_factor(drag_law_, Re);
     }
-    if (sc.has(Effect::gravity)) f.gravity = (mp_[m] - mf_[m]) * sc.gravity;
+    if (has(Effect::gravity)) f.gravity = (mp_[m] - mf_[m]) * sc.gravity;
     ev.m_eff[m] = mp_[m];
-    if (sc.has(Effect::added_mass)) {
+    if (has(Effect::added_mass)) {
       if (lagrangian_am_ && pair) {
         ev.m_eff[m] += 0.5 * mf_[m];  // free-space part; the gap part A is added below
       } else {
@@ -363,14 +364,14 @@ void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev)
     ev.f[0].added_mass = f;
     ev.f[1].added_mass = -f;
   }
-  if (sc.has(Effect::lubrication)) {
+  if (has(Effect::lubrication)) {
     const double h = regularised_gap(ev.gap, h_min_);
     const double R = brenner_ ? a_[0] * (brenner_lambda(h / a_[0]) - 1.0) : asymptotic_resistance(h, a_star_, c_log_, h_c_);
     const double f = -six_pi_mu * R * ev.u_rel;
     ev.f[0].lubrication = f;
     if (pair) ev.f[1].lubrication = -f;
   }
-  if (sc.has(Effect::elastic)) {
+  if (has(Effect::elastic)) {
     const double f = contact_force(ev.gap);
     ev.f[0].contact = -f;
     if (pair) ev.f[1].contact = f;
@@ -383,7 +384,7 @@ void CollisionModel::blend_in_simulated(double t, Evaluation& ev) const {
   // (f_rest = f_SIM + M_A a) and kept implicit, so the mass matrix carries M_A in full whatever H is; the
   // history force's κ-like mass is blended like its force.
   const double H = ev.H;
-  const bool am_listed = scene_.has(Effect::added_mass);
+  const bool am_listed = has(Effect::added_mass);
   const AddedMassMatrix M = implicit_added_mass(ev.gap);
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     auto& f = ev.f[m];
@@ -435,7 +436,7 @@ double CollisionModel::analytic_fluid_force(const Evaluation& ev, const std::arr
   const double base = coupled_ ? ev.thr_base[m] : f.drag + f.lubrication + f.added_mass + f.history;
   const double m_hist = coupled_ ? ev.m_hist_full[m] : ev.m_hist[m];
   double am = 0;
-  if (scene_.has(Effect::added_mass)) {
+  if (has(Effect::added_mass)) {
     const AddedMassMatrix M = implicit_added_mass(ev.gap);
     am = (m == 0 ? M.m11 : M.m22) * a[m] + (n_spheres_ == 2 ? M.m12 * a[1 - m] : 0.0);
   }
@@ -496,7 +497,7 @@ Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
       const AddedMassMatrix M = implicit_added_mass(ev.gap);
       const double MA_a = (m == 0 ? M.m11 : M.m22) * acc[m] + (pair ? M.m12 * acc[1 - m] : 0.0);
       const double H = ev.H;
-      const bool am_listed = scene_.has(Effect::added_mass);
+      const bool am_listed = has(Effect::added_mass);
       ev.f[m].f_sim = ev.f_rest[m] - MA_a;
       ev.f[m].simulated -= (1 - H) * MA_a;
       am_accel -= (1 - H) * MA_a;
@@ -555,7 +556,7 @@ void CollisionModel::arm() {
     armed_.push_back({name, dir});
     armed_kind_.push_back(k);
   };
-  const bool elastic = scene_.has(Effect::elastic);
+  const bool elastic = has(Effect::elastic);
   const bool before_first_contact = !t_contact_.has_value();
   switch (phase_) {
     case Phase::approach:
@@ -584,7 +585,7 @@ void CollisionModel::arm() {
                         instant_inside_ ? "gap=instant_gap (out)" : "gap=instant_gap (in)", instant_inside_ ? +1 : -1);
   else if (!u_in_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
   else if (!u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
-  if (scene_.has(Effect::lubrication) && !brenner_) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
+  if (has(Effect::lubrication) && !brenner_) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
   if (coupled_) {
     // The ends of the blend H (MODEL.md §2.5): diagnostic, the right-hand side stays continuous there. Not armed
     // while the gap sits on one of them (a start at 2δ_SL: CVODE refuses a root at the initial time).
@@ -770,17 +771,17 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
     return os.str();
   };
   const auto& sc = scene_;
-  if (sc.has(Effect::drag)) c.push_back({"drag.law", sc.drag.law});
-  if (sc.has(Effect::lubrication)) {
+  if (has(Effect::drag)) c.push_back({"drag.law", sc.drag.law});
+  if (has(Effect::lubrication)) {
     c.push_back({"lubrication.model", sc.lubrication.model});
     c.push_back({"lubrication.cutoff_m", num(h_min_)});
     if (!brenner_) c.push_back({"lubrication.h_c_m", num(h_c_)});
   }
-  if (sc.has(Effect::added_mass)) {
+  if (has(Effect::added_mass)) {
     c.push_back({"added_mass.model", sc.added_mass.model});
     c.push_back({"added_mass.dw_floor", num(dw_floor_)});
   }
-  if (sc.has(Effect::elastic)) {
+  if (has(Effect::elastic)) {
     c.push_back({"contact.ramp", "F(x) = (exp(beta(1-x))-1)/(exp(beta)-1)"});
     c.push_back({"contact.beta", sc.contact.beta > 0 ? num(sc.contact.beta) : "energy-consistent"});
     c.push_back({"contact.dissipation", "e_dry^2 on unloading"});

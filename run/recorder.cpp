@@ -12,6 +12,7 @@ using contact::Evaluation;
 
 Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress)
     : model_(model), sc_(sc), min_gap_(INFINITY), progress_(progress && ::isatty(2)) {
+  for (Effect e : sc.effects) effects_ |= 1u << static_cast<unsigned>(e);
   const bool pair = model.n_spheres() == 2;
   columns_ = {"t", "z1", "u1"};
   if (model.has_target()) columns_.push_back("gap");
@@ -52,20 +53,20 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
   if (model_.has_target()) r.push_back(ev.u_rel);
   for (std::size_t m = 0; m < model_.n_spheres(); ++m) {
     const auto& f = ev.f[m];
-    if (sc_.has(Effect::drag)) r.push_back(f.drag);
-    if (sc_.has(Effect::lubrication)) r.push_back(f.lubrication);
-    if (sc_.has(Effect::added_mass)) r.push_back(f.added_mass);
-    if (sc_.has(Effect::elastic)) r.push_back(f.contact);
-    if (sc_.has(Effect::gravity)) r.push_back(f.gravity);
-    if (sc_.has(Effect::history)) r.push_back(f.history);
-    if (sc_.has(Effect::flow)) {
+    if (has(Effect::drag)) r.push_back(f.drag);
+    if (has(Effect::lubrication)) r.push_back(f.lubrication);
+    if (has(Effect::added_mass)) r.push_back(f.added_mass);
+    if (has(Effect::elastic)) r.push_back(f.contact);
+    if (has(Effect::gravity)) r.push_back(f.gravity);
+    if (has(Effect::history)) r.push_back(f.history);
+    if (has(Effect::flow)) {
       r.push_back(f.f_sim);
       r.push_back(f.f_thr);
     }
     r.push_back(f.accel);
     max_history_ = std::max(max_history_, std::abs(f.history));
   }
-  if (sc_.has(Effect::flow)) r.push_back(ev.H);
+  if (has(Effect::flow)) r.push_back(ev.H);
   r.push_back(at_event ? 1.0 : 0.0);
   rows_.push_back(std::move(r));
   model_.observe(t, ev);  // may end the run: at rest on the wall, or moving with its partner
