@@ -1,5 +1,5 @@
 // Cost of one whole collision, simulate() on data/scenes/default.toml (steel onto a wall), per
-// integrator (cvode dense, cvode gmres, cvode schur, ida) and rtol, without and with the history effect
+// integrator (cvode dense, cvode gmres, cvode schur, cvode with the soe-step history evaluator, ida) and rtol, without and with the history effect
 // (sum of exponentials at its default tolerance). Counters: e, the integrator's steps, the state
 // size and the last run's model construction time (included in the timing).
 // One warm-up run per case keeps the one-off lookup tables out of the timing.
@@ -32,18 +32,19 @@ void run(benchmark::State& state, const Scene& sc) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  struct Integrator { const char* name; const char* method; const char* linear_solver; bool needs_history; };
-  const Integrator integrators[] = {{"cvode_dense", "cvode", "dense", false},
-                                    {"cvode_gmres", "cvode", "gmres", true},  // gmres and schur need memory states
-                                    {"cvode_schur", "cvode", "schur", true},
-                                    {"ida", "ida", "dense", false}};
+  struct Integrator { const char* name; const char* method; const char* linear_solver; bool needs_history; const char* evaluator; };
+  const Integrator integrators[] = {{"cvode_dense", "cvode", "dense", false, "soe"},
+                                    {"cvode_gmres", "cvode", "gmres", true, "soe"},  // gmres and schur need memory states
+                                    {"cvode_schur", "cvode", "schur", true, "soe"},
+                                    {"cvode_step", "cvode", "dense", true, "soe-step"},  // modes advanced per step, not states
+                                    {"ida", "ida", "dense", false, "soe"}};
   for (bool history : {false, true})
     for (const auto& in : integrators)
       for (const char* rtol : {"1e-4", "1e-6", "1e-8", "1e-10"}) {
         if (in.needs_history && !history) continue;
-        const Scene sc = bench::scene(bench::kWallScene, history, 0,
-                                      {{"solver.integrator", in.method}, {"solver.linear_solver", in.linear_solver},
-                                       {"solver.rtol", rtol}});
+        std::vector<Override> ov = {{"solver.integrator", in.method}, {"solver.linear_solver", in.linear_solver}, {"solver.rtol", rtol}};
+        if (history) ov.push_back({"history.evaluator", std::string("\"") + in.evaluator + "\""});
+        const Scene sc = bench::scene(bench::kWallScene, history, 0, ov);
         const std::string name = std::string("collision/") + in.name + "/rtol:" + rtol + "/history:" + (history ? "on" : "off");
         benchmark::RegisterBenchmark(name.c_str(), [sc](benchmark::State& st) { run(st, sc); })->Unit(benchmark::kMillisecond);
       }

@@ -149,6 +149,7 @@ void CollisionModel::setup_history() {
   auto& o = hist_opt_;
   o.kernel = *kernel_from_string(h.kernel);
   o.direct = h.evaluator == "direct";
+  o.stepwise = h.evaluator == "soe-step";
   o.tolerance = h.tolerance;
   o.modes = static_cast<int>(h.modes);
   o.impulsive = h.start == "impulsive";
@@ -278,13 +279,31 @@ void CollisionModel::initial_state(std::span<double> y) const {
   }
   for (std::size_t m = 0; m < n_spheres_; ++m)
     if (history_[m]) history_[m]->initial_states(y.subspan(hist_offset_[m], history_[m]->states()));
+  // soe-step: the memory lives in the model (reset here, so that a second call starts afresh).
+  std::array<std::vector<double>, 2> zs;
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    if (history_[m] && history_[m]->stepwise()) {
+      zs[m].assign(history_[m]->modes(), 0.0);
+      history_[m]->initial_states(zs[m]);
+      history_[m]->reset_memory(0.0, zs[m]);
+    }
   // Impulsive start: the start-up momentum below the force floor is given at t = 0.
   if (history_[0] && hist_opt_.impulsive) {
     const Evaluation ev = evaluate(0.0, y);
     for (std::size_t m = 0; m < n_spheres_; ++m) {
-      y[2 * m + 1] -= history_[m]->apply_start(history_K_H(ev.gap), ev.m_eff[m], y.subspan(hist_offset_[m], history_[m]->states()));
+      auto& h = *history_[m];
+      const std::span<double> z = h.stepwise() ? std::span<double>(zs[m]) : y.subspan(hist_offset_[m], h.states());
+      y[2 * m + 1] -= h.apply_start(history_K_H(ev.gap), ev.m_eff[m], z);
+      if (h.stepwise()) h.reset_memory(0.0, zs[m]);
     }
   }
+}
+
+void CollisionModel::at_step(double t, std::span<const double> y, bool restart) {
+  if (!history_[0] || !hist_opt_.stepwise) return;
+  Evaluation ev;
+  kinematics(y, ev);
+  for (std::size_t m = 0; m < n_spheres_; ++m) history_[m]->advance_memory(t, ev.u[m], restart);
 }
 
 void CollisionModel::kinematics(std::span<const double> y, Evaluation& ev) const {

@@ -106,6 +106,7 @@ class CollisionModel : public DynamicalSystem {
   static constexpr double kContactSteps = 5;  // chosen: rtol = atol = 1e-3 gives e within 1.5 % on default and gg3462
   double next_breakpoint(double t) const override;
   void at_breakpoint(double t, std::span<const double> y) override;
+  void at_step(double t, std::span<const double> y, bool restart) override;  // history evaluator soe-step
   bool modal_structure(double t, std::span<const double> y, ModalStructure& s) const override;
 
   // ---- Coupling seam (flow effect, MODEL.md (6.10), §5) ----

@@ -68,6 +68,14 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
   }
   soe_ = shared_soe_kernel(opt, 2 * a, mu / rho_f);
   w_.assign(soe_->modes(), 0.0);
+  stepwise_ = opt.stepwise;
+  if (stepwise_) {
+    z_.assign(soe_->modes(), impulsive_ ? U0 : 0.0);
+    for (auto& c : cache_) {
+      c.ez.assign(soe_->modes(), 0.0);
+      c.m.assign(kPoints * soe_->modes(), 0.0);
+    }
+  }
 }
 
 double SphereHistory::reynolds(double U) const { return std::abs(initial_re_ ? U0_ : U) * D_ / nu_; }
@@ -124,7 +132,11 @@ SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std:
     double kappa = 0;
     soe_->weights(Re, w_, kappa);
     double sum = 0;
-    for (std::size_t i = 0; i < w_.size(); ++i) sum += w_[i] * z[i];
+    if (stepwise_) {
+      sum = memory_sum(t, U, w_, kernel_.kind() == KernelKind::basset);
+    } else {
+      for (std::size_t i = 0; i < w_.size(); ++i) sum += w_[i] * z[i];
+    }
     term.force = -cK * (sum + jump_term(t, Re));
     term.mass = cK * kappa;
     return term;
@@ -146,6 +158,140 @@ SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std:
   }
   term.force = -cK * (sum + jump_term(t, Re));
   return term;
+}
+
+void SphereHistory::reset_memory(double t, std::span<const double> z) {
+  z_.assign(z.begin(), z.end());
+  tn_ = t;
+  np_ = 0;
+  for (auto& c : cache_) c.dt = -1;
+}
+
+namespace {
+// M_top/Δ^(top+1) = Σ_k c_k (−x)^k, c_k = top!/(top+k+1)!, top = kPoints − 1 (the soe-step series, x ≤ 1/2).
+constexpr int kTopTerms = 12;
+constexpr std::array<double, kTopTerms> top_series(int top) {
+  std::array<double, kTopTerms> c{};
+  double v = 1.0 / (top + 1);
+  for (int k = 0; k < kTopTerms; ++k) {
+    c[k] = v;
+    v /= top + k + 2;
+  }
+  return c;
+}
+}  // namespace
+
+bool SphereHistory::in_step(double t, double U) const {
+  static constexpr std::array<double, kTopTerms> kTopSeries = top_series(kPoints - 1);
+  const double dt = t - tn_;
+  if (!(dt > 0) || np_ == 0) return false;
+  const auto& lam = soe_->rates();
+  if (cache_[cur_].dt != dt) {
+    cur_ = 1 - cur_;
+    StepCache& c = cache_[cur_];
+    if (c.dt != dt) {
+      // M_0 = (1 − e^(−x))/λ, M_j = (Δ^j − j M_(j−1))/λ for x = λΔ ≥ 1/2; below, the series
+      // M_j = Δ^(j+1) Σ_k j! (−x)^k/(j+k+1)! (no cancellation; 12 terms at most).
+      static constexpr std::array<double, 20> inv{0, 1, 1 / 2., 1 / 3., 1 / 4., 1 / 5., 1 / 6., 1 / 7., 1 / 8., 1 / 9., 1 / 10.,
+                                                  1 / 11., 1 / 12., 1 / 13., 1 / 14., 1 / 15., 1 / 16., 1 / 17., 1 / 18., 1 / 19.};
+      for (std::size_t i = 0; i < lam.size(); ++i) {
+        const double x = lam[i] * dt;
+        double* M = &c.m[kPoints * i];
+        if (x >= 0.5) {
+          const double e = std::exp(-x), il = 1 / lam[i];
+          c.ez[i] = e * z_[i];
+          M[0] = (1 - e) * il;
+          double dj = 1;  // Δ^j
+          for (int j = 1; j < kPoints; ++j) {
+            dj *= dt;
+            M[j] = (dj - j * M[j - 1]) * il;
+          }
+        } else {
+          // The top M by its series, the lower ones downward, M_(j−1) = (Δ^j − λ M_j)/j (stable for small x),
+          // and e^(−x) = 1 − λ M_0: no exponential.
+          constexpr int top = kPoints - 1;
+          double sum = kTopSeries[kTopTerms - 1];  // Horner: error below 4e-16 relative for x ≤ 1/2
+          for (int k = kTopTerms - 2; k >= 0; --k) sum = kTopSeries[k] - x * sum;
+          std::array<double, kPoints + 1> dp{1};  // Δ^j
+          for (int j = 1; j <= kPoints; ++j) dp[j] = dp[j - 1] * dt;
+          M[top] = dp[top + 1] * sum;
+          for (int j = top; j > 0; --j) M[j - 1] = (dp[j] - lam[i] * M[j]) * inv[j];
+          c.ez[i] = (1 - lam[i] * M[0]) * z_[i];
+        }
+      }
+      if (kernel_.kind() == KernelKind::basset) {
+        double kappa = 0;
+        soe_->weights(0.0, w_, kappa);
+        c.sums.fill(0.0);
+        for (std::size_t i = 0; i < lam.size(); ++i) {
+          c.sums[0] += w_[i] * c.ez[i];
+          for (int j = 0; j < kPoints; ++j) c.sums[j + 1] += w_[i] * c.m[kPoints * i + j];
+        }
+      }
+      c.dt = dt;
+    }
+  }
+  // P through (Δ, U), (0, U_n), (t_(n−1) − t_n, U_(n−1)), ...: Newton divided differences, then monomials in σ.
+  const int m = np_;  // degree
+  std::array<double, kPoints + 1> s{}, c{};
+  s[0] = dt, c[0] = U, s[1] = 0, c[1] = pu_[0];
+  for (int k = 1; k < m; ++k) s[k + 1] = pt_[k] - tn_, c[k + 1] = pu_[k];
+  for (int k = 1; k <= m; ++k)
+    for (int i = m; i >= k; --i) c[i] = (c[i] - c[i - 1]) / (s[i] - s[i - k]);
+  std::array<double, kPoints + 1> a{};  // a(σ) = Σ a_j σ^j, by Horner on the Newton form
+  a[0] = c[m];
+  for (int k = m - 1; k >= 0; --k) {
+    for (int j = m - k; j >= 1; --j) a[j] = a[j - 1] - s[k] * a[j];
+    a[0] = c[k] - s[k] * a[0];
+  }
+  nd_ = m;
+  for (int j = 0; j < m; ++j) d_[j] = (j + 1) * a[j + 1];
+  return true;
+}
+
+double SphereHistory::memory_sum(double t, double U, std::span<const double> w, bool basset) const {
+  if (!in_step(t, U)) {
+    double sum = 0;
+    for (std::size_t i = 0; i < z_.size(); ++i) sum += w[i] * z_[i];
+    return sum;
+  }
+  const StepCache& c = cache_[cur_];
+  if (basset) {
+    double sum = c.sums[0];
+    for (int j = 0; j < nd_; ++j) sum += d_[j] * c.sums[j + 1];
+    return sum;
+  }
+  double sum = 0;
+  for (std::size_t i = 0; i < z_.size(); ++i) {
+    double inc = 0;
+    for (int j = 0; j < nd_; ++j) inc += d_[j] * c.m[kPoints * i + j];
+    sum += w[i] * (c.ez[i] + inc);
+  }
+  return sum;
+}
+
+void SphereHistory::advance_memory(double t, double U, bool restart) {
+  if (!stepwise_) return;
+  if (in_step(t, U)) {
+    const StepCache& c = cache_[cur_];
+    for (std::size_t i = 0; i < z_.size(); ++i) {
+      double inc = 0;
+      for (int j = 0; j < nd_; ++j) inc += d_[j] * c.m[kPoints * i + j];
+      z_[i] = c.ez[i] + inc;
+    }
+  } else if (np_ > 0 && !restart) {
+    return;  // not a new time
+  }
+  if (restart || np_ == 0) {
+    np_ = 1;
+  } else {
+    for (int k = kPoints - 1; k > 0; --k) pt_[k] = pt_[k - 1], pu_[k] = pu_[k - 1];
+    np_ = std::min(np_ + 1, kPoints);
+  }
+  pt_[0] = t;
+  pu_[0] = U;
+  tn_ = t;
+  for (auto& c : cache_) c.dt = -1;
 }
 
 void SphereHistory::state_rhs(double accel, std::span<const double> z, std::span<double> dz) const {

@@ -7,6 +7,12 @@
 //  soe     memory states z_i = ∫_0^t U'(τ) e^(−λ_i (t−τ)) dτ [m/s], z_i' = U' − λ_i z_i, carried by the
 //          integrator; ∫ U' K ≈ Σ w_i(Re) z_i + κ(Re) U' (κ: short-lag correction, the last min_lag of
 //          memory with U' taken constant). O(modes) per evaluation.
+//  soe-step the same exponentials, but the modes are not integrator states: over a step from t_n,
+//          z_i(t) = e^(−λ_i Δ) z_i(t_n) + ∫_0^Δ P'(σ) e^(−λ_i (Δ−σ)) dσ,  Δ = t − t_n,
+//          P the polynomial through the last (up to 5) accepted (t_j, U_j) and the current (t, U), integrated
+//          exactly (M_j = ∫_0^Δ σ^j e^(−λ(Δ−σ)) dσ); advance_memory() moves t_n to each accepted step.
+//          A restart (event) forgets the earlier points, where U' may jump. O(1) per evaluation at a
+//          known Δ (Basset), O(modes) exponentials per new Δ.
 //  direct  product integration on its own fixed grid t_k = kΔ (the integrator stops on it): U piecewise
 //          linear through the grid values and the current U(t), each segment integrated exactly against K
 //          (HistoryKernel::integral). O(t/Δ) per evaluation, O(N²) per run; second order in Δ for smooth U.
@@ -18,6 +24,7 @@
 // moving an impulse ~3% of the start-up impulse over min_lag by at most t_f. A rebound is not a jump
 // here (the contact force is continuous); it is resolved by the integrator's steps, and by the soe
 // only down to min_lag: its error there is that of holding U' constant over the last min_lag.
+#include <array>
 #include <memory>
 #include <span>
 #include <string>
@@ -30,6 +37,7 @@ namespace imcol::contact {
 struct HistoryOptions {
   KernelKind kernel = KernelKind::basset;
   bool direct = false;
+  bool stepwise = false;       // soe-step: modes advanced per accepted step, outside the integrator's state
   double tolerance = 1e-6;
   int modes = 0;               // > 0: fixed mode count
   double min_lag = 0, horizon = 0;  // s (resolved, > 0)
@@ -52,7 +60,7 @@ class SphereHistory {
   /// a [m], μ [Pa s], ρ_f [kg/m³], U0 [m/s] the initial velocity.
   SphereHistory(const HistoryOptions& opt, double a, double mu, double rho_f, double U0);
 
-  std::size_t states() const { return direct_ ? 0 : soe_->modes(); }
+  std::size_t states() const { return direct_ || stepwise_ ? 0 : soe_->modes(); }
   /// Memory states at t = 0.
   void initial_states(std::span<double> z) const;
   /// Per-state absolute tolerances u_floor/(√n w_i): the modes' force errors add up to that of a
@@ -75,6 +83,14 @@ class SphereHistory {
   /// and shifts the memory states z so that they see that start.
   double apply_start(double K_H, double m_eff, std::span<double> z) const;
 
+  // soe-step: the memory kept here
+  bool stepwise() const { return stepwise_; }
+  /// Sets the modes at t (initial memory; the impulsive start's shift included).
+  void reset_memory(double t, std::span<const double> z);
+  /// An accepted step (restart = false) or a restart to t with velocity U: the modes move to t with the
+  /// polynomial of that step; a restart keeps only (t, U) as the next polynomial's history.
+  void advance_memory(double t, double U, bool restart);
+
   // direct evaluator grid
   double step() const { return step_; }
   void record(double t, double U);  // value at the next grid point t_k = kΔ
@@ -87,6 +103,10 @@ class SphereHistory {
 
  private:
   double jump_term(double t, double Re) const;  // the start-up jump's share of ∫ U' K (U(0) K(t), soe: minus its exponentials)
+  /// soe-step: E_i = e^(−λ_i Δ), M_ij (j < kPoints) at Δ = t − t_n, and P' coefficients d for (t, U); false if Δ ≤ 0.
+  bool in_step(double t, double U) const;
+  /// soe-step: Σ w_i z_i(t) with the in-step polynomial through (t, U).
+  double memory_sum(double t, double U, std::span<const double> w, bool basset) const;
   double start_floor() const;
 
   HistoryKernel kernel_;
@@ -98,6 +118,22 @@ class SphereHistory {
   mutable std::vector<double> w_;  // scratch for the current weights
   double step_ = 0;
   std::vector<double> grid_u_;     // U at t_k = kΔ, k = 0..n
+  // soe-step
+  bool stepwise_ = false;
+  std::vector<double> z_;               // modes at t_n
+  double tn_ = 0;
+  static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints (5 measured no better)
+  std::array<double, kPoints> pt_{}, pu_{};  // accepted (t_j, U_j), most recent first (pt_[0] = t_n)
+  int np_ = 0;
+  struct StepCache {                   // one Δ (two are kept: the step's end and an output sample in it)
+    double dt = -1;
+    std::vector<double> ez, m;          // e^(−λ_i Δ) z_i; M_ij at [kPoints i + j]
+    std::array<double, kPoints + 1> sums{};  // Basset: Σ w_i e^(−λ_i Δ) z_i, Σ w_i M_ij
+  };
+  mutable std::array<StepCache, 2> cache_;
+  mutable int cur_ = 0;                 // the slot in_step filled or found last
+  mutable std::array<double, kPoints> d_{};  // P'(σ) = Σ_j d_j σ^j
+  mutable int nd_ = 0;
 };
 
 }  // namespace imcol::contact

@@ -265,7 +265,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     if (auto v = r.string("kernel")) h.kernel = *v;
     r.one_of("kernel", h.kernel, {"basset", "mei-adrian", "kim", "dorgan-loth"});
     if (auto v = r.string("evaluator")) h.evaluator = *v;
-    r.one_of("evaluator", h.evaluator, {"soe", "direct"});
+    r.one_of("evaluator", h.evaluator, {"soe", "soe-step", "direct"});
     h.tolerance = r.number("tolerance", h.tolerance);
     r.in_range("tolerance", h.tolerance, 1e-13, 0.1, false, true);
     if (auto v = r.integer("modes")) h.modes = *v;

@@ -65,7 +65,8 @@ struct Scene {
   } contact;
   struct History {
     std::string kernel = "basset";     // basset | mei-adrian | kim | dorgan-loth (MODEL.md §2.3)
-    std::string evaluator = "soe";     // soe (sum of exponentials, production) | direct (product integration, reference)
+    std::string evaluator = "soe";     // soe (sum of exponentials, production) | soe-step (the same, modes advanced per step
+                                       // outside the integrator's state) | direct (product integration, reference)
     double tolerance = 1e-6;           // soe: relative accuracy of the exponential fit of s^(-1/2)
     long modes = 0;                    // soe: > 0 fixes the number of exponentials instead of `tolerance`
     double min_lag = 0;                // s; shortest lag the exponentials resolve; 0 = automatic

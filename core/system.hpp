@@ -65,6 +65,11 @@ class DynamicalSystem {
   virtual double next_breakpoint(double /*t*/) const { return std::numeric_limits<double>::infinity(); }
   virtual void at_breakpoint(double /*t*/, std::span<const double> /*y*/) {}
 
+  /// Called after every accepted internal step (t, y at its end, before the next step) and, with
+  /// restart = true, at t = 0 and at each re-initialisation: a system that keeps state outside y (memory
+  /// advanced step by step) updates it here. Samples inside the step come before the call.
+  virtual void at_step(double /*t*/, std::span<const double> /*y*/, bool /*restart*/) {}
+
   /// Fills the modal structure at (t, y) and returns true, or returns false if the state has none.
   virtual bool modal_structure(double /*t*/, std::span<const double> /*y*/, ModalStructure& /*s*/) const { return false; }
 };

@@ -586,6 +586,7 @@ Integrator::Integrator(DynamicalSystem& sys, const IntegratorSettings& st, Obser
   m.names = sys.component_names();
   m.be->init(m.t, m.y.get());
   m.be->set_roots(sys.roots());
+  sys.at_step(m.t, view(m.y.get()), true);
   observer.sample(m.t, view(m.y.get()), true);
 }
 
@@ -605,6 +606,7 @@ void Integrator::reinit() {
   auto& m = *impl_;
   m.be->add_stats(m.stats);
   ++m.stats.reinits;
+  m.sys.at_step(m.t, view(m.y.get()), true);
   m.be->init(m.t, m.y.get());
   m.be->set_roots(m.sys.roots());
 }
@@ -662,6 +664,7 @@ double Integrator::advance(double t_target) {
       if (action == EventAction::reinit) reinit();
       continue;
     }
+    sys.at_step(t, view(m.y.get()), false);  // the step to t is accepted (its samples are taken)
     const double t_eps_new = 1e-12 * std::max(1.0, std::abs(t));
     if (t >= bp - t_eps_new) {
       sys.at_breakpoint(t, view(m.y.get()));
