@@ -71,6 +71,7 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
   stepwise_ = opt.stepwise;
   if (stepwise_) {
     z_.assign(soe_->modes(), impulsive_ ? U0 : 0.0);
+    for (double l : soe_->rates()) inv_rate_.push_back(1 / l);
     for (auto& c : cache_) {
       c.ez.assign(soe_->modes(), 0.0);
       c.m.assign(kPoints * soe_->modes(), 0.0);
@@ -198,7 +199,7 @@ bool SphereHistory::in_step(double t, double U) const {
         const double x = lam[i] * dt;
         double* M = &c.m[kPoints * i];
         if (x >= 0.5) {
-          const double e = std::exp(-x), il = 1 / lam[i];
+          const double e = x > 40 ? 0.0 : std::exp(-x), il = inv_rate_[i];  // e^(−40) z is below rounding
           c.ez[i] = e * z_[i];
           M[0] = (1 - e) * il;
           double dj = 1;  // Δ^j
