@@ -189,6 +189,7 @@ void CollisionModel::setup_history() {
     offset += history_[m]->states();
   }
   history_states_ = offset - core_size();
+  if (n_spheres_ == 2) history_[1]->share_steps_with(history_[0].get());  // soe-step, equal exponentials
   if (o.direct) max_step_ = std::min(max_step_, o.direct_step);
 }
 

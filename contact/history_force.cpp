@@ -73,6 +73,7 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
     z_.assign(soe_->modes(), impulsive_ ? U0 : 0.0);
     for (double l : soe_->rates()) inv_rate_.push_back(1 / l);
     for (auto& c : cache_) {
+      c.e.assign(soe_->modes(), 0.0);
       c.ez.assign(soe_->modes(), 0.0);
       c.m.assign(kPoints * soe_->modes(), 0.0);
     }
@@ -182,8 +183,43 @@ constexpr std::array<double, kTopTerms> top_series(int top) {
 }
 }  // namespace
 
-bool SphereHistory::in_step(double t, double U) const {
+void SphereHistory::fill_step(StepCache& c, double dt) const {
+  // M_0 = (1 − e^(−x))/λ, M_j = (Δ^j − j M_(j−1))/λ for x = λΔ ≥ 1/2; below, the top M by its series
+  // M_j = Δ^(j+1) Σ_k j! (−x)^k/(j+k+1)! and the lower ones downward, M_(j−1) = (Δ^j − λ M_j)/j (stable for
+  // small x), with e^(−x) = 1 − λ M_0: no exponential there.
   static constexpr std::array<double, kTopTerms> kTopSeries = top_series(kPoints - 1);
+  static constexpr std::array<double, kPoints + 1> inv = [] {
+    std::array<double, kPoints + 1> v{};
+    for (int j = 1; j <= kPoints; ++j) v[j] = 1.0 / j;
+    return v;
+  }();
+  constexpr int top = kPoints - 1;
+  std::array<double, kPoints + 1> dp{1};  // Δ^j
+  for (int j = 1; j <= kPoints; ++j) dp[j] = dp[j - 1] * dt;
+  const auto& lam = soe_->rates();
+  for (std::size_t i = 0; i < lam.size(); ++i) {
+    const double x = lam[i] * dt;
+    double* M = &c.m[kPoints * i];
+    if (x >= 0.5) {
+      const double e = x > 40 ? 0.0 : std::exp(-x), il = inv_rate_[i];  // e^(−40) z is below rounding
+      c.e[i] = e;
+      M[0] = (1 - e) * il;
+      for (int j = 1; j < kPoints; ++j) M[j] = (dp[j] - j * M[j - 1]) * il;
+    } else {
+      double sum = kTopSeries[kTopTerms - 1];  // Horner: error below 4e-16 relative for x ≤ 1/2
+      for (int k = kTopTerms - 2; k >= 0; --k) sum = kTopSeries[k] - x * sum;
+      M[top] = dp[top + 1] * sum;
+      for (int j = top; j > 0; --j) M[j - 1] = (dp[j] - lam[i] * M[j]) * inv[j];
+      c.e[i] = 1 - lam[i] * M[0];
+    }
+  }
+}
+
+void SphereHistory::share_steps_with(const SphereHistory* twin) {
+  twin_ = twin && twin->stepwise_ && twin->soe_ == soe_ ? twin : nullptr;
+}
+
+bool SphereHistory::in_step(double t, double U) const {
   const double dt = t - tn_;
   if (!(dt > 0) || np_ == 0) return false;
   const auto& lam = soe_->rates();
@@ -191,35 +227,17 @@ bool SphereHistory::in_step(double t, double U) const {
     cur_ = 1 - cur_;
     StepCache& c = cache_[cur_];
     if (c.dt != dt) {
-      // M_0 = (1 − e^(−x))/λ, M_j = (Δ^j − j M_(j−1))/λ for x = λΔ ≥ 1/2; below, the series
-      // M_j = Δ^(j+1) Σ_k j! (−x)^k/(j+k+1)! (no cancellation; 12 terms at most).
-      static constexpr std::array<double, 20> inv{0, 1, 1 / 2., 1 / 3., 1 / 4., 1 / 5., 1 / 6., 1 / 7., 1 / 8., 1 / 9., 1 / 10.,
-                                                  1 / 11., 1 / 12., 1 / 13., 1 / 14., 1 / 15., 1 / 16., 1 / 17., 1 / 18., 1 / 19.};
-      for (std::size_t i = 0; i < lam.size(); ++i) {
-        const double x = lam[i] * dt;
-        double* M = &c.m[kPoints * i];
-        if (x >= 0.5) {
-          const double e = x > 40 ? 0.0 : std::exp(-x), il = inv_rate_[i];  // e^(−40) z is below rounding
-          c.ez[i] = e * z_[i];
-          M[0] = (1 - e) * il;
-          double dj = 1;  // Δ^j
-          for (int j = 1; j < kPoints; ++j) {
-            dj *= dt;
-            M[j] = (dj - j * M[j - 1]) * il;
-          }
-        } else {
-          // The top M by its series, the lower ones downward, M_(j−1) = (Δ^j − λ M_j)/j (stable for small x),
-          // and e^(−x) = 1 − λ M_0: no exponential.
-          constexpr int top = kPoints - 1;
-          double sum = kTopSeries[kTopTerms - 1];  // Horner: error below 4e-16 relative for x ≤ 1/2
-          for (int k = kTopTerms - 2; k >= 0; --k) sum = kTopSeries[k] - x * sum;
-          std::array<double, kPoints + 1> dp{1};  // Δ^j
-          for (int j = 1; j <= kPoints; ++j) dp[j] = dp[j - 1] * dt;
-          M[top] = dp[top + 1] * sum;
-          for (int j = top; j > 0; --j) M[j - 1] = (dp[j] - lam[i] * M[j]) * inv[j];
-          c.ez[i] = (1 - lam[i] * M[0]) * z_[i];
-        }
+      const StepCache* shared = nullptr;  // an equal sphere's values at the same t_n and Δ
+      if (twin_ && twin_->tn_ == tn_)
+        for (const auto& o : twin_->cache_)
+          if (o.dt == dt) shared = &o;
+      if (shared) {
+        c.e = shared->e;
+        c.m = shared->m;
+      } else {
+        fill_step(c, dt);
       }
+      for (std::size_t i = 0; i < lam.size(); ++i) c.ez[i] = c.e[i] * z_[i];
       if (kernel_.kind() == KernelKind::basset) {
         double kappa = 0;
         soe_->weights(0.0, w_, kappa);

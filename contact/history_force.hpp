@@ -90,6 +90,9 @@ class SphereHistory {
   /// An accepted step (restart = false) or a restart to t with velocity U: the modes move to t with the
   /// polynomial of that step; a restart keeps only (t, U) as the next polynomial's history.
   void advance_memory(double t, double U, bool restart);
+  /// soe-step: reuse `twin`'s e^(−λΔ) and M at the same t_n and Δ when both have the same exponentials (equal
+  /// spheres share one cached kernel); twin must be advanced first at each step.
+  void share_steps_with(const SphereHistory* twin);
 
   // direct evaluator grid
   double step() const { return step_; }
@@ -128,11 +131,13 @@ class SphereHistory {
   int np_ = 0;
   struct StepCache {                   // one Δ (two are kept: the step's end and an output sample in it)
     double dt = -1;
-    std::vector<double> ez, m;          // e^(−λ_i Δ) z_i; M_ij at [kPoints i + j]
+    std::vector<double> e, ez, m;       // e^(−λ_i Δ), e^(−λ_i Δ) z_i; M_ij at [kPoints i + j]
     std::array<double, kPoints + 1> sums{};  // Basset: Σ w_i e^(−λ_i Δ) z_i, Σ w_i M_ij
   };
   mutable std::array<StepCache, 2> cache_;
   mutable int cur_ = 0;                 // the slot in_step filled or found last
+  const SphereHistory* twin_ = nullptr; // an equal sphere (same exponentials) whose e and M are reused
+  void fill_step(StepCache& c, double dt) const;
   mutable std::array<double, kPoints> d_{};  // P'(σ) = Σ_j d_j σ^j
   mutable int nd_ = 0;
 };
