@@ -50,7 +50,7 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
     if (k != "basset" && k != "mei-adrian" && k != "kim" && k != "dorgan-loth")
       throw InputError("--kernels", k, "unknown kernel (expected basset, mei-adrian, kim, dorgan-loth)");
   for (const auto& e : opt.evaluators)
-    if (e != "soe" && e != "direct") throw InputError("--evaluators", e, "unknown evaluator (expected soe, direct)");
+    if (e != "soe" && e != "soe-step" && e != "direct") throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
   const bool collision = base.has_target();
   const std::string metric_name = collision ? "e" : "u_end m/s";
 

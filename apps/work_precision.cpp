@@ -121,7 +121,8 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   std::vector<std::string> evaluators = opt.evaluators;
   if (evaluators.empty()) evaluators = history ? std::vector<std::string>{"soe", "direct"} : std::vector<std::string>{"none"};
   for (const auto& e : evaluators) {
-    if (e != "soe" && e != "direct" && e != "none") throw InputError("--evaluators", e, "unknown evaluator (expected soe, direct)");
+    if (e != "soe" && e != "soe-step" && e != "direct" && e != "none")
+      throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
     if (e != "none" && !history)
       throw InputError("--evaluators", e, "the scene has no history effect (list it in `effects`, or pass --add-history)");
   }
@@ -152,7 +153,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
     sc.solver.linear_solver = c.integrator == "cvode-gmres" ? "gmres" : "dense";
     if (c.evaluator != "none") {
       sc.history.evaluator = c.evaluator;
-      if (c.evaluator == "soe") {
+      if (c.evaluator == "soe" || c.evaluator == "soe-step") {
         sc.history.modes = 0;
         sc.history.tolerance = history_tol;
       } else {
@@ -198,7 +199,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
       p.cfg = c;
       p.rtol = rtol;
       p.direct_step = h;
-      p.history_tol = c.evaluator == "soe" ? history_tol_for(rtol) : NAN;
+      p.history_tol = c.evaluator == "soe" || c.evaluator == "soe-step" ? history_tol_for(rtol) : NAN;
       std::cerr << "  " << c.label() << "  rtol " << sci(rtol, 0) << (std::isnan(h) ? "" : "  direct_step " + sci(h)) << "\n";
       try {
         const Scene sc = scene_for(c, rtol, h, p.history_tol);
