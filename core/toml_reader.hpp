@@ -8,12 +8,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <string>
 
+#include "core/choices.hpp"
 #include "core/errors.hpp"
 
 namespace imcol {
@@ -137,14 +137,20 @@ class TableReader {
       fail(key, "must be in " + std::string(lo_open ? "(" : "[") + fmt_number(lo) + ", " + fmt_number(hi) + (hi_open ? ")" : "]") +
                     " (got " + fmt_number(v) + ")");
   }
-  void one_of(const std::string& key, const std::string& v, std::initializer_list<const char*> options) const {
-    std::string list;
-    for (auto o : options) {
-      if (v == o) return;
-      list += (list.empty() ? "" : " | ") + std::string(o);
+  /// Reads the choice `key` into `out` (kept when the key is absent); an unknown spelling fails with the options.
+  template <class E>
+  void choice(const std::string& key, E& out) {
+    const auto v = string(key);
+    if (!v) return;
+    if (auto e = choice_from_string<E>(*v)) {
+      out = *e;
+      return;
     }
-    fail(key, "unknown choice '" + v + "' (expected " + list + ")");
+    std::string list;
+    for (const auto& [e, name] : ChoiceNames<E>::list) list += (list.empty() ? "" : " | ") + std::string(name);
+    fail(key, "unknown choice '" + *v + "' (expected " + list + ")");
   }
+
 
  private:
   const toml::table& t_;

@@ -186,7 +186,7 @@ void check_plausibility(const CollisionModel& model, const Scene& sc, const Firs
     std::ostringstream os;
     os << "e = " << *e << " exceeds the dry restitution e_dry = " << model.e_dry()
        << ": energy was created, by integration error (tighten solver.rtol, now " << sc.solver.rtol << ")";
-    if (pair && sc.has(Effect::added_mass) && sc.added_mass.model == "seed")
+    if (pair && sc.has(Effect::added_mass) && sc.added_mass.model == AddedMassModel::seed)
       os << " or by the seed's per-sphere added mass (6.8), which is not conservative for unequal spheres (use added_mass.model = \"lagrangian\")";
     warnings.push_back(os.str());
   }

@@ -26,7 +26,7 @@ void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, co
   } else {
     s["e_measures"] = nullptr;
   }
-  s["bounces_mode"] = sc.measure.bounces;
+  s["bounces_mode"] = to_string(sc.measure.bounces);
   s["bounces"] = bounces;
   s["St"] = or_null(m.St);
   if (pair) {
