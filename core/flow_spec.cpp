@@ -44,7 +44,9 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   r.choice("force_in_step", f.force_in_step);
   f.added_mass_estimate = r.boolean("added_mass_estimate", f.added_mass_estimate);
   f.min_gap_cells = r.number("min_gap_cells", f.min_gap_cells);
-  r.in_range("min_gap_cells", f.min_gap_cells, 0.0, 10.0, false, false);
+  r.in_range("min_gap_cells", f.min_gap_cells, 1.0, 10.0, false, false);  // below one cell the rings of the two bodies overlap
+  f.max_wall_hours = r.number("max_wall_hours", f.max_wall_hours);
+  r.in_range("max_wall_hours", f.max_wall_hours, 0.0, 1e4, true, false);
   int_in("snapshots", f.snapshots, 0, 1);
   r.finish();
 }

@@ -50,7 +50,8 @@ struct FlowSpec {
   ForceInStep force_in_step = ForceInStep::linear;
   bool added_mass_estimate = true;  // keep the model's added mass implicit and remove it from f_SIM (false: f_SIM explicit,
                                     // unstable for light spheres; only without the added_mass effect; MODEL.md §5)
-  double min_gap_cells = 1.0;    // smallest gap the kernel sees, finest cells (its rings would overlap below)
+  double min_gap_cells = 1.0;    // smallest gap the kernel sees, finest cells, in [1, 10] (closer rings overlap)
+  double max_wall_hours = 1.0;   // a run whose estimated wall time (flow/cost.hpp, up to t_end) exceeds this is refused
   int snapshots = 1;             // write flow fields (gap 1 D, contact, one window after separation): 1 yes, 0 no
   int line = 0;                  // line of the [flow] table (0: not given)
 };

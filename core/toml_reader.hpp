@@ -18,12 +18,6 @@
 
 namespace imcol {
 
-inline std::string fmt_number(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 /// The text of a scene file: a regular file of at most 1 MiB (a directory, a device such as /dev/zero or
 /// a huge file is refused with exit status 2 before anything is read into memory).
 inline std::string read_scene_file(const std::string& path) {
