@@ -94,7 +94,7 @@ int cmd_run(const std::string& scene_path, const std::string& out, const CommonO
   if (plot) {
     std::cout.flush();
     run_plot_script("plot_run.py", dir, "trajectory.png", quiet);
-    if (sc.has(Effect::flow) && sc.flow.snapshots) run_plot_script("plot_coupled_flow.py", dir, "flow_*.png", quiet);
+    if (sc.has(Effect::flow) && sc.flow.fields) run_plot_script("plot_coupled_flow.py", dir, "flow_*.png", quiet);
   }
   return 0;
 }

@@ -47,7 +47,7 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   r.in_range("min_gap_cells", f.min_gap_cells, 1.0, 10.0, false, false);  // below one cell the rings of the two bodies overlap
   f.max_wall_hours = r.number("max_wall_hours", f.max_wall_hours);
   r.in_range("max_wall_hours", f.max_wall_hours, 0.0, 1e4, true, false);
-  int_in("snapshots", f.snapshots, 0, 1);
+  f.fields = r.boolean("fields", f.fields);
   r.finish();
 }
 

@@ -52,7 +52,7 @@ struct FlowSpec {
                                     // unstable for light spheres; only without the added_mass effect; MODEL.md §5)
   double min_gap_cells = 1.0;    // smallest gap the kernel sees, finest cells, in [1, 10] (closer rings overlap)
   double max_wall_hours = 1.0;   // a run whose estimated wall time (flow/cost.hpp, up to t_end) exceeds this is refused
-  int snapshots = 1;             // write flow fields (gap 1 D, contact, one window after separation): 1 yes, 0 no
+  bool fields = true;            // write the flow fields and pictures (gap 1 D, contact, one window after separation, end)
   int line = 0;                  // line of the [flow] table (0: not given)
 };
 

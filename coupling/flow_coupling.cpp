@@ -259,7 +259,7 @@ void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre) co
 flow::SnapshotFrame FlowCoupling::lab_frame() const { return {frame_z_, frame_u_, -t_pre_}; }
 
 void FlowCoupling::maybe_snapshot(double t, double gap) {
-  if (!sc_.flow.snapshots) return;
+  if (!sc_.flow.fields) return;
   auto take = [&](const char* name, const std::string& label) {
     std::ostringstream os;
     os << std::setprecision(4) << label << ",";
@@ -309,7 +309,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     if (t < t1 - 1e-12 * std::max(1.0, t1) && !integ.finished())
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
-  if (sc_.flow.snapshots) {
+  if (sc_.flow.fields) {
     snaps_.push_back({"flow_end", "end of run", flow::snapshot_csv(*kernel_, lab_frame(), "end of run,")});
   }
   return integ.stats();
