@@ -51,17 +51,19 @@ class FastSolver {
   /// out[m] receives the product of the first m+1 inverses (one transform pair in all).
   void solve_chain(const std::vector<int>& chain, const std::vector<double>& f, const std::vector<std::vector<double>*>& out);
 
-  // The solve in steps, staying in mode space between them.
-  /// modes ← DST of (s f + op's boundary terms from x) on every row.
+  // The solve in steps, staying in mode space between them: forward or rechain (the right-hand side's modes,
+  // forward-eliminated for op as each row arrives), then back (the back substitution, each row packed for the
+  // inverse transform as it is finished).
+  /// modes ← DST of (s f + op's boundary terms from x) on every row, forward-eliminated for op.
   void forward(int op, double s, const std::vector<double>& f, const std::vector<double>& x);
-  /// modes ← s·modes + op's boundary terms from x, except rows < phys_rows: DST of (s f + boundary terms) there.
-  /// After a solve of another op, chains it without transforming the unchanged rows back and forth.
+  /// As forward, but modes ← s·modes + op's boundary terms from x, except rows < phys_rows: DST of (s f + boundary
+  /// terms) there. After a solve of another op, chains it without transforming the unchanged rows back and forth.
   void rechain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows);
-  /// modes ← op⁻¹ modes.
+  /// Completes modes ← op⁻¹(right-hand side) and writes rows 0..rows−1 of x's interior (lines i = 1..rows, none for
+  /// rows = 0) as their inverse DST; x on the axis ← 0. The modes are kept; other rows of x are left as they were.
+  void back(int op, std::vector<double>& x, int rows);
+  /// modes ← op⁻¹ modes (both sweeps).
   void tridiag(int op);
-  /// Rows 0..rows−1 of x's interior (lines i = 1..rows) ← inverse DST of the modes; x on the axis ← 0. The modes
-  /// are kept. Other rows of x are left as they were.
-  void inverse(std::vector<double>& x, int rows);
   /// Makes the plans for transforms of the first `rows` rows (partial forward and inverse); other counts than
   /// those prepared (and all rows) fall back to all rows.
   void prepare_rows(int rows);
@@ -76,7 +78,11 @@ class FastSolver {
   const Plans& plans_for(int rows) const;      // the smallest prepared count ≥ rows
   // DST-I of `rows` lines of m_ values, line ii at src + ii·src_stride, into line ii at dst + ii·dst_stride, times s
   void dst(const double* src, std::size_t src_stride, double* dst, std::size_t dst_stride, double s, int rows);
-  void boundary_rhs(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int rows);  // buf_ rows < rows
+  void pack_row(int ii, const double* x);         // transform input row ii
+  void execute(int rows);                         // the plans for at least `rows` rows
+  void unpack_row(int ii, double* y, double s) const;  // transform output row ii, times s
+  void rhs_row(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int ii, double* row) const;
+  void eliminate_row(int op, int ii);             // forward sweep of the Thomas algorithm on row ii
   void build_tables();                         // per op: the Thomas factors of every mode
   void release();                              // plans and buffers
   LevelGeometry g_;
@@ -88,12 +94,12 @@ class FastSolver {
   double* spec_ = nullptr;                    // per row: its spectrum, N/2 + 1 (or N + 1) complex
   double* wv_ = nullptr;                      // split: per row the DCT-III input, M/2 + 1 complex
   double* vv_ = nullptr;                      // split: per row its c2r output, M
-  double* line_ = nullptr;                    // one row of scratch (m_)
+  double* line_ = nullptr;                    // two rows of scratch (m_ each)
   std::vector<double> tw_c_, tw_s_;           // split: cos, sin(πj/(2M)), j = 0..M/2
   std::vector<double> s1_;                    // DST of the unit vector e_0: 2 sin(π(k+1)/N)
   std::vector<Plans> plans_;                  // by increasing rows; the last has all n_ rows
   unsigned flags_ = 0;
-  std::vector<std::vector<double>> lower_, inv_den_, cp_;  // per op: lower[i], inv_den[i·m+k], cp[i·m+k]
+  std::vector<std::vector<double>> lower_, upper_, inv_den_;  // per op: lower[i], upper[i], inv_den[i·m+k]
 };
 
 }  // namespace imcol::flow

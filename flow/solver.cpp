@@ -225,10 +225,9 @@ void Solver::pass_viscous(std::vector<double> Level::*rhs, std::vector<double> L
     Level& L = lv_[l];
     if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].*eta, L, L.*eta);
     L.fast->forward(1, 1.0, L.*rhs, L.*eta);
-    L.fast->tridiag(1);
     // the coarsest level feeds only the next finer level's boundary values and its own coarsified rows
     const int rows = partial && l == NL - 1 ? (NL > 1 ? prolong_rows_ : 0) : L.fast->rows();
-    if (rows > 0) L.fast->inverse(L.*eta, rows);
+    L.fast->back(1, L.*eta, rows);
   }
 }
 
@@ -241,8 +240,7 @@ void Solver::pass_streamfunction(std::vector<double> Level::*eta, std::vector<do
     if (add_saved) L.fast->add_modes(L.eta_modes);
     // E²ψ = −η: from the modes of η where coarsify left η alone, transformed afresh on the coarsified rows
     L.fast->rechain(0, -1.0, L.*eta, L.*psi, l > 0 ? coarse_rows_ : 0);
-    L.fast->tridiag(0);
-    L.fast->inverse(L.*psi, partial ? psi_rows_[l] : L.fast->rows());
+    L.fast->back(0, L.*psi, partial ? psi_rows_[l] : L.fast->rows());
   }
 }
 
