@@ -285,8 +285,16 @@ void Solver::apply_Q_into(const Eigen::VectorXd& g, Eigen::VectorXd& out) {
 void Solver::final_pass(const Eigen::VectorXd& g) {
   spread_source(g);
   pass_viscous(&Level::src, &Level::etac, false);
-  for (auto& L : lv_)
-    for (std::size_t p = 0; p < L.eta.size(); ++p) L.etac[p] += L.eta[p];
+  eta_sq_.resize(lv_.size());
+  for (std::size_t l = 0; l < lv_.size(); ++l) {  // η = η* + ηc, and Σ η² for check_finite
+    Level& L = lv_[l];
+    double sum = 0;
+    for (std::size_t p = 0; p < L.eta.size(); ++p) {
+      L.etac[p] += L.eta[p];
+      sum += L.etac[p] * L.etac[p];
+    }
+    eta_sq_[l] = sum;
+  }
   pass_streamfunction(&Level::etac, &Level::psic, false, true);
   point_velocity(&Level::psic, u_);
 }
@@ -318,13 +326,26 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
   const double dt = s_.dt, nu = s_.nu, th = s_.theta;
   // 1. explicit part of the vorticity equation on every level (advection AB2, viscous (1 − θ)), then the finer
   //    levels' right-hand sides replace the coarser ones where they overlap (coarsify)
-  std::vector<double>& lap = work2_;
   for (int l = 0; l < NL; ++l) {
     Level& L = lv_[l];
     nonlinear(L, s_.u_inf, nl_);
     const double ab_new = n_ == 0 ? 1.0 : 1.5, ab_old = n_ == 0 ? 0.0 : -0.5;
-    apply_stokes_operator(L.g, L.eta, lap);
-    for (std::size_t p = 0; p < L.rhs.size(); ++p) L.rhs[p] = L.eta[p] + dt * ((1 - th) * nu * lap[p] + ab_new * nl_[p] + ab_old * L.nl_old[p]);
+    // interior only (the solves and coarsify read no boundary values of rhs); E²η as apply_stokes_operator
+    const LevelGeometry& g = L.g;
+    const double ih2 = 1.0 / (g.h * g.h);
+    for (int i = 1; i < g.nr; ++i) {
+      const double cp = i / (i + 0.5), cm = i / (i - 0.5);
+      const double* xm = &L.eta[g.at(i - 1, 0)];
+      const double* x0 = &L.eta[g.at(i, 0)];
+      const double* xp = &L.eta[g.at(i + 1, 0)];
+      const double* nn = &nl_[g.at(i, 0)];
+      const double* no = &L.nl_old[g.at(i, 0)];
+      double* rr = &L.rhs[g.at(i, 0)];
+      for (int j = 1; j < g.nz; ++j) {
+        const double lap = ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]);
+        rr[j] = x0[j] + dt * ((1 - th) * nu * lap + ab_new * nn[j] + ab_old * no[j]);
+      }
+    }
     std::swap(L.nl_old, nl_);
   }
   // 2–3. vorticity predictor η* (its modes kept for the end of the step) and ψ* where the points read it
@@ -455,9 +476,7 @@ void Solver::check_finite(const StepInfo& info) const {
   if (!std::isfinite(info.wall_force)) fail("the force on the wall is not finite");
   if (!std::isfinite(info.slip)) fail("the slip velocity at the body points is not finite");
   for (std::size_t l = 0; l < lv_.size(); ++l) {
-    double sum = 0;
-    for (double v : lv_[l].eta) sum += v * v;
-    if (!std::isfinite(sum)) fail("the vorticity on level " + std::to_string(l) + " is not finite");
+    if (!std::isfinite(eta_sq_[l])) fail("the vorticity on level " + std::to_string(l) + " is not finite");
   }
 }
 

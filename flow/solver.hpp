@@ -188,7 +188,7 @@ class Solver {
   long n_ = 0;
   int coarse_rows_ = 0, prolong_rows_ = 0;  // rows coarsify writes (levels ≥ 1); rows prolong_boundary reads
   std::vector<int> psi_rows_;               // per level: rows of ψ read by the points and the finer level
-  std::vector<double> work2_, nl_;
+  std::vector<double> nl_, eta_sq_;  // eta_sq_: Σ η² per level after the step (check_finite)
   // step and GMRES workspace, sized on first use
   Eigen::VectorXd rhs_, target_, u_, r_, w_, z_, t1_, y_, cs_, sn_, e_;
   Eigen::MatrixXd V_, H_;
