@@ -206,12 +206,17 @@ void Solver::prolong_boundary(const Level& coarse, const std::vector<double>& fc
 void Solver::restrict_interior(const Level& fine, const std::vector<double>& ff, const Level& coarse, std::vector<double>& fc) {
   const LevelGeometry &c = coarse.g, &f = fine.g;
   const int off = f.nz / 4;
-  for (int I = 1; I < f.nr / 2; ++I)
+  for (int I = 1; I < f.nr / 2; ++I) {
+    const int i = 2 * I;
+    const double* fm = &ff[f.at(i - 1, 0)];
+    const double* f0 = &ff[f.at(i, 0)];
+    const double* fp = &ff[f.at(i + 1, 0)];
+    double* out = &fc[c.at(I, 0)];
     for (int J = off + 1; J < off + f.nz / 2; ++J) {
-      const int i = 2 * I, j = 2 * (J - off);
-      auto F = [&](int di, int dj) { return ff[f.at(i + di, j + dj)]; };
-      fc[c.at(I, J)] = (4 * F(0, 0) + 2 * (F(1, 0) + F(-1, 0) + F(0, 1) + F(0, -1)) + F(1, 1) + F(1, -1) + F(-1, 1) + F(-1, -1)) / 16.0;
+      const int j = 2 * (J - off);
+      out[J] = (4 * f0[j] + 2 * (fp[j] + fm[j] + f0[j + 1] + f0[j - 1]) + fp[j + 1] + fp[j - 1] + fm[j + 1] + fm[j - 1]) / 16.0;
     }
+  }
 }
 
 void Solver::coarsify(std::vector<double> Level::*field) {
