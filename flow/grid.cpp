@@ -251,6 +251,14 @@ void FastSolver::forward(int op, double s, const std::vector<double>& f, const s
 }
 
 void FastSolver::rechain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows) {
+  chain(op, s, f, x, phys_rows, true);
+}
+
+void FastSolver::forward_rows(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows) {
+  chain(op, s, f, x, phys_rows, false);
+}
+
+void FastSolver::chain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows, bool keep_modes) {
   phys_rows = std::clamp(phys_rows, 0, n_);
   const double b = ops_.at(op).b, ih2 = 1.0 / (g_.h * g_.h);
   double* outer = line_ + m_;
@@ -271,18 +279,27 @@ void FastSolver::rechain(int op, double s, const std::vector<double>& f, const s
       eliminate_row(op, ii);
     }
   }
-  // rows ≥ phys_rows: scale the modes, add the DST of the top and bottom boundary terms (e_0, e_{m−1}: s1_k, (−1)^k s1_k)
+  // rows ≥ phys_rows: scale the modes (or none), add the DST of the top and bottom boundary terms (e_0, e_{m−1}:
+  // s1_k, (−1)^k s1_k)
   for (int ii = phys_rows; ii < n_; ++ii) {
     const int i = ii + 1;
     double* row = buf_ + static_cast<std::size_t>(ii) * m_;
     const double c0 = -b * ih2 * x[g_.at(i, 0)], c1 = -b * ih2 * x[g_.at(i, g_.nz)];
     const double cp = c0 + c1, cm = c0 - c1;
     int k = 0;
-    for (; k + 1 < m_; k += 2) {
-      row[k] = s * row[k] + cp * s1_[k];
-      row[k + 1] = s * row[k + 1] + cm * s1_[k + 1];
+    if (keep_modes) {
+      for (; k + 1 < m_; k += 2) {
+        row[k] = s * row[k] + cp * s1_[k];
+        row[k + 1] = s * row[k + 1] + cm * s1_[k + 1];
+      }
+      if (k < m_) row[k] = s * row[k] + cp * s1_[k];
+    } else {
+      for (; k + 1 < m_; k += 2) {
+        row[k] = cp * s1_[k];
+        row[k + 1] = cm * s1_[k + 1];
+      }
+      if (k < m_) row[k] = cp * s1_[k];
     }
-    if (k < m_) row[k] = s * row[k] + cp * s1_[k];
     if (ii == n_ - 1)
       for (int kk = 0; kk < m_; ++kk) row[kk] += outer[kk];
     eliminate_row(op, ii);

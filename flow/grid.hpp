@@ -59,6 +59,8 @@ class FastSolver {
   /// As forward, but modes ← s·modes + op's boundary terms from x, except rows < phys_rows: DST of (s f + boundary
   /// terms) there. After a solve of another op, chains it without transforming the unchanged rows back and forth.
   void rechain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows);
+  /// As forward when f vanishes on rows ≥ phys_rows: only rows < phys_rows are transformed.
+  void forward_rows(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows);
   /// Completes modes ← op⁻¹(right-hand side) and writes rows 0..rows−1 of x's interior (lines i = 1..rows, none for
   /// rows = 0) as their inverse DST; x on the axis ← 0. The modes are kept; other rows of x are left as they were.
   void back(int op, std::vector<double>& x, int rows);
@@ -83,6 +85,7 @@ class FastSolver {
   void unpack_row(int ii, double* y, double s) const;  // transform output row ii, times s
   void rhs_row(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int ii, double* row) const;
   void eliminate_row(int op, int ii);             // forward sweep of the Thomas algorithm on row ii
+  void chain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows, bool keep_modes);
   void build_tables();                         // per op: the Thomas factors of every mode
   void release();                              // plans and buffers
   LevelGeometry g_;

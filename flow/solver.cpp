@@ -42,18 +42,34 @@ Solver::Solver(const Settings& s, std::vector<SphereState> spheres) : s_(s), sph
   plan_rows();
 }
 
-void Solver::plan_rows() {
+void Solver::update_rows() {
   const int nr = s_.nr, rows = nr - 1;
   coarse_rows_ = nr / 2 - 1;   // restrict_interior writes lines 1..nr/2 − 1
   prolong_rows_ = nr / 2 + 1;  // prolong_boundary reads coarse lines up to nr/2 + 1
   psi_rows_.assign(lv_.size(), 1);
+  src_rows_.assign(lv_.size(), 1);
   for (std::size_t l = 0; l < lv_.size(); ++l) {
     int need = l > 0 ? prolong_rows_ : 1;
-    if (l == 0) need = std::max(need, B_.max_line(lv_[0].g));
-    if (l < Bw_.size()) need = std::max(need, Bw_[l].max_line(lv_[l].g));
+    int src = l > 0 ? coarse_rows_ : 1;  // coarsify fills rows < coarse_rows; the rings spread onto their own lines
+    if (l == 0) {
+      need = std::max(need, B_.max_line(lv_[0].g));
+      src = std::max(src, B_.max_line(lv_[0].g));
+    }
+    if (l < Bw_.size()) {
+      need = std::max(need, Bw_[l].max_line(lv_[l].g));
+      src = std::max(src, Bw_[l].max_line(lv_[l].g));
+    }
     psi_rows_[l] = std::min(need, rows);
+    src_rows_[l] = std::min(src, rows);
+  }
+}
+
+void Solver::plan_rows() {
+  update_rows();
+  for (std::size_t l = 0; l < lv_.size(); ++l) {
     FastSolver& F = *lv_[l].fast;
     F.prepare_rows(psi_rows_[l]);
+    F.prepare_rows(src_rows_[l]);
     if (l > 0) F.prepare_rows(coarse_rows_);
     if (l + 1 == lv_.size() && l > 0) F.prepare_rows(prolong_rows_);
   }
@@ -90,6 +106,7 @@ void Solver::build_points(const std::vector<SphereState>& sp) {
     add_sphere_rings(pts_, b.radius, b.z, g.h, s_.ring_spacing, static_cast<int>(k));
   }
   velocity_rows(g, pts_, B_);
+  if (!psi_rows_.empty()) update_rows();  // the same rows while the radii stay (plans are made in the constructor)
 }
 
 void Solver::build_wall() {
@@ -229,7 +246,10 @@ void Solver::pass_viscous(std::vector<double> Level::*rhs, std::vector<double> L
   for (int l = NL - 1; l >= 0; --l) {
     Level& L = lv_[l];
     if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].*eta, L, L.*eta);
-    L.fast->forward(1, 1.0, L.*rhs, L.*eta);
+    if (rhs == &Level::src)  // zero beyond src_rows_
+      L.fast->forward_rows(1, 1.0, L.*rhs, L.*eta, src_rows_[l]);
+    else
+      L.fast->forward(1, 1.0, L.*rhs, L.*eta);
     // the coarsest level feeds only the next finer level's boundary values and its own coarsified rows
     const int rows = partial && l == NL - 1 ? (NL > 1 ? prolong_rows_ : 0) : L.fast->rows();
     L.fast->back(1, L.*eta, rows);

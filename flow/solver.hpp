@@ -148,14 +148,16 @@ class Solver {
   // lines that coarsify leaves alone (no transform pair between the two solves there).
   void build_points(const std::vector<SphereState>& sp);
   void build_wall();
-  void plan_rows();  // the partial line counts per level, and their FFTW plans
+  void plan_rows();    // the partial line counts per level, and their FFTW plans
+  void update_rows();  // the partial line counts per level
   /// Velocities at all points (sphere points from the finest ψ, then wall points from their level's ψ) into u.
   void point_velocity(std::vector<double> Level::*psi, Eigen::VectorXd& u) const;
   void check_finite(const StepInfo& info) const;  // throws SolverError naming the quantity and the time
   void coarsify(std::vector<double> Level::*field);  // fine-to-coarse full weighting, finest first
   void spread_source(const Eigen::VectorXd& g);      // Level::src ← S g on every level
   /// eta ← A⁻¹ rhs on all levels (rhs coarsified first); partial: the coarsest level's lines only as far as needed.
-  void pass_viscous(std::vector<double> Level::*rhs, std::vector<double> Level::*eta, bool partial);
+  void pass_viscous(std::vector<double> Level::*rhs, std::vector<double> Level::*eta, bool partial);  // rhs = src: only
+                                                                                                        // src_rows_ transformed
   /// psi ← P⁻¹ eta on all levels (eta coarsified first), from the modes left by pass_viscous (plus eta_modes when
   /// add_saved); partial: only the lines read by the body points and the finer levels.
   void pass_streamfunction(std::vector<double> Level::*eta, std::vector<double> Level::*psi, bool partial, bool add_saved);
@@ -188,6 +190,7 @@ class Solver {
   long n_ = 0;
   int coarse_rows_ = 0, prolong_rows_ = 0;  // rows coarsify writes (levels ≥ 1); rows prolong_boundary reads
   std::vector<int> psi_rows_;               // per level: rows of ψ read by the points and the finer level
+  std::vector<int> src_rows_;               // per level: rows where the force source S g can be nonzero
   std::vector<double> nl_, eta_sq_;  // eta_sq_: Σ η² per level after the step (check_finite)
   // step and GMRES workspace, sized on first use
   Eigen::VectorXd rhs_, target_, u_, r_, w_, z_, t1_, y_, cs_, sn_, e_;
