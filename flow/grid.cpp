@@ -58,6 +58,11 @@ FastSolver::FastSolver(const LevelGeometry& g, std::vector<Op> ops, bool measure
       tw_s_.push_back(std::sin(M_PI * j / (2.0 * M_)));
     }
   for (int k = 0; k < m_; ++k) s1_.push_back(2 * std::sin(M_PI * (k + 1) / N_));
+  if (N_ % 4 == 0)
+    for (int k = 0; k < m_; ++k) {
+      q1_.push_back(std::sin(M_PI * (k + 1) * 0.25) / N_);
+      q3_.push_back(std::sin(M_PI * (k + 1) * 0.75) / N_);
+    }
   try {
     prepare_rows(1);
     prepare_rows(n_);
@@ -323,6 +328,40 @@ void FastSolver::back(int op, std::vector<double>& x, int rows) {
   execute(rows);
   const double s = 1.0 / (2.0 * N_);
   for (int ii = 0; ii < rows; ++ii) unpack_row(ii, &x[g_.at(ii + 1, 1)], s);
+  for (int j = 0; j <= g_.nz; ++j) x[g_.at(0, j)] = 0.0;  // axis
+}
+
+void FastSolver::back_prolong(int op, std::vector<double>& x, int full_row, int point_rows) {
+  if (q1_.empty()) throw std::logic_error("FastSolver::back_prolong needs nz a multiple of 4");
+  full_row = std::clamp(full_row, 0, n_ - 1);
+  point_rows = std::clamp(point_rows, 0, n_);
+  const auto& inv_den = inv_den_[op];
+  const auto& up = upper_[op];
+  const int j1 = N_ / 4, j3 = 3 * N_ / 4;
+  auto finish = [&](int ii) {  // row ii is final
+    const double* d = buf_ + static_cast<std::size_t>(ii) * m_;
+    if (ii < point_rows) {
+      double a = 0, c = 0;
+      for (int k = 0; k < m_; ++k) {
+        a += d[k] * q1_[k];
+        c += d[k] * q3_[k];
+      }
+      x[g_.at(ii + 1, j1)] = a;
+      x[g_.at(ii + 1, j3)] = c;
+    }
+    if (ii == full_row) pack_row(0, d);
+  };
+  finish(n_ - 1);
+  for (int ii = n_ - 2; ii >= 0; --ii) {
+    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
+    const double* dn = d + m_;
+    const double* inv = inv_den.data() + static_cast<std::size_t>(ii) * m_;
+    const double u = up[ii];
+    for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
+    finish(ii);
+  }
+  execute(1);
+  unpack_row(0, &x[g_.at(full_row + 1, 1)], 1.0 / (2.0 * N_));
   for (int j = 0; j <= g_.nz; ++j) x[g_.at(0, j)] = 0.0;  // axis
 }
 

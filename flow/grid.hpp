@@ -64,6 +64,9 @@ class FastSolver {
   /// Completes modes ← op⁻¹(right-hand side) and writes rows 0..rows−1 of x's interior (lines i = 1..rows, none for
   /// rows = 0) as their inverse DST; x on the axis ← 0. The modes are kept; other rows of x are left as they were.
   void back(int op, std::vector<double>& x, int rows);
+  /// As back, but writes only what prolong_boundary reads of a coarse level: the whole line full_row + 1 and, on
+  /// lines 1..point_rows, the vertices j = nz/4 and 3nz/4 (direct sums; nz a multiple of 4).
+  void back_prolong(int op, std::vector<double>& x, int full_row, int point_rows);
   /// modes ← op⁻¹ modes (both sweeps).
   void tridiag(int op);
   /// Makes the plans for transforms of the first `rows` rows (partial forward and inverse); other counts than
@@ -100,6 +103,7 @@ class FastSolver {
   double* line_ = nullptr;                    // two rows of scratch (m_ each)
   std::vector<double> tw_c_, tw_s_;           // split: cos, sin(πj/(2M)), j = 0..M/2
   std::vector<double> s1_;                    // DST of the unit vector e_0: 2 sin(π(k+1)/N)
+  std::vector<double> q1_, q3_;               // inverse DST at j = N/4, 3N/4: sin(π(k+1)j/N)/N
   std::vector<Plans> plans_;                  // by increasing rows; the last has all n_ rows
   unsigned flags_ = 0;
   std::vector<std::vector<double>> lower_, upper_, inv_den_;  // per op: lower[i], upper[i], inv_den[i·m+k]

@@ -265,7 +265,10 @@ void Solver::pass_streamfunction(std::vector<double> Level::*eta, std::vector<do
     if (add_saved) L.fast->add_modes(L.eta_modes);
     // E²ψ = −η: from the modes of η where coarsify left η alone, transformed afresh on the coarsified rows
     L.fast->rechain(0, -1.0, L.*eta, L.*psi, l > 0 ? coarse_rows_ : 0);
-    L.fast->back(0, L.*psi, partial ? psi_rows_[l] : L.fast->rows());
+    if (partial && l > 0 && psi_rows_[l] <= prolong_rows_)  // read only by the finer level's boundary values
+      L.fast->back_prolong(0, L.*psi, s_.nr / 2 - 1, prolong_rows_);
+    else
+      L.fast->back(0, L.*psi, partial ? psi_rows_[l] : L.fast->rows());
   }
 }
 
