@@ -156,8 +156,8 @@ class Solver {
   void coarsify(std::vector<double> Level::*field);  // fine-to-coarse full weighting, finest first
   void spread_source(const Eigen::VectorXd& g);      // Level::src ← S g on every level
   /// eta ← A⁻¹ rhs on all levels (rhs coarsified first); partial: the coarsest level's lines only as far as needed.
-  void pass_viscous(std::vector<double> Level::*rhs, std::vector<double> Level::*eta, bool partial);  // rhs = src: only
-                                                                                                        // src_rows_ transformed
+  /// With rhs = src only the lines src_rows_ are transformed (the source vanishes beyond them).
+  void pass_viscous(std::vector<double> Level::*rhs, std::vector<double> Level::*eta, bool partial);
   /// psi ← P⁻¹ eta on all levels (eta coarsified first), from the modes left by pass_viscous (plus eta_modes when
   /// add_saved); partial: only the lines read by the body points and the finer levels.
   void pass_streamfunction(std::vector<double> Level::*eta, std::vector<double> Level::*psi, bool partial, bool add_saved);
