@@ -51,27 +51,50 @@ void add_common(CLI::App* cmd, CommonOptions& c) {
 
 std::string json_num(const nlohmann::ordered_json& j, int prec) { return j.is_null() ? "n/a" : fixed(j.get<double>(), prec); }
 
-/// The output directory, created before anything runs (a bad --out or name fails at once, exit 2).
-fs::path prepare_out_dir(const std::string& out, const fs::path& fallback) {
-  const fs::path dir = out.empty() ? fallback : fs::path(out);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw InputError(out.empty() ? "scene key 'name'" : "command line", out.empty() ? "name" : "--out",
-                     "cannot create the output directory '" + dir.string() + "'" + (ec ? ": " + ec.message() : ""));
-  return dir;
-}
+/// The output directory, created before anything runs (a bad --out or name fails at once, exit 2). If the run
+/// fails before anything is written, the directories this created are removed again (no empty folder is left).
+class OutDir {
+ public:
+  OutDir(const std::string& out, const fs::path& fallback) : dir_(out.empty() ? fallback : fs::path(out)) {
+    for (fs::path p = dir_; !p.empty() && !fs::exists(p); p = p.parent_path()) {
+      created_.push_back(p);
+      if (p == p.parent_path()) break;
+    }
+    std::error_code ec;
+    fs::create_directories(dir_, ec);
+    if (ec || !fs::is_directory(dir_))
+      throw InputError(out.empty() ? "scene key 'name'" : "command line", out.empty() ? "name" : "--out",
+                       "cannot create the output directory '" + dir_.string() + "'" + (ec ? ": " + ec.message() : ""));
+  }
+  ~OutDir() {
+    if (kept_) return;
+    std::error_code ec;
+    for (const auto& p : created_)  // innermost first; fs::remove deletes only empty directories
+      if (!fs::is_directory(p, ec) || !fs::is_empty(p, ec) || !fs::remove(p, ec)) break;
+  }
+  OutDir(const OutDir&) = delete;
+  OutDir& operator=(const OutDir&) = delete;
+  const fs::path& path() const { return dir_; }
+  void keep() { kept_ = true; }
+
+ private:
+  fs::path dir_;
+  std::vector<fs::path> created_;
+  bool kept_ = false;
+};
 
 int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet, bool plot) {
   Scene sc = load_scene(scene_path, c.overrides());
-  const fs::path dir = prepare_out_dir(out, fs::path("out") / sc.name);
+  OutDir out_dir(out, fs::path("out") / sc.name);
+  const fs::path& dir = out_dir.path();
   RunResult r = simulate(sc, !quiet);
   write_outputs(r, dir);
+  out_dir.keep();
   if (!quiet) std::cout << human_summary(r) << "  wrote " << (dir / "trajectory.csv").string() << " and " << (dir / "summary.json").string() << "\n";
   if (plot) {
     std::cout.flush();
     run_plot_script("plot_run.py", dir, "trajectory.png", quiet);
-    if (sc.has(Effect::flow) && sc.flow.snapshots) run_plot_script("plot_coupled_flow.py", dir, "flow_*.png", quiet);
+    if (sc.has(Effect::flow) && sc.flow.fields) run_plot_script("plot_coupled_flow.py", dir, "flow_*.png", quiet);
   }
   return 0;
 }

@@ -47,10 +47,10 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
   Scene base = load_scene(scene_path, overrides);
   if (!base.fluid) throw InputError(scene_path, "fluid", "the history force needs a [fluid] table");
   for (const auto& k : opt.kernels)
-    if (k != "basset" && k != "mei-adrian" && k != "kim" && k != "dorgan-loth")
+    if (!choice_from_string<KernelKind>(k))
       throw InputError("--kernels", k, "unknown kernel (expected basset, mei-adrian, kim, dorgan-loth)");
   for (const auto& e : opt.evaluators)
-    if (e != "soe" && e != "soe-step" && e != "direct") throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
+    if (!choice_from_string<HistoryEvaluator>(e)) throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
   const bool collision = base.has_target();
   const std::string metric_name = collision ? "e" : "u_end m/s";
 
@@ -60,8 +60,8 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
       sc.effects.erase(Effect::history);
     } else {
       sc.effects.insert(Effect::history);
-      sc.history.kernel = kernel;
-      sc.history.evaluator = evaluator;
+      sc.history.kernel = *choice_from_string<KernelKind>(kernel);
+      sc.history.evaluator = *choice_from_string<HistoryEvaluator>(evaluator);
     }
     Row r{kernel, evaluator, simulate(sc)};
     const auto& s = r.run.summary;

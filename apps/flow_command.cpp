@@ -16,6 +16,7 @@
 #include "core/errors.hpp"
 #include "core/report.hpp"
 #include "core/toml_reader.hpp"
+#include "flow/cost.hpp"
 #include "flow/flow_scene.hpp"
 #include "flow/snapshot.hpp"
 #include "flow/solver.hpp"
@@ -81,32 +82,25 @@ void apply_overrides(flow::FlowScene& sc, const FlowCommandOptions& opt) {
   }
 }
 
-/// Memory and wall time estimated before anything is allocated. Memory: ~100 bytes per vertex and level
-/// (measured: 3.5 MB for 3 levels of 64 x 192 cells) plus the force solver's dense matrices (Q of the body
-/// points, LU, and up to 16 cached preconditioner blocks per moving sphere); beyond half the physical memory
-/// the run is refused. Time: ~50 ns per vertex, level and step (twice that with moving bodies); beyond an
-/// hour the run needs --allow-long.
+/// Memory and wall time estimated before anything is allocated (flow/cost.hpp): beyond half the physical memory
+/// the run is refused; beyond an hour it needs --allow-long.
 void check_cost(const flow::FlowScene& sc, const FlowCommandOptions& opt) {
   const flow::Settings set = sc.settings();
-  const double vertices = double(set.nr + 1) * double(set.nz + 1) * set.levels;
-  double points = 0;
+  std::vector<double> diameters;
   bool moving = false;
   for (const auto& p : sc.spheres) {
-    points += std::max(2.0, std::ceil(M_PI * 0.5 * p.diameter / (sc.ring_spacing * set.h)));
+    diameters.push_back(p.diameter);
     moving = moving || p.velocity != 0 || p.amplitude != 0;
   }
-  if (sc.wall_position)  // the wall's rings: ~nr on the finest level, ~nr/2 on each coarser one
-    points += (set.nr + (set.levels - 1) * (set.nr / 2 - 1)) / sc.ring_spacing;
-  const double q_bytes = 8.0 * (2 * points) * (2 * points);
-  const double bytes = 100.0 * vertices + q_bytes * (moving ? 18.0 : 2.0);
-  const double phys = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGE_SIZE));
+  const flow::CostEstimate c = flow::estimate_cost(set, diameters, moving);
+  const double vertices = c.vertices, points = c.body_points, bytes = c.bytes, phys = flow::physical_memory_bytes();
   const std::string where = sc.overridden.empty() ? sc.path : "command line (--cells/--levels)";
   if (phys > 0 && bytes > 0.5 * phys)
     throw InputError(sc.overridden.count("--cells") || sc.overridden.count("--levels") ? where : sc.path, "grid.cells_per_diameter",
                      "the grid needs about " + fmt_number(bytes / 1e9) + " GB (" + fmt_number(vertices) + " vertices, " + fmt_number(points) +
                          " body points), more than half of this machine's " + fmt_number(phys / 1e9) + " GB: use fewer cells or levels");
   const double steps = std::ceil(sc.t_end / sc.dt - 1e-9);
-  const double seconds = steps * vertices * 5e-8 * (moving ? 2.0 : 1.0);
+  const double seconds = steps * c.seconds_per_step;
   if (seconds > 3600 && !opt.allow_long)
     throw InputError(sc.overridden.count("--dt") || sc.overridden.count("--t-end") ? "command line (--dt/--t-end)" : sc.path, "time.dt",
                      "an estimated " + fmt_number(seconds / 3600) + " hours (" + fmt_number(steps) + " steps of " + fmt_number(vertices) +

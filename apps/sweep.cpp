@@ -257,6 +257,10 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
 
   nlohmann::ordered_json j;
   j["scene"] = base.name;
+  j["scene_file"] = scene_path;
+  nlohmann::ordered_json ov = nlohmann::ordered_json::object();  // --set/--rtol/... as given, before the varied quantity's
+  for (const auto& o : overrides) ov[o.key] = o.value;
+  j["overrides"] = ov;
   j["configuration"] = pair ? "sphere-sphere" : (base.wall ? "sphere-wall" : "free sphere");
   j["vary"] = opt.vary;
   j["column"] = q->column;

@@ -149,10 +149,10 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
     Scene sc = base;
     sc.solver.rtol = rtol;
     sc.solver.atol = rtol;
-    sc.solver.integrator = c.integrator == "ida" ? "ida" : "cvode";
-    sc.solver.linear_solver = c.integrator == "cvode-gmres" ? "gmres" : "dense";
+    sc.solver.integrator = c.integrator == "ida" ? IntegratorMethod::ida : IntegratorMethod::cvode;
+    sc.solver.linear_solver = c.integrator == "cvode-gmres" ? LinearSolverChoice::gmres : LinearSolverChoice::dense;
     if (c.evaluator != "none") {
-      sc.history.evaluator = c.evaluator;
+      sc.history.evaluator = *choice_from_string<HistoryEvaluator>(c.evaluator);
       if (c.evaluator == "soe" || c.evaluator == "soe-step") {
         sc.history.modes = 0;
         sc.history.tolerance = history_tol;
@@ -182,7 +182,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   double h_direct = base.history.direct_step;
   if (std::count(evaluators.begin(), evaluators.end(), "direct") && !(h_direct > 0)) {
     Scene probe = base;  // the model's automatic step, read off a model that is built but not run
-    probe.history.evaluator = "direct";
+    probe.history.evaluator = HistoryEvaluator::direct;
     for (const auto& [k, v] : contact::CollisionModel(probe).choices())
       if (k == "history.direct_step_s") h_direct = std::stod(v);
   }

@@ -42,7 +42,7 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
     c << std::setprecision(17) << cfl;
     ov.push_back({"flow.cfl", c.str()});
     Scene sc = load_scene(base.path, ov);
-    sc.flow.snapshots = 0;
+    sc.flow.fields = false;
     std::cerr << "  " << ladder << ": " << cells << " cells/D, cfl " << cfl << " ...\n";
     rungs.push_back({ladder, cells, cfl, simulate(sc)});
   };

@@ -10,7 +10,13 @@
 // against Brenner's λ(h/a), the force on the wall, the same in the sphere's frame (wall and far fluid moving), and the
 // cost per step with and without the wall (fixed and moving sphere).
 //   imcol_flow_cost --wall --cells 16,32 [--levels 8] [--re 0.1] [--gaps 3,2,1,0.5,0.25,0.125,0.1,0.05] [--steps 100]
+// (--alloc) heap allocations per step (malloc, calloc, realloc, aligned: this program counts them all) after warm-up:
+// the fixed sphere at Re = 100 (LU) and two spheres approaching (GMRES), 32 cells/D, 4 levels.
+//   imcol_flow_cost --alloc
 #include <sys/resource.h>
+
+#include <atomic>
+#include <cerrno>
 
 #include <chrono>
 #include <cmath>
@@ -27,7 +33,72 @@
 
 using namespace imcol::flow;
 
+// Every heap allocation of this process is counted (glibc's own allocator underneath).
+static std::atomic<long> g_allocs{0};
+extern "C" {
+void* __libc_malloc(std::size_t);
+void* __libc_calloc(std::size_t, std::size_t);
+void* __libc_realloc(void*, std::size_t);
+void* __libc_memalign(std::size_t, std::size_t);
+void __libc_free(void*);
+void* malloc(std::size_t n) {
+  g_allocs.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(n);
+}
+void* calloc(std::size_t n, std::size_t s) {
+  g_allocs.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(n, s);
+}
+void* realloc(void* p, std::size_t n) {
+  g_allocs.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, n);
+}
+void* memalign(std::size_t a, std::size_t n) {
+  g_allocs.fetch_add(1, std::memory_order_relaxed);
+  return __libc_memalign(a, n);
+}
+void* aligned_alloc(std::size_t a, std::size_t n) { return memalign(a, n); }
+int posix_memalign(void** p, std::size_t a, std::size_t n) {
+  *p = memalign(a, n);
+  return *p ? 0 : ENOMEM;
+}
+void free(void* p) { __libc_free(p); }
+}
+
 namespace {
+int alloc_mode() {
+  std::printf("heap allocations per step after warm-up (32 cells/D, 4 levels, finest r < 1.5 D)\n");
+  std::printf("%34s %8s %10s %12s\n", "case", "warm-up", "steps", "allocs/step");
+  for (bool moving : {false, true}) {
+    Settings s;
+    s.nu = moving ? 0.1 : 0.01;
+    s.h = 1.0 / 32;
+    s.dt = moving ? 0.005 : 0.0225;
+    s.nr = 48;
+    s.nz = moving ? 240 : 144;
+    s.levels = 4;
+    s.z_center = moving ? -2.25 : 0.75;
+    s.u_inf = moving ? 0.0 : 1.0;
+    s.krylov_tol = 1e-8;
+    std::vector<SphereState> sp = moving ? std::vector<SphereState>{{0.5, -4.0, 1.0}, {0.5, 0.0, 0.0}}
+                                         : std::vector<SphereState>{{0.5, 0.0, 0.0}};
+    Solver solver(s, sp);
+    auto adv = [&]() {
+      if (moving) sp[0].z += sp[0].u * s.dt;
+      solver.step(sp);
+    };
+    const int warm = 40, steps = 20;
+    for (int n = 0; n < warm; ++n) adv();
+    const long a0 = g_allocs.load();
+    for (int n = 0; n < steps; ++n) adv();
+    const double per = static_cast<double>(g_allocs.load() - a0) / steps;
+    std::printf("%34s %8d %10d %12.1f\n", moving ? "two spheres approaching, GMRES" : "fixed sphere in a stream, LU", warm, steps, per);
+  }
+  std::printf("(a step returns StepInfo, whose force and internal vectors are 2 of these)\n");
+  return 0;
+}
+
+
 std::vector<double> parse_dlist(const char* s) {
   std::vector<double> v;
   std::stringstream ss(s);
@@ -154,6 +225,7 @@ int main(int argc, char** argv) {
     else if (a == "--refine" && k + 1 < argc) refine = argv[++k];
     else if (a == "--steady-cells" && k + 1 < argc) steady_cells = std::atoi(argv[++k]);
     else if (a == "--wall") wall = true;
+    else if (a == "--alloc") return alloc_mode();
     else if (a == "--re" && k + 1 < argc) wall_re = std::atof(argv[++k]);
     else if (a == "--gaps" && k + 1 < argc) gaps = parse_dlist(argv[++k]);
     else if (a == "--wall-levels" && k + 1 < argc) wall_levels = std::atoi(argv[++k]);

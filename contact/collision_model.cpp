@@ -73,15 +73,15 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   const bool start_inside = has_target() && has(Effect::elastic) && initial_gap() <= delta_ss_m_;
   if (start_inside) delta_ss_m_ = initial_gap();
   instant_gap_m_ = sc.measure.instant_gap * D_;
-  all_bounces_ = sc.measure.bounces == "all";
+  all_bounces_ = sc.measure.bounces == BouncesMode::all;
   instant_inside_ = has_target() && initial_gap() <= instant_gap_m_;
   measure_gap_m_ = std::max(sc.measure.at_gap * D_, delta_ss_m_ + sc.measure.fit_distance * D_);
   h_min_ = sc.lubrication.cutoff * D_;
   h_c_ = sc.lubrication.h_c * a_star_;
   dw_floor_ = sc.added_mass.dw_floor > 0 ? sc.added_mass.dw_floor : sc.contact.delta_ss * D_ / a_star_;
-  drag_law_ = drag_law_from_string(sc.drag.law);
-  brenner_ = sc.lubrication.model == "brenner";
-  lagrangian_am_ = sc.added_mass.model == "lagrangian";
+  drag_law_ = sc.drag.law;
+  brenner_ = sc.lubrication.model == LubricationModel::brenner;
+  lagrangian_am_ = sc.added_mass.model == AddedMassModel::lagrangian;
   mf_star_ = target_ == Target::sphere ? reduced(mf_[0], mf_[1]) : mf_[0];
 
   u_ref_ = std::max({std::abs(s1.velocity), n_spheres_ > 1 ? std::abs(sc.spheres[1].velocity) : 0.0, 1e-3});
@@ -147,14 +147,14 @@ double CollisionModel::initial_gap() const {
 void CollisionModel::setup_history() {
   const auto& h = scene_.history;
   auto& o = hist_opt_;
-  o.kernel = *kernel_from_string(h.kernel);
-  o.direct = h.evaluator == "direct";
-  o.stepwise = h.evaluator == "soe-step";
+  o.kernel = h.kernel;
+  o.direct = h.evaluator == HistoryEvaluator::direct;
+  o.stepwise = h.evaluator == HistoryEvaluator::soe_step;
   o.tolerance = h.tolerance;
   o.modes = static_cast<int>(h.modes);
-  o.impulsive = h.start == "impulsive";
-  o.initial_re = h.reynolds == "initial";
-  kh_added_mass_ = h.wall_correction == "added-mass" && has_target();
+  o.impulsive = h.start == HistoryStart::impulsive;
+  o.initial_re = h.reynolds == HistoryReynolds::initial;
+  kh_added_mass_ = h.wall_correction == WallCorrection::added_mass && has_target();
   if (kh_added_mass_ && !(w_floor_ > 0)) {
     w_floor_ = added_mass_W(dw_floor_);
     dw_slope_ = added_mass_dW(dw_floor_);
@@ -791,14 +791,14 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
     return os.str();
   };
   const auto& sc = scene_;
-  if (has(Effect::drag)) c.push_back({"drag.law", sc.drag.law});
+  if (has(Effect::drag)) c.push_back({"drag.law", to_string(sc.drag.law)});
   if (has(Effect::lubrication)) {
-    c.push_back({"lubrication.model", sc.lubrication.model});
+    c.push_back({"lubrication.model", to_string(sc.lubrication.model)});
     c.push_back({"lubrication.cutoff_m", num(h_min_)});
     if (!brenner_) c.push_back({"lubrication.h_c_m", num(h_c_)});
   }
   if (has(Effect::added_mass)) {
-    c.push_back({"added_mass.model", sc.added_mass.model});
+    c.push_back({"added_mass.model", to_string(sc.added_mass.model)});
     c.push_back({"added_mass.dw_floor", num(dw_floor_)});
   }
   if (has(Effect::elastic)) {
@@ -810,11 +810,11 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
   }
   if (history_[0]) {
     const auto& h = sc.history;
-    c.push_back({"history.kernel", h.kernel});
-    c.push_back({"history.evaluator", h.evaluator});
-    c.push_back({"history.start", h.start});
-    c.push_back({"history.wall_correction", h.wall_correction});
-    if (h.kernel != "basset") c.push_back({"history.reynolds", h.reynolds});
+    c.push_back({"history.kernel", to_string(h.kernel)});
+    c.push_back({"history.evaluator", to_string(h.evaluator)});
+    c.push_back({"history.start", to_string(h.start)});
+    c.push_back({"history.wall_correction", to_string(h.wall_correction)});
+    if (h.kernel != KernelKind::basset) c.push_back({"history.reynolds", to_string(h.reynolds)});
     if (hist_opt_.direct) {
       c.push_back({"history.direct_step_s", num(hist_opt_.direct_step)});
     } else {

@@ -68,12 +68,6 @@ double blend_H(double x) {
   return 1.0 - t * t * (3.0 - 2.0 * t);
 }
 
-DragLaw drag_law_from_string(const std::string& s) {
-  if (s == "stokes") return DragLaw::stokes;
-  if (s == "schiller-naumann") return DragLaw::schiller_naumann;
-  throw std::invalid_argument("unknown drag law '" + s + "'");
-}
-
 double drag_factor(DragLaw law, double Re) {
   if (law == DragLaw::stokes) return 1.0;
   return 1.0 + 0.15 * std::pow(std::abs(Re), 0.687);

@@ -3,6 +3,8 @@
 #include <array>
 #include <string>
 
+#include "core/choices.hpp"
+
 namespace imcol::contact {
 
 constexpr double pi = 3.141592653589793238462643383279502884;
@@ -35,8 +37,6 @@ double energy_consistent_beta(double delta_ss, double eps_max);
 double blend_H(double x);
 
 // ---------- Drag (MODEL.md §2.1) ----------
-enum class DragLaw { stokes, schiller_naumann };
-DragLaw drag_law_from_string(const std::string& s);
 /// φ(Re): 1 (Stokes) or 1 + 0.15 Re^0.687 (Schiller–Naumann); drag = −6πμ a U φ
 double drag_factor(DragLaw law, double Re);
 

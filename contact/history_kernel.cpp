@@ -332,26 +332,6 @@ std::pair<cplx, cplx> basset_roots(double alpha, double gamma) {
 
 }  // namespace
 
-// ---------- Kernel names ----------
-
-std::optional<KernelKind> kernel_from_string(const std::string& s) {
-  if (s == "basset") return KernelKind::basset;
-  if (s == "mei-adrian") return KernelKind::mei_adrian;
-  if (s == "kim") return KernelKind::kim;
-  if (s == "dorgan-loth") return KernelKind::dorgan_loth;
-  return std::nullopt;
-}
-
-const char* to_string(KernelKind k) {
-  switch (k) {
-    case KernelKind::basset: return "basset";
-    case KernelKind::mei_adrian: return "mei-adrian";
-    case KernelKind::kim: return "kim";
-    case KernelKind::dorgan_loth: return "dorgan-loth";
-  }
-  return "?";
-}
-
 // ---------- HistoryKernel ----------
 
 HistoryKernel::HistoryKernel(KernelKind kind, double D, double nu) : kind_(kind), D_(D), nu_(nu) {

@@ -21,11 +21,10 @@
 #include <string>
 #include <vector>
 
+#include "core/choices.hpp"
+
 namespace imcol::contact {
 
-enum class KernelKind { basset, mei_adrian, kim, dorgan_loth };
-std::optional<KernelKind> kernel_from_string(const std::string& s);  // "basset", "mei-adrian", "kim", "dorgan-loth"
-const char* to_string(KernelKind k);
 
 /// The kernel K(s; Re) of one sphere of diameter D [m] in a fluid of kinematic viscosity ν [m²/s].
 class HistoryKernel {

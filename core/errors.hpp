@@ -1,9 +1,17 @@
 #pragma once
 // Error types shared by all modules. InputError -> exit status 2, SolverError -> exit status 3.
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 namespace imcol {
+
+/// A number as messages write it (shortest default formatting).
+inline std::string fmt_number(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
 
 /// Bad input: names the place (file[:line] or "--set"), the key and the problem, on one line
 /// (control characters in any part are written as escapes such as \n).

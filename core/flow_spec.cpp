@@ -4,10 +4,6 @@
 
 namespace imcol {
 
-const char* to_string(FlowStart s) { return s == FlowStart::impulsive ? "impulsive" : "developed"; }
-
-const char* to_string(ForceInStep s) { return s == ForceInStep::linear ? "linear" : "held"; }
-
 void read_flow_spec(TableReader& r, FlowSpec& f) {
   auto int_in = [&](const char* key, int& field, long lo, long hi) {
     if (auto v = r.integer(key)) {
@@ -37,10 +33,7 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   int_in("preconditioner_bins", f.preconditioner_bins, 1, 64);
   f.ring_spacing = r.number("ring_spacing", f.ring_spacing);
   r.in_range("ring_spacing", f.ring_spacing, 0.25, 2.0, false, false);
-  if (auto v = r.string("start")) {
-    r.one_of("start", *v, {"impulsive", "developed"});
-    f.start = *v == "impulsive" ? FlowStart::impulsive : FlowStart::developed;
-  }
+  r.choice("start", f.start);
   if (r.has("developed_distance") && r.has("developed_time")) r.fail("developed_time", "give either developed_distance or developed_time, not both");
   f.developed_distance = r.number("developed_distance", f.developed_distance);
   r.in_range("developed_distance", f.developed_distance, 0.0, 1000.0, true, false);
@@ -48,14 +41,13 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   if (r.has("developed_time")) r.positive("developed_time", f.developed_time);
   if (f.start == FlowStart::impulsive && (r.has("developed_distance") || r.has("developed_time")))
     r.fail(r.has("developed_time") ? "developed_time" : "developed_distance", "applies to start = \"developed\" only");
-  if (auto v = r.string("force_in_step")) {
-    r.one_of("force_in_step", *v, {"linear", "held"});
-    f.force_in_step = *v == "linear" ? ForceInStep::linear : ForceInStep::held;
-  }
+  r.choice("force_in_step", f.force_in_step);
   f.added_mass_estimate = r.boolean("added_mass_estimate", f.added_mass_estimate);
   f.min_gap_cells = r.number("min_gap_cells", f.min_gap_cells);
-  r.in_range("min_gap_cells", f.min_gap_cells, 0.0, 10.0, false, false);
-  int_in("snapshots", f.snapshots, 0, 1);
+  r.in_range("min_gap_cells", f.min_gap_cells, 1.0, 10.0, false, false);  // below one cell the rings of the two bodies overlap
+  f.max_wall_hours = r.number("max_wall_hours", f.max_wall_hours);
+  r.in_range("max_wall_hours", f.max_wall_hours, 0.0, 1e4, true, false);
+  f.fields = r.boolean("fields", f.fields);
   r.finish();
 }
 

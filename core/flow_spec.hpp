@@ -3,6 +3,8 @@
 // Lengths in units of the impact sphere's diameter D, times in s. Read by read_flow_spec(); every key is checked.
 #include <string>
 
+#include "core/choices.hpp"
+
 namespace imcol {
 
 class TableReader;
@@ -12,7 +14,10 @@ enum class FlowStart {
   impulsive,  // fluid at rest: the spheres' initial velocities are imposed over one flow step before t = 0
   developed   // the initial velocities are imposed over a stated distance (or time) before t = 0
 };
-const char* to_string(FlowStart s);
+template <> struct ChoiceNames<FlowStart> {
+  static constexpr auto list = std::to_array<std::pair<FlowStart, std::string_view>>(
+      {{FlowStart::impulsive, "impulsive"}, {FlowStart::developed, "developed"}});
+};
 
 /// How f_SIM varies inside one flow step (MODEL.md §5).
 enum class ForceInStep {
@@ -20,7 +25,10 @@ enum class ForceInStep {
   held     // the kernel's step force over the whole step (order ≈ 1.3), but an alternating instability grows for
            // light spheres (density ratio 0.5 at 24 cells/D): docs/coupling.md
 };
-const char* to_string(ForceInStep s);
+template <> struct ChoiceNames<ForceInStep> {
+  static constexpr auto list = std::to_array<std::pair<ForceInStep, std::string_view>>(
+      {{ForceInStep::linear, "linear"}, {ForceInStep::held, "held"}});
+};
 
 struct FlowSpec {
   int cells_per_diameter = 32;   // finest spacing h = D / cells_per_diameter
@@ -42,8 +50,9 @@ struct FlowSpec {
   ForceInStep force_in_step = ForceInStep::linear;
   bool added_mass_estimate = true;  // keep the model's added mass implicit and remove it from f_SIM (false: f_SIM explicit,
                                     // unstable for light spheres; only without the added_mass effect; MODEL.md §5)
-  double min_gap_cells = 1.0;    // smallest gap the kernel sees, finest cells (its rings would overlap below)
-  int snapshots = 1;             // write flow fields (gap 1 D, contact, one window after separation): 1 yes, 0 no
+  double min_gap_cells = 1.0;    // smallest gap the kernel sees, finest cells, in [1, 10] (closer rings overlap)
+  double max_wall_hours = 1.0;   // a run whose estimated wall time (flow/cost.hpp, up to t_end) exceeds this is refused
+  bool fields = true;            // write the flow fields and pictures (gap 1 D, contact, one window after separation, end)
   int line = 0;                  // line of the [flow] table (0: not given)
 };
 

@@ -216,17 +216,15 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
 
   if (const auto* t = top.table("drag")) {
     Reader r(*t, "drag", path);
-    if (auto v = r.string("law")) sc.drag.law = *v;
-    r.one_of("law", sc.drag.law, {"stokes", "schiller-naumann"});
+    r.choice("law", sc.drag.law);
     r.finish();
   }
 
-  sc.lubrication.model = sc.wall ? "brenner" : "asymptotic";
+  sc.lubrication.model = sc.wall ? LubricationModel::brenner : LubricationModel::asymptotic;
   if (const auto* t = top.table("lubrication")) {
     Reader r(*t, "lubrication", path);
-    if (auto v = r.string("model")) sc.lubrication.model = *v;
-    r.one_of("model", sc.lubrication.model, {"brenner", "asymptotic"});
-    if (sc.lubrication.model == "brenner" && sc.two_spheres())
+    r.choice("model", sc.lubrication.model);
+    if (sc.lubrication.model == LubricationModel::brenner && sc.two_spheres())
       r.fail("model", "'brenner' is the sphere-wall series; use 'asymptotic' for two spheres");
     sc.lubrication.cutoff = r.number("cutoff", sc.lubrication.cutoff);
     r.positive("cutoff", sc.lubrication.cutoff);
@@ -237,8 +235,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
 
   if (const auto* t = top.table("added_mass")) {
     Reader r(*t, "added_mass", path);
-    if (auto v = r.string("model")) sc.added_mass.model = *v;
-    r.one_of("model", sc.added_mass.model, {"seed", "lagrangian"});
+    r.choice("model", sc.added_mass.model);
     sc.added_mass.dw_floor = r.number("dw_floor", sc.added_mass.dw_floor);
     if (r.has("dw_floor")) r.positive("dw_floor", sc.added_mass.dw_floor);
     r.finish();
@@ -262,10 +259,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     Reader r(*t, "history", path);
     if (!sc.has(Effect::history)) r.fail("kernel", "a [history] table needs the 'history' effect in `effects`");
     auto& h = sc.history;
-    if (auto v = r.string("kernel")) h.kernel = *v;
-    r.one_of("kernel", h.kernel, {"basset", "mei-adrian", "kim", "dorgan-loth"});
-    if (auto v = r.string("evaluator")) h.evaluator = *v;
-    r.one_of("evaluator", h.evaluator, {"soe", "soe-step", "direct"});
+    r.choice("kernel", h.kernel);
+    r.choice("evaluator", h.evaluator);
     h.tolerance = r.number("tolerance", h.tolerance);
     r.in_range("tolerance", h.tolerance, 1e-13, 0.1, false, true);
     if (auto v = r.integer("modes")) h.modes = *v;
@@ -275,12 +270,9 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     if (h.min_lag != 0) r.positive("min_lag", h.min_lag);  // 0 = automatic
     h.horizon = r.number("horizon", 0.0);
     if (h.horizon != 0) r.positive("horizon", h.horizon);  // 0 = solver.t_end
-    if (auto v = r.string("start")) h.start = *v;
-    r.one_of("start", h.start, {"steady", "impulsive"});
-    if (auto v = r.string("reynolds")) h.reynolds = *v;
-    r.one_of("reynolds", h.reynolds, {"instantaneous", "initial"});
-    if (auto v = r.string("wall_correction")) h.wall_correction = *v;
-    r.one_of("wall_correction", h.wall_correction, {"none", "added-mass"});
+    r.choice("start", h.start);
+    r.choice("reynolds", h.reynolds);
+    r.choice("wall_correction", h.wall_correction);
     h.direct_step = r.number("direct_step", 0.0);
     if (h.direct_step != 0) r.positive("direct_step", h.direct_step);  // 0 = automatic
     if (h.min_lag > 0 && h.horizon > 0 && h.horizon < 10 * h.min_lag)
@@ -290,12 +282,11 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
 
   if (const auto* t = top.table("solver")) {
     Reader r(*t, "solver", path);
-    if (auto v = r.string("integrator")) sc.solver.integrator = *v;
-    r.one_of("integrator", sc.solver.integrator, {"cvode", "ida"});
-    if (auto v = r.string("linear_solver")) sc.solver.linear_solver = *v;
-    r.one_of("linear_solver", sc.solver.linear_solver, {"auto", "dense", "schur", "gmres"});
-    if ((sc.solver.linear_solver == "gmres" || sc.solver.linear_solver == "schur") && sc.solver.integrator != "cvode")
-      r.fail("linear_solver", "'" + sc.solver.linear_solver + "' is implemented for the cvode integrator only");
+    r.choice("integrator", sc.solver.integrator);
+    r.choice("linear_solver", sc.solver.linear_solver);
+    const auto ls = sc.solver.linear_solver;
+    if ((ls == LinearSolverChoice::gmres || ls == LinearSolverChoice::schur) && sc.solver.integrator != IntegratorMethod::cvode)
+      r.fail("linear_solver", std::string("'") + to_string(ls) + "' is implemented for the cvode integrator only");
     sc.solver.krylov_tol = r.number("krylov_tol", sc.solver.krylov_tol);
     r.in_range("krylov_tol", sc.solver.krylov_tol, 0.0, 1.0, true, false);
     sc.solver.rtol = r.number("rtol", sc.solver.rtol);
@@ -322,8 +313,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     if (r.has("instant_gap")) r.positive("instant_gap", sc.measure.instant_gap);
     sc.measure.stall_fraction = r.number("stall_fraction", sc.measure.stall_fraction);
     r.in_range("stall_fraction", sc.measure.stall_fraction, 0.0, 1.0, false, true);
-    if (auto v = r.string("bounces")) sc.measure.bounces = *v;
-    r.one_of("bounces", sc.measure.bounces, {"first", "all"});
+    r.choice("bounces", sc.measure.bounces);
     sc.measure.fit_distance = r.number("fit_distance", sc.measure.fit_distance);
     r.positive("fit_distance", sc.measure.fit_distance);
     sc.measure.at_gap = r.number("at_gap", sc.measure.at_gap);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/choices.hpp"
 #include "core/flow_spec.hpp"
 
 namespace imcol {
@@ -47,14 +48,14 @@ struct Scene {
   double gravity = -9.81;            // m/s^2 along z, used only with the `gravity` effect
   std::set<Effect> effects;
 
-  struct Drag { std::string law = "stokes"; } drag;                     // stokes | schiller-naumann
+  struct Drag { DragLaw law = DragLaw::stokes; } drag;                  // stokes | schiller-naumann
   struct Lubrication {
-    std::string model;        // brenner (wall only) | asymptotic; default: brenner for a wall
+    LubricationModel model = LubricationModel::asymptotic;  // brenner (wall only) | asymptotic; default: brenner for a wall
     double cutoff = 1e-4;     // smallest effective gap, units of D (impact sphere)
     double h_c = 1.0;         // asymptotic model acts for h < h_c, units of a*
   } lubrication;
   struct AddedMass {
-    std::string model = "lagrangian";  // lagrangian (pair kinetic energy; = seed for a wall and equal spheres) | seed (6.8, per sphere)
+    AddedMassModel model = AddedMassModel::lagrangian;  // lagrangian (pair kinetic energy; = seed for a wall and equal spheres) | seed (6.8, per sphere)
     double dw_floor = -1;        // units of a*; <0: delta_ss
   } added_mass;
   struct Contact {
@@ -64,21 +65,21 @@ struct Scene {
     double beta = 0;          // F(x) steepness; 0 = energy-consistent (MODEL.md §2.4)
   } contact;
   struct History {
-    std::string kernel = "basset";     // basset | mei-adrian | kim | dorgan-loth (MODEL.md §2.3)
-    std::string evaluator = "soe";     // soe (sum of exponentials, production) | soe-step (the same, modes advanced per step
-                                       // outside the integrator's state) | direct (product integration, reference)
+    KernelKind kernel = KernelKind::basset;  // basset | mei-adrian | kim | dorgan-loth (MODEL.md §2.3)
+    HistoryEvaluator evaluator = HistoryEvaluator::soe;  // soe (sum of exponentials, production) | soe-step (the same,
+                                                       // modes advanced per step outside the integrator's state) | direct
     double tolerance = 1e-6;           // soe: relative accuracy of the exponential fit of s^(-1/2)
     long modes = 0;                    // soe: > 0 fixes the number of exponentials instead of `tolerance`
     double min_lag = 0;                // s; shortest lag the exponentials resolve; 0 = automatic
     double horizon = 0;                // s; longest lag they resolve; 0 = solver.t_end
-    std::string start = "steady";      // steady (moving at U(0) for ever) | impulsive (started from rest at t = 0)
-    std::string reynolds = "instantaneous";  // Re of a finite-Re kernel: instantaneous |U| | initial |U(0)|
-    std::string wall_correction = "none";   // K_H: none (1) | added-mass (1 + 3W(δ**), choice)
+    HistoryStart start = HistoryStart::steady;  // steady (moving at U(0) for ever) | impulsive (started from rest at t = 0)
+    HistoryReynolds reynolds = HistoryReynolds::instantaneous;  // Re of a finite-Re kernel: instantaneous |U| | initial |U(0)|
+    WallCorrection wall_correction = WallCorrection::none;  // K_H: none (1) | added-mass (1 + 3W(δ**), choice)
     double direct_step = 0;            // s; the direct evaluator's fixed step; 0 = automatic
   } history;
   struct Solver {
-    std::string integrator = "cvode";  // cvode | ida
-    std::string linear_solver = "auto";  // auto | dense | gmres (cvode; Schur-complement preconditioner)
+    IntegratorMethod integrator = IntegratorMethod::cvode;  // cvode | ida
+    LinearSolverChoice linear_solver = LinearSolverChoice::automatic;  // auto | dense | schur | gmres (the last two: cvode)
     double krylov_tol = 0.05;          // gmres: linear tolerance relative to the Newton tolerance (CVodeSetEpsLin)
     double rtol = 1e-8;
     double atol = 1e-10;      // dimensionless; scaled per component (see integrators/)
@@ -91,7 +92,7 @@ struct Scene {
     double window = 0.010;    // s, least-squares windows before and after contact
     double instant_gap = -1;  // units of D, gap at which e_instant is taken; <0: delta_ss
     double stall_fraction = 0.01;  // an approach without contact has stopped when U_rel < this × U_rel(0)
-    std::string bounces = "first";  // first (stop after the first rebound is measured) | all (follow every contact)
+    BouncesMode bounces = BouncesMode::first;  // first (stop after the first rebound is measured) | all (follow every contact)
     double fit_distance = 0.1;  // units of D: e_measures.fit_distance fits z over this distance beyond delta_ss
     double at_gap = 0.1;        // units of D: e_measures.at_gap takes the velocities at this gap
   } measure;

@@ -8,21 +8,15 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <string>
 
+#include "core/choices.hpp"
 #include "core/errors.hpp"
 
 namespace imcol {
-
-inline std::string fmt_number(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 /// The text of a scene file: a regular file of at most 1 MiB (a directory, a device such as /dev/zero or
 /// a huge file is refused with exit status 2 before anything is read into memory).
@@ -137,14 +131,20 @@ class TableReader {
       fail(key, "must be in " + std::string(lo_open ? "(" : "[") + fmt_number(lo) + ", " + fmt_number(hi) + (hi_open ? ")" : "]") +
                     " (got " + fmt_number(v) + ")");
   }
-  void one_of(const std::string& key, const std::string& v, std::initializer_list<const char*> options) const {
-    std::string list;
-    for (auto o : options) {
-      if (v == o) return;
-      list += (list.empty() ? "" : " | ") + std::string(o);
+  /// Reads the choice `key` into `out` (kept when the key is absent); an unknown spelling fails with the options.
+  template <class E>
+  void choice(const std::string& key, E& out) {
+    const auto v = string(key);
+    if (!v) return;
+    if (auto e = choice_from_string<E>(*v)) {
+      out = *e;
+      return;
     }
-    fail(key, "unknown choice '" + v + "' (expected " + list + ")");
+    std::string list;
+    for (const auto& [e, name] : ChoiceNames<E>::list) list += (list.empty() ? "" : " | ") + std::string(name);
+    fail(key, "unknown choice '" + *v + "' (expected " + list + ")");
   }
+
 
  private:
   const toml::table& t_;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
+#include "flow/cost.hpp"
 #include "flow/snapshot.hpp"
 
 namespace imcol::coupling {
@@ -209,6 +210,7 @@ void FlowCoupling::start_up() {
     s.wall_z = sc_.wall->position;
   }
   stats_.nz = s.nz;
+  check_cost(s, dt, n_pre);
   try {
     kernel_ = std::make_unique<flow::Solver>(s, frame_spheres(prescribed(-t_pre), frame_z_, frame_u_));
   } catch (const std::exception& e) {
@@ -234,10 +236,30 @@ void FlowCoupling::start_up() {
   stats_.frame_travel = 0;
 }
 
+void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre) const {
+  std::vector<double> diameters;
+  for (std::size_t m = 0; m < n_; ++m) diameters.push_back(2 * radius_[m]);
+  const flow::CostEstimate c = flow::estimate_cost(s, diameters, true);
+  const double phys = flow::physical_memory_bytes();
+  if (phys > 0 && c.bytes > 0.5 * phys)
+    throw InputError(sc_.path, "flow.cells_per_diameter",
+                     "the flow grid needs about " + fmt_number(c.bytes / 1e9) + " GB (" + fmt_number(c.vertices) + " vertices, " +
+                         fmt_number(c.body_points) + " body points), more than half of this machine's " + fmt_number(phys / 1e9) +
+                         " GB: use fewer cells per diameter or levels");
+  const double steps = double(n_pre) + std::ceil(sc_.solver.t_end / dt);
+  const double hours = steps * c.seconds_per_step / 3600;
+  if (hours > sc_.flow.max_wall_hours)
+    throw InputError(sc_.path, "flow.max_wall_hours",
+                     "the coupled run may take an estimated " + fmt_number(hours) + " hours (up to " + fmt_number(steps) +
+                         " flow steps of " + fmt_number(dt) + " s on " + fmt_number(c.vertices) + " vertices), more than flow.max_wall_hours = " +
+                         fmt_number(sc_.flow.max_wall_hours) + ": raise flow.dt or flow.cfl, lower flow.cells_per_diameter or solver.t_end, "
+                         "or raise flow.max_wall_hours");
+}
+
 flow::SnapshotFrame FlowCoupling::lab_frame() const { return {frame_z_, frame_u_, -t_pre_}; }
 
 void FlowCoupling::maybe_snapshot(double t, double gap) {
-  if (!sc_.flow.snapshots) return;
+  if (!sc_.flow.fields) return;
   auto take = [&](const char* name, const std::string& label) {
     std::ostringstream os;
     os << std::setprecision(4) << label << ",";
@@ -287,7 +309,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     if (t < t1 - 1e-12 * std::max(1.0, t1) && !integ.finished())
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
-  if (sc_.flow.snapshots) {
+  if (sc_.flow.fields) {
     snaps_.push_back({"flow_end", "end of run", flow::snapshot_csv(*kernel_, lab_frame(), "end of run,")});
   }
   return integ.stats();

@@ -70,6 +70,8 @@ class FlowCoupling {
   std::vector<flow::SphereState> frame_spheres(const Predicted& p, double frame_z, double frame_u);
   std::array<double, 2> step_kernel(const Predicted& p, double dt);
   void start_up();
+  /// Refuses (InputError) a grid beyond half the memory or a run beyond flow.max_wall_hours, before allocating.
+  void check_cost(const flow::Settings& s, double dt, long n_pre) const;
   void maybe_snapshot(double t, double gap);
   flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
 

@@ -1,5 +1,6 @@
 #include "flow/ib.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -60,8 +61,9 @@ std::vector<double> cell_outflux(const LevelGeometry& g, const FaceField& u) {
   return q;
 }
 
-Stencil interp_stencil(const LevelGeometry& g, double r, double z, int comp) {
-  Stencil s;
+namespace {
+// stencil of one face component at (r, z): up to 4 × 4 faces; returns the count
+int stencil_fixed(const LevelGeometry& g, double r, double z, int comp, int* face, double* wt) {
   const double xr = r / g.h, xz = (z - g.z0) / g.h;
   // face centre offsets: comp 1 (u_z): r at i+½, z at j; comp 0 (u_r): r at i, z at j+½
   const double orr = comp == 1 ? 0.5 : 0.0, ozz = comp == 1 ? 0.0 : 0.5;
@@ -71,17 +73,26 @@ Stencil interp_stencil(const LevelGeometry& g, double r, double z, int comp) {
   const int jmax = comp == 1 ? g.nz : g.nz - 1;
   if (j0 < 0 || j1 > jmax || i1 > imax) throw std::runtime_error("body point too close to the finest grid's boundary");
   double norm = 0;
+  int n = 0;
   for (int i = std::max(i0, imin); i <= i1; ++i)
     for (int j = j0; j <= j1; ++j) {
       const double w = rpb_delta(i + orr - xr) * rpb_delta(j + ozz - xz) * 2 * M_PI * g.r(i + orr) * g.h * g.h;
       if (w == 0) continue;
-      s.face.push_back(comp == 1 ? i * (g.nz + 1) + j : i * g.nz + j);
-      s.w.push_back(w);
+      face[n] = comp == 1 ? i * (g.nz + 1) + j : i * g.nz + j;
+      wt[n++] = w;
       norm += w;
     }
   if (!(norm > 0)) throw std::runtime_error("empty interpolation stencil");
-  for (double& w : s.w) w /= norm;
-  return s;
+  for (int k = 0; k < n; ++k) wt[k] /= norm;
+  return n;
+}
+}  // namespace
+
+Stencil interp_stencil(const LevelGeometry& g, double r, double z, int comp) {
+  int face[16];
+  double w[16];
+  const int n = stencil_fixed(g, r, z, comp, face, w);
+  return {std::vector<int>(face, face + n), std::vector<double>(w, w + n)};
 }
 
 std::vector<double> interpolate(const LevelGeometry& g, const BodyPoints& p, const FaceField& u) {
@@ -112,27 +123,69 @@ FaceField spread(const LevelGeometry& g, const BodyPoints& p, const std::vector<
   return out;
 }
 
-Eigen::SparseMatrix<double, Eigen::RowMajor> velocity_at_points(const LevelGeometry& g, const BodyPoints& p) {
-  std::vector<Eigen::Triplet<double>> t;
+void velocity_rows(const LevelGeometry& g, const BodyPoints& p, PointRows& out) {
+  out.start.assign(1, 0);
+  out.col.clear();
+  out.val.clear();
+  int face[16];
+  double sw[16];
   for (std::size_t k = 0; k < p.size(); ++k)
     for (int c = 0; c < 2; ++c) {
-      const Stencil s = interp_stencil(g, p.r[k], p.z[k], c);
-      const int row = static_cast<int>(2 * k + c);
-      for (std::size_t m = 0; m < s.face.size(); ++m) {
-        const int f = s.face[m];
+      const int n = stencil_fixed(g, p.r[k], p.z[k], c, face, sw);
+      const std::size_t row0 = out.col.size();
+      auto add = [&](int col, double w) {  // merge duplicate columns in insertion order, keep columns sorted
+        std::size_t e = row0;
+        while (e < out.col.size() && out.col[e] < col) ++e;
+        if (e < out.col.size() && out.col[e] == col) {
+          out.val[e] += w;
+          return;
+        }
+        out.col.insert(out.col.begin() + static_cast<std::ptrdiff_t>(e), col);
+        out.val.insert(out.val.begin() + static_cast<std::ptrdiff_t>(e), w);
+      };
+      for (int m = 0; m < n; ++m) {
+        const int f = face[m];
         if (c == 1) {  // u_z face (i+½, j)
           const int i = f / (g.nz + 1), j = f % (g.nz + 1);
-          const double w = s.w[m] / (g.h * g.r(i + 0.5));
-          t.emplace_back(row, static_cast<int>(g.at(i + 1, j)), w);
-          if (i > 0) t.emplace_back(row, static_cast<int>(g.at(i, j)), -w);  // ψ = 0 on the axis
+          const double w = sw[m] / (g.h * g.r(i + 0.5));
+          add(static_cast<int>(g.at(i + 1, j)), w);
+          if (i > 0) add(static_cast<int>(g.at(i, j)), -w);  // ψ = 0 on the axis
         } else {       // u_r face (i, j+½)
           const int i = f / g.nz, j = f % g.nz;
-          const double w = s.w[m] / (g.h * g.r(i));
-          t.emplace_back(row, static_cast<int>(g.at(i, j + 1)), -w);
-          t.emplace_back(row, static_cast<int>(g.at(i, j)), w);
+          const double w = sw[m] / (g.h * g.r(i));
+          add(static_cast<int>(g.at(i, j + 1)), -w);
+          add(static_cast<int>(g.at(i, j)), w);
         }
       }
+      out.start.push_back(static_cast<int>(out.col.size()));
     }
+}
+
+int PointRows::max_line(const LevelGeometry& g) const {
+  int m = 0;
+  for (int c : col) m = std::max(m, c / (g.nz + 1));
+  return m;
+}
+
+void PointRows::apply(const double* psi, double* u) const {
+  for (int k = 0; k < rows(); ++k) {
+    double v = 0;
+    for (int e = start[k]; e < start[k + 1]; ++e) v += val[e] * psi[col[e]];
+    u[k] = v;
+  }
+}
+
+void PointRows::apply_transpose_add(const double* f, double* s) const {
+  for (int k = 0; k < rows(); ++k)
+    for (int e = start[k]; e < start[k + 1]; ++e) s[col[e]] += val[e] * f[k];
+}
+
+Eigen::SparseMatrix<double, Eigen::RowMajor> velocity_at_points(const LevelGeometry& g, const BodyPoints& p) {
+  PointRows rows;
+  velocity_rows(g, p, rows);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < rows.rows(); ++k)
+    for (int e = rows.start[k]; e < rows.start[k + 1]; ++e) t.emplace_back(k, rows.col[e], rows.val[e]);
   Eigen::SparseMatrix<double, Eigen::RowMajor> B(static_cast<int>(2 * p.size()), static_cast<int>(g.size()));
   B.setFromTriplets(t.begin(), t.end());
   return B;

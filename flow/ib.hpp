@@ -55,4 +55,16 @@ FaceField spread(const LevelGeometry& g, const BodyPoints& p, const std::vector<
 /// B = E C as a sparse matrix acting on full-size vertex arrays (2N × (nr+1)(nz+1)).
 Eigen::SparseMatrix<double, Eigen::RowMajor> velocity_at_points(const LevelGeometry& g, const BodyPoints& p);
 
+/// The same B in compressed rows (columns sorted and merged per row), rebuilt in place: once its capacities suffice
+/// (the same points moved), rebuilding allocates nothing.
+struct PointRows {
+  std::vector<int> start, col;  // row k: entries start[k] .. start[k+1]−1
+  std::vector<double> val;
+  int rows() const { return start.empty() ? 0 : static_cast<int>(start.size()) - 1; }
+  int max_line(const LevelGeometry& g) const;  // largest radial index i of a vertex used (0 if none)
+  void apply(const double* psi, double* u) const;            // u = B ψ
+  void apply_transpose_add(const double* f, double* s) const;  // s += Bᵀ f
+};
+void velocity_rows(const LevelGeometry& g, const BodyPoints& p, PointRows& out);
+
 }  // namespace imcol::flow

@@ -1,5 +1,6 @@
 #include "flow/snapshot.hpp"
 
+#include <charconv>
 #include <iomanip>
 #include <sstream>
 
@@ -7,7 +8,14 @@ namespace imcol::flow {
 
 namespace {
 
-void write_level(std::ostringstream& os, int l, const Level& L, double u_inf, double z_shift) {
+// %.9g as the stream's setprecision(9) writes it, without the stream (to_chars: the same text, several times faster)
+void put(std::string& out, double v) {
+  char b[32];
+  const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::general, 9);
+  out.append(b, r.ptr);
+}
+
+void write_level(std::string& os, int l, const Level& L, double u_inf, double z_shift) {
   // u_inf: the uniform stream as seen from the frame the fields are written in
   const auto& g = L.g;
   auto uzf = [&](int i, int j) { return (L.psi[g.at(i + 1, j)] - L.psi[g.at(i, j)]) / (g.h * g.r(i + 0.5)) + u_inf; };
@@ -24,7 +32,12 @@ void write_level(std::ostringstream& os, int l, const Level& L, double u_inf, do
       if (j == 0) ur = urf(i, 0);
       else if (j == g.nz) ur = urf(i, j - 1);
       else ur = 0.5 * (urf(i, j - 1) + urf(i, j));
-      os << l << ',' << r << ',' << z << ',' << psi << ',' << om << ',' << ur << ',' << uz << '\n';
+      os += std::to_string(l);
+      for (double v : {r, z, psi, om, ur, uz}) {
+        os += ',';
+        put(os, v);
+      }
+      os += '\n';
     }
 }
 
@@ -39,9 +52,10 @@ std::string snapshot_csv(const Solver& s, const SnapshotFrame& f, const std::str
   for (const auto& b : s.spheres()) os << " " << b.z + f.z_shift << " " << 2 * b.radius;
   os << "\n";
   os << "level,r,z,psi,omega,u_r,u_z\n";
+  std::string out = os.str();
   for (std::size_t l = 0; l < s.levels().size(); ++l)
-    write_level(os, static_cast<int>(l), s.levels()[l], s.settings().u_inf + f.u_frame, f.z_shift);
-  return os.str();
+    write_level(out, static_cast<int>(l), s.levels()[l], s.settings().u_inf + f.u_frame, f.z_shift);
+  return out;
 }
 
 }  // namespace imcol::flow

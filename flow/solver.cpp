@@ -39,14 +39,49 @@ Solver::Solver(const Settings& s, std::vector<SphereState> spheres) : s_(s), sph
   u_in_.assign(sph_.size(), s.u_inf);
   build_wall();
   build_points(sph_);
+  plan_rows();
+}
+
+void Solver::update_rows() {
+  const int nr = s_.nr, rows = nr - 1;
+  coarse_rows_ = nr / 2 - 1;   // restrict_interior writes lines 1..nr/2 − 1
+  prolong_rows_ = nr / 2 + 1;  // prolong_boundary reads coarse lines up to nr/2 + 1
+  psi_rows_.assign(lv_.size(), 1);
+  src_rows_.assign(lv_.size(), 1);
+  for (std::size_t l = 0; l < lv_.size(); ++l) {
+    int need = l > 0 ? prolong_rows_ : 1;
+    int src = l > 0 ? coarse_rows_ : 1;  // coarsify fills rows < coarse_rows; the rings spread onto their own lines
+    if (l == 0) {
+      need = std::max(need, B_.max_line(lv_[0].g));
+      src = std::max(src, B_.max_line(lv_[0].g));
+    }
+    if (l < Bw_.size()) {
+      need = std::max(need, Bw_[l].max_line(lv_[l].g));
+      src = std::max(src, Bw_[l].max_line(lv_[l].g));
+    }
+    psi_rows_[l] = std::min(need, rows);
+    src_rows_[l] = std::min(src, rows);
+  }
+}
+
+void Solver::plan_rows() {
+  update_rows();
+  for (std::size_t l = 0; l < lv_.size(); ++l) {
+    FastSolver& F = *lv_[l].fast;
+    F.prepare_rows(psi_rows_[l]);
+    F.prepare_rows(src_rows_[l]);
+    if (l > 0) F.prepare_rows(coarse_rows_);
+    if (l + 1 == lv_.size() && l > 0) F.prepare_rows(prolong_rows_);
+  }
 }
 
 std::size_t Solver::bytes() const {
   std::size_t b = 0;
   for (const auto& L : lv_) b += 7 * L.g.size() * sizeof(double) + L.fast->bytes();
-  b += static_cast<std::size_t>(B_.nonZeros()) * (sizeof(double) + sizeof(int));
+  b += B_.val.size() * (sizeof(double) + sizeof(int));
   if (lu_) b += static_cast<std::size_t>(lu_->matrixLU().size()) * sizeof(double);
-  for (const auto& B : Bw_) b += static_cast<std::size_t>(B.nonZeros()) * (sizeof(double) + sizeof(int));
+  for (const auto& B : Bw_) b += B.val.size() * (sizeof(double) + sizeof(int));
+  for (const auto& L : lv_) b += L.eta_modes.size() * sizeof(double);
   if (wall_lu_) b += static_cast<std::size_t>(wall_lu_->matrixLU().size()) * sizeof(double);
   for (const auto& bins : prec_cache_)
     for (const auto& blk : bins)
@@ -56,7 +91,10 @@ std::size_t Solver::bytes() const {
 
 void Solver::build_points(const std::vector<SphereState>& sp) {
   const LevelGeometry& g = lv_[0].g;
-  pts_ = BodyPoints{};
+  pts_.r.clear();  // keeps the capacities: rebuilding the same spheres' points allocates nothing
+  pts_.z.clear();
+  pts_.ds.clear();
+  pts_.body.clear();
   for (std::size_t k = 0; k < sp.size(); ++k) {
     const auto& b = sp[k];
     const double margin = 3 * g.h;
@@ -67,7 +105,8 @@ void Solver::build_points(const std::vector<SphereState>& sp) {
       throw std::runtime_error("flow: sphere " + std::to_string(k + 1) + " touches or crosses the wall at z = " + std::to_string(*s_.wall_z));
     add_sphere_rings(pts_, b.radius, b.z, g.h, s_.ring_spacing, static_cast<int>(k));
   }
-  B_ = velocity_at_points(g, pts_);
+  velocity_rows(g, pts_, B_);
+  if (!psi_rows_.empty()) update_rows();  // the same rows while the radii stay (plans are made in the constructor)
 }
 
 void Solver::build_wall() {
@@ -97,24 +136,21 @@ void Solver::build_wall() {
       P.ds.push_back(sp);
       P.body.push_back(-1);
     }
-    Bw_.push_back(velocity_at_points(g, P));
+    Bw_.emplace_back();
+    velocity_rows(g, P, Bw_.back());
     wall_count_ += P.size();
   }
 }
 
-Eigen::VectorXd Solver::point_velocity(std::vector<double> Level::*psi) const {
+void Solver::point_velocity(std::vector<double> Level::*psi, Eigen::VectorXd& u) const {
   const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
-  Eigen::VectorXd u(ns + static_cast<Eigen::Index>(2 * wall_count_));
-  Eigen::Map<const Eigen::VectorXd> p0((lv_[0].*psi).data(), static_cast<Eigen::Index>((lv_[0].*psi).size()));
-  u.head(ns) = B_ * p0;
+  u.resize(ns + static_cast<Eigen::Index>(2 * wall_count_));
+  B_.apply((lv_[0].*psi).data(), u.data());
   Eigen::Index o = ns;
   for (std::size_t l = 0; l < Bw_.size(); ++l) {
-    Eigen::Map<const Eigen::VectorXd> pl((lv_[l].*psi).data(), static_cast<Eigen::Index>((lv_[l].*psi).size()));
-    const Eigen::Index n = Bw_[l].rows();
-    u.segment(o, n) = Bw_[l] * pl;
-    o += n;
+    Bw_[l].apply((lv_[l].*psi).data(), u.data() + o);
+    o += Bw_[l].rows();
   }
-  return u;
 }
 
 void Solver::nonlinear(const Level& L, double u_inf, std::vector<double>& out) {
@@ -187,39 +223,56 @@ void Solver::prolong_boundary(const Level& coarse, const std::vector<double>& fc
 void Solver::restrict_interior(const Level& fine, const std::vector<double>& ff, const Level& coarse, std::vector<double>& fc) {
   const LevelGeometry &c = coarse.g, &f = fine.g;
   const int off = f.nz / 4;
-  for (int I = 1; I < f.nr / 2; ++I)
+  for (int I = 1; I < f.nr / 2; ++I) {
+    const int i = 2 * I;
+    const double* fm = &ff[f.at(i - 1, 0)];
+    const double* f0 = &ff[f.at(i, 0)];
+    const double* fp = &ff[f.at(i + 1, 0)];
+    double* out = &fc[c.at(I, 0)];
     for (int J = off + 1; J < off + f.nz / 2; ++J) {
-      const int i = 2 * I, j = 2 * (J - off);
-      auto F = [&](int di, int dj) { return ff[f.at(i + di, j + dj)]; };
-      fc[c.at(I, J)] = (4 * F(0, 0) + 2 * (F(1, 0) + F(-1, 0) + F(0, 1) + F(0, -1)) + F(1, 1) + F(1, -1) + F(-1, 1) + F(-1, -1)) / 16.0;
+      const int j = 2 * (J - off);
+      out[J] = (4 * f0[j] + 2 * (fp[j] + fm[j] + f0[j + 1] + f0[j - 1]) + fp[j + 1] + fp[j - 1] + fm[j + 1] + fm[j - 1]) / 16.0;
     }
+  }
 }
 
 void Solver::coarsify(std::vector<double> Level::*field) {
   for (std::size_t l = 0; l + 1 < lv_.size(); ++l) restrict_interior(lv_[l], lv_[l].*field, lv_[l + 1], lv_[l + 1].*field);
 }
 
-void Solver::viscous_then_streamfunction(std::vector<double> Level::*rhs, std::vector<double> Level::*eta,
-                                          std::vector<double> Level::*psi) {
+void Solver::pass_viscous(std::vector<double> Level::*rhs, std::vector<double> Level::*eta, bool partial) {
   coarsify(rhs);
-  // η = (I − θνΔt E²)⁻¹ rhs on all levels (coarsest first, zero far field, coarse-to-fine boundary values)
-  solve_levels(1, rhs, eta);
-  coarsify(eta);
-  // ψ = (−E²)⁻¹ η on all levels (rhs is reused as scratch)
-  for (auto& L : lv_)
-    for (std::size_t p = 0; p < (L.*rhs).size(); ++p) (L.*rhs)[p] = -(L.*eta)[p];
-  solve_levels(0, rhs, psi);
-}
-
-void Solver::solve_levels(int op, std::vector<double> Level::*rhs, std::vector<double> Level::*x) {
-  for (int l = static_cast<int>(lv_.size()) - 1; l >= 0; --l) {
+  const int NL = static_cast<int>(lv_.size());
+  for (int l = NL - 1; l >= 0; --l) {
     Level& L = lv_[l];
-    if (l + 1 < static_cast<int>(lv_.size())) prolong_boundary(lv_[l + 1], lv_[l + 1].*x, L, L.*x);
-    L.fast->solve(op, L.*rhs, L.*x);
+    if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].*eta, L, L.*eta);
+    if (rhs == &Level::src)  // zero beyond src_rows_
+      L.fast->forward_rows(1, 1.0, L.*rhs, L.*eta, src_rows_[l]);
+    else
+      L.fast->forward(1, 1.0, L.*rhs, L.*eta);
+    // the coarsest level feeds only the next finer level's boundary values and its own coarsified rows
+    const int rows = partial && l == NL - 1 ? (NL > 1 ? prolong_rows_ : 0) : L.fast->rows();
+    L.fast->back(1, L.*eta, rows);
   }
 }
 
-Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
+void Solver::pass_streamfunction(std::vector<double> Level::*eta, std::vector<double> Level::*psi, bool partial, bool add_saved) {
+  coarsify(eta);
+  const int NL = static_cast<int>(lv_.size());
+  for (int l = NL - 1; l >= 0; --l) {
+    Level& L = lv_[l];
+    if (l + 1 < NL) prolong_boundary(lv_[l + 1], lv_[l + 1].*psi, L, L.*psi);
+    if (add_saved) L.fast->add_modes(L.eta_modes);
+    // E²ψ = −η: from the modes of η where coarsify left η alone, transformed afresh on the coarsified rows
+    L.fast->rechain(0, -1.0, L.*eta, L.*psi, l > 0 ? coarse_rows_ : 0);
+    if (partial && l > 0 && psi_rows_[l] <= prolong_rows_)  // read only by the finer level's boundary values
+      L.fast->back_prolong(0, L.*psi, s_.nr / 2 - 1, prolong_rows_);
+    else
+      L.fast->back(0, L.*psi, partial ? psi_rows_[l] : L.fast->rows());
+  }
+}
+
+void Solver::spread_source(const Eigen::VectorXd& g) {
   // source on the finest level: Δt R Bᵀg/(2πh²) at interior vertices; restricted onto every coarser level
   // (with a wall: each level's wall rings spread onto their own level too, outside the finer level)
   const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
@@ -227,30 +280,69 @@ Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
   for (std::size_t l = 0; l < lv_.size(); ++l) {
     Level& L = lv_[l];
     const LevelGeometry& G = L.g;
-    Eigen::Map<Eigen::VectorXd> s(L.src.data(), static_cast<Eigen::Index>(L.src.size()));
-    if (l == 0)
-      s.noalias() = B_.transpose() * g.head(ns);
-    else
-      s.setZero();
+    const bool has = l == 0 || l < Bw_.size();
+    if (!has) continue;  // filled by coarsify (zero outside the finer level, never written)
+    std::fill(L.src.begin(), L.src.end(), 0.0);
+    if (l == 0) B_.apply_transpose_add(g.data(), L.src.data());
     if (l < Bw_.size()) {
-      const Eigen::Index n = Bw_[l].rows();
-      s.noalias() += Bw_[l].transpose() * g.segment(o, n);
-      o += n;
-    } else if (l > 0) {
-      continue;
+      Bw_[l].apply_transpose_add(g.data() + o, L.src.data());
+      o += Bw_[l].rows();
     }
     const double scale = s_.dt / (2 * M_PI * G.h * G.h);
-    for (int i = 0; i <= G.nr; ++i)
-      for (int j = 0; j <= G.nz; ++j) L.src[G.at(i, j)] *= (i == 0 || i == G.nr || j == 0 || j == G.nz) ? 0.0 : scale * G.r(i);
+    const int W = G.nz + 1;
+    for (int i = 0; i <= G.nr; ++i) {
+      double* row = &L.src[G.at(i, 0)];
+      if (i == 0 || i == G.nr) {
+        std::fill_n(row, W, 0.0);
+        continue;
+      }
+      const double c = scale * G.r(i);
+      row[0] = row[G.nz] = 0.0;
+      for (int j = 1; j < G.nz; ++j) row[j] *= c;
+    }
   }
-  viscous_then_streamfunction(&Level::src, &Level::etac, &Level::psic);  // η_c, ψ_c: the same operator as the step's
-  return point_velocity(&Level::psic);
+}
+
+void Solver::apply_Q_into(const Eigen::VectorXd& g, Eigen::VectorXd& out) {
+  spread_source(g);
+  pass_viscous(&Level::src, &Level::etac, true);
+  pass_streamfunction(&Level::etac, &Level::psic, true, false);
+  point_velocity(&Level::psic, out);
+}
+
+void Solver::final_pass(const Eigen::VectorXd& g) {
+  spread_source(g);
+  pass_viscous(&Level::src, &Level::etac, false);
+  eta_sq_.resize(lv_.size());
+  for (std::size_t l = 0; l < lv_.size(); ++l) {  // η = η* + ηc, and Σ η² for check_finite
+    Level& L = lv_[l];
+    double sum = 0;
+    for (std::size_t p = 0; p < L.eta.size(); ++p) {
+      L.etac[p] += L.eta[p];
+      sum += L.etac[p] * L.etac[p];
+    }
+    eta_sq_[l] = sum;
+  }
+  pass_streamfunction(&Level::etac, &Level::psic, false, true);
+  point_velocity(&Level::psic, u_);
+}
+
+Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
+  Eigen::VectorXd out;
+  apply_Q_into(g, out);
+  return out;
 }
 
 Eigen::MatrixXd Solver::force_matrix() {
   const Eigen::Index m = static_cast<Eigen::Index>(2 * (pts_.size() + wall_count_));
   Eigen::MatrixXd Q(m, m);
-  for (Eigen::Index c = 0; c < m; ++c) Q.col(c) = apply_Q(Eigen::VectorXd::Unit(m, c));
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(m), q;
+  for (Eigen::Index c = 0; c < m; ++c) {
+    e[c] = 1.0;
+    apply_Q_into(e, q);
+    Q.col(c) = q;
+    e[c] = 0.0;
+  }
   return Q;
 }
 
@@ -262,53 +354,80 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
   const double dt = s_.dt, nu = s_.nu, th = s_.theta;
   // 1. explicit part of the vorticity equation on every level (advection AB2, viscous (1 − θ)), then the finer
   //    levels' right-hand sides replace the coarser ones where they overlap (coarsify)
-  std::vector<double>& lap = work2_;
   for (int l = 0; l < NL; ++l) {
     Level& L = lv_[l];
     nonlinear(L, s_.u_inf, nl_);
     const double ab_new = n_ == 0 ? 1.0 : 1.5, ab_old = n_ == 0 ? 0.0 : -0.5;
-    apply_stokes_operator(L.g, L.eta, lap);
-    for (std::size_t p = 0; p < L.rhs.size(); ++p) L.rhs[p] = L.eta[p] + dt * ((1 - th) * nu * lap[p] + ab_new * nl_[p] + ab_old * L.nl_old[p]);
+    // interior only (the solves and coarsify read no boundary values of rhs); E²η as apply_stokes_operator
+    const LevelGeometry& g = L.g;
+    const double ih2 = 1.0 / (g.h * g.h);
+    for (int i = 1; i < g.nr; ++i) {
+      const double cp = i / (i + 0.5), cm = i / (i - 0.5);
+      const double* xm = &L.eta[g.at(i - 1, 0)];
+      const double* x0 = &L.eta[g.at(i, 0)];
+      const double* xp = &L.eta[g.at(i + 1, 0)];
+      const double* nn = &nl_[g.at(i, 0)];
+      const double* no = &L.nl_old[g.at(i, 0)];
+      double* rr = &L.rhs[g.at(i, 0)];
+      for (int j = 1; j < g.nz; ++j) {
+        const double lap = ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]);
+        rr[j] = x0[j] + dt * ((1 - th) * nu * lap + ab_new * nn[j] + ab_old * no[j]);
+      }
+    }
     std::swap(L.nl_old, nl_);
   }
-  // 2–3. vorticity predictor η* and its streamfunction ψ*, coarsest to finest
-  viscous_then_streamfunction(&Level::rhs, &Level::eta, &Level::psi);
+  // 2–3. vorticity predictor η* (its modes kept for the end of the step) and ψ* where the points read it
+  pass_viscous(&Level::rhs, &Level::eta, false);
+  for (auto& L : lv_) L.fast->save_modes(L.eta_modes);
+  pass_streamfunction(&Level::eta, &Level::psi, true, false);
   // 4. body forces: Q g = U_b − U∞ e_z − Bψ*, Q the multi-level operator of apply_Q
   StepInfo info;
-  std::vector<double> zs;
-  for (const auto& b : next) zs.push_back(b.z);
   bool moved = false;
   for (std::size_t k = 0; k < next.size(); ++k) moved = moved || next[k].z != sph_[k].z;
   if (moved || pts_.size() == 0) build_points(next);
   const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
   const Eigen::Index m = ns + static_cast<Eigen::Index>(2 * wall_count_);
-  Eigen::VectorXd rhs(m);
-  auto target_uz = [&](Eigen::Index k) { return (k < ns / 2 ? next[pts_.body[k]].u : s_.wall_velocity) - s_.u_inf; };
-  {
-    const Eigen::VectorXd u = point_velocity(&Level::psi);
-    for (Eigen::Index k = 0; k < m / 2; ++k) {
-      rhs[2 * k] = -u[2 * k];
-      rhs[2 * k + 1] = target_uz(k) - u[2 * k + 1];
-    }
+  target_.resize(m);
+  rhs_.resize(m);
+  for (Eigen::Index k = 0; k < m / 2; ++k) {
+    target_[2 * k] = 0.0;
+    target_[2 * k + 1] = (k < ns / 2 ? next[pts_.body[k]].u : s_.wall_velocity) - s_.u_inf;
   }
+  point_velocity(&Level::psi, u_);
+  rhs_ = target_ - u_;
   if (g_.size() != m) {
     g_ = Eigen::VectorXd::Zero(m);
     g_prev_.resize(0);
   }
   const bool use_direct = s_.direct_when_fixed && !moved;
+  bool same_z = fixed_z_.size() == next.size();
+  for (std::size_t k = 0; same_z && k < next.size(); ++k) same_z = fixed_z_[k] == next[k].z;
   if (use_direct) {
-    if (!lu_ || fixed_z_ != zs) {
+    if (!lu_ || !same_z) {
       lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::MatrixXd>>(force_matrix());
-      fixed_z_ = zs;
+      fixed_z_.resize(next.size());
+      for (std::size_t k = 0; k < next.size(); ++k) fixed_z_[k] = next[k].z;
     }
     g_prev_ = g_;  // keeps a later GMRES warm start current
-    g_ = lu_->solve(rhs);
+    g_ = lu_->solve(rhs_);
+    final_pass(g_);
   } else {  // GMRES, warm start, right-preconditioned by each sphere's own block of Q
     // preconditioner: each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of
     // preconditioner_bins bins, built the first time a sphere is there): the rings' pattern relative to the grid repeats when
     // a sphere moves by whole cells, and the multi-level Q is nearly translation invariant
     prec_.clear();
     const LevelGeometry& G = lv_[0].g;
+    auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) {
+      Eigen::MatrixXd blk(n, n);
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(m), q;
+      for (Eigen::Index c = 0; c < n; ++c) {
+        e[o + c] = 1.0;
+        apply_Q_into(e, q);
+        blk.col(c) = q.segment(o, n);
+        e[o + c] = 0.0;
+      }
+      return std::make_shared<BlockLU>(blk);
+    };
     for (std::size_t k = 0; k < pts_.size();) {
       std::size_t e = k;
       while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
@@ -321,9 +440,7 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
       auto& slot = prec_cache_[b];
       if (slot.size() != static_cast<std::size_t>(bins)) slot.assign(bins, nullptr);
       if (!slot[bin] || slot[bin]->rows() != n) {
-        Eigen::MatrixXd blk(n, n);
-        for (Eigen::Index c = 0; c < n; ++c) blk.col(c) = apply_Q(Eigen::VectorXd::Unit(m, o + c)).segment(o, n);
-        slot[bin] = std::make_shared<Eigen::PartialPivLU<Eigen::MatrixXd>>(blk);
+        slot[bin] = block_of_Q(o, n);
         ++prec_builds_;
       }
       prec_.push_back({o, n, slot[bin]});
@@ -332,38 +449,30 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the whole run
       const Eigen::Index nw = static_cast<Eigen::Index>(2 * wall_count_);
       if (!wall_lu_ || wall_lu_->rows() != nw) {
-        Eigen::MatrixXd blk(nw, nw);
-        for (Eigen::Index c = 0; c < nw; ++c) blk.col(c) = apply_Q(Eigen::VectorXd::Unit(m, ns + c)).segment(ns, nw);
-        wall_lu_ = std::make_shared<BlockLU>(blk);
+        wall_lu_ = block_of_Q(ns, nw);
         ++prec_builds_;
       }
       prec_.push_back({ns, nw, wall_lu_});
     }
     if (g_prev_.size() == m) {  // warm start: linear extrapolation of the last two steps' forces
-      const Eigen::VectorXd g1 = g_;
+      t1_ = g_;
       g_ = 2 * g_ - g_prev_;
-      g_prev_ = g1;
+      g_prev_.swap(t1_);
     } else {
       g_prev_ = g_;
     }
-    const auto [it, res] = gmres(rhs);
+    const auto [it, res] = gmres(rhs_);
     info.krylov_iterations = it;
     info.krylov_residual = res;
   }
-  // Corrections η_c, ψ_c on every level: GMRES returns right after applying Q to its final g (its true-residual
-  // check), so they are current there; the direct path applies Q once here.
-  if (use_direct) apply_Q(g_);
-  for (auto& L : lv_)
-    for (std::size_t p = 0; p < L.eta.size(); ++p) {
-      L.eta[p] += L.etac[p];
-      L.psi[p] += L.psic[p];
-    }
-  {
-    const Eigen::VectorXd u = point_velocity(&Level::psi);
-    for (Eigen::Index k = 0; k < m / 2; ++k) {
-      info.slip = std::max(info.slip, std::abs(u[2 * k]));
-      info.slip = std::max(info.slip, std::abs(u[2 * k + 1] - target_uz(k)));
-    }
+  // final_pass(g_) is current: η = η* + A⁻¹Sg and ψ = P⁻¹η on every level, u_ the velocities at the points
+  for (auto& L : lv_) {
+    L.eta.swap(L.etac);
+    L.psi.swap(L.psic);
+  }
+  for (Eigen::Index k = 0; k < m / 2; ++k) {
+    info.slip = std::max(info.slip, std::abs(u_[2 * k]));
+    info.slip = std::max(info.slip, std::abs(u_[2 * k + 1] - target_[2 * k + 1]));
   }
   // 5. forces on the spheres: ring forces + the momentum change of the fluid inside (from u_in to U^{n+1})
   info.force.assign(next.size(), 0.0);
@@ -395,29 +504,47 @@ void Solver::check_finite(const StepInfo& info) const {
   if (!std::isfinite(info.wall_force)) fail("the force on the wall is not finite");
   if (!std::isfinite(info.slip)) fail("the slip velocity at the body points is not finite");
   for (std::size_t l = 0; l < lv_.size(); ++l) {
-    double sum = 0;
-    for (double v : lv_[l].eta) sum += v * v;
-    if (!std::isfinite(sum)) fail("the vorticity on level " + std::to_string(l) + " is not finite");
+    if (!std::isfinite(eta_sq_[l])) fail("the vorticity on level " + std::to_string(l) + " is not finite");
   }
+}
+
+void Solver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  z.resize(r.size());
+  for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu->solve(r.segment(blk.offset, blk.size));
 }
 
 std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
   // Restarted GMRES (Saad & Schultz 1986) on Q g = b with right preconditioning M⁻¹ = per-sphere block
   // inverses. Convergence is judged on the true residual ‖b − Qg‖/‖b‖, recomputed at every restart and
-  // after the Givens estimate says converged.
-  auto precondition = [&](const Eigen::VectorXd& r) {
-    Eigen::VectorXd z(r.size());
-    for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu->solve(r.segment(blk.offset, blk.size));
-    return z;
-  };
+  // after the Givens estimate says converged: there as target − Bψ of the step's end (final_pass), which is
+  // b − Qg up to rounding, so that a converged g needs no further solve.
   const int restart = s_.krylov_restart;
   const Eigen::Index n = b.size();
   const double bn = std::max(b.norm(), 1e-300);
+  if (V_.rows() != n || V_.cols() != restart + 1) {
+    V_.resize(n, restart + 1);
+    H_.resize(restart + 1, restart);
+    cs_.resize(restart);
+    sn_.resize(restart);
+    e_.resize(restart + 1);
+    y_.resize(restart);
+  }
   int it = 0;
+  bool first = true;
   for (;;) {
-    const Eigen::VectorXd r = b - apply_Q(g_);
-    const double beta = r.norm(), rel = beta / bn;
-    if (rel <= s_.krylov_tol) return {it, rel};
+    if (first) {  // warm start: Q g from the partial passes; the final pass follows convergence
+      apply_Q_into(g_, w_);
+      r_ = b - w_;
+      first = false;
+    } else {
+      final_pass(g_);
+      r_ = target_ - u_;
+    }
+    const double beta = r_.norm(), rel = beta / bn;
+    if (rel <= s_.krylov_tol) {
+      if (it == 0) final_pass(g_);  // the warm start was good enough
+      return {it, rel};
+    }
     if (it >= s_.krylov_max_iter) {
       std::ostringstream os;
       os << std::scientific << std::setprecision(3) << "flow: GMRES did not converge in " << it
@@ -425,43 +552,48 @@ std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
          << " (raise solver.krylov_max_iter or krylov_restart, or loosen krylov_tol)";
       throw SolverError(os.str());
     }
-    Eigen::MatrixXd V(n, restart + 1), H = Eigen::MatrixXd::Zero(restart + 1, restart);
-    Eigen::VectorXd cs(restart), sn(restart), e = Eigen::VectorXd::Zero(restart + 1);
-    V.col(0) = r / beta;
-    e[0] = beta;
+    H_.setZero();
+    e_.setZero();
+    V_.col(0) = r_ / beta;
+    e_[0] = beta;
     int k = 0;  // columns of the Krylov basis in use
     while (k < restart && it < s_.krylov_max_iter) {
       ++it;
-      Eigen::VectorXd w = apply_Q(precondition(V.col(k)));
+      t1_ = V_.col(k);
+      precondition(t1_, z_);
+      apply_Q_into(z_, w_);
       for (int i = 0; i <= k; ++i) {  // modified Gram–Schmidt
-        H(i, k) = V.col(i).dot(w);
-        w -= H(i, k) * V.col(i);
+        H_(i, k) = V_.col(i).dot(w_);
+        w_ -= H_(i, k) * V_.col(i);
       }
-      H(k + 1, k) = w.norm();
-      if (H(k + 1, k) > 0) V.col(k + 1) = w / H(k + 1, k);
+      H_(k + 1, k) = w_.norm();
+      if (H_(k + 1, k) > 0) V_.col(k + 1) = w_ / H_(k + 1, k);
       for (int i = 0; i < k; ++i) {  // apply the previous Givens rotations
-        const double t = cs[i] * H(i, k) + sn[i] * H(i + 1, k);
-        H(i + 1, k) = -sn[i] * H(i, k) + cs[i] * H(i + 1, k);
-        H(i, k) = t;
+        const double t = cs_[i] * H_(i, k) + sn_[i] * H_(i + 1, k);
+        H_(i + 1, k) = -sn_[i] * H_(i, k) + cs_[i] * H_(i + 1, k);
+        H_(i, k) = t;
       }
-      const double d = std::hypot(H(k, k), H(k + 1, k));
+      const double d = std::hypot(H_(k, k), H_(k + 1, k));
       if (d == 0) break;  // breakdown: the basis so far holds the solution
-      cs[k] = H(k, k) / d;
-      sn[k] = H(k + 1, k) / d;
-      H(k, k) = d;
-      H(k + 1, k) = 0;
-      e[k + 1] = -sn[k] * e[k];
-      e[k] = cs[k] * e[k];
+      cs_[k] = H_(k, k) / d;
+      sn_[k] = H_(k + 1, k) / d;
+      H_(k, k) = d;
+      H_(k + 1, k) = 0;
+      e_[k + 1] = -sn_[k] * e_[k];
+      e_[k] = cs_[k] * e_[k];
       ++k;
-      if (std::abs(e[k]) / bn <= s_.krylov_tol) break;  // estimate converged: the true residual decides above
+      if (std::abs(e_[k]) / bn <= s_.krylov_tol) break;  // estimate converged: the true residual decides above
     }
     if (k == 0) {
       std::ostringstream os;
       os << std::scientific << std::setprecision(3) << "flow: GMRES broke down at relative residual " << rel;
       throw SolverError(os.str());
     }
-    const Eigen::VectorXd y = H.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(e.head(k));
-    g_ += precondition(V.leftCols(k) * y);
+    y_.head(k) = e_.head(k);
+    H_.topLeftCorner(k, k).triangularView<Eigen::Upper>().solveInPlace(y_.head(k));
+    t1_.noalias() = V_.leftCols(k) * y_.head(k);
+    precondition(t1_, z_);
+    g_ += z_;
   }
 }
 

@@ -97,6 +97,7 @@ struct Level {
   std::unique_ptr<FastSolver> fast;  // ops: 0 = E² (Poisson), 1 = I − θνΔt E² (viscous)
   std::vector<double> eta, psi, nl_old;
   std::vector<double> rhs, src, etac, psic;  // scratch: right-hand sides, force source, corrections
+  std::vector<double> eta_modes;             // the predictor's η* in mode space (before coarsify)
 };
 
 class Solver {
@@ -135,30 +136,43 @@ class Solver {
   static void nonlinear(const Level& L, double u_inf, std::vector<double>& out);
   static void prolong_boundary(const Level& coarse, const std::vector<double>& fc, const Level& fine, std::vector<double>& ff);
   static void restrict_interior(const Level& fine, const std::vector<double>& ff, const Level& coarse, std::vector<double>& fc);
-  /// Q g (see above) for the current body points (m/s); leaves the corrections A⁻¹Sg, P⁻¹A⁻¹Sg in Level::etac, psic.
+  /// Q g (see above) for the current body points (m/s).
   Eigen::VectorXd apply_Q(const Eigen::VectorXd& g);
   /// The dense Q, column by column (2N applications of apply_Q).
   Eigen::MatrixXd force_matrix();
 
  private:
+  // Passes of a step. The predictor η* = A⁻¹rhs (full), ψ* = P⁻¹η* only on the lines the body points and the finer
+  // levels' boundary values read; Q g likewise (A⁻¹ on the coarsest level only on those lines); the step ends with
+  // η = η* + A⁻¹Sg, ψ = P⁻¹η (full), the same as ψ* + P⁻¹A⁻¹Sg up to rounding. P⁻¹ starts from A⁻¹'s modes on the
+  // lines that coarsify leaves alone (no transform pair between the two solves there).
   void build_points(const std::vector<SphereState>& sp);
   void build_wall();
-  /// Velocities at all points (sphere points from the finest ψ, then wall points from their level's ψ).
-  Eigen::VectorXd point_velocity(std::vector<double> Level::*psi) const;
+  void plan_rows();    // the partial line counts per level, and their FFTW plans
+  void update_rows();  // the partial line counts per level
+  /// Velocities at all points (sphere points from the finest ψ, then wall points from their level's ψ) into u.
+  void point_velocity(std::vector<double> Level::*psi, Eigen::VectorXd& u) const;
   void check_finite(const StepInfo& info) const;  // throws SolverError naming the quantity and the time
   void coarsify(std::vector<double> Level::*field);  // fine-to-coarse full weighting, finest first
-  void solve_levels(int op, std::vector<double> Level::*rhs, std::vector<double> Level::*x);  // coarsest to finest
-  /// The multi-level A⁻¹ then P⁻¹ shared by the predictor and the force correction (rhs is overwritten).
-  void viscous_then_streamfunction(std::vector<double> Level::*rhs, std::vector<double> Level::*eta,
-                                   std::vector<double> Level::*psi);
-  /// Solves Q g_ = b (warm start g_); returns iterations and the true relative residual. On return the level
-  /// corrections (etac, psic) are those of the returned g_: its last operation is apply_Q(g_).
+  void spread_source(const Eigen::VectorXd& g);      // Level::src ← S g on every level
+  /// eta ← A⁻¹ rhs on all levels (rhs coarsified first); partial: the coarsest level's lines only as far as needed.
+  /// With rhs = src only the lines src_rows_ are transformed (the source vanishes beyond them).
+  void pass_viscous(std::vector<double> Level::*rhs, std::vector<double> Level::*eta, bool partial);
+  /// psi ← P⁻¹ eta on all levels (eta coarsified first), from the modes left by pass_viscous (plus eta_modes when
+  /// add_saved); partial: only the lines read by the body points and the finer levels.
+  void pass_streamfunction(std::vector<double> Level::*eta, std::vector<double> Level::*psi, bool partial, bool add_saved);
+  void apply_Q_into(const Eigen::VectorXd& g, Eigen::VectorXd& out);  // partial passes
+  /// The end of the step for forces g: etac ← η* + A⁻¹Sg, psic ← P⁻¹ of it (full); u_ ← velocities at the points.
+  void final_pass(const Eigen::VectorXd& g);
+  /// Solves Q g_ = b (warm start g_); returns iterations and the true relative residual. On return final_pass(g_)
+  /// is current (its residual is the true one).
   std::pair<int, double> gmres(const Eigen::VectorXd& b);
+  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
   Settings s_;
   std::vector<Level> lv_;
   std::vector<SphereState> sph_;
   BodyPoints pts_;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> B_;
+  PointRows B_;                 // velocity at the sphere points from the finest ψ
   Eigen::VectorXd g_, g_prev_;  // ring forces of the last two steps (warm start)
   using BlockLU = Eigen::PartialPivLU<Eigen::MatrixXd>;
   struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; };
@@ -166,7 +180,7 @@ class Solver {
   std::vector<std::vector<std::shared_ptr<BlockLU>>> prec_cache_;  // [sphere][offset bin]
   long prec_builds_ = 0;
   std::vector<BodyPoints> wall_pts_;  // per level
-  std::vector<Eigen::SparseMatrix<double, Eigen::RowMajor>> Bw_;  // per level: velocity at its wall points
+  std::vector<PointRows> Bw_;         // per level: velocity at its wall points
   std::size_t wall_count_ = 0;        // wall points over all levels
   std::shared_ptr<BlockLU> wall_lu_;  // the wall's own block of Q (GMRES preconditioner), built once
   std::vector<double> fixed_z_;  // sphere positions of the factorised Q
@@ -174,7 +188,13 @@ class Solver {
   std::vector<double> u_in_;  // velocity of the fluid inside each sphere at t^n (see the convention above)
   double t_ = 0;
   long n_ = 0;
-  std::vector<double> work2_, nl_;
+  int coarse_rows_ = 0, prolong_rows_ = 0;  // rows coarsify writes (levels ≥ 1); rows prolong_boundary reads
+  std::vector<int> psi_rows_;               // per level: rows of ψ read by the points and the finer level
+  std::vector<int> src_rows_;               // per level: rows where the force source S g can be nonzero
+  std::vector<double> nl_, eta_sq_;  // eta_sq_: Σ η² per level after the step (check_finite)
+  // step and GMRES workspace, sized on first use
+  Eigen::VectorXd rhs_, target_, u_, r_, w_, z_, t1_, y_, cs_, sn_, e_;
+  Eigen::MatrixXd V_, H_;
 };
 
 }  // namespace imcol::flow

@@ -126,8 +126,8 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
     std::size_t ia = tr.first_at_or_after(c.t_in);
     for (std::size_t i = ia; i <= c1; ++i)
       if (tr.gap[i] > tr.gap[ia]) ia = i;
-    b["apex_gap_m"] = tr.gap[ia];
-    b["t_apex_s"] = tr.t[ia];
+    b["apex_gap_m"] = sep ? nlohmann::ordered_json(tr.gap[ia]) : nlohmann::ordered_json(nullptr);  // no flight: no apex
+    b["t_apex_s"] = sep ? nlohmann::ordered_json(tr.t[ia]) : nlohmann::ordered_json(nullptr);
 
     // fit_distance: from the last inward crossing of delta_ss + d to the contact, and from the separation to the first outward one.
     nlohmann::ordered_json fd;

@@ -145,11 +145,19 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
           warnings.push_back(os.str());
         }
       }
-      if (sc.fluid) {
-        const double u_rel = *u_i1 - *u_i2;
-        std::tie(St, St_62) = stokes_numbers(model, sc, u_rel);
-        Re = sc.fluid->density * 2 * model.radius(0) * u_rel / sc.fluid->viscosity;
-      }
+    }
+    if (u_i1 && !u_r1 && !separated) {
+      t_end_too_short = true;
+      warnings.push_back("the run ended less than measure.window after the " + std::string(model.t_contact() ? "contact" : "closest approach") +
+                         ", without a separation: no rebound fit, so e is undefined (raise solver.t_end)");
+    }
+    if (u_i1 && sc.fluid) {
+      const double u_rel = *u_i1 - *u_i2;
+      std::tie(St, St_62) = stokes_numbers(model, sc, u_rel);
+      Re = sc.fluid->density * 2 * model.radius(0) * u_rel / sc.fluid->viscosity;
+      if (!model.t_contact())
+        warnings.push_back("no contact: St and Re use the approach velocity fitted over measure.window before the closest approach, "
+                           "where the liquid had already slowed the pair (St_initial is the nominal value)");
     }
     if (model.u_rel_instant_in()) {
       if (model.u_rel_instant_out()) e_inst = -*model.u_rel_instant_out() / *model.u_rel_instant_in();
@@ -186,7 +194,7 @@ void check_plausibility(const CollisionModel& model, const Scene& sc, const Firs
     std::ostringstream os;
     os << "e = " << *e << " exceeds the dry restitution e_dry = " << model.e_dry()
        << ": energy was created, by integration error (tighten solver.rtol, now " << sc.solver.rtol << ")";
-    if (pair && sc.has(Effect::added_mass) && sc.added_mass.model == "seed")
+    if (pair && sc.has(Effect::added_mass) && sc.added_mass.model == AddedMassModel::seed)
       os << " or by the seed's per-sphere added mass (6.8), which is not conservative for unequal spheres (use added_mass.model = \"lagrangian\")";
     warnings.push_back(os.str());
   }

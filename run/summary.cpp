@@ -26,7 +26,7 @@ void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, co
   } else {
     s["e_measures"] = nullptr;
   }
-  s["bounces_mode"] = sc.measure.bounces;
+  s["bounces_mode"] = to_string(sc.measure.bounces);
   s["bounces"] = bounces;
   s["St"] = or_null(m.St);
   if (pair) {
@@ -105,6 +105,9 @@ std::string human_summary(const nlohmann::ordered_json& s) {
   if (!s["group_velocity_m_s"].is_null())
     os << "  group velocity = " << num(s["group_velocity_m_s"]) << " m/s (no separation; centre-of-mass velocity at t = "
        << num(s["group_velocity_at_s"]) << " s, when the relative velocity vanished)\n";
+  if (!s["at_rest_since_s"].is_null())
+    os << "  at rest from t = " << num(s["at_rest_since_s"]) << " s (|U_rel| and |dU_rel/dt| x measure.window below stall_fraction x the"
+       << " impact speed for one window): the run ended there\n";
   if (!s["min_gap_m"].is_null()) os << "  min gap = " << num(s["min_gap_m"]) << " m, max contact force = " << num(s["max_contact_force_N"]) << " N\n";
   std::string eff;
   for (const auto& x : s["effects"]) eff += (eff.empty() ? "" : ", ") + x.get<std::string>();
@@ -113,7 +116,9 @@ std::string human_summary(const nlohmann::ordered_json& s) {
   os << "  " << sol["integrator"].get<std::string>() << " rtol " << sol["rtol"].get<double>() << ": "
      << sol["steps"].get<long>() << " steps, " << sol["rhs_evals"].get<long>() << " rhs evals, "
      << sol["root_events"].get<long>() << " events, " << sol["error_test_fails"].get<long>() << " error-test fails; "
-     << std::setprecision(3) << s["wall_time_s"].get<double>() * 1e3 << " ms\n";
+     << std::setprecision(3) << s["wall_time_s"].get<double>() * 1e3 << " ms";
+  if (s.contains("flow")) os << " in all, " << s["flow"]["ode_time_s"].get<double>() * 1e3 << " ms of it in " << sol["integrator"].get<std::string>();
+  os << "\n";
   const auto& mod = s["model"];
   if (mod.contains("history.kernel")) {
     os << "  history: " << mod["history.kernel"].get<std::string>() << " kernel, " << mod["history.evaluator"].get<std::string>()

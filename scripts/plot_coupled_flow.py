@@ -2,10 +2,15 @@
 """Vorticity and streamline pictures of a coupled `imcol run` (the `flow` effect).
 
 Usage: /usr/bin/python3 scripts/plot_coupled_flow.py DIR
-Reads DIR/flow_*.csv (written at a gap of 1 D, at contact, one fit window after separation and at the end);
-writes DIR/flow_*.png. Needs Debian's python3-matplotlib.
+Reads DIR/flow_*.csv (written at the first flow step with a gap of 1 D or less, at contact, one fit window
+after separation and at the end), and DIR/trajectory.csv and DIR/summary.json when present (the true gap at
+each snapshot's time; the wall's position); writes DIR/flow_*.png. Needs Debian's python3-matplotlib.
 """
+import csv
+import json
 import sys
+
+import numpy as np
 
 from imcol_plot import out_dir
 from plot_flow import plot_snapshot
@@ -20,6 +25,28 @@ def spheres_of(path):
     return list(zip(vals[0::2], vals[1::2]))
 
 
+def label_and_time(path):
+    """The snapshot's label and time from its first line: '# LABEL, t = T s; ...'."""
+    with open(path) as f:
+        first = f.readline().lstrip("# ").split(";")[0]
+    label, _, rest = first.rpartition(", t =")
+    try:
+        return label, float(rest.split()[0])
+    except (IndexError, ValueError):
+        return first, None
+
+
+def read_trajectory(out):
+    """t, z1 and gap from DIR/trajectory.csv (the run's true motion), or None."""
+    try:
+        with open(out / "trajectory.csv", newline="") as f:
+            rows = list(csv.DictReader(f))
+        t = np.array([float(r["t"]) for r in rows])
+        return t, np.array([float(r["z1"]) for r in rows]), np.array([float(r["gap"]) for r in rows])
+    except (OSError, KeyError, ValueError):
+        return None
+
+
 def main() -> int:
     out = out_dir(__doc__)
     if out is None:
@@ -28,8 +55,27 @@ def main() -> int:
     if not snaps:
         print(f"no flow_*.csv in {out}", file=sys.stderr)
         return 1
+    try:
+        configuration = json.loads((out / "summary.json").read_text()).get("configuration")
+    except (OSError, ValueError):
+        configuration = None
+    traj = read_trajectory(out)
     for snap in snaps:
-        plot_snapshot(snap, spheres_of(snap))
+        spheres = spheres_of(snap)
+        D = spheres[0][1]  # the impact sphere's diameter
+        label, t = label_and_time(snap)
+        if snap.stem == "flow_gap_1D":
+            label = "first flow step at a gap ≤ 1 D"
+        title, wall = None, None
+        if traj is not None and t is not None:
+            tt, z1, gap = traj
+            g = float(np.interp(t, tt, gap))
+            title = f"{label}, t = {t:.4g} s: gap {g / D:.3g} D"
+            if configuration == "sphere-wall":
+                # the wall is at z1 + D/2 + gap (the sphere on its -z side); a sphere-wall run's snapshots are
+                # in the lab frame (z_shift = 0), so this is also the wall's place in the picture
+                wall = float(np.median(z1 + D / 2 + gap))
+        plot_snapshot(snap, spheres, wall, title, "sphere surface, where the kernel holds it")
     return 0
 
 

@@ -62,31 +62,43 @@ def read_level(path: Path, level: int):
     return r, z, rows[:, 3].reshape(shape), rows[:, 4].reshape(shape)
 
 
-def plot_snapshot(path: Path, spheres, wall=None) -> None:
-    """spheres: a list of (z, D), or a function of the snapshot's time t giving it (moving spheres)."""
+def plot_snapshot(path: Path, spheres, wall=None, title=None, sphere_label="sphere surface") -> None:
+    """spheres: a list of (z, D), or a function of the snapshot's time t giving it (moving spheres);
+    wall: the wall's z in the snapshot's coordinates (or None); title: replaces the CSV's own label.
+    Levels 0 and 1 side by side, or one above the other when the level is a long flat strip (a sphere
+    falling onto a wall from far away); the legend sits below the pictures, not over the flow."""
     with open(path) as f:
-        title = f.readline().lstrip("# ").split(";")[0]
+        header = f.readline().lstrip("# ").split(";")[0]
     if callable(spheres):
         try:
-            spheres = spheres(float(title.split("=")[1].split()[0]))
+            spheres = spheres(float(header.split("=")[1].split()[0]))
         except (IndexError, ValueError):
             spheres = spheres(None)
-    fig, axes = plt.subplots(1, 2, figsize=(12, 5.2))
-    for ax, level in zip(axes, (0, 1)):
+    levels = []
+    for level in (0, 1):
         try:
             r, z, psi, om = read_level(path, level)
         except (ValueError, IndexError):
-            ax.set_visible(False)
             continue
-        if len(r) == 0:
-            ax.set_visible(False)
-            continue
+        if len(r):
+            levels.append((level, r, z, psi, om))
+    if not levels:
+        return
+    _, r0, z0, _, _ = levels[0]
+    aspect = (z0[-1] - z0[0]) / max(2 * r0[-1], 1e-300)  # length / height of the finest level
+    stacked = aspect > 4
+    if stacked:
+        fig, axes = plt.subplots(len(levels), 1, figsize=(13, len(levels) * (10.5 / aspect + 1.1) + 1.3), squeeze=False)
+    else:
+        fig, axes = plt.subplots(1, len(levels), figsize=(6 * len(levels), 5.0 / aspect + 2.6), squeeze=False)
+    for ax, (level, r, z, psi, om) in zip(axes.flat, levels):
         R = np.concatenate([-r[:0:-1], r])  # mirror about the axis
         P = np.concatenate([psi[:0:-1], psi])
         W = np.concatenate([-om[:0:-1], om])
         lim = np.percentile(np.abs(W), 99.5) or 1.0
         mesh = ax.pcolormesh(z, R, W, cmap="RdBu_r", vmin=-lim, vmax=lim, shading="auto")
-        fig.colorbar(mesh, ax=ax, shrink=0.8, label="vorticity ω (colour scale clipped at 99.5 %)")
+        cb = fig.colorbar(mesh, ax=ax, shrink=0.9, pad=0.01 if stacked else 0.03)
+        cb.set_label("ω", rotation=0, labelpad=8)
         # streamlines: levels even in sqrt|psi| (psi ~ r^2), with the recirculation (psi < 0) and psi = 0
         pos = np.linspace(0, np.sqrt(max(P.max(), 0)), 31)[1:-1] ** 2
         neg = -(np.linspace(0, np.sqrt(max(-P.min(), 0)), 7)[1:-1] ** 2)
@@ -98,14 +110,14 @@ def plot_snapshot(path: Path, spheres, wall=None) -> None:
         ax.set_aspect("equal")
         ax.set_xlabel("z")
         ax.set_ylabel("r (mirrored)")
-        ax.set_title(f"level {level}: vorticity (colour), streamlines", fontsize=10)
-        handles = [plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)"),
-                   plt.Line2D([], [], color="g", lw=1.2, label="sphere surface")]
-        if wall is not None:
-            handles.append(plt.Line2D([], [], color="m", lw=1.5, label="wall"))
-        ax.legend(handles=handles, fontsize=7, loc="upper right")
-    fig.suptitle(title)
-    fig.tight_layout()
+        ax.set_title(f"level {level}: vorticity ω (colour, scale clipped at 99.5 %), streamlines", fontsize=9)
+    handles = [plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)"),
+               plt.Line2D([], [], color="g", lw=1.2, label=sphere_label)]
+    if wall is not None:
+        handles.append(plt.Line2D([], [], color="m", lw=1.5, label="wall"))
+    fig.legend(handles=handles, fontsize=8, loc="lower center", ncol=len(handles), frameon=False)
+    fig.suptitle(title or header, fontsize=11)
+    fig.tight_layout(rect=(0, 0.05 if stacked else 0.07, 1, 1))
     save_png(fig, path.with_suffix(".png"), dpi=130)
 
 

@@ -52,7 +52,9 @@ def main() -> int:
     args = ap.parse_args()
     out = args.dir
     meta = json.loads((out / "sweep.json").read_text())
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    # the legend goes below the axes (it would cover the rise of e at St 10-30 or the high-St plateau):
+    # a taller figure for two sweeps, whose ten entries stand in two columns (one per sweep)
+    fig, ax = plt.subplots(figsize=(9, 7) if args.compare else (8, 6.4))
     others = [(d, json.loads((d / "sweep.json").read_text())) for d in args.compare]
     plot_sweep(ax, out, meta, "-", sweep_label(meta) + ": " if others else "")
     for d, m in others:
@@ -69,7 +71,8 @@ def main() -> int:
     ax.set_ylabel("e")
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7 if others else 8, loc="lower right")
+    ax.legend(fontsize=7 if others else 8, loc="upper center", bbox_to_anchor=(0.5, -0.11), ncol=2,
+              frameon=False, columnspacing=1.5)
     n_fail = len(meta["failures"]) + sum(len(m["failures"]) for _, m in others)
     what = "%d points" % meta["points"] if not others else "%d sweeps" % (1 + len(others))
     ax.set_title("%s: e vs St (%s), %s%s" % (meta["scene"], ", ".join(meta.get("effects", [])) if not others else "each named measure",

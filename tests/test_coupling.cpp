@@ -212,7 +212,7 @@ TEST(Coupling, CvodeAndIdaAgreeInACoupledRun) {
   // The same flow steps and f_SIM; the two integrators differ only by their own error (rtol 1e-8).
   auto e_of = [](const std::string& integrator) {
     const Scene sc = load_scene(scene_path("coupled/gg3462.toml"),
-                                {{"flow.cells_per_diameter", "16"}, {"flow.snapshots", "0"}, {"solver.integrator", "\"" + integrator + "\""}});
+                                {{"flow.cells_per_diameter", "16"}, {"flow.fields", "false"}, {"solver.integrator", "\"" + integrator + "\""}});
     return simulate(sc).summary["e"].get<double>();
   };
   EXPECT_NEAR(e_of("cvode"), e_of("ida"), 1e-6);
@@ -223,7 +223,7 @@ TEST(Coupling, MirroredCollisionGivesTheSameRestitution) {
   // (the frame, the start-up and the kernel's grid are built from the pair, not from sphere 1).
   auto e_of = [](std::vector<Override> ov) {
     ov.push_back({"flow.cells_per_diameter", "16"});
-    ov.push_back({"flow.snapshots", "0"});
+    ov.push_back({"flow.fields", "false"});
     return simulate(load_scene(scene_path("coupled/gg3462.toml"), ov)).summary["e"].get<double>();
   };
   const double e = e_of({});
@@ -236,7 +236,7 @@ TEST(Coupling, SphereWallCollisionWithTheKernelsWall) {
   // The default scene (steel onto a wall) with the flow kernel and its no-slip wall, coarse: the coupled e stays
   // close to the reduced-order one (the blend gives f_THR the last 0.2 D) and below e_dry.
   const RunResult c = simulate(load_scene(scene_path("default.toml"), {{"effects", R"(["drag","lubrication","added_mass","history","elastic","flow"])"},
-                                                                      {"flow.cells_per_diameter", "16"}, {"flow.snapshots", "0"}}));
+                                                                      {"flow.cells_per_diameter", "16"}, {"flow.fields", "false"}}));
   const RunResult r = simulate(load_scene(scene_path("default.toml")));
   const double e = c.summary["e"].get<double>();
   EXPECT_GT(e, 0.5);

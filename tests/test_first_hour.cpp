@@ -236,3 +236,30 @@ TEST(FirstHour, NoApproachIsNotATooShortRun) {
     fs::remove_all(dir);
   }
 }
+
+// A coupled run whose estimated cost is far beyond the usual is refused before anything is allocated, and a
+// run that fails its input checks leaves no empty output folder behind.
+TEST(FirstHour, ARunawayCoupledRunIsRefusedAndLeavesNoFolder) {
+  const fs::path dir = tmp("coupled_runaway") / "nested";
+  fs::remove_all(dir.parent_path());
+  const Outcome r = run_imcol("run data/scenes/coupled/bouncing_steel.toml --no-plot --set flow.dt=1e-8 --out '" + dir.string() + "'");
+  expect_input_error(r, "flow.max_wall_hours", "estimated");
+  EXPECT_FALSE(fs::exists(dir.parent_path())) << "an empty output folder was left behind";
+  const Outcome close = run_imcol("run data/scenes/coupled/gg3462.toml --no-plot --set flow.min_gap_cells=0.5 --out '" + dir.string() + "'");
+  expect_input_error(close, "flow.min_gap_cells", "[1, 10]");
+}
+
+// A run that ends inside the rebound window without a separation says why e is missing, and keeps St and Re.
+TEST(FirstHour, AnEUndefinedByAShortRunIsExplained) {
+  const fs::path dir = tmp("short_group");
+  const Outcome r = run_imcol("run data/scenes/group_a.toml --quiet --no-plot --set solver.t_end=0.045 --out '" + dir.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto s = summary(dir);
+  EXPECT_TRUE(s["e"].is_null());
+  EXPECT_TRUE(s["t_end_too_short"].get<bool>());
+  EXPECT_TRUE(s["St"].is_number());
+  bool explained = false;
+  for (const auto& w : s["warnings"]) explained = explained || w.get<std::string>().find("e is undefined (raise solver.t_end)") != std::string::npos;
+  EXPECT_TRUE(explained) << s["warnings"].dump();
+  fs::remove_all(dir);
+}

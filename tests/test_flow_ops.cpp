@@ -54,7 +54,9 @@ TEST(FlowOps, DivergenceOfStreamfunctionVelocityIsZero) {
 }
 
 TEST(FlowOps, SolveThenApplyReturnsInput) {
-  const auto g = tiny(12, 20, 0.05, -0.5);
+  // nz = 20: the split-radix sine transform (nz a multiple of 4); nz = 18: the padded one
+  for (int nz : {20, 18}) {
+  const auto g = tiny(12, nz, 0.05, -0.5);
   FastSolver fs(g, {{0.0, 1.0}, {1.0, -0.37}, {2.5, -1e-3}});
   for (int op = 0; op < 3; ++op) {
     const double a = op == 0 ? 0.0 : op == 1 ? 1.0 : 2.5, b = op == 0 ? 1.0 : op == 1 ? -0.37 : -1e-3;
@@ -72,9 +74,65 @@ TEST(FlowOps, SolveThenApplyReturnsInput) {
       }
     double bnd_err = 0;
     for (int j = 0; j <= g.nz; ++j) bnd_err = std::max(bnd_err, std::abs(x[g.at(g.nr, j)] - bnd[g.at(g.nr, j)]));
-    std::printf("op %d: max |(aI + bE²)x − f| / max|f| = %.3e\n", op, err / fmax);
+    std::printf("nz %d, op %d: max |(aI + bE²)x − f| / max|f| = %.3e\n", nz, op, err / fmax);
     EXPECT_LT(err / fmax, 1e-10);
     EXPECT_EQ(bnd_err, 0.0);
+  }
+  }
+}
+
+TEST(FlowOps, ChainedSolveInModeSpaceEqualsTwoSolves) {
+  // A⁻¹ then P⁻¹ chained in mode space (rechain), with boundary values on both, rows < phys changed in between
+  // (as coarsify does) and only the first rows transformed back, against two full solves
+  for (int nz : {20, 18}) {
+    const auto g = tiny(12, nz, 0.05, -0.5);
+    FastSolver fs(g, {{0.0, 1.0}, {1.0, -0.37}});
+    const int n = fs.rows(), phys = 4, out_rows = 7;
+    fs.prepare_rows(phys);
+    const auto f = random_field(g, 51);
+    auto x1 = random_field(g, 52), x2 = random_field(g, 53);  // boundary values are data
+    const auto x2_before = x2;
+    auto changed = random_field(g, 54);
+    auto r1 = x1, r2 = x2;  // reference: two solves
+    fs.solve(1, f, r1);
+    for (int i = 1; i <= phys; ++i)
+      for (int j = 3; j < g.nz - 3; ++j) r1[g.at(i, j)] = changed[g.at(i, j)];
+    std::vector<double> rhs(g.size());
+    for (std::size_t p = 0; p < rhs.size(); ++p) rhs[p] = -r1[p];
+    fs.solve(0, rhs, r2);
+    fs.forward(1, 1.0, f, x1);  // chained
+    fs.back(1, x1, n);
+    for (int i = 1; i <= phys; ++i)
+      for (int j = 3; j < g.nz - 3; ++j) x1[g.at(i, j)] = changed[g.at(i, j)];
+    fs.rechain(0, -1.0, x1, x2, phys);
+    fs.back(0, x2, out_rows);
+    double e = 0, s = 0, untouched = 0;
+    for (int i = 1; i < g.nr; ++i)
+      for (int j = 1; j < g.nz; ++j) {
+        if (i <= out_rows) {
+          e = std::max(e, std::abs(x2[g.at(i, j)] - r2[g.at(i, j)]));
+          s = std::max(s, std::abs(r2[g.at(i, j)]));
+        } else {
+          untouched = std::max(untouched, std::abs(x2[g.at(i, j)] - x2_before[g.at(i, j)]));
+        }
+      }
+    std::printf("nz %d: chained vs two solves %.2e (scale %.2e)\n", nz, e, s);
+    EXPECT_LT(e, 1e-12 * s);
+    EXPECT_EQ(untouched, 0.0);
+    // a right-hand side zero beyond row phys: forward_rows (those rows from the boundary terms alone) = solve
+    auto fz = f;
+    for (int i = phys + 1; i < g.nr; ++i)
+      for (int j = 0; j <= g.nz; ++j) fz[g.at(i, j)] = 0.0;
+    auto y1 = random_field(g, 55), y2 = y1;
+    fs.solve(1, fz, y1);
+    fs.forward_rows(1, 1.0, fz, y2, phys);
+    fs.back(1, y2, n);
+    double ey = 0, sy = 0;
+    for (std::size_t p = 0; p < g.size(); ++p) {
+      ey = std::max(ey, std::abs(y1[p] - y2[p]));
+      sy = std::max(sy, std::abs(y1[p]));
+    }
+    EXPECT_LT(ey, 1e-12 * sy);
   }
 }
 

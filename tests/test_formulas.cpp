@@ -7,6 +7,7 @@
 #include "contact/formulas.hpp"
 #include "contact/table_data.hpp"
 
+using namespace imcol;
 using namespace imcol::contact;
 
 namespace {

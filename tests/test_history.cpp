@@ -19,7 +19,6 @@ namespace imcol {
 namespace {
 
 using contact::HistoryOptions;
-using contact::KernelKind;
 using contact::SphereHistory;
 
 /// q' + αq + (γ/√π) d/dt ∫_0^t q(s)/√(t−s) ds = f with the production history code: a sphere of

@@ -13,6 +13,7 @@
 #include "contact/formulas.hpp"
 #include "contact/history_kernel.hpp"
 
+using namespace imcol;
 using namespace imcol::contact;
 
 namespace {
@@ -73,9 +74,9 @@ double dense_error(const std::vector<double>& rate, const std::vector<double>& w
 
 TEST(HistoryKernel, NamesAndCoefficients) {
   for (auto k : {KernelKind::basset, KernelKind::mei_adrian, KernelKind::kim, KernelKind::dorgan_loth})
-    EXPECT_EQ(kernel_from_string(to_string(k)), k);
-  EXPECT_FALSE(kernel_from_string("none").has_value());
-  EXPECT_FALSE(kernel_from_string("Basset").has_value());
+    EXPECT_EQ(choice_from_string<KernelKind>(to_string(k)), k);
+  EXPECT_FALSE(choice_from_string<KernelKind>("none").has_value());
+  EXPECT_FALSE(choice_from_string<KernelKind>("Basset").has_value());
   const HistoryKernel ma(KernelKind::mei_adrian, D, nu), kim(KernelKind::kim, D, nu),
       dl(KernelKind::dorgan_loth, D, nu);
   EXPECT_EQ(ma.c1(), 2.0);

@@ -34,10 +34,10 @@ TEST(Scene, ParsesWallSceneWithDefaults) {
   EXPECT_DOUBLE_EQ(sc.spheres[0].density, 7780);
   EXPECT_TRUE(sc.wall);
   EXPECT_DOUBLE_EQ(sc.contact.delta_ss, 0.017);  // wall default
-  EXPECT_EQ(sc.lubrication.model, "brenner");
+  EXPECT_EQ(sc.lubrication.model, LubricationModel::brenner);
   EXPECT_TRUE(sc.has(Effect::drag) && sc.has(Effect::lubrication) && sc.has(Effect::added_mass) && sc.has(Effect::elastic));
   EXPECT_FALSE(sc.has(Effect::gravity));
-  EXPECT_EQ(sc.solver.integrator, "cvode");
+  EXPECT_EQ(sc.solver.integrator, IntegratorMethod::cvode);
 }
 
 TEST(Scene, OverridesFromTheCommandLine) {
@@ -46,7 +46,7 @@ TEST(Scene, OverridesFromTheCommandLine) {
                           parse_override("solver.integrator=ida"), parse_override("contact.delta_ss=0.02")});
   EXPECT_DOUBLE_EQ(sc.solver.rtol, 1e-9);
   EXPECT_DOUBLE_EQ(sc.spheres[0].velocity, 0.5);
-  EXPECT_EQ(sc.solver.integrator, "ida");
+  EXPECT_EQ(sc.solver.integrator, IntegratorMethod::ida);
   EXPECT_DOUBLE_EQ(sc.contact.delta_ss, 0.02);
   EXPECT_THROW(parse_override("novalue"), InputError);
   expect_error(kWall, {"--set", "sphere[3]"}, {parse_override("sphere[3].velocity=1")});
@@ -111,9 +111,9 @@ TEST(Scene, HistorySettingsAreReadAndChecked) {
   const std::string fx = "effects = [\"drag\", \"added_mass\", \"elastic\", \"history\"]\n" + kWall;
   const Scene sc = parse_scene(fx + "[history]\nkernel = \"kim\"\nevaluator = \"direct\"\nstart = \"impulsive\"\n", "h.toml");
   EXPECT_TRUE(sc.has(Effect::history));
-  EXPECT_EQ(sc.history.kernel, "kim");
-  EXPECT_EQ(sc.history.evaluator, "direct");
-  EXPECT_EQ(sc.history.start, "impulsive");
+  EXPECT_EQ(sc.history.kernel, KernelKind::kim);
+  EXPECT_EQ(sc.history.evaluator, HistoryEvaluator::direct);
+  EXPECT_EQ(sc.history.start, HistoryStart::impulsive);
   expect_error(fx + "[history]\nkernel = \"oseen\"\n", {"history.kernel", "unknown choice 'oseen'", "bad.toml:"});
   expect_error(fx + "[history]\nmodes = 1\n", {"history.modes", "[2, 400]"});
   expect_error(fx + "[history]\ntolerance = 0.0\n", {"history.tolerance"});

@@ -1,0 +1,61 @@
+#pragma once
+// The model choices a scene makes, as enums: the scene reader turns each key's string into one of these
+// (an unknown string is an input error there), so nothing below the reader compares strings.
+// Each enum's names (the scene's spellings, also written to summary.json) are listed once, in choice_names().
+#include <array>
+#include <optional>
+#include <string_view>
+#include <utility>
+
+namespace imcol {
+
+enum class DragLaw { stokes, schiller_naumann };                  // MODEL.md §2.1
+enum class LubricationModel { brenner, asymptotic };              // Brenner series (wall) | Jeffrey–Onishi law
+enum class AddedMassModel { lagrangian, seed };                   // pair kinetic energy | seed (6.8), per sphere
+enum class KernelKind { basset, mei_adrian, kim, dorgan_loth };   // history kernel, MODEL.md §2.3
+enum class HistoryEvaluator { soe, soe_step, direct };            // sum of exponentials (modes in the state | per step) | product integration
+enum class HistoryStart { steady, impulsive };                    // moving at U(0) for ever | from rest at t = 0
+enum class HistoryReynolds { instantaneous, initial };            // Re of a finite-Re kernel: |U| | |U(0)|
+enum class WallCorrection { none, added_mass };                   // K_H = 1 | 1 + 3W(δ**)
+enum class IntegratorMethod { cvode, ida };
+enum class LinearSolverChoice { automatic, dense, schur, gmres };
+enum class BouncesMode { first, all };                            // measure.bounces
+
+template <class E> struct ChoiceNames;
+#define IMCOL_CHOICE_NAMES(E, ...)                                                   \
+  template <> struct ChoiceNames<E> {                                                \
+    static constexpr auto list = std::to_array<std::pair<E, std::string_view>>({__VA_ARGS__}); \
+  };
+IMCOL_CHOICE_NAMES(DragLaw, {DragLaw::stokes, "stokes"}, {DragLaw::schiller_naumann, "schiller-naumann"})
+IMCOL_CHOICE_NAMES(LubricationModel, {LubricationModel::brenner, "brenner"}, {LubricationModel::asymptotic, "asymptotic"})
+IMCOL_CHOICE_NAMES(AddedMassModel, {AddedMassModel::lagrangian, "lagrangian"}, {AddedMassModel::seed, "seed"})
+IMCOL_CHOICE_NAMES(KernelKind, {KernelKind::basset, "basset"}, {KernelKind::mei_adrian, "mei-adrian"}, {KernelKind::kim, "kim"},
+                   {KernelKind::dorgan_loth, "dorgan-loth"})
+IMCOL_CHOICE_NAMES(HistoryEvaluator, {HistoryEvaluator::soe, "soe"}, {HistoryEvaluator::soe_step, "soe-step"},
+                   {HistoryEvaluator::direct, "direct"})
+IMCOL_CHOICE_NAMES(HistoryStart, {HistoryStart::steady, "steady"}, {HistoryStart::impulsive, "impulsive"})
+IMCOL_CHOICE_NAMES(HistoryReynolds, {HistoryReynolds::instantaneous, "instantaneous"}, {HistoryReynolds::initial, "initial"})
+IMCOL_CHOICE_NAMES(WallCorrection, {WallCorrection::none, "none"}, {WallCorrection::added_mass, "added-mass"})
+IMCOL_CHOICE_NAMES(IntegratorMethod, {IntegratorMethod::cvode, "cvode"}, {IntegratorMethod::ida, "ida"})
+IMCOL_CHOICE_NAMES(LinearSolverChoice, {LinearSolverChoice::automatic, "auto"}, {LinearSolverChoice::dense, "dense"},
+                   {LinearSolverChoice::schur, "schur"}, {LinearSolverChoice::gmres, "gmres"})
+IMCOL_CHOICE_NAMES(BouncesMode, {BouncesMode::first, "first"}, {BouncesMode::all, "all"})
+#undef IMCOL_CHOICE_NAMES
+
+/// The scene's spelling of a choice.
+template <class E>
+constexpr const char* to_string(E e) requires requires { ChoiceNames<E>::list; } {
+  for (const auto& [v, name] : ChoiceNames<E>::list)
+    if (v == e) return name.data();
+  return "?";
+}
+
+/// The choice spelled `s`, or none.
+template <class E>
+constexpr std::optional<E> choice_from_string(std::string_view s) {
+  for (const auto& [v, name] : ChoiceNames<E>::list)
+    if (name == s) return v;
+  return std::nullopt;
+}
+
+}  // namespace imcol
