@@ -6,13 +6,14 @@
 #include <span>
 #include <string>
 
+#include "core/choices.hpp"
 #include "core/system.hpp"
 
 namespace imcol {
 
 struct IntegratorSettings {
-  std::string method = "cvode";  // cvode | ida
-  std::string linear_solver = "auto";  // dense | schur | gmres (cvode only) | auto: schur when the state is large
+  IntegratorMethod method = IntegratorMethod::cvode;
+  LinearSolverChoice linear_solver = LinearSolverChoice::automatic;  // dense | schur | gmres (cvode only) | auto: schur when the state is large
   double krylov_tol = 0.05;      // gmres: CVodeSetEpsLin
   int gmres_max_krylov = 5;      // gmres: Krylov subspace size
   std::size_t gmres_auto_size = 24;  // auto: schur from this state size on (cvode, modal structure present)

@@ -296,7 +296,7 @@ class CvodeBackend : public Backend {
     check(CVodeSetUserData(mem_, &cb_), "CVodeSetUserData");
     check(CVodeSVtolerances(mem_, st.rtol, abstol_), "CVodeSVtolerances");
     if (cb_.prec) {
-      const bool direct = st.linear_solver == "schur";
+      const bool direct = st.linear_solver == LinearSolverChoice::schur;
       LS_ = direct ? make_schur_direct(ctx) : SUNLinSol_SPGMR(y, SUN_PREC_LEFT, st.gmres_max_krylov, ctx);
       if (!LS_) throw SolverError("creating the linear solver failed");
       check(CVodeSetLinearSolver(mem_, LS_, nullptr), "CVodeSetLinearSolver");
@@ -525,14 +525,14 @@ struct Integrator::Impl {
       throw;
     } catch (const std::exception& e) {
       std::ostringstream os;
-      os << st.method << ": the model failed near t = " << t << " s: " << e.what();
+      os << to_string(st.method) << ": the model failed near t = " << t << " s: " << e.what();
       throw SolverError(os.str());
     }
   }
   [[noreturn]] void fail(int flag) {
     if (cb.error) rethrow_model_error();
     std::ostringstream os;
-    os << st.method << " failed at t = " << t << " s with " << be->flag_name(flag);
+    os << to_string(st.method) << " failed at t = " << t << " s with " << be->flag_name(flag);
     if (!cb.last_message.empty()) os << " [" << cb.last_message << "]";
     VectorPtr w(N_VClone(y.get())), e(N_VClone(y.get()));
     be->error_vectors(w.get(), e.get());
@@ -567,21 +567,21 @@ Integrator::Integrator(DynamicalSystem& sys, const IntegratorSettings& st, Obser
   m.cb = Callback{&sys, nullptr, {tol.begin(), tol.end()}, 0, nullptr, {}};
   ModalStructure probe;
   const bool modal = sys.modal_structure(0.0, view(m.y.get()), probe);
-  std::string ls = st.linear_solver;
-  if (ls == "auto") ls = (st.method == "cvode" && modal && sys.size() >= st.gmres_auto_size) ? "schur" : "dense";
-  if (ls == "gmres" || ls == "schur") {
-    if (st.method != "cvode") throw SolverError("the " + ls + " linear solver is implemented for cvode only");
-    if (!modal) throw SolverError("the " + ls + " linear solver needs a state with memory components (the history effect)");
+  using LS = LinearSolverChoice;
+  LS ls = st.linear_solver;
+  const bool cvode = st.method == IntegratorMethod::cvode;
+  if (ls == LS::automatic) ls = (cvode && modal && sys.size() >= st.gmres_auto_size) ? LS::schur : LS::dense;
+  if (ls == LS::gmres || ls == LS::schur) {
+    const std::string name = to_string(ls);
+    if (!cvode) throw SolverError("the " + name + " linear solver is implemented for cvode only");
+    if (!modal) throw SolverError("the " + name + " linear solver needs a state with memory components (the history effect)");
     m.cb.prec = &m.prec;
-  } else if (ls != "dense") {
-    throw SolverError("unknown linear solver '" + ls + "'");
   }
   m.st.linear_solver = ls;
-  if (st.method == "cvode") m.be = std::make_unique<CvodeBackend>(m.ctx.get(), m.cb, m.st, m.y.get(), m.abstol.get());
-  else if (st.method == "ida") m.be = std::make_unique<IdaBackend>(m.ctx.get(), m.cb, m.st, m.y.get(), m.abstol.get());
-  else throw SolverError("unknown integrator '" + st.method + "'");
+  if (cvode) m.be = std::make_unique<CvodeBackend>(m.ctx.get(), m.cb, m.st, m.y.get(), m.abstol.get());
+  else m.be = std::make_unique<IdaBackend>(m.ctx.get(), m.cb, m.st, m.y.get(), m.abstol.get());
 
-  m.stats.linear_solver = ls;
+  m.stats.linear_solver = to_string(ls);
   m.stats.state_size = sys.size();
   m.names = sys.component_names();
   m.be->init(m.t, m.y.get());

@@ -26,12 +26,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 IntegratorSettings integrator_settings(const Scene& sc) {
   IntegratorSettings st;
-  st.method = to_string(sc.solver.integrator);
+  st.method = sc.solver.integrator;
   st.rtol = sc.solver.rtol;
   st.atol = sc.solver.atol;
   st.output_dt = sc.output.dt;
   st.max_steps = sc.solver.max_steps;
-  st.linear_solver = to_string(sc.solver.linear_solver);
+  st.linear_solver = sc.solver.linear_solver;
   st.krylov_tol = sc.solver.krylov_tol;
   return st;
 }

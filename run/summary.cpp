@@ -67,7 +67,7 @@ nlohmann::ordered_json contact_block(const CollisionModel& model) {
 }
 
 nlohmann::ordered_json solver_block(const CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats, double t_final) {
-  nlohmann::ordered_json sol = {{"integrator", st.method}, {"linear_solver", stats.linear_solver},
+  nlohmann::ordered_json sol = {{"integrator", to_string(st.method)}, {"linear_solver", stats.linear_solver},
                                 {"rtol", st.rtol}, {"atol", st.atol},
                                 {"absolute_tolerances", model.absolute_tolerances(st.atol)},
                                 {"state", model.component_names()}, {"max_step_s", model.max_step()},

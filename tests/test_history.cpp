@@ -104,11 +104,11 @@ HistoryOptions tight_soe(double min_lag, double horizon, double tol) {
 
 Samples solve(BassetProblem& p, const std::string& method, double rtol, double atol, const std::string& ls = "dense") {
   IntegratorSettings st;
-  st.method = method;
+  st.method = *choice_from_string<IntegratorMethod>(method);
   st.rtol = rtol;
   st.atol = atol;
   st.output_dt = 1.0;
-  st.linear_solver = ls;
+  st.linear_solver = *choice_from_string<LinearSolverChoice>(ls);
   Samples s;
   integrate(p, st, s);
   return s;
@@ -179,9 +179,9 @@ TEST(HistoryExact, GmresWithSchurPreconditionerMatchesDense) {
   st.atol = 1e-12;
   st.output_dt = 1.0;
   Samples sa, sb;
-  st.linear_solver = "dense";
+  st.linear_solver = LinearSolverChoice::dense;
   const auto da = integrate(a, st, sa);
-  st.linear_solver = "gmres";
+  st.linear_solver = LinearSolverChoice::gmres;
   const auto db = integrate(b, st, sb);
   EXPECT_EQ(db.linear_solver, "gmres");
   EXPECT_NEAR(sb.q.at(100.0) / sa.q.at(100.0), 1.0, 1e-8);
@@ -199,9 +199,9 @@ TEST(HistoryExact, SchurDirectSolveMatchesDenseAndClosedForm) {
   st.atol = 1e-12;
   st.output_dt = 1.0;
   Samples sa, sb;
-  st.linear_solver = "dense";
+  st.linear_solver = LinearSolverChoice::dense;
   const auto da = integrate(a, st, sa);
-  st.linear_solver = "schur";
+  st.linear_solver = LinearSolverChoice::schur;
   const auto db = integrate(b, st, sb);
   EXPECT_EQ(db.linear_solver, "schur");
   EXPECT_EQ(db.lin_iters, 0);
