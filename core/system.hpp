@@ -79,6 +79,8 @@ class Observer {
  public:
   virtual ~Observer() = default;
   virtual void sample(double t, std::span<const double> y, bool at_event) = 0;
+  /// After each accepted solver step: the steps taken so far in this run (for a progress display).
+  virtual void stepped(long steps) { (void)steps; }
 };
 
 }  // namespace imcol

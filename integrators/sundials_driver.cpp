@@ -489,6 +489,7 @@ struct Integrator::Impl {
   long k_out = 1;  // output times k·dt, counted so that they cannot stop advancing
   double t_sampled = -1;  // time of the last output sample
   long quiet_steps = 0;   // internal steps since the last output sample, event or stop (solver.max_steps bounds them)
+  long steps_taken = 0;   // accepted internal steps of this run (for the observer's progress display)
   bool done = false;
 
   /// Samples the output times k·dt in (t, t_upto) (strict) or (t, t_upto] from the solver's interpolant,
@@ -643,6 +644,7 @@ double Integrator::advance(double t_target) {
       flag = be->step(tout, t_limit, m.y.get(), t_new);
       if (flag < 0) m.fail(flag);
       if (m.cb.error) m.rethrow_model_error();
+      m.observer.stepped(++m.steps_taken);
       const double sampled = m.t_sampled;
       if (m.emit_outputs(t_new, flag > 0)) continue;  // the observer ended the run at a sample (y is there)
       m.quiet_steps = (flag != 0 || m.t_sampled != sampled || t_new >= t_limit) ? 0 : m.quiet_steps + 1;

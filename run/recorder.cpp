@@ -78,7 +78,7 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
 }
 
 void Recorder::finish_progress() {
-  if (shown_) std::cerr << "\r" << std::string(96, ' ') << "\r" << std::flush;
+  if (shown_) std::cerr << "\r" << std::string(120, ' ') << "\r" << std::flush;
 }
 
 void Recorder::show_progress(double t) {
@@ -90,7 +90,7 @@ void Recorder::show_progress(double t) {
   const double t_end = sc_.solver.t_end;
   const double left = t > 0 ? run * (t_end - t) / t : 0.0;  // at most: the run may stop once e is measured
   std::cerr << "\r  t = " << std::setprecision(4) << t << " s of t_end " << t_end << " s (" << std::fixed << std::setprecision(1)
-            << 100 * t / t_end << " %), " << run << " s elapsed, at most " << left << " s left   " << std::defaultfloat
+            << 100 * t / t_end << " %), " << steps_ << " steps, " << run << " s elapsed, at most " << left << " s left   " << std::defaultfloat
             << std::flush;
 }
 

@@ -18,6 +18,7 @@ class Recorder : public Observer {
   Recorder(contact::CollisionModel& model, const Scene& sc, bool progress);
 
   void sample(double t, std::span<const double> y, bool at_event) override;
+  void stepped(long steps) override { steps_ = steps; }
   /// Clears the progress line, if one was shown.
   void finish_progress();
 
@@ -36,6 +37,7 @@ class Recorder : public Observer {
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
   double min_gap_, max_force_ = 0, max_history_ = 0;
+  long steps_ = 0;
   bool progress_ = false, shown_ = false;
   unsigned effects_ = 0;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
