@@ -359,8 +359,8 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
               << " % over the last tenth of the run; not compared with the steady standard curve)";
   std::cout << std::setprecision(5) << "  F/(6 pi mu a U) = " << j["stokes_drag_ratio"].get<double>() << "\n";
   if (j.contains("wake_length_D") && j["wake_length_D"].is_number()) std::cout << "wake length = " << j["wake_length_D"].get<double>() << " D\n";
-  if (j.contains("f_sim_vs_f_thr"))
-    for (const auto& r : j["f_sim_vs_f_thr"])
+  if (j.contains("f_sim_vs_f_thr")) {
+    for (const auto& r : j["f_sim_vs_f_thr"]) {
       if (r.contains("F_wall"))
         std::cout << "wall gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR Brenner " << r["F_THR1"].get<double>()
                   << ", " << std::setprecision(3) << 100 * (r["F1"].get<double>() / r["F_THR1"].get<double>() - 1) << std::setprecision(5)
@@ -370,6 +370,8 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
         std::cout << "gap " << r["gap_D"].get<double>() << " D: F1 = " << r["F1"].get<double>() << " (f_THR " << r["F_THR1"].get<double>()
                   << "), F2 = " << r["F2"].get<double>() << " (f_THR " << r["F_THR2"].get<double>() << ") N"
                   << (r["resolved"].get<bool>() ? "" : "  [not resolved: gap below 3 cells]") << "\n";
+    }
+  }
   if (j.contains("oscillating"))
     std::cout << "oscillating sphere vs unsteady Stokes (delta/a = " << j["oscillating"]["delta_over_a"].get<double>()
               << "): max error over the last period " << 100 * j["oscillating"]["max_error_last_period_rel_amplitude"].get<double>()

@@ -517,7 +517,6 @@ Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
       const AddedMassMatrix M = implicit_added_mass(ev.gap);
       const double MA_a = (m == 0 ? M.m11 : M.m22) * acc[m] + (pair ? M.m12 * acc[1 - m] : 0.0);
       const double H = ev.H;
-      const bool am_listed = has(Effect::added_mass);
       ev.f[m].f_sim = ev.f_rest[m] - MA_a;
       ev.f[m].simulated -= (1 - H) * MA_a;
       am_accel -= (1 - H) * MA_a;

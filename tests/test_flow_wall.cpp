@@ -142,7 +142,9 @@ TEST(FlowWall, MovingSphereApproachesWithoutFailure) {
     const StepInfo info = s.step({sp});
     itmax = std::max(itmax, info.krylov_iterations);
     if (n % 10 == 0) {
-      if (n > 20) EXPECT_GT(info.force[0], prev) << "step " << n;
+      if (n > 20) {
+        EXPECT_GT(info.force[0], prev) << "step " << n;
+      }
       prev = info.force[0];
     }
   }
