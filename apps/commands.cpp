@@ -251,7 +251,7 @@ int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
                        "the spheres are not approaching (U_rel(0) = " + fmt_number(u_rel0) +
                            " m/s, no gravity): there is no collision, so no e to compare");
   }
-  std::vector<std::pair<std::string, std::set<Effect>>> variants = {{"all", full.effects}};
+  std::vector<std::pair<std::string, EffectSet>> variants = {{"all", full.effects}};
   for (Effect e : full.effects) {
     if (e == Effect::elastic && full.has_target()) continue;  // required: the solids would pass through
     auto fewer = full.effects;

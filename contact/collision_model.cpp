@@ -25,7 +25,6 @@ double sphere_volume(double a) { return 4.0 / 3.0 * pi * a * a * a; }
 }  // namespace
 
 CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
-  for (Effect e : sc.effects) effects_ |= 1u << static_cast<unsigned>(e);
   target_ = sc.two_spheres() ? Target::sphere : (sc.wall ? Target::wall : Target::none);
   n_spheres_ = sc.spheres.size();
   if (sc.fluid) {

@@ -200,11 +200,9 @@ class CollisionModel : public DynamicalSystem {
   /// bounces = "first": the stop time once the rebound's measurements are complete (or can no longer be).
   void first_bounce_stop(double t);
 
-  /// The scene lists effect e (a bit mask of scene_.effects: the right-hand side asks often).
-  bool has(Effect e) const { return (effects_ >> static_cast<unsigned>(e)) & 1u; }
+  bool has(Effect e) const { return scene_.has(e); }
 
   const Scene scene_;
-  unsigned effects_ = 0;
   bool coupled_ = false;     // the flow effect: f_SL = H f_THR + (1 − H) f_SIM
   double delta_sl_m_ = 0;    // δ_SL, m
   double arm_gap_ = 0;       // the gap where the roots were last armed (t = 0 or the last event), m

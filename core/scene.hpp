@@ -1,7 +1,6 @@
 #pragma once
 // Scene description (MODEL.md §1) and its TOML parser. All quantities SI unless noted.
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -13,6 +12,42 @@ namespace imcol {
 enum class Effect { drag, lubrication, added_mass, elastic, gravity, history, flow };
 const char* to_string(Effect e);
 std::optional<Effect> effect_from_string(const std::string& s);
+
+/// The effects a scene lists, as a bit set (the right-hand side asks for them on every evaluation);
+/// iterated in the order of the enum.
+class EffectSet {
+  static constexpr int kCount = static_cast<int>(Effect::flow) + 1;
+  static constexpr unsigned bit(Effect e) { return 1u << static_cast<unsigned>(e); }
+
+ public:
+  class iterator {
+   public:
+    iterator(unsigned bits, int i) : bits_(bits), i_(i) { skip(); }
+    Effect operator*() const { return static_cast<Effect>(i_); }
+    iterator& operator++() {
+      ++i_;
+      skip();
+      return *this;
+    }
+    bool operator==(const iterator& o) const { return i_ == o.i_; }
+
+   private:
+    void skip() {
+      while (i_ < kCount && !((bits_ >> i_) & 1u)) ++i_;
+    }
+    unsigned bits_;
+    int i_;
+  };
+  void insert(Effect e) { bits_ |= bit(e); }
+  void erase(Effect e) { bits_ &= ~bit(e); }
+  bool contains(Effect e) const { return (bits_ & bit(e)) != 0; }
+  iterator begin() const { return {bits_, 0}; }
+  iterator end() const { return {bits_, kCount}; }
+  bool operator==(const EffectSet&) const = default;
+
+ private:
+  unsigned bits_ = 0;
+};
 
 struct Solid {
   std::string material;          // name in data/materials.csv, or "" for inline properties
@@ -46,7 +81,7 @@ struct Scene {
   std::vector<SphereSpec> spheres;   // impact sphere first, optional target second
   std::optional<WallSpec> wall;      // instead of a target sphere
   double gravity = -9.81;            // m/s^2 along z, used only with the `gravity` effect
-  std::set<Effect> effects;
+  EffectSet effects;
 
   struct Drag { DragLaw law = DragLaw::stokes; } drag;                  // stokes | schiller-naumann
   struct Lubrication {
@@ -99,7 +134,7 @@ struct Scene {
   struct Output { double dt = 0; } output;
   FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect  // s, trajectory sampling; 0 = window/100
 
-  bool has(Effect e) const { return effects.count(e) != 0; }
+  bool has(Effect e) const { return effects.contains(e); }
   bool two_spheres() const { return spheres.size() == 2; }
   bool has_target() const { return two_spheres() || wall.has_value(); }
 };

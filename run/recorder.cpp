@@ -9,10 +9,26 @@
 namespace imcol::run {
 
 using contact::Evaluation;
+using contact::SphereForces;
+
+namespace {
+
+/// The per-sphere force columns in their order: the effect that adds each, its name and its field.
+struct ForceColumn {
+  Effect effect;
+  const char* name;
+  double SphereForces::*field;
+};
+constexpr ForceColumn kForceColumns[] = {
+    {Effect::drag, "f_drag", &SphereForces::drag},         {Effect::lubrication, "f_lub", &SphereForces::lubrication},
+    {Effect::added_mass, "f_am", &SphereForces::added_mass}, {Effect::elastic, "f_contact", &SphereForces::contact},
+    {Effect::gravity, "f_grav", &SphereForces::gravity},    {Effect::history, "f_hist", &SphereForces::history},
+    {Effect::flow, "f_sim", &SphereForces::f_sim},          {Effect::flow, "f_thr", &SphereForces::f_thr}};
+
+}  // namespace
 
 Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress)
     : model_(model), sc_(sc), min_gap_(INFINITY), progress_(progress && ::isatty(2)) {
-  for (Effect e : sc.effects) effects_ |= 1u << static_cast<unsigned>(e);
   const bool pair = model.n_spheres() == 2;
   columns_ = {"t", "z1", "u1"};
   if (model.has_target()) columns_.push_back("gap");
@@ -23,16 +39,8 @@ Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progres
   if (model.has_target()) columns_.push_back("u_rel");
   for (int m = 1; m <= static_cast<int>(model.n_spheres()); ++m) {
     const std::string k = std::to_string(m);
-    if (sc.has(Effect::drag)) columns_.push_back("f_drag" + k);
-    if (sc.has(Effect::lubrication)) columns_.push_back("f_lub" + k);
-    if (sc.has(Effect::added_mass)) columns_.push_back("f_am" + k);
-    if (sc.has(Effect::elastic)) columns_.push_back("f_contact" + k);
-    if (sc.has(Effect::gravity)) columns_.push_back("f_grav" + k);
-    if (sc.has(Effect::history)) columns_.push_back("f_hist" + k);
-    if (sc.has(Effect::flow)) {
-      columns_.push_back("f_sim" + k);
-      columns_.push_back("f_thr" + k);
-    }
+    for (const auto& c : kForceColumns)
+      if (sc.has(c.effect)) columns_.push_back(c.name + k);
     columns_.push_back("a" + k);
   }
   if (sc.has(Effect::flow)) columns_.push_back("H");
@@ -53,20 +61,12 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
   if (model_.has_target()) r.push_back(ev.u_rel);
   for (std::size_t m = 0; m < model_.n_spheres(); ++m) {
     const auto& f = ev.f[m];
-    if (has(Effect::drag)) r.push_back(f.drag);
-    if (has(Effect::lubrication)) r.push_back(f.lubrication);
-    if (has(Effect::added_mass)) r.push_back(f.added_mass);
-    if (has(Effect::elastic)) r.push_back(f.contact);
-    if (has(Effect::gravity)) r.push_back(f.gravity);
-    if (has(Effect::history)) r.push_back(f.history);
-    if (has(Effect::flow)) {
-      r.push_back(f.f_sim);
-      r.push_back(f.f_thr);
-    }
+    for (const auto& c : kForceColumns)
+      if (sc_.has(c.effect)) r.push_back(f.*c.field);
     r.push_back(f.accel);
     max_history_ = std::max(max_history_, std::abs(f.history));
   }
-  if (has(Effect::flow)) r.push_back(ev.H);
+  if (sc_.has(Effect::flow)) r.push_back(ev.H);
   r.push_back(at_event ? 1.0 : 0.0);
   rows_.push_back(std::move(r));
   model_.observe(t, ev);  // may end the run: at rest on the wall, or moving with its partner

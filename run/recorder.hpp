@@ -30,7 +30,6 @@ class Recorder : public Observer {
 
  private:
   void show_progress(double t);
-  bool has(Effect e) const { return (effects_ >> static_cast<unsigned>(e)) & 1u; }  // sc_.has(e), asked per sample
 
   contact::CollisionModel& model_;
   const Scene& sc_;
@@ -39,7 +38,6 @@ class Recorder : public Observer {
   double min_gap_, max_force_ = 0, max_history_ = 0;
   long steps_ = 0;
   bool progress_ = false, shown_ = false;
-  unsigned effects_ = 0;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
 };
 
