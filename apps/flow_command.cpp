@@ -15,6 +15,7 @@
 #include "contact/formulas.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
+#include "core/timing.hpp"
 #include "core/toml_reader.hpp"
 #include "flow/cost.hpp"
 #include "flow/flow_scene.hpp"
@@ -124,7 +125,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   const double f_stokes = 6 * M_PI * mu * a * U;
   const long nsteps = std::max(1L, std::lround(std::ceil(sc.t_end / sc.dt - 1e-9)));
 
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = WallClock::now();
   Solver solver(set, sc.spheres_at(0.0));
   const auto thr = nb == 2 ? std::make_unique<AnalyticPairForce>(sc) : nullptr;
   if (!opt.quiet)
@@ -185,7 +186,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
     const auto next = sc.spheres_at(t);
     const flow::StepInfo info = solver.step(next);
     steps_done = n;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double wall = seconds_since(t0);
     const double cd = drag_sign * info.force[0] / q;
     // impulsively started sphere (Stokes + Basset, t > 0): F = 6πμaU (1 + a/√(πνt))
     const double fsb = f_stokes * (1 + a / std::sqrt(M_PI * nu * t));
@@ -267,7 +268,7 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
       if (sc.min_gap > 0 && gap < sc.min_gap * D) break;
     }
   }
-  const double wall_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall_total = seconds_since(t0);
   if (sc.snapshots > 0 && snap < sc.snapshots)  // stopped early: one last snapshot
     write_file_atomic(dir / ("snapshot_" + std::string(snap < 10 ? "0" : "") + std::to_string(snap) + ".csv"), snapshot_csv(solver));
 

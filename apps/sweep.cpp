@@ -19,6 +19,7 @@
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
+#include "core/timing.hpp"
 
 namespace imcol {
 
@@ -182,8 +183,8 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   std::atomic<int> next{0};
   int finished = 0, failed = 0;
   double last_write = -1;
-  const auto start = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const auto start = WallClock::now();
+  auto elapsed = [&] { return seconds_since(start); };
 
   auto worker = [&] {
     for (int i = next++; i < opt.points; i = next++) {

@@ -7,14 +7,13 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
+#include "core/timing.hpp"
 #include "flow/cost.hpp"
 #include "flow/snapshot.hpp"
 
 namespace imcol::coupling {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
@@ -91,7 +90,7 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   frame_z_ = mid;
   frame_u_ = new_u;
   kernel_->set_stream(-frame_u_);
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   flow::StepInfo info;
   const std::vector<flow::SphereState> imposed = frame_spheres(p, frame_z_, frame_u_);
   try {
@@ -130,7 +129,7 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
 
 void FlowCoupling::start_up() {
   const auto& fs = sc_.flow;
-  const auto t0 = Clock::now();
+  const auto t0 = WallClock::now();
   // Geometry of the finest level in the frame of the midpoint: the largest centre distance over the start-up and
   // the approach, the spheres, and room ahead of and behind the pair (its wake) in the direction of motion.
   const double h = D_ / fs.cells_per_diameter;
@@ -298,7 +297,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     if (sf.f0 != f_rest_ || n == 0) integ.reinit();  // the force jumps at t_n: restart the method there
     f_rest_ = f1;
     have_f_rest_ = true;
-    const auto t0 = Clock::now();
+    const auto t0 = WallClock::now();
     t = integ.advance(t1);
     stats_.ode_seconds += seconds_since(t0);
     ++n;

@@ -7,6 +7,7 @@
 
 #include "contact/collision_model.hpp"
 #include "core/report.hpp"
+#include "core/timing.hpp"
 #include "coupling/flow_coupling.hpp"
 #include "integrators/integrator.hpp"
 #include "run/bounces.hpp"
@@ -19,10 +20,6 @@ namespace imcol {
 namespace {
 
 using contact::CollisionModel;
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 IntegratorSettings integrator_settings(const Scene& sc) {
   IntegratorSettings st;
@@ -39,12 +36,12 @@ IntegratorSettings integrator_settings(const Scene& sc) {
 }  // namespace
 
 RunResult simulate(const Scene& sc, bool progress) {
-  const auto setup_start = std::chrono::steady_clock::now();
+  const auto setup_start = WallClock::now();
   CollisionModel model(sc);
   const double setup = seconds_since(setup_start);
 
   // Integrate: the reduced-order model alone, or coupled to the flow kernel.
-  const auto wall_start = std::chrono::steady_clock::now();
+  const auto wall_start = WallClock::now();
   run::Recorder rec(model, sc, progress);
   const IntegratorSettings st = integrator_settings(sc);
   std::unique_ptr<coupling::FlowCoupling> coupled;
