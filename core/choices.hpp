@@ -20,6 +20,17 @@ enum class WallCorrection { none, added_mass };                   // K_H = 1 | 1
 enum class IntegratorMethod { cvode, ida };
 enum class LinearSolverChoice { automatic, dense, schur, gmres };
 enum class BouncesMode { first, all };                            // measure.bounces
+/// How the flow exists at t = 0 (the [flow] table).
+enum class FlowStart {
+  impulsive,  // fluid at rest: the spheres' initial velocities are imposed over one flow step before t = 0
+  developed   // the initial velocities are imposed over a stated distance (or time) before t = 0
+};
+/// How f_SIM varies inside one flow step (MODEL.md §5).
+enum class ForceInStep {
+  linear,  // linear between its values at t_n and t_{n+1}: damps the alternating mode (measured order in Δt ≈ 0.8)
+  held     // the kernel's step force over the whole step (order ≈ 1.3), but an alternating instability grows for
+           // light spheres (density ratio 0.5 at 24 cells/D): docs/coupling.md
+};
 
 template <class E> struct ChoiceNames;
 #define IMCOL_CHOICE_NAMES(E, ...)                                                   \
@@ -40,6 +51,8 @@ IMCOL_CHOICE_NAMES(IntegratorMethod, {IntegratorMethod::cvode, "cvode"}, {Integr
 IMCOL_CHOICE_NAMES(LinearSolverChoice, {LinearSolverChoice::automatic, "auto"}, {LinearSolverChoice::dense, "dense"},
                    {LinearSolverChoice::schur, "schur"}, {LinearSolverChoice::gmres, "gmres"})
 IMCOL_CHOICE_NAMES(BouncesMode, {BouncesMode::first, "first"}, {BouncesMode::all, "all"})
+IMCOL_CHOICE_NAMES(FlowStart, {FlowStart::impulsive, "impulsive"}, {FlowStart::developed, "developed"})
+IMCOL_CHOICE_NAMES(ForceInStep, {ForceInStep::linear, "linear"}, {ForceInStep::held, "held"})
 #undef IMCOL_CHOICE_NAMES
 
 /// The scene's spelling of a choice.

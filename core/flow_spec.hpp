@@ -9,27 +9,6 @@ namespace imcol {
 
 class TableReader;
 
-/// How the flow exists at t = 0.
-enum class FlowStart {
-  impulsive,  // fluid at rest: the spheres' initial velocities are imposed over one flow step before t = 0
-  developed   // the initial velocities are imposed over a stated distance (or time) before t = 0
-};
-template <> struct ChoiceNames<FlowStart> {
-  static constexpr auto list = std::to_array<std::pair<FlowStart, std::string_view>>(
-      {{FlowStart::impulsive, "impulsive"}, {FlowStart::developed, "developed"}});
-};
-
-/// How f_SIM varies inside one flow step (MODEL.md §5).
-enum class ForceInStep {
-  linear,  // linear between its values at t_n and t_{n+1}: damps the alternating mode (measured order in Δt ≈ 0.8)
-  held     // the kernel's step force over the whole step (order ≈ 1.3), but an alternating instability grows for
-           // light spheres (density ratio 0.5 at 24 cells/D): docs/coupling.md
-};
-template <> struct ChoiceNames<ForceInStep> {
-  static constexpr auto list = std::to_array<std::pair<ForceInStep, std::string_view>>(
-      {{ForceInStep::linear, "linear"}, {ForceInStep::held, "held"}});
-};
-
 struct FlowSpec {
   int cells_per_diameter = 32;   // finest spacing h = D / cells_per_diameter
   int levels = 4;                // nested levels, each twice the size and spacing of the one inside
