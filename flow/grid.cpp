@@ -243,6 +243,14 @@ void FastSolver::eliminate_row(int op, int ii) {
   for (int k = 0; k < m_; ++k) d[k] = (d[k] - l * dm[k]) * inv[k];
 }
 
+void FastSolver::substitute_row(int op, int ii) {
+  double* d = buf_ + static_cast<std::size_t>(ii) * m_;
+  const double* dn = d + m_;
+  const double* inv = inv_den_[op].data() + static_cast<std::size_t>(ii) * m_;
+  const double u = upper_[op][ii];
+  for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
+}
+
 void FastSolver::forward(int op, double s, const std::vector<double>& f, const std::vector<double>& x) {
   for (int ii = 0; ii < n_; ++ii) {
     rhs_row(op, s, f, x, ii, line_);
@@ -313,15 +321,9 @@ void FastSolver::chain(int op, double s, const std::vector<double>& f, const std
 
 void FastSolver::back(int op, std::vector<double>& x, int rows) {
   rows = std::clamp(rows, 0, n_);
-  const auto& inv_den = inv_den_[op];
-  const auto& up = upper_[op];
   for (int ii = n_ - 2; ii >= 0; --ii) {
-    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
-    const double* dn = d + m_;
-    const double* inv = inv_den.data() + static_cast<std::size_t>(ii) * m_;
-    const double u = up[ii];
-    for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
-    if (ii + 1 < rows) pack_row(ii + 1, dn);
+    substitute_row(op, ii);
+    if (ii + 1 < rows) pack_row(ii + 1, buf_ + static_cast<std::size_t>(ii + 1) * m_);
   }
   if (rows == 0) return;
   pack_row(0, buf_);
@@ -335,8 +337,6 @@ void FastSolver::back_prolong(int op, std::vector<double>& x, int full_row, int 
   if (q1_.empty()) throw std::logic_error("FastSolver::back_prolong needs nz a multiple of 4");
   full_row = std::clamp(full_row, 0, n_ - 1);
   point_rows = std::clamp(point_rows, 0, n_);
-  const auto& inv_den = inv_den_[op];
-  const auto& up = upper_[op];
   const int j1 = N_ / 4, j3 = 3 * N_ / 4;
   auto finish = [&](int ii) {  // row ii is final
     const double* d = buf_ + static_cast<std::size_t>(ii) * m_;
@@ -353,11 +353,7 @@ void FastSolver::back_prolong(int op, std::vector<double>& x, int full_row, int 
   };
   finish(n_ - 1);
   for (int ii = n_ - 2; ii >= 0; --ii) {
-    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
-    const double* dn = d + m_;
-    const double* inv = inv_den.data() + static_cast<std::size_t>(ii) * m_;
-    const double u = up[ii];
-    for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
+    substitute_row(op, ii);
     finish(ii);
   }
   execute(1);
@@ -367,15 +363,7 @@ void FastSolver::back_prolong(int op, std::vector<double>& x, int full_row, int 
 
 void FastSolver::tridiag(int op) {
   for (int ii = 0; ii < n_; ++ii) eliminate_row(op, ii);
-  const auto& inv_den = inv_den_[op];
-  const auto& up = upper_[op];
-  for (int ii = n_ - 2; ii >= 0; --ii) {
-    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
-    const double* dn = d + m_;
-    const double* inv = inv_den.data() + static_cast<std::size_t>(ii) * m_;
-    const double u = up[ii];
-    for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
-  }
+  for (int ii = n_ - 2; ii >= 0; --ii) substitute_row(op, ii);
 }
 
 void FastSolver::save_modes(std::vector<double>& out) const {

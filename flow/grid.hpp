@@ -88,6 +88,7 @@ class FastSolver {
   void unpack_row(int ii, double* y, double s) const;  // transform output row ii, times s
   void rhs_row(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int ii, double* row) const;
   void eliminate_row(int op, int ii);             // forward sweep of the Thomas algorithm on row ii
+  void substitute_row(int op, int ii);            // its back substitution on row ii (row ii + 1 final)
   void chain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows, bool keep_modes);
   void build_tables();                         // per op: the Thomas factors of every mode
   void release();                              // plans and buffers
