@@ -252,15 +252,7 @@ void FastSolver::substitute_row(int op, int ii) {
 }
 
 void FastSolver::forward(int op, double s, const std::vector<double>& f, const std::vector<double>& x) {
-  for (int ii = 0; ii < n_; ++ii) {
-    rhs_row(op, s, f, x, ii, line_);
-    pack_row(ii, line_);
-  }
-  execute(n_);
-  for (int ii = 0; ii < n_; ++ii) {
-    unpack_row(ii, buf_ + static_cast<std::size_t>(ii) * m_, 1.0);
-    eliminate_row(op, ii);
-  }
+  chain(op, s, f, x, n_, false);  // every row transformed
 }
 
 void FastSolver::rechain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows) {
@@ -299,20 +291,13 @@ void FastSolver::chain(int op, double s, const std::vector<double>& f, const std
     double* row = buf_ + static_cast<std::size_t>(ii) * m_;
     const double c0 = -b * ih2 * x[g_.at(i, 0)], c1 = -b * ih2 * x[g_.at(i, g_.nz)];
     const double cp = c0 + c1, cm = c0 - c1;
+    auto put = [&](int k, double c) { row[k] = (keep_modes ? s * row[k] : 0.0) + c * s1_[k]; };
     int k = 0;
-    if (keep_modes) {
-      for (; k + 1 < m_; k += 2) {
-        row[k] = s * row[k] + cp * s1_[k];
-        row[k + 1] = s * row[k + 1] + cm * s1_[k + 1];
-      }
-      if (k < m_) row[k] = s * row[k] + cp * s1_[k];
-    } else {
-      for (; k + 1 < m_; k += 2) {
-        row[k] = cp * s1_[k];
-        row[k + 1] = cm * s1_[k + 1];
-      }
-      if (k < m_) row[k] = cp * s1_[k];
+    for (; k + 1 < m_; k += 2) {
+      put(k, cp);
+      put(k + 1, cm);
     }
+    if (k < m_) put(k, cp);
     if (ii == n_ - 1)
       for (int kk = 0; kk < m_; ++kk) row[kk] += outer[kk];
     eliminate_row(op, ii);
