@@ -12,16 +12,7 @@ namespace imcol::flow {
 
 void apply_stokes_operator(const LevelGeometry& g, const std::vector<double>& x, std::vector<double>& y) {
   y.assign(g.size(), 0.0);
-  const double ih2 = 1.0 / (g.h * g.h);
-  for (int i = 1; i < g.nr; ++i) {
-    const double cp = i / (i + 0.5), cm = i / (i - 0.5);
-    const double* xm = &x[g.at(i - 1, 0)];
-    const double* x0 = &x[g.at(i, 0)];
-    const double* xp = &x[g.at(i + 1, 0)];
-    double* yy = &y[g.at(i, 0)];
-    for (int j = 1; j < g.nz; ++j)
-      yy[j] = ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]);
-  }
+  for_each_stokes(g, x, [&](std::size_t p, double v) { y[p] = v; });
 }
 
 namespace {

@@ -35,6 +35,22 @@ struct LevelGeometry {
 /// Applies E² at interior vertices (boundary values of x are used; the result is 0 on the boundary).
 void apply_stokes_operator(const LevelGeometry& g, const std::vector<double>& x, std::vector<double>& y);
 
+/// The stencil above, interior vertices only: out(p, (E²x)_p) for p = at(i, j), 1 ≤ i < nr, 1 ≤ j < nz, line by line
+/// (the axis line i = 0 is taken as 0, as ψ there).
+template <class Out>
+void for_each_stokes(const LevelGeometry& g, const std::vector<double>& x, Out&& out) {
+  const double ih2 = 1.0 / (g.h * g.h);
+  for (int i = 1; i < g.nr; ++i) {
+    const double cp = i / (i + 0.5), cm = i / (i - 0.5);
+    const std::size_t row = g.at(i, 0);
+    const double* xm = &x[g.at(i - 1, 0)];
+    const double* x0 = &x[row];
+    const double* xp = &x[g.at(i + 1, 0)];
+    for (int j = 1; j < g.nz; ++j)
+      out(row + j, ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]));
+  }
+}
+
 /// Fast solver of (a I + b E²) x = f on the interior of one level for a fixed list of (a, b) pairs.
 /// Rows: interior radial lines i = 1..nr−1 are rows 0..nr−2 of the mode-space buffer (row i−1, mode k contiguous).
 class FastSolver {

@@ -358,22 +358,14 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     Level& L = lv_[l];
     nonlinear(L, s_.u_inf, nl_);
     const double ab_new = n_ == 0 ? 1.0 : 1.5, ab_old = n_ == 0 ? 0.0 : -0.5;
-    // interior only (the solves and coarsify read no boundary values of rhs); E²η as apply_stokes_operator
-    const LevelGeometry& g = L.g;
-    const double ih2 = 1.0 / (g.h * g.h);
-    for (int i = 1; i < g.nr; ++i) {
-      const double cp = i / (i + 0.5), cm = i / (i - 0.5);
-      const double* xm = &L.eta[g.at(i - 1, 0)];
-      const double* x0 = &L.eta[g.at(i, 0)];
-      const double* xp = &L.eta[g.at(i + 1, 0)];
-      const double* nn = &nl_[g.at(i, 0)];
-      const double* no = &L.nl_old[g.at(i, 0)];
-      double* rr = &L.rhs[g.at(i, 0)];
-      for (int j = 1; j < g.nz; ++j) {
-        const double lap = ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]);
-        rr[j] = x0[j] + dt * ((1 - th) * nu * lap + ab_new * nn[j] + ab_old * no[j]);
-      }
-    }
+    // interior only (the solves and coarsify read no boundary values of rhs)
+    const double* eta = L.eta.data();
+    const double* nn = nl_.data();
+    const double* no = L.nl_old.data();
+    double* rr = L.rhs.data();
+    for_each_stokes(L.g, L.eta, [&](std::size_t p, double lap) {
+      rr[p] = eta[p] + dt * ((1 - th) * nu * lap + ab_new * nn[p] + ab_old * no[p]);
+    });
     std::swap(L.nl_old, nl_);
   }
   // 2–3. vorticity predictor η* (its modes kept for the end of the step) and ψ* where the points read it
