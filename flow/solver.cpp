@@ -333,17 +333,19 @@ Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
   return out;
 }
 
-Eigen::MatrixXd Solver::force_matrix() {
+Eigen::MatrixXd Solver::force_matrix() { return diagonal_block_of_Q(0, static_cast<Eigen::Index>(2 * (pts_.size() + wall_count_))); }
+
+Eigen::MatrixXd Solver::diagonal_block_of_Q(Eigen::Index o, Eigen::Index n) {
   const Eigen::Index m = static_cast<Eigen::Index>(2 * (pts_.size() + wall_count_));
-  Eigen::MatrixXd Q(m, m);
+  Eigen::MatrixXd blk(n, n);
   Eigen::VectorXd e = Eigen::VectorXd::Zero(m), q;
-  for (Eigen::Index c = 0; c < m; ++c) {
-    e[c] = 1.0;
+  for (Eigen::Index c = 0; c < n; ++c) {
+    e[o + c] = 1.0;
     apply_Q_into(e, q);
-    Q.col(c) = q;
-    e[c] = 0.0;
+    blk.col(c) = q.segment(o, n);
+    e[o + c] = 0.0;
   }
-  return Q;
+  return blk;
 }
 
 StepInfo Solver::step(const std::vector<SphereState>& next) {
@@ -409,17 +411,7 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     // a sphere moves by whole cells, and the multi-level Q is nearly translation invariant
     prec_.clear();
     const LevelGeometry& G = lv_[0].g;
-    auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) {
-      Eigen::MatrixXd blk(n, n);
-      Eigen::VectorXd e = Eigen::VectorXd::Zero(m), q;
-      for (Eigen::Index c = 0; c < n; ++c) {
-        e[o + c] = 1.0;
-        apply_Q_into(e, q);
-        blk.col(c) = q.segment(o, n);
-        e[o + c] = 0.0;
-      }
-      return std::make_shared<BlockLU>(blk);
-    };
+    auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) { return std::make_shared<BlockLU>(diagonal_block_of_Q(o, n)); };
     for (std::size_t k = 0; k < pts_.size();) {
       std::size_t e = k;
       while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
