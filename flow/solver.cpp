@@ -49,18 +49,11 @@ void Solver::update_rows() {
   psi_rows_.assign(lv_.size(), 1);
   src_rows_.assign(lv_.size(), 1);
   for (std::size_t l = 0; l < lv_.size(); ++l) {
-    int need = l > 0 ? prolong_rows_ : 1;
-    int src = l > 0 ? coarse_rows_ : 1;  // coarsify fills rows < coarse_rows; the rings spread onto their own lines
-    if (l == 0) {
-      need = std::max(need, B_.max_line(lv_[0].g));
-      src = std::max(src, B_.max_line(lv_[0].g));
-    }
-    if (l < Bw_.size()) {
-      need = std::max(need, Bw_[l].max_line(lv_[l].g));
-      src = std::max(src, Bw_[l].max_line(lv_[l].g));
-    }
-    psi_rows_[l] = std::min(need, rows);
-    src_rows_[l] = std::min(src, rows);
+    int points = l == 0 ? B_.max_line(lv_[0].g) : 0;  // the last line the level's rings read and spread onto
+    if (l < Bw_.size()) points = std::max(points, Bw_[l].max_line(lv_[l].g));
+    // ψ: also the lines the finer level's boundary values read; the source: coarsify fills rows < coarse_rows
+    psi_rows_[l] = std::min(std::max(points, l > 0 ? prolong_rows_ : 1), rows);
+    src_rows_[l] = std::min(std::max(points, l > 0 ? coarse_rows_ : 1), rows);
   }
 }
 
