@@ -71,13 +71,11 @@ void FastSolver::prepare_rows(int rows) {
   Plans p{rows, nullptr, nullptr};
   {
     std::lock_guard<std::mutex> lock(planner_mutex());
+    int n = M_ ? N_ : 2 * N_, nc = n / 2 + 1;  // the odd extension's length: N (split) or 2N (padded)
+    p.fwd = fftw_plan_many_dft_r2c(1, &n, rows, ext_, nullptr, 1, n, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1, nc, flags_);
     if (M_) {
-      int n = N_, nc = N_ / 2 + 1, mm = M_, mc = M_ / 2 + 1;
-      p.fwd = fftw_plan_many_dft_r2c(1, &n, rows, ext_, nullptr, 1, n, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1, nc, flags_);
+      int mm = M_, mc = M_ / 2 + 1;
       p.bwd = fftw_plan_many_dft_c2r(1, &mm, rows, reinterpret_cast<fftw_complex*>(wv_), nullptr, 1, mc, vv_, nullptr, 1, mm, flags_);
-    } else {
-      int n = 2 * N_, nc = N_ + 1;
-      p.fwd = fftw_plan_many_dft_r2c(1, &n, rows, ext_, nullptr, 1, n, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1, nc, flags_);
     }
   }
   if (!p.fwd || (M_ && !p.bwd)) {
