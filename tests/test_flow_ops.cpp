@@ -56,28 +56,28 @@ TEST(FlowOps, DivergenceOfStreamfunctionVelocityIsZero) {
 TEST(FlowOps, SolveThenApplyReturnsInput) {
   // nz = 20: the split-radix sine transform (nz a multiple of 4); nz = 18: the padded one
   for (int nz : {20, 18}) {
-  const auto g = tiny(12, nz, 0.05, -0.5);
-  FastSolver fs(g, {{0.0, 1.0}, {1.0, -0.37}, {2.5, -1e-3}});
-  for (int op = 0; op < 3; ++op) {
-    const double a = op == 0 ? 0.0 : op == 1 ? 1.0 : 2.5, b = op == 0 ? 1.0 : op == 1 ? -0.37 : -1e-3;
-    auto x = random_field(g, 10 + op);  // boundary values (outer, top, bottom) are data
-    const auto bnd = x;
-    const auto f = random_field(g, 20 + op);
-    fs.solve(op, f, x);
-    std::vector<double> lap;
-    apply_stokes_operator(g, x, lap);
-    double err = 0, fmax = 0;
-    for (int i = 1; i < g.nr; ++i)
-      for (int j = 1; j < g.nz; ++j) {
-        err = std::max(err, std::abs(a * x[g.at(i, j)] + b * lap[g.at(i, j)] - f[g.at(i, j)]));
-        fmax = std::max(fmax, std::abs(f[g.at(i, j)]));
-      }
-    double bnd_err = 0;
-    for (int j = 0; j <= g.nz; ++j) bnd_err = std::max(bnd_err, std::abs(x[g.at(g.nr, j)] - bnd[g.at(g.nr, j)]));
-    std::printf("nz %d, op %d: max |(aI + bE²)x − f| / max|f| = %.3e\n", nz, op, err / fmax);
-    EXPECT_LT(err / fmax, 1e-10);
-    EXPECT_EQ(bnd_err, 0.0);
-  }
+    const auto g = tiny(12, nz, 0.05, -0.5);
+    FastSolver fs(g, {{0.0, 1.0}, {1.0, -0.37}, {2.5, -1e-3}});
+    for (int op = 0; op < 3; ++op) {
+      const double a = op == 0 ? 0.0 : op == 1 ? 1.0 : 2.5, b = op == 0 ? 1.0 : op == 1 ? -0.37 : -1e-3;
+      auto x = random_field(g, 10 + op);  // boundary values (outer, top, bottom) are data
+      const auto bnd = x;
+      const auto f = random_field(g, 20 + op);
+      fs.solve(op, f, x);
+      std::vector<double> lap;
+      apply_stokes_operator(g, x, lap);
+      double err = 0, fmax = 0;
+      for (int i = 1; i < g.nr; ++i)
+        for (int j = 1; j < g.nz; ++j) {
+          err = std::max(err, std::abs(a * x[g.at(i, j)] + b * lap[g.at(i, j)] - f[g.at(i, j)]));
+          fmax = std::max(fmax, std::abs(f[g.at(i, j)]));
+        }
+      double bnd_err = 0;
+      for (int j = 0; j <= g.nz; ++j) bnd_err = std::max(bnd_err, std::abs(x[g.at(g.nr, j)] - bnd[g.at(g.nr, j)]));
+      std::printf("nz %d, op %d: max |(aI + bE²)x − f| / max|f| = %.3e\n", nz, op, err / fmax);
+      EXPECT_LT(err / fmax, 1e-10);
+      EXPECT_EQ(bnd_err, 0.0);
+    }
   }
 }
 
