@@ -30,7 +30,7 @@ FastSolver::FastSolver(const LevelGeometry& g, std::vector<Op> ops, bool measure
   M_ = N_ % 4 == 0 ? N_ / 2 : 0;
   flags_ = measure_plans ? FFTW_MEASURE : FFTW_ESTIMATE;
   const std::size_t rows = static_cast<std::size_t>(n_);
-  const std::size_t len = M_ ? static_cast<std::size_t>(N_) : 2 * static_cast<std::size_t>(N_);
+  const std::size_t len = ext_len();
   buf_ = fftw_alloc_real(static_cast<std::size_t>(m_) * rows);
   ext_ = fftw_alloc_real(len * rows);
   spec_ = reinterpret_cast<double*>(fftw_alloc_complex((len / 2 + 1) * rows));
@@ -71,7 +71,7 @@ void FastSolver::prepare_rows(int rows) {
   Plans p{rows, nullptr, nullptr};
   {
     std::lock_guard<std::mutex> lock(planner_mutex());
-    int n = M_ ? N_ : 2 * N_, nc = n / 2 + 1;  // the odd extension's length: N (split) or 2N (padded)
+    int n = static_cast<int>(ext_len()), nc = n / 2 + 1;
     p.fwd = fftw_plan_many_dft_r2c(1, &n, rows, ext_, nullptr, 1, n, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1, nc, flags_);
     if (M_) {
       int mm = M_, mc = M_ / 2 + 1;
@@ -138,7 +138,7 @@ void FastSolver::release() {
 
 std::size_t FastSolver::bytes() const {
   const std::size_t rows = static_cast<std::size_t>(n_);
-  const std::size_t len = M_ ? static_cast<std::size_t>(N_) : 2 * static_cast<std::size_t>(N_);
+  const std::size_t len = ext_len();
   return sizeof(double) * (rows * m_ * (1 + ops_.size()) + rows * (len + 2 * (len / 2 + 1)) + (M_ ? rows * (M_ + 2 * (M_ / 2 + 1)) : 0));
 }
 

@@ -97,6 +97,7 @@ class FastSolver {
  private:
   struct Plans { int rows; fftw_plan_s* fwd; fftw_plan_s* bwd; };  // split: fwd r2c, bwd c2r; padded: fwd only
   const Plans& plans_for(int rows) const;      // the smallest prepared count ≥ rows
+  std::size_t ext_len() const { return M_ ? static_cast<std::size_t>(N_) : 2 * static_cast<std::size_t>(N_); }  // odd extension: N or 2N
   // DST-I of `rows` lines of m_ values, line ii at src + ii·src_stride, into line ii at dst + ii·dst_stride, times s
   void dst(const double* src, std::size_t src_stride, double* dst, std::size_t dst_stride, double s, int rows);
   void pack_row(int ii, const double* x);         // transform input row ii
