@@ -135,7 +135,7 @@ SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std:
     soe_->weights(Re, w_, kappa);
     double sum = 0;
     if (stepwise_) {
-      sum = memory_sum(t, U, w_, kernel_.kind() == KernelKind::basset);
+      sum = memory_sum(t, U, w_);
     } else {
       for (std::size_t i = 0; i < w_.size(); ++i) sum += w_[i] * z[i];
     }
@@ -268,36 +268,34 @@ bool SphereHistory::in_step(double t, double U) const {
   return true;
 }
 
-double SphereHistory::memory_sum(double t, double U, std::span<const double> w, bool basset) const {
+double SphereHistory::memory_sum(double t, double U, std::span<const double> w) const {
   if (!in_step(t, U)) {
     double sum = 0;
     for (std::size_t i = 0; i < z_.size(); ++i) sum += w[i] * z_[i];
     return sum;
   }
   const StepCache& c = cache_[cur_];
-  if (basset) {
+  if (kernel_.kind() == KernelKind::basset) {  // Re-independent weights: the sums in_step cached
     double sum = c.sums[0];
     for (int j = 0; j < nd_; ++j) sum += d_[j] * c.sums[j + 1];
     return sum;
   }
   double sum = 0;
-  for (std::size_t i = 0; i < z_.size(); ++i) {
-    double inc = 0;
-    for (int j = 0; j < nd_; ++j) inc += d_[j] * c.m[kPoints * i + j];
-    sum += w[i] * (c.ez[i] + inc);
-  }
+  for (std::size_t i = 0; i < z_.size(); ++i) sum += w[i] * mode_in_step(c, i);
   return sum;
+}
+
+double SphereHistory::mode_in_step(const StepCache& c, std::size_t i) const {
+  double inc = 0;
+  for (int j = 0; j < nd_; ++j) inc += d_[j] * c.m[kPoints * i + j];
+  return c.ez[i] + inc;
 }
 
 void SphereHistory::advance_memory(double t, double U, bool restart) {
   if (!stepwise_) return;
   if (in_step(t, U)) {
     const StepCache& c = cache_[cur_];
-    for (std::size_t i = 0; i < z_.size(); ++i) {
-      double inc = 0;
-      for (int j = 0; j < nd_; ++j) inc += d_[j] * c.m[kPoints * i + j];
-      z_[i] = c.ez[i] + inc;
-    }
+    for (std::size_t i = 0; i < z_.size(); ++i) z_[i] = mode_in_step(c, i);
   } else if (np_ > 0 && !restart) {
     return;  // not a new time
   }

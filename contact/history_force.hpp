@@ -109,7 +109,7 @@ class SphereHistory {
   /// soe-step: E_i = e^(−λ_i Δ), M_ij (j < kPoints) at Δ = t − t_n, and P' coefficients d for (t, U); false if Δ ≤ 0.
   bool in_step(double t, double U) const;
   /// soe-step: Σ w_i z_i(t) with the in-step polynomial through (t, U).
-  double memory_sum(double t, double U, std::span<const double> w, bool basset) const;
+  double memory_sum(double t, double U, std::span<const double> w) const;
   double start_floor() const;
 
   HistoryKernel kernel_;
@@ -138,6 +138,7 @@ class SphereHistory {
   mutable int cur_ = 0;                 // the slot in_step filled or found last
   const SphereHistory* twin_ = nullptr; // an equal sphere (same exponentials) whose e and M are reused
   void fill_step(StepCache& c, double dt) const;
+  double mode_in_step(const StepCache& c, std::size_t i) const;  // z_i(t) = e^(−λ_i Δ) z_i + Σ_j d_j M_ij (after in_step)
   mutable std::array<double, kPoints> d_{};  // P'(σ) = Σ_j d_j σ^j
   mutable int nd_ = 0;
 };

@@ -12,16 +12,7 @@ namespace imcol::flow {
 
 void apply_stokes_operator(const LevelGeometry& g, const std::vector<double>& x, std::vector<double>& y) {
   y.assign(g.size(), 0.0);
-  const double ih2 = 1.0 / (g.h * g.h);
-  for (int i = 1; i < g.nr; ++i) {
-    const double cp = i / (i + 0.5), cm = i / (i - 0.5);
-    const double* xm = &x[g.at(i - 1, 0)];
-    const double* x0 = &x[g.at(i, 0)];
-    const double* xp = &x[g.at(i + 1, 0)];
-    double* yy = &y[g.at(i, 0)];
-    for (int j = 1; j < g.nz; ++j)
-      yy[j] = ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]);
-  }
+  for_each_stokes(g, x, [&](std::size_t p, double v) { y[p] = v; });
 }
 
 namespace {
@@ -39,7 +30,7 @@ FastSolver::FastSolver(const LevelGeometry& g, std::vector<Op> ops, bool measure
   M_ = N_ % 4 == 0 ? N_ / 2 : 0;
   flags_ = measure_plans ? FFTW_MEASURE : FFTW_ESTIMATE;
   const std::size_t rows = static_cast<std::size_t>(n_);
-  const std::size_t len = M_ ? static_cast<std::size_t>(N_) : 2 * static_cast<std::size_t>(N_);
+  const std::size_t len = ext_len();
   buf_ = fftw_alloc_real(static_cast<std::size_t>(m_) * rows);
   ext_ = fftw_alloc_real(len * rows);
   spec_ = reinterpret_cast<double*>(fftw_alloc_complex((len / 2 + 1) * rows));
@@ -80,13 +71,11 @@ void FastSolver::prepare_rows(int rows) {
   Plans p{rows, nullptr, nullptr};
   {
     std::lock_guard<std::mutex> lock(planner_mutex());
+    int n = static_cast<int>(ext_len()), nc = n / 2 + 1;
+    p.fwd = fftw_plan_many_dft_r2c(1, &n, rows, ext_, nullptr, 1, n, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1, nc, flags_);
     if (M_) {
-      int n = N_, nc = N_ / 2 + 1, mm = M_, mc = M_ / 2 + 1;
-      p.fwd = fftw_plan_many_dft_r2c(1, &n, rows, ext_, nullptr, 1, n, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1, nc, flags_);
+      int mm = M_, mc = M_ / 2 + 1;
       p.bwd = fftw_plan_many_dft_c2r(1, &mm, rows, reinterpret_cast<fftw_complex*>(wv_), nullptr, 1, mc, vv_, nullptr, 1, mm, flags_);
-    } else {
-      int n = 2 * N_, nc = N_ + 1;
-      p.fwd = fftw_plan_many_dft_r2c(1, &n, rows, ext_, nullptr, 1, n, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1, nc, flags_);
     }
   }
   if (!p.fwd || (M_ && !p.bwd)) {
@@ -149,7 +138,7 @@ void FastSolver::release() {
 
 std::size_t FastSolver::bytes() const {
   const std::size_t rows = static_cast<std::size_t>(n_);
-  const std::size_t len = M_ ? static_cast<std::size_t>(N_) : 2 * static_cast<std::size_t>(N_);
+  const std::size_t len = ext_len();
   return sizeof(double) * (rows * m_ * (1 + ops_.size()) + rows * (len + 2 * (len / 2 + 1)) + (M_ ? rows * (M_ + 2 * (M_ / 2 + 1)) : 0));
 }
 
@@ -243,16 +232,16 @@ void FastSolver::eliminate_row(int op, int ii) {
   for (int k = 0; k < m_; ++k) d[k] = (d[k] - l * dm[k]) * inv[k];
 }
 
+void FastSolver::substitute_row(int op, int ii) {
+  double* d = buf_ + static_cast<std::size_t>(ii) * m_;
+  const double* dn = d + m_;
+  const double* inv = inv_den_[op].data() + static_cast<std::size_t>(ii) * m_;
+  const double u = upper_[op][ii];
+  for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
+}
+
 void FastSolver::forward(int op, double s, const std::vector<double>& f, const std::vector<double>& x) {
-  for (int ii = 0; ii < n_; ++ii) {
-    rhs_row(op, s, f, x, ii, line_);
-    pack_row(ii, line_);
-  }
-  execute(n_);
-  for (int ii = 0; ii < n_; ++ii) {
-    unpack_row(ii, buf_ + static_cast<std::size_t>(ii) * m_, 1.0);
-    eliminate_row(op, ii);
-  }
+  chain(op, s, f, x, n_, false);  // every row transformed
 }
 
 void FastSolver::rechain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows) {
@@ -291,20 +280,13 @@ void FastSolver::chain(int op, double s, const std::vector<double>& f, const std
     double* row = buf_ + static_cast<std::size_t>(ii) * m_;
     const double c0 = -b * ih2 * x[g_.at(i, 0)], c1 = -b * ih2 * x[g_.at(i, g_.nz)];
     const double cp = c0 + c1, cm = c0 - c1;
+    auto put = [&](int k, double c) { row[k] = (keep_modes ? s * row[k] : 0.0) + c * s1_[k]; };
     int k = 0;
-    if (keep_modes) {
-      for (; k + 1 < m_; k += 2) {
-        row[k] = s * row[k] + cp * s1_[k];
-        row[k + 1] = s * row[k + 1] + cm * s1_[k + 1];
-      }
-      if (k < m_) row[k] = s * row[k] + cp * s1_[k];
-    } else {
-      for (; k + 1 < m_; k += 2) {
-        row[k] = cp * s1_[k];
-        row[k + 1] = cm * s1_[k + 1];
-      }
-      if (k < m_) row[k] = cp * s1_[k];
+    for (; k + 1 < m_; k += 2) {
+      put(k, cp);
+      put(k + 1, cm);
     }
+    if (k < m_) put(k, cp);
     if (ii == n_ - 1)
       for (int kk = 0; kk < m_; ++kk) row[kk] += outer[kk];
     eliminate_row(op, ii);
@@ -313,15 +295,9 @@ void FastSolver::chain(int op, double s, const std::vector<double>& f, const std
 
 void FastSolver::back(int op, std::vector<double>& x, int rows) {
   rows = std::clamp(rows, 0, n_);
-  const auto& inv_den = inv_den_[op];
-  const auto& up = upper_[op];
   for (int ii = n_ - 2; ii >= 0; --ii) {
-    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
-    const double* dn = d + m_;
-    const double* inv = inv_den.data() + static_cast<std::size_t>(ii) * m_;
-    const double u = up[ii];
-    for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
-    if (ii + 1 < rows) pack_row(ii + 1, dn);
+    substitute_row(op, ii);
+    if (ii + 1 < rows) pack_row(ii + 1, buf_ + static_cast<std::size_t>(ii + 1) * m_);
   }
   if (rows == 0) return;
   pack_row(0, buf_);
@@ -335,8 +311,6 @@ void FastSolver::back_prolong(int op, std::vector<double>& x, int full_row, int 
   if (q1_.empty()) throw std::logic_error("FastSolver::back_prolong needs nz a multiple of 4");
   full_row = std::clamp(full_row, 0, n_ - 1);
   point_rows = std::clamp(point_rows, 0, n_);
-  const auto& inv_den = inv_den_[op];
-  const auto& up = upper_[op];
   const int j1 = N_ / 4, j3 = 3 * N_ / 4;
   auto finish = [&](int ii) {  // row ii is final
     const double* d = buf_ + static_cast<std::size_t>(ii) * m_;
@@ -353,11 +327,7 @@ void FastSolver::back_prolong(int op, std::vector<double>& x, int full_row, int 
   };
   finish(n_ - 1);
   for (int ii = n_ - 2; ii >= 0; --ii) {
-    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
-    const double* dn = d + m_;
-    const double* inv = inv_den.data() + static_cast<std::size_t>(ii) * m_;
-    const double u = up[ii];
-    for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
+    substitute_row(op, ii);
     finish(ii);
   }
   execute(1);
@@ -367,15 +337,7 @@ void FastSolver::back_prolong(int op, std::vector<double>& x, int full_row, int 
 
 void FastSolver::tridiag(int op) {
   for (int ii = 0; ii < n_; ++ii) eliminate_row(op, ii);
-  const auto& inv_den = inv_den_[op];
-  const auto& up = upper_[op];
-  for (int ii = n_ - 2; ii >= 0; --ii) {
-    double* d = buf_ + static_cast<std::size_t>(ii) * m_;
-    const double* dn = d + m_;
-    const double* inv = inv_den.data() + static_cast<std::size_t>(ii) * m_;
-    const double u = up[ii];
-    for (int k = 0; k < m_; ++k) d[k] -= u * inv[k] * dn[k];
-  }
+  for (int ii = n_ - 2; ii >= 0; --ii) substitute_row(op, ii);
 }
 
 void FastSolver::save_modes(std::vector<double>& out) const {

@@ -35,6 +35,22 @@ struct LevelGeometry {
 /// Applies E² at interior vertices (boundary values of x are used; the result is 0 on the boundary).
 void apply_stokes_operator(const LevelGeometry& g, const std::vector<double>& x, std::vector<double>& y);
 
+/// The stencil above, interior vertices only: out(p, (E²x)_p) for p = at(i, j), 1 ≤ i < nr, 1 ≤ j < nz, line by line
+/// (the axis line i = 0 is taken as 0, as ψ there).
+template <class Out>
+void for_each_stokes(const LevelGeometry& g, const std::vector<double>& x, Out&& out) {
+  const double ih2 = 1.0 / (g.h * g.h);
+  for (int i = 1; i < g.nr; ++i) {
+    const double cp = i / (i + 0.5), cm = i / (i - 0.5);
+    const std::size_t row = g.at(i, 0);
+    const double* xm = &x[g.at(i - 1, 0)];
+    const double* x0 = &x[row];
+    const double* xp = &x[g.at(i + 1, 0)];
+    for (int j = 1; j < g.nz; ++j)
+      out(row + j, ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]));
+  }
+}
+
 /// Fast solver of (a I + b E²) x = f on the interior of one level for a fixed list of (a, b) pairs.
 /// Rows: interior radial lines i = 1..nr−1 are rows 0..nr−2 of the mode-space buffer (row i−1, mode k contiguous).
 class FastSolver {
@@ -81,6 +97,7 @@ class FastSolver {
  private:
   struct Plans { int rows; fftw_plan_s* fwd; fftw_plan_s* bwd; };  // split: fwd r2c, bwd c2r; padded: fwd only
   const Plans& plans_for(int rows) const;      // the smallest prepared count ≥ rows
+  std::size_t ext_len() const { return M_ ? static_cast<std::size_t>(N_) : 2 * static_cast<std::size_t>(N_); }  // odd extension: N or 2N
   // DST-I of `rows` lines of m_ values, line ii at src + ii·src_stride, into line ii at dst + ii·dst_stride, times s
   void dst(const double* src, std::size_t src_stride, double* dst, std::size_t dst_stride, double s, int rows);
   void pack_row(int ii, const double* x);         // transform input row ii
@@ -88,6 +105,7 @@ class FastSolver {
   void unpack_row(int ii, double* y, double s) const;  // transform output row ii, times s
   void rhs_row(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int ii, double* row) const;
   void eliminate_row(int op, int ii);             // forward sweep of the Thomas algorithm on row ii
+  void substitute_row(int op, int ii);            // its back substitution on row ii (row ii + 1 final)
   void chain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows, bool keep_modes);
   void build_tables();                         // per op: the Thomas factors of every mode
   void release();                              // plans and buffers

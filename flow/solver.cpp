@@ -49,18 +49,11 @@ void Solver::update_rows() {
   psi_rows_.assign(lv_.size(), 1);
   src_rows_.assign(lv_.size(), 1);
   for (std::size_t l = 0; l < lv_.size(); ++l) {
-    int need = l > 0 ? prolong_rows_ : 1;
-    int src = l > 0 ? coarse_rows_ : 1;  // coarsify fills rows < coarse_rows; the rings spread onto their own lines
-    if (l == 0) {
-      need = std::max(need, B_.max_line(lv_[0].g));
-      src = std::max(src, B_.max_line(lv_[0].g));
-    }
-    if (l < Bw_.size()) {
-      need = std::max(need, Bw_[l].max_line(lv_[l].g));
-      src = std::max(src, Bw_[l].max_line(lv_[l].g));
-    }
-    psi_rows_[l] = std::min(need, rows);
-    src_rows_[l] = std::min(src, rows);
+    int points = l == 0 ? B_.max_line(lv_[0].g) : 0;  // the last line the level's rings read and spread onto
+    if (l < Bw_.size()) points = std::max(points, Bw_[l].max_line(lv_[l].g));
+    // ψ: also the lines the finer level's boundary values read; the source: coarsify fills rows < coarse_rows
+    psi_rows_[l] = std::min(std::max(points, l > 0 ? prolong_rows_ : 1), rows);
+    src_rows_[l] = std::min(std::max(points, l > 0 ? coarse_rows_ : 1), rows);
   }
 }
 
@@ -333,17 +326,19 @@ Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
   return out;
 }
 
-Eigen::MatrixXd Solver::force_matrix() {
+Eigen::MatrixXd Solver::force_matrix() { return diagonal_block_of_Q(0, static_cast<Eigen::Index>(2 * (pts_.size() + wall_count_))); }
+
+Eigen::MatrixXd Solver::diagonal_block_of_Q(Eigen::Index o, Eigen::Index n) {
   const Eigen::Index m = static_cast<Eigen::Index>(2 * (pts_.size() + wall_count_));
-  Eigen::MatrixXd Q(m, m);
+  Eigen::MatrixXd blk(n, n);
   Eigen::VectorXd e = Eigen::VectorXd::Zero(m), q;
-  for (Eigen::Index c = 0; c < m; ++c) {
-    e[c] = 1.0;
+  for (Eigen::Index c = 0; c < n; ++c) {
+    e[o + c] = 1.0;
     apply_Q_into(e, q);
-    Q.col(c) = q;
-    e[c] = 0.0;
+    blk.col(c) = q.segment(o, n);
+    e[o + c] = 0.0;
   }
-  return Q;
+  return blk;
 }
 
 StepInfo Solver::step(const std::vector<SphereState>& next) {
@@ -358,22 +353,14 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     Level& L = lv_[l];
     nonlinear(L, s_.u_inf, nl_);
     const double ab_new = n_ == 0 ? 1.0 : 1.5, ab_old = n_ == 0 ? 0.0 : -0.5;
-    // interior only (the solves and coarsify read no boundary values of rhs); E²η as apply_stokes_operator
-    const LevelGeometry& g = L.g;
-    const double ih2 = 1.0 / (g.h * g.h);
-    for (int i = 1; i < g.nr; ++i) {
-      const double cp = i / (i + 0.5), cm = i / (i - 0.5);
-      const double* xm = &L.eta[g.at(i - 1, 0)];
-      const double* x0 = &L.eta[g.at(i, 0)];
-      const double* xp = &L.eta[g.at(i + 1, 0)];
-      const double* nn = &nl_[g.at(i, 0)];
-      const double* no = &L.nl_old[g.at(i, 0)];
-      double* rr = &L.rhs[g.at(i, 0)];
-      for (int j = 1; j < g.nz; ++j) {
-        const double lap = ih2 * (cp * (xp[j] - x0[j]) - cm * (x0[j] - (i == 1 ? 0.0 : xm[j])) + x0[j + 1] - 2 * x0[j] + x0[j - 1]);
-        rr[j] = x0[j] + dt * ((1 - th) * nu * lap + ab_new * nn[j] + ab_old * no[j]);
-      }
-    }
+    // interior only (the solves and coarsify read no boundary values of rhs)
+    const double* eta = L.eta.data();
+    const double* nn = nl_.data();
+    const double* no = L.nl_old.data();
+    double* rr = L.rhs.data();
+    for_each_stokes(L.g, L.eta, [&](std::size_t p, double lap) {
+      rr[p] = eta[p] + dt * ((1 - th) * nu * lap + ab_new * nn[p] + ab_old * no[p]);
+    });
     std::swap(L.nl_old, nl_);
   }
   // 2–3. vorticity predictor η* (its modes kept for the end of the step) and ψ* where the points read it
@@ -417,17 +404,7 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     // a sphere moves by whole cells, and the multi-level Q is nearly translation invariant
     prec_.clear();
     const LevelGeometry& G = lv_[0].g;
-    auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) {
-      Eigen::MatrixXd blk(n, n);
-      Eigen::VectorXd e = Eigen::VectorXd::Zero(m), q;
-      for (Eigen::Index c = 0; c < n; ++c) {
-        e[o + c] = 1.0;
-        apply_Q_into(e, q);
-        blk.col(c) = q.segment(o, n);
-        e[o + c] = 0.0;
-      }
-      return std::make_shared<BlockLU>(blk);
-    };
+    auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) { return std::make_shared<BlockLU>(diagonal_block_of_Q(o, n)); };
     for (std::size_t k = 0; k < pts_.size();) {
       std::size_t e = k;
       while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;

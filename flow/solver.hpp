@@ -162,6 +162,7 @@ class Solver {
   /// add_saved); partial: only the lines read by the body points and the finer levels.
   void pass_streamfunction(std::vector<double> Level::*eta, std::vector<double> Level::*psi, bool partial, bool add_saved);
   void apply_Q_into(const Eigen::VectorXd& g, Eigen::VectorXd& out);  // partial passes
+  Eigen::MatrixXd diagonal_block_of_Q(Eigen::Index o, Eigen::Index n);  // Q's rows and columns o..o+n−1, n applications
   /// The end of the step for forces g: etac ← η* + A⁻¹Sg, psic ← P⁻¹ of it (full); u_ ← velocities at the points.
   void final_pass(const Eigen::VectorXd& g);
   /// Solves Q g_ = b (warm start g_); returns iterations and the true relative residual. On return final_pass(g_)

@@ -56,28 +56,28 @@ TEST(FlowOps, DivergenceOfStreamfunctionVelocityIsZero) {
 TEST(FlowOps, SolveThenApplyReturnsInput) {
   // nz = 20: the split-radix sine transform (nz a multiple of 4); nz = 18: the padded one
   for (int nz : {20, 18}) {
-  const auto g = tiny(12, nz, 0.05, -0.5);
-  FastSolver fs(g, {{0.0, 1.0}, {1.0, -0.37}, {2.5, -1e-3}});
-  for (int op = 0; op < 3; ++op) {
-    const double a = op == 0 ? 0.0 : op == 1 ? 1.0 : 2.5, b = op == 0 ? 1.0 : op == 1 ? -0.37 : -1e-3;
-    auto x = random_field(g, 10 + op);  // boundary values (outer, top, bottom) are data
-    const auto bnd = x;
-    const auto f = random_field(g, 20 + op);
-    fs.solve(op, f, x);
-    std::vector<double> lap;
-    apply_stokes_operator(g, x, lap);
-    double err = 0, fmax = 0;
-    for (int i = 1; i < g.nr; ++i)
-      for (int j = 1; j < g.nz; ++j) {
-        err = std::max(err, std::abs(a * x[g.at(i, j)] + b * lap[g.at(i, j)] - f[g.at(i, j)]));
-        fmax = std::max(fmax, std::abs(f[g.at(i, j)]));
-      }
-    double bnd_err = 0;
-    for (int j = 0; j <= g.nz; ++j) bnd_err = std::max(bnd_err, std::abs(x[g.at(g.nr, j)] - bnd[g.at(g.nr, j)]));
-    std::printf("nz %d, op %d: max |(aI + bE²)x − f| / max|f| = %.3e\n", nz, op, err / fmax);
-    EXPECT_LT(err / fmax, 1e-10);
-    EXPECT_EQ(bnd_err, 0.0);
-  }
+    const auto g = tiny(12, nz, 0.05, -0.5);
+    FastSolver fs(g, {{0.0, 1.0}, {1.0, -0.37}, {2.5, -1e-3}});
+    for (int op = 0; op < 3; ++op) {
+      const double a = op == 0 ? 0.0 : op == 1 ? 1.0 : 2.5, b = op == 0 ? 1.0 : op == 1 ? -0.37 : -1e-3;
+      auto x = random_field(g, 10 + op);  // boundary values (outer, top, bottom) are data
+      const auto bnd = x;
+      const auto f = random_field(g, 20 + op);
+      fs.solve(op, f, x);
+      std::vector<double> lap;
+      apply_stokes_operator(g, x, lap);
+      double err = 0, fmax = 0;
+      for (int i = 1; i < g.nr; ++i)
+        for (int j = 1; j < g.nz; ++j) {
+          err = std::max(err, std::abs(a * x[g.at(i, j)] + b * lap[g.at(i, j)] - f[g.at(i, j)]));
+          fmax = std::max(fmax, std::abs(f[g.at(i, j)]));
+        }
+      double bnd_err = 0;
+      for (int j = 0; j <= g.nz; ++j) bnd_err = std::max(bnd_err, std::abs(x[g.at(g.nr, j)] - bnd[g.at(g.nr, j)]));
+      std::printf("nz %d, op %d: max |(aI + bE²)x − f| / max|f| = %.3e\n", nz, op, err / fmax);
+      EXPECT_LT(err / fmax, 1e-10);
+      EXPECT_EQ(bnd_err, 0.0);
+    }
   }
 }
 
@@ -134,6 +134,39 @@ TEST(FlowOps, ChainedSolveInModeSpaceEqualsTwoSolves) {
     }
     EXPECT_LT(ey, 1e-12 * sy);
   }
+}
+
+TEST(FlowOps, BackProlongWritesTheSolveOnTheLinesProlongationReads) {
+  // back_prolong (the solver's partial pass on a coarse level): the whole line full_row + 1 and the vertices
+  // j = nz/4, 3nz/4 on lines 1..point_rows as a full solve gives them; every other interior vertex left alone
+  const auto g = tiny(12, 20, 0.05, -0.5);
+  FastSolver fs(g, {{0.0, 1.0}, {1.0, -0.37}});
+  const int full_row = 5, point_rows = 7, j1 = g.nz / 4, j3 = 3 * g.nz / 4;
+  for (int op = 0; op < 2; ++op) {
+    const auto f = random_field(g, 60 + op);
+    auto x = random_field(g, 70 + op), ref = x;
+    const auto before = x;
+    fs.solve(op, f, ref);
+    fs.forward(op, 1.0, f, x);
+    fs.back_prolong(op, x, full_row, point_rows);
+    double e = 0, s = 0, untouched = 0;
+    for (int i = 1; i < g.nr; ++i)
+      for (int j = 1; j < g.nz; ++j) {
+        const bool written = i == full_row + 1 || (i <= point_rows && (j == j1 || j == j3));
+        if (written) {
+          e = std::max(e, std::abs(x[g.at(i, j)] - ref[g.at(i, j)]));
+          s = std::max(s, std::abs(ref[g.at(i, j)]));
+        } else {
+          untouched = std::max(untouched, std::abs(x[g.at(i, j)] - before[g.at(i, j)]));
+        }
+      }
+    std::printf("op %d: back_prolong vs solve %.2e (scale %.2e)\n", op, e, s);
+    EXPECT_LT(e, 1e-12 * s);
+    EXPECT_EQ(untouched, 0.0);
+  }
+  FastSolver padded(tiny(12, 18, 0.05, -0.5), {{0.0, 1.0}});  // nz not a multiple of 4: no quarter-point sums
+  std::vector<double> y(tiny(12, 18, 0.05, -0.5).size(), 0.0);
+  EXPECT_THROW(padded.back_prolong(0, y, 0, 1), std::logic_error);
 }
 
 TEST(FlowOps, SolveChainEqualsSuccessiveSolves) {

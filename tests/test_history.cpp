@@ -230,42 +230,41 @@ std::string rising_scene(const std::string& history_extra, double t_end) {
          "\nrtol = 1e-10\natol = 1e-12\n[output]\ndt = " + test::num(t_end / 100) + "\n";
 }
 
-TEST(HistoryScene, LightSphereRisingFromRestMatchesClosedForm) {
+struct RisingRun {
+  RunResult r;
+  double worst = 0;  // max |u − u_exact| / u_terminal over the samples after t = 0
+};
+
+/// The rising sphere of rising_scene over 100 relaxation times against the closed form (Basset kernel).
+RisingRun run_rising_sphere(const std::string& history_extra) {
   const double a = 0.0005, rp = 100, rf = 1000, mu = 0.05, g = -9.81;
   const double alpha = 9 * mu / (a * a * (2 * rp + rf)), gamma = 9 * std::sqrt(rf * mu) / (a * (2 * rp + rf));
   const double f = 2 * (rp - rf) * g / (2 * rp + rf);
   const double t_end = 100 / alpha;  // 100 relaxation times
-  const Scene sc = parse_scene(rising_scene("kernel = \"basset\"\ntolerance = 1e-10\n", t_end), "rising.toml");
-  const RunResult r = simulate(sc);
-  ASSERT_EQ(r.columns[2], "u1");
+  RisingRun run{simulate(parse_scene(rising_scene("kernel = \"basset\"\n" + history_extra + "tolerance = 1e-10\n", t_end), "rising.toml"))};
   const double u_term = f / alpha;
-  double worst = 0;
-  for (const auto& row : r.rows) {
+  for (const auto& row : run.r.rows) {
     if (row[0] <= 0) continue;
-    worst = std::max(worst, std::abs(row[2] - f * contact::basset_settling(alpha, gamma, row[0])) / u_term);
+    run.worst = std::max(run.worst, std::abs(row[2] - f * contact::basset_settling(alpha, gamma, row[0])) / u_term);
   }
-  EXPECT_LT(worst, 1e-6);
-  std::printf("  rising sphere: max |u - u_exact| / u_terminal = %.2e over %zu samples\n", worst, r.rows.size());
-  EXPECT_GT(r.summary["max_history_force_N"].get<double>(), 0);
+  return run;
+}
+
+TEST(HistoryScene, LightSphereRisingFromRestMatchesClosedForm) {
+  const RisingRun run = run_rising_sphere("");
+  ASSERT_EQ(run.r.columns[2], "u1");
+  EXPECT_LT(run.worst, 1e-6);
+  std::printf("  rising sphere: max |u - u_exact| / u_terminal = %.2e over %zu samples\n", run.worst, run.r.rows.size());
+  EXPECT_GT(run.r.summary["max_history_force_N"].get<double>(), 0);
 }
 
 TEST(HistoryScene, StepwiseMemoryMatchesTheRisingSphereClosedForm) {
   // The soe-step evaluator (modes advanced per accepted step, outside the integrator's state) on the same problem.
-  const double a = 0.0005, rp = 100, rf = 1000, mu = 0.05, g = -9.81;
-  const double alpha = 9 * mu / (a * a * (2 * rp + rf)), gamma = 9 * std::sqrt(rf * mu) / (a * (2 * rp + rf));
-  const double f = 2 * (rp - rf) * g / (2 * rp + rf);
-  const double t_end = 100 / alpha;
-  const Scene sc = parse_scene(rising_scene("kernel = \"basset\"\nevaluator = \"soe-step\"\ntolerance = 1e-10\n", t_end), "rising.toml");
-  const RunResult r = simulate(sc);
-  EXPECT_EQ(r.summary["solver"]["state_size"].get<long>(), 2);  // no memory states in the integrator
-  const double u_term = f / alpha;
-  double worst = 0;
-  for (const auto& row : r.rows) {
-    if (row[0] <= 0) continue;
-    worst = std::max(worst, std::abs(row[2] - f * contact::basset_settling(alpha, gamma, row[0])) / u_term);
-  }
-  EXPECT_LT(worst, 1e-6);
-  std::printf("  rising sphere, soe-step: max |u - u_exact| / u_terminal = %.2e over %zu samples\n", worst, r.rows.size());
+  const RisingRun run = run_rising_sphere("evaluator = \"soe-step\"\n");
+  ASSERT_EQ(run.r.columns[2], "u1");
+  EXPECT_EQ(run.r.summary["solver"]["state_size"].get<long>(), 2);  // no memory states in the integrator
+  EXPECT_LT(run.worst, 1e-6);
+  std::printf("  rising sphere, soe-step: max |u - u_exact| / u_terminal = %.2e over %zu samples\n", run.worst, run.r.rows.size());
 }
 
 TEST(HistoryScene, StepwiseMemoryAgreesWithIntegratedModesOnCollisions) {
