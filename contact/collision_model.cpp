@@ -147,8 +147,7 @@ void CollisionModel::setup_history() {
   const auto& h = scene_.history;
   auto& o = hist_opt_;
   o.kernel = h.kernel;
-  o.direct = h.evaluator == HistoryEvaluator::direct;
-  o.stepwise = h.evaluator == HistoryEvaluator::soe_step;
+  o.evaluator = h.evaluator;
   o.tolerance = h.tolerance;
   o.modes = static_cast<int>(h.modes);
   o.impulsive = h.start == HistoryStart::impulsive;
@@ -189,16 +188,16 @@ void CollisionModel::setup_history() {
   }
   history_states_ = offset - core_size();
   if (n_spheres_ == 2) history_[1]->share_steps_with(history_[0].get());  // soe-step, equal exponentials
-  if (o.direct) max_step_ = std::min(max_step_, o.direct_step);
+  if (o.evaluator == HistoryEvaluator::direct) max_step_ = std::min(max_step_, o.direct_step);
 }
 
 double CollisionModel::next_breakpoint(double) const {
-  if (!history_[0] || !hist_opt_.direct) return std::numeric_limits<double>::infinity();
+  if (!history_[0] || hist_opt_.evaluator != HistoryEvaluator::direct) return std::numeric_limits<double>::infinity();
   return history_[0]->step() * static_cast<double>(direct_points_);
 }
 
 void CollisionModel::at_breakpoint(double t, std::span<const double> y) {
-  if (!history_[0] || !hist_opt_.direct) return;
+  if (!history_[0] || hist_opt_.evaluator != HistoryEvaluator::direct) return;
   Evaluation ev;
   kinematics(y, ev);
   for (std::size_t m = 0; m < n_spheres_; ++m) history_[m]->record(t, ev.u[m]);
@@ -300,7 +299,7 @@ void CollisionModel::initial_state(std::span<double> y) const {
 }
 
 void CollisionModel::at_step(double t, std::span<const double> y, bool restart) {
-  if (!history_[0] || !hist_opt_.stepwise) return;
+  if (!history_[0] || hist_opt_.evaluator != HistoryEvaluator::soe_step) return;
   Evaluation ev;
   kinematics(y, ev);
   for (std::size_t m = 0; m < n_spheres_; ++m) history_[m]->advance_memory(t, ev.u[m], restart);
@@ -813,7 +812,7 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
     c.push_back({"history.start", to_string(h.start)});
     c.push_back({"history.wall_correction", to_string(h.wall_correction)});
     if (h.kernel != KernelKind::basset) c.push_back({"history.reynolds", to_string(h.reynolds)});
-    if (hist_opt_.direct) {
+    if (hist_opt_.evaluator == HistoryEvaluator::direct) {
       c.push_back({"history.direct_step_s", num(hist_opt_.direct_step)});
     } else {
       c.push_back({"history.modes", std::to_string(history_[0]->modes())});

@@ -53,7 +53,7 @@ SoeCacheStats soe_cache_stats() {
 
 SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, double rho_f, double U0)
     : kernel_(opt.kernel, 2 * a, mu / rho_f),
-      direct_(opt.direct),
+      evaluator_(opt.evaluator),
       impulsive_(opt.impulsive),
       initial_re_(opt.initial_re),
       c_(6 * pi * mu * a),
@@ -61,15 +61,14 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
       nu_(mu / rho_f),
       U0_(U0),
       min_lag_(opt.min_lag) {
-  if (direct_) {
+  if (direct()) {
     step_ = opt.direct_step;
     grid_u_.push_back(U0);  // U(0+)
     return;
   }
   soe_ = shared_soe_kernel(opt, 2 * a, mu / rho_f);
   w_.assign(soe_->modes(), 0.0);
-  stepwise_ = opt.stepwise;
-  if (stepwise_) {
+  if (stepwise()) {
     z_.assign(soe_->modes(), impulsive_ ? U0 : 0.0);
     for (double l : soe_->rates()) inv_rate_.push_back(1 / l);
     for (auto& c : cache_) {
@@ -134,7 +133,7 @@ SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std:
     double kappa = 0;
     soe_->weights(Re, w_, kappa);
     double sum = 0;
-    if (stepwise_) {
+    if (stepwise()) {
       sum = memory_sum(t, U, w_);
     } else {
       for (std::size_t i = 0; i < w_.size(); ++i) sum += w_[i] * z[i];
@@ -216,7 +215,7 @@ void SphereHistory::fill_step(StepCache& c, double dt) const {
 }
 
 void SphereHistory::share_steps_with(const SphereHistory* twin) {
-  twin_ = twin && twin->stepwise_ && twin->soe_ == soe_ ? twin : nullptr;
+  twin_ = twin && twin->stepwise() && twin->soe_ == soe_ ? twin : nullptr;
 }
 
 bool SphereHistory::in_step(double t, double U) const {
@@ -292,7 +291,7 @@ double SphereHistory::mode_in_step(const StepCache& c, std::size_t i) const {
 }
 
 void SphereHistory::advance_memory(double t, double U, bool restart) {
-  if (!stepwise_) return;
+  if (!stepwise()) return;
   if (in_step(t, U)) {
     const StepCache& c = cache_[cur_];
     for (std::size_t i = 0; i < z_.size(); ++i) z_[i] = mode_in_step(c, i);

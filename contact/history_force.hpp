@@ -36,8 +36,7 @@ namespace imcol::contact {
 
 struct HistoryOptions {
   KernelKind kernel = KernelKind::basset;
-  bool direct = false;
-  bool stepwise = false;       // soe-step: modes advanced per accepted step, outside the integrator's state
+  HistoryEvaluator evaluator = HistoryEvaluator::soe;  // soe | soe-step (modes outside the state) | direct
   double tolerance = 1e-6;
   int modes = 0;               // > 0: fixed mode count
   double min_lag = 0, horizon = 0;  // s (resolved, > 0)
@@ -60,7 +59,7 @@ class SphereHistory {
   /// a [m], μ [Pa s], ρ_f [kg/m³], U0 [m/s] the initial velocity.
   SphereHistory(const HistoryOptions& opt, double a, double mu, double rho_f, double U0);
 
-  std::size_t states() const { return direct_ || stepwise_ ? 0 : soe_->modes(); }
+  std::size_t states() const { return evaluator_ == HistoryEvaluator::soe ? soe_->modes() : 0; }
   /// Memory states at t = 0.
   void initial_states(std::span<double> z) const;
   /// Per-state absolute tolerances u_floor/(√n w_i): the modes' force errors add up to that of a
@@ -84,7 +83,7 @@ class SphereHistory {
   double apply_start(double K_H, double m_eff, std::span<double> z) const;
 
   // soe-step: the memory kept here
-  bool stepwise() const { return stepwise_; }
+  bool stepwise() const { return evaluator_ == HistoryEvaluator::soe_step; }
   /// Sets the modes at t (initial memory; the impulsive start's shift included).
   void reset_memory(double t, std::span<const double> z);
   /// An accepted step (restart = false) or a restart to t with velocity U: the modes move to t with the
@@ -99,7 +98,7 @@ class SphereHistory {
   void record(double t, double U);  // value at the next grid point t_k = kΔ
 
   // reporting
-  std::size_t modes() const { return direct_ ? 0 : soe_->modes(); }
+  std::size_t modes() const { return direct() ? 0 : soe_->modes(); }
   double fit_error(double Re) const { return soe_ ? soe_->max_rel_error(Re) : 0.0; }
   double reynolds(double U) const;
   const SoeKernel* soe() const { return soe_.get(); }
@@ -114,7 +113,8 @@ class SphereHistory {
 
   HistoryKernel kernel_;
   std::shared_ptr<const SoeKernel> soe_;  // shared through the process-wide cache (shared_soe_kernel)
-  bool direct_;
+  HistoryEvaluator evaluator_;
+  bool direct() const { return evaluator_ == HistoryEvaluator::direct; }
   bool impulsive_, initial_re_;
   double c_;        // 6πμa [kg/s]
   double D_, nu_, U0_, min_lag_;
@@ -122,7 +122,6 @@ class SphereHistory {
   double step_ = 0;
   std::vector<double> grid_u_;     // U at t_k = kΔ, k = 0..n
   // soe-step
-  bool stepwise_ = false;
   std::vector<double> z_;               // modes at t_n
   std::vector<double> inv_rate_;        // 1/λ_i
   double tn_ = 0;

@@ -59,9 +59,9 @@ class BassetProblem : public DynamicalSystem {
   void root_values(double, std::span<const double>, std::span<double>) override {}
   EventAction on_roots(std::span<const std::size_t>, double, std::span<double>) override { return EventAction::proceed; }
   double stop_time() const override { return t_end_; }
-  double max_step() const override { return opt_.direct ? opt_.direct_step : t_end_ / 10; }
+  double max_step() const override { return opt_.evaluator == HistoryEvaluator::direct ? opt_.direct_step : t_end_ / 10; }
   double next_breakpoint(double) const override {
-    return opt_.direct ? opt_.direct_step * static_cast<double>(points_) : std::numeric_limits<double>::infinity();
+    return opt_.evaluator == HistoryEvaluator::direct ? opt_.direct_step * static_cast<double>(points_) : std::numeric_limits<double>::infinity();
   }
   void at_breakpoint(double t, std::span<const double> y) override {
     h_.record(t, y[0]);
@@ -154,7 +154,7 @@ TEST(HistoryExact, DirectQuadratureConvergesToSettling) {
   std::vector<double> errs;
   for (double dt : {0.04, 0.02, 0.01}) {
     HistoryOptions o;
-    o.direct = true;
+    o.evaluator = HistoryEvaluator::direct;
     o.direct_step = dt;
     o.min_lag = dt;
     BassetProblem p(alpha, gamma, 1.0, 0.0, T, o);
