@@ -325,6 +325,15 @@ void CollisionModel::kinematics(std::span<const double> y, Evaluation& ev) const
   }
 }
 
+double CollisionModel::max_step(double, std::span<const double> y) const {
+  if (phase_ != Phase::loading && phase_ != Phase::unloading) return max_step_;
+  const double capped = std::min(max_step_, contact_max_step_);
+  const double above = y[0] - ramp_on_gap_;
+  if (!(above > 0)) return capped;
+  const double u_rel = target_ == Target::sphere ? y[1] - y[3] : y[1];
+  return std::min(max_step_, std::max(contact_max_step_, 0.25 * above / std::abs(u_rel)));
+}
+
 double CollisionModel::contact_force(double gap) const {
   if (phase_ == Phase::approach || W_now_ == 0) return 0.0;
   return factor_ * W_now_ * ramp_F(gap / delta_ss_m_, beta_now_);
@@ -660,6 +669,7 @@ void CollisionModel::freeze_contact(double t, double u_rel) {
   }
   factor_ = 1.0;
   contact_max_step_ = std::min(contact_max_step_, hertz_contact_time(m_star_, std::abs(u_rel), E_star_, a_star_) / kContactSteps);
+  ramp_on_gap_ = delta_ss_m_ * std::min(1.0, kRampTail / beta_now_);
   if (contacts_ == 0) {
     W_o_ = W_now_;
     beta_ = beta_now_;

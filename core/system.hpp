@@ -57,8 +57,10 @@ class DynamicalSystem {
 
   /// Latest time to integrate to in the current phase (t_end, or an earlier stop once measurements are complete).
   virtual double stop_time() const = 0;
-  /// Largest internal step allowed (so that no root can hide inside one step).
-  virtual double max_step() const = 0;
+  /// Largest internal step allowed from the accepted state (t, y), so that no root or sharp force can hide
+  /// inside one step. Asked before every step; CVODE and IDA size a step at the end of the one before, so a
+  /// new value limits the step after next.
+  virtual double max_step(double t, std::span<const double> y) const = 0;
 
   /// Next time after t at which the integrator must stop exactly and call at_breakpoint
   /// (a fixed-step history grid, for example); +infinity if none.

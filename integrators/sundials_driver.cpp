@@ -278,6 +278,7 @@ class Backend {
   /// The solver's interpolant at t within the last step (CVodeGetDky / IDAGetDky).
   virtual void interpolate(double t, N_Vector y) = 0;
   virtual double internal_time() = 0;
+  virtual void set_max_step(double h) = 0;
   virtual int too_much_work() = 0;  // the solver's flag for more than max_steps steps between two returns
   virtual void root_info(int* found) = 0;
   virtual void add_stats(SolverStats& s) = 0;
@@ -317,7 +318,6 @@ class CvodeBackend : public Backend {
   }
   void init(double t, N_Vector y) override {
     check(CVodeReInit(mem_, t, y), "CVodeReInit");
-    check(CVodeSetMaxStep(mem_, cb_.sys->max_step()), "CVodeSetMaxStep");
     check(CVodeSetMaxNumSteps(mem_, st_.max_steps), "CVodeSetMaxNumSteps");
   }
   void set_roots(const std::vector<RootSpec>& roots) override {
@@ -340,6 +340,7 @@ class CvodeBackend : public Backend {
     CVodeGetCurrentTime(mem_, &t);
     return t;
   }
+  void set_max_step(double h) override { check(CVodeSetMaxStep(mem_, h), "CVodeSetMaxStep"); }
   int too_much_work() override { return CV_TOO_MUCH_WORK; }
   void root_info(int* found) override { CVodeGetRootInfo(mem_, found); }
   void add_stats(SolverStats& s) override {
@@ -405,7 +406,6 @@ class IdaBackend : public Backend {
   void init(double t, N_Vector y) override {
     consistent_yp(t, y);
     check(IDAReInit(mem_, t, y, yp_), "IDAReInit");
-    check(IDASetMaxStep(mem_, cb_.sys->max_step()), "IDASetMaxStep");
     check(IDASetMaxNumSteps(mem_, st_.max_steps), "IDASetMaxNumSteps");
   }
   void set_roots(const std::vector<RootSpec>& roots) override {
@@ -428,6 +428,7 @@ class IdaBackend : public Backend {
     IDAGetCurrentTime(mem_, &t);
     return t;
   }
+  void set_max_step(double h) override { check(IDASetMaxStep(mem_, h), "IDASetMaxStep"); }
   int too_much_work() override { return IDA_TOO_MUCH_WORK; }
   void root_info(int* found) override { IDAGetRootInfo(mem_, found); }
   void add_stats(SolverStats& s) override {
@@ -489,6 +490,7 @@ struct Integrator::Impl {
   long k_out = 1;  // output times k·dt, counted so that they cannot stop advancing
   double t_sampled = -1;  // time of the last output sample
   long quiet_steps = 0;   // internal steps since the last output sample, event or stop (solver.max_steps bounds them)
+  double max_step = 0;    // the value last passed to the solver (it persists across re-initialisations); 0: none yet
   long steps_taken = 0;   // accepted internal steps of this run (for the observer's progress display)
   bool done = false;
 
@@ -641,6 +643,8 @@ double Integrator::advance(double t_target) {
       while (m.k_out * m.st.output_dt <= t + t_eps) ++m.k_out;
       const double tout = std::min(m.k_out * m.st.output_dt, t_limit);  // sizes the first step after a (re)start
       if (m.quiet_steps >= m.st.max_steps) m.fail(be->too_much_work());
+      const double h_max = sys.max_step(t, view(m.y.get()));
+      if (h_max != m.max_step) be->set_max_step(m.max_step = h_max);
       flag = be->step(tout, t_limit, m.y.get(), t_new);
       if (flag < 0) m.fail(flag);
       if (m.cb.error) m.rethrow_model_error();

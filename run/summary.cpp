@@ -70,7 +70,7 @@ nlohmann::ordered_json solver_block(const CollisionModel& model, const Integrato
   nlohmann::ordered_json sol = {{"integrator", to_string(st.method)}, {"linear_solver", stats.linear_solver},
                                 {"rtol", st.rtol}, {"atol", st.atol},
                                 {"absolute_tolerances", model.absolute_tolerances(st.atol)},
-                                {"state", model.component_names()}, {"max_step_s", model.max_step()},
+                                {"state", model.component_names()}, {"max_step_s", model.max_step_outside_contact()},
                                 {"t_final_s", t_final}};
   for (const auto& [k, v] : stats.as_map()) sol[k] = v;
   return sol;

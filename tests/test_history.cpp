@@ -59,7 +59,7 @@ class BassetProblem : public DynamicalSystem {
   void root_values(double, std::span<const double>, std::span<double>) override {}
   EventAction on_roots(std::span<const std::size_t>, double, std::span<double>) override { return EventAction::proceed; }
   double stop_time() const override { return t_end_; }
-  double max_step() const override { return opt_.evaluator == HistoryEvaluator::direct ? opt_.direct_step : t_end_ / 10; }
+  double max_step(double, std::span<const double>) const override { return opt_.evaluator == HistoryEvaluator::direct ? opt_.direct_step : t_end_ / 10; }
   double next_breakpoint(double) const override {
     return opt_.evaluator == HistoryEvaluator::direct ? opt_.direct_step * static_cast<double>(points_) : std::numeric_limits<double>::infinity();
   }
