@@ -165,7 +165,7 @@ void SphereHistory::reset_memory(double t, std::span<const double> z) {
   z_.assign(z.begin(), z.end());
   tn_ = t;
   np_ = 0;
-  for (auto& c : cache_) c.dt = -1;
+  ++z_gen_;
 }
 
 namespace {
@@ -226,8 +226,8 @@ bool SphereHistory::in_step(double t, double U) const {
     cur_ = 1 - cur_;
     StepCache& c = cache_[cur_];
     if (c.dt != dt) {
-      const StepCache* shared = nullptr;  // an equal sphere's values at the same t_n and Δ
-      if (twin_ && twin_->tn_ == tn_)
+      const StepCache* shared = nullptr;  // an equal sphere's values at the same Δ
+      if (twin_)
         for (const auto& o : twin_->cache_)
           if (o.dt == dt) shared = &o;
       if (shared) {
@@ -236,18 +236,29 @@ bool SphereHistory::in_step(double t, double U) const {
       } else {
         fill_step(c, dt);
       }
-      for (std::size_t i = 0; i < lam.size(); ++i) c.ez[i] = c.e[i] * z_[i];
       if (kernel_.kind() == KernelKind::basset) {
         double kappa = 0;
         soe_->weights(0.0, w_, kappa);
-        c.sums.fill(0.0);
-        for (std::size_t i = 0; i < lam.size(); ++i) {
-          c.sums[0] += w_[i] * c.ez[i];
-          for (int j = 0; j < kPoints; ++j) c.sums[j + 1] += w_[i] * c.m[kPoints * i + j];
+        for (int j = 0; j < kPoints; ++j) {
+          double sum = 0;
+          for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * c.m[kPoints * i + j];
+          c.sums[j + 1] = sum;
         }
       }
       c.dt = dt;
+      c.z_gen = -1;
     }
+  }
+  if (StepCache& c = cache_[cur_]; c.z_gen != z_gen_) {
+    for (std::size_t i = 0; i < lam.size(); ++i) c.ez[i] = c.e[i] * z_[i];
+    if (kernel_.kind() == KernelKind::basset) {
+      double kappa = 0;
+      soe_->weights(0.0, w_, kappa);
+      double sum = 0;
+      for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * c.ez[i];
+      c.sums[0] = sum;
+    }
+    c.z_gen = z_gen_;
   }
   // P through (Δ, U), (0, U_n), (t_(n−1) − t_n, U_(n−1)), ...: Newton divided differences, then monomials in σ.
   const int m = np_;  // degree
@@ -307,7 +318,7 @@ void SphereHistory::advance_memory(double t, double U, bool restart) {
   pt_[0] = t;
   pu_[0] = U;
   tn_ = t;
-  for (auto& c : cache_) c.dt = -1;
+  ++z_gen_;  // e and M stay valid for their Δ
 }
 
 void SphereHistory::state_rhs(double accel, std::span<const double> z, std::span<double> dz) const {

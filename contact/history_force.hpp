@@ -128,11 +128,15 @@ class SphereHistory {
   static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints (5 measured no better)
   std::array<double, kPoints> pt_{}, pu_{};  // accepted (t_j, U_j), most recent first (pt_[0] = t_n)
   int np_ = 0;
-  struct StepCache {                   // one Δ (two are kept: the step's end and an output sample in it)
+  // One Δ (two are kept: the step's end and an output sample in it). e, M and their Basset sums depend on Δ
+  // alone and outlive a step (CVODE often keeps h); ez and sums[0] follow the modes z_ (generation z_gen).
+  struct StepCache {
     double dt = -1;
+    long z_gen = -1;
     std::vector<double> e, ez, m;       // e^(−λ_i Δ), e^(−λ_i Δ) z_i; M_ij at [kPoints i + j]
     std::array<double, kPoints + 1> sums{};  // Basset: Σ w_i e^(−λ_i Δ) z_i, Σ w_i M_ij
   };
+  long z_gen_ = 0;                      // bumped whenever z_ changes
   mutable std::array<StepCache, 2> cache_;
   mutable int cur_ = 0;                 // the slot in_step filled or found last
   const SphereHistory* twin_ = nullptr; // an equal sphere (same exponentials) whose e and M are reused
