@@ -40,15 +40,13 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
   const double t_final = t.empty() ? 0.0 : t.back();
   const double W = sc.measure.window;
 
-  std::optional<double> e_fit_raw;
-  std::optional<double> e, e_inst, St, St_62, Re, U_G, t_group;
-  std::optional<double> u_i1, u_i2, u_r1, u_r2;
-  double fit_window = W;
-  bool separated = model.t_separation().has_value();
+  FirstContact m;
+  m.fit_window = W;
+  m.separated = model.t_separation().has_value();
   const bool collided = model.t_contact() || model.t_closest();  // reached contact or a closest approach
   // A longer solver.t_end would change e only if an approach is under way or gravity can start one.
   const bool can_approach = model.initial_u_rel() > 0 || sc.has(Effect::gravity);
-  bool t_end_too_short = model.has_target() && !collided && can_approach;
+  m.t_end_too_short = model.has_target() && !collided && can_approach;
   if (model.has_target() && !collided) {
     if (can_approach)
       warnings.push_back("no collision by t_end: the gap never reached delta_ss and the approach never stopped; e is undefined");
@@ -62,7 +60,7 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
     const bool in_contact = model.started_in_contact();
     double Wfit = in_contact ? W : std::min(W, t_ref);
     // All bounces: the rebound window ends at the next contact at the latest (both shortened alike).
-    if (separated) {
+    if (m.separated) {
       int n_in = 0;
       for (const auto& x : model.events())
         if (x.name == "gap=delta_ss (in)" && ++n_in == (in_contact ? 1 : 2)) {
@@ -72,8 +70,8 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
     }
     if (in_contact) {
       // No approach to fit: the impact velocities are the initial ones.
-      u_i1 = sc.spheres[0].velocity;
-      u_i2 = pair ? sc.spheres[1].velocity : 0.0;
+      m.u_i1 = sc.spheres[0].velocity;
+      m.u_i2 = pair ? sc.spheres[1].velocity : 0.0;
       std::ostringstream os;
       os << "started inside the contact zone: the zone is shortened to the initial gap (" << model.delta_ss_m()
          << " m) and the impact velocities are the initial ones";
@@ -83,50 +81,50 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
       auto f1 = fit_line_continuous(t, z1, t_ref - Wfit, t_ref);
       auto f2 = pair ? fit_line_continuous(t, z2, t_ref - Wfit, t_ref) : std::optional<LineFit>(LineFit{});
       if (f1 && f2) {
-        u_i1 = f1->slope;
-        u_i2 = f2->slope;
+        m.u_i1 = f1->slope;
+        m.u_i2 = f2->slope;
       }
     }
     // Rebound window: from the separation, or the last window of the run.
-    const double t_post = separated ? *model.t_separation() : std::max(t_ref, t_final - Wfit);
+    const double t_post = m.separated ? *model.t_separation() : std::max(t_ref, t_final - Wfit);
     auto g1 = fit_line_continuous(t, z1, t_post, t_post + Wfit);
     auto g2 = pair ? fit_line_continuous(t, z2, t_post, t_post + Wfit) : std::optional<LineFit>(LineFit{});
-    fit_window = Wfit;
+    m.fit_window = Wfit;
     if (g1 && g2) {
-      u_r1 = g1->slope;
-      u_r2 = g2->slope;
+      m.u_r1 = g1->slope;
+      m.u_r2 = g2->slope;
     }
-    if (separated && t_final < *model.t_separation() + W * (1 - 1e-9)) {
-      t_end_too_short = true;
+    if (m.separated && t_final < *model.t_separation() + W * (1 - 1e-9)) {
+      m.t_end_too_short = true;
       warnings.push_back("t_end cut the rebound fit window short");
     }
-    if (u_i1 && u_r1) {
-      if (separated) {
-        e = restitution(*u_i1, *u_i2, *u_r1, *u_r2);
-        if (*e < 0) {
-          e_fit_raw = e;
-          e = 0.0;
+    if (m.u_i1 && m.u_r1) {
+      if (m.separated) {
+        m.e = restitution(*m.u_i1, *m.u_i2, *m.u_r1, *m.u_r2);
+        if (*m.e < 0) {
+          m.e_fit_raw = m.e;
+          m.e = 0.0;
           std::ostringstream os;
-          os << "e = " << *e_fit_raw << " from the fits: the rebound fit's slope points toward the target (the sphere fell back "
+          os << "e = " << *m.e_fit_raw << " from the fits: the rebound fit's slope points toward the target (the sphere fell back "
              << "within measure.window); e is clipped to 0 (e_fit_raw); e_measures.at_gap and peak_rebound do not have this defect";
           warnings.push_back(os.str());
         }
       } else {
-        e = 0.0;  // never separated
-        const double closing = *u_r1 - *u_r2;  // > 0: still approaching over the last window
+        m.e = 0.0;  // never separated
+        const double closing = *m.u_r1 - *m.u_r2;  // > 0: still approaching over the last window
         if (pair) {
           // Group velocity: the pair's centre-of-mass velocity, when the two move together.
           const double m1 = model.mass(0), m2 = model.mass(1);
-          const double ug = (m1 * *u_r1 + m2 * *u_r2) / (m1 + m2);
+          const double ug = (m1 * *m.u_r1 + m2 * *m.u_r2) / (m1 + m2);
           if (std::abs(closing) <= 0.1 * std::abs(ug)) {
             // U_G at a stated moment, not at t_end (the pair keeps slowing down under drag): the centre-of-mass
             // velocity when the relative velocity first vanished (the loading -> unloading switch after contact,
             // or the stopped approach without contact), where the two spheres move together.
-            t_group = group_moment(model);
-            if (t_group) {
+            m.t_group = group_moment(model);
+            if (m.t_group) {
               for (const auto& row : rows)
-                if (row[0] == *t_group) {
-                  U_G = (m1 * row[2] + m2 * row[5]) / (m1 + m2);
+                if (row[0] == *m.t_group) {
+                  m.group_velocity = (m1 * row[2] + m2 * row[5]) / (m1 + m2);
                   break;
                 }
             }
@@ -137,8 +135,8 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
             warnings.push_back(os.str());
           }
         }
-        if (model.t_contact() && -closing > 1e-3 * std::abs(*u_i1 - *u_i2)) {
-          t_end_too_short = true;
+        if (model.t_contact() && -closing > 1e-3 * std::abs(*m.u_i1 - *m.u_i2)) {
+          m.t_end_too_short = true;
           std::ostringstream os;
           os << "no separation by t_end, but the gap was growing at " << -closing
              << " m/s over the last window (e = 0 by definition; a longer solver.t_end may show a rebound)";
@@ -146,43 +144,27 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
         }
       }
     }
-    if (u_i1 && !u_r1 && !separated) {
-      t_end_too_short = true;
+    if (m.u_i1 && !m.u_r1 && !m.separated) {
+      m.t_end_too_short = true;
       warnings.push_back("the run ended less than measure.window after the " + std::string(model.t_contact() ? "contact" : "closest approach") +
                          ", without a separation: no rebound fit, so e is undefined (raise solver.t_end)");
     }
-    if (u_i1 && sc.fluid) {
-      const double u_rel = *u_i1 - *u_i2;
-      std::tie(St, St_62) = stokes_numbers(model, sc, u_rel);
-      Re = sc.fluid->density * 2 * model.radius(0) * u_rel / sc.fluid->viscosity;
+    if (m.u_i1 && sc.fluid) {
+      const double u_rel = *m.u_i1 - *m.u_i2;
+      std::tie(m.St, m.St_62) = stokes_numbers(model, sc, u_rel);
+      m.Re = sc.fluid->density * 2 * model.radius(0) * u_rel / sc.fluid->viscosity;
       if (!model.t_contact())
         warnings.push_back("no contact: St and Re use the approach velocity fitted over measure.window before the closest approach, "
                            "where the liquid had already slowed the pair (St_initial is the nominal value)");
     }
     if (model.u_rel_instant_in()) {
-      if (model.u_rel_instant_out()) e_inst = -*model.u_rel_instant_out() / *model.u_rel_instant_in();
-      else if (!separated) e_inst = 0.0;
+      if (model.u_rel_instant_out()) m.e_instant = -*model.u_rel_instant_out() / *model.u_rel_instant_in();
+      else if (!m.separated) m.e_instant = 0.0;
     }
-    if (!e_inst && model.t_contact())
+    if (!m.e_instant && model.t_contact())
       warnings.push_back("e_instant: the gap did not cross measure.instant_gap inward and outward before t_end");
   }
 
-  FirstContact m;
-  m.e = e;
-  m.e_fit_raw = e_fit_raw;
-  m.e_instant = e_inst;
-  m.St = St;
-  m.St_62 = St_62;
-  m.Re = Re;
-  m.u_i1 = u_i1;
-  m.u_i2 = u_i2;
-  m.u_r1 = u_r1;
-  m.u_r2 = u_r2;
-  m.group_velocity = U_G;
-  m.t_group = t_group;
-  m.fit_window = fit_window;
-  m.separated = separated;
-  m.t_end_too_short = t_end_too_short;
   return m;
 }
 
