@@ -71,6 +71,11 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
   if (stepwise()) {
     z_.assign(soe_->modes(), impulsive_ ? U0 : 0.0);
     for (double l : soe_->rates()) inv_rate_.push_back(1 / l);
+    if (kernel_.kind() == KernelKind::basset) {
+      double kappa = 0;
+      basset_w_.assign(soe_->modes(), 0.0);
+      soe_->weights(0.0, basset_w_, kappa);
+    }
     for (auto& c : cache_) {
       c.e.assign(soe_->modes(), 0.0);
       c.ez.assign(soe_->modes(), 0.0);
@@ -236,12 +241,10 @@ bool SphereHistory::in_step(double t, double U) const {
       } else {
         fill_step(c, dt);
       }
-      if (kernel_.kind() == KernelKind::basset) {
-        double kappa = 0;
-        soe_->weights(0.0, w_, kappa);
+      if (!basset_w_.empty()) {
         for (int j = 0; j < kPoints; ++j) {
           double sum = 0;
-          for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * c.m[kPoints * i + j];
+          for (std::size_t i = 0; i < lam.size(); ++i) sum += basset_w_[i] * c.m[kPoints * i + j];
           c.sums[j + 1] = sum;
         }
       }
@@ -251,11 +254,9 @@ bool SphereHistory::in_step(double t, double U) const {
   }
   if (StepCache& c = cache_[cur_]; c.z_gen != z_gen_) {
     for (std::size_t i = 0; i < lam.size(); ++i) c.ez[i] = c.e[i] * z_[i];
-    if (kernel_.kind() == KernelKind::basset) {
-      double kappa = 0;
-      soe_->weights(0.0, w_, kappa);
+    if (!basset_w_.empty()) {
       double sum = 0;
-      for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * c.ez[i];
+      for (std::size_t i = 0; i < lam.size(); ++i) sum += basset_w_[i] * c.ez[i];
       c.sums[0] = sum;
     }
     c.z_gen = z_gen_;
@@ -285,7 +286,7 @@ double SphereHistory::memory_sum(double t, double U, std::span<const double> w) 
     return sum;
   }
   const StepCache& c = cache_[cur_];
-  if (kernel_.kind() == KernelKind::basset) {  // Re-independent weights: the sums in_step cached
+  if (!basset_w_.empty()) {  // Re-independent weights: the sums in_step cached
     double sum = c.sums[0];
     for (int j = 0; j < nd_; ++j) sum += d_[j] * c.sums[j + 1];
     return sum;

@@ -124,6 +124,7 @@ class SphereHistory {
   // soe-step
   std::vector<double> z_;               // modes at t_n
   std::vector<double> inv_rate_;        // 1/λ_i
+  std::vector<double> basset_w_;        // Basset: the weights w_i (Re-independent), for the cached sums
   double tn_ = 0;
   static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints (5 measured no better)
   std::array<double, kPoints> pt_{}, pu_{};  // accepted (t_j, U_j), most recent first (pt_[0] = t_n)
