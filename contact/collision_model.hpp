@@ -97,7 +97,8 @@ class CollisionModel : public DynamicalSystem {
   void root_values(double t, std::span<const double> y, std::span<double> g) override;
   EventAction on_roots(std::span<const std::size_t> found, double t, std::span<double> y) override;
   double stop_time() const override { return stop_time_; }
-  /// Outside contact: max_step_ (the contact zone cannot be crossed in one step). In contact (loading, unloading):
+  /// Outside contact: max_step_ (the contact zone cannot be crossed in one step); while approaching with the automatic
+  /// cap, up to a quarter of the time to reach the contact zone at the current relative speed. In contact (loading, unloading):
   /// also at most 1/kContactSteps of the Hertz contact time at the impact speed, so that a loose rtol cannot step
   /// over the ramp's peak and give a wrong e; that cap holds only below ramp_on_gap_, where the ramp force is felt.
   /// Above it the cap is a quarter of the time to reach it at the current relative speed (a quarter, since the
@@ -240,6 +241,7 @@ class CollisionModel : public DynamicalSystem {
   std::vector<RootKind> armed_kind_;
   std::vector<EventRecord> events_;
   double stop_time_ = 0, max_step_ = 0, contact_max_step_ = std::numeric_limits<double>::infinity();
+  bool auto_max_step_ = false;  // max_step_ is the automatic cap (not solver.max_step, not the direct evaluator's grid)
   double ramp_on_gap_ = 0;  // m: the ramp force is below e^(-kRampTail) W_o above this gap (set with β)
   std::optional<double> quiet_since_;  // observe(): start of the current quiet stretch
   bool at_rest_ = false;
