@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string>
 
+#include "core/number_text.hpp"
+
 namespace imcol {
 
 /// Scientific notation with p digits after the point; "-" for a missing (non-finite) value.
@@ -24,10 +26,9 @@ inline std::string fixed(double v, int p) {
 
 /// A CSV cell: 12 significant digits; empty for a missing (NaN) value.
 inline std::string csv_number(double v) {
-  if (std::isnan(v)) return "";
-  std::ostringstream os;
-  os << std::setprecision(12) << v;
-  return os.str();
+  std::string s;
+  if (!std::isnan(v)) append_number(s, v, 12);
+  return s;
 }
 
 }  // namespace imcol

@@ -1,19 +1,13 @@
 #include "flow/snapshot.hpp"
 
-#include <charconv>
 #include <iomanip>
 #include <sstream>
+
+#include "core/number_text.hpp"
 
 namespace imcol::flow {
 
 namespace {
-
-// %.9g as the stream's setprecision(9) writes it, without the stream (to_chars: the same text, several times faster)
-void put(std::string& out, double v) {
-  char b[32];
-  const auto r = std::to_chars(b, b + sizeof b, v, std::chars_format::general, 9);
-  out.append(b, r.ptr);
-}
 
 void write_level(std::string& os, int l, const Level& L, double u_inf, double z_shift) {
   // u_inf: the uniform stream as seen from the frame the fields are written in
@@ -35,7 +29,7 @@ void write_level(std::string& os, int l, const Level& L, double u_inf, double z_
       os += std::to_string(l);
       for (double v : {r, z, psi, om, ur, uz}) {
         os += ',';
-        put(os, v);
+        append_number(os, v, 9);
       }
       os += '\n';
     }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "contact/collision_model.hpp"
+#include "core/number_text.hpp"
 #include "core/report.hpp"
 #include "core/timing.hpp"
 #include "coupling/flow_coupling.hpp"
@@ -104,15 +105,18 @@ RunResult simulate(const Scene& sc, bool progress) {
 }
 
 void write_outputs(const RunResult& r, const std::filesystem::path& dir) {
-  std::ostringstream csv;
-  csv << std::setprecision(12);
-  for (std::size_t i = 0; i < r.columns.size(); ++i) csv << (i ? "," : "") << r.columns[i];
-  csv << "\n";
+  std::string csv;
+  for (std::size_t i = 0; i < r.columns.size(); ++i) csv += (i ? "," : "") + r.columns[i];
+  csv += '\n';
+  csv.reserve(csv.size() + r.rows.size() * r.columns.size() * 12);
   for (const auto& row : r.rows) {
-    for (std::size_t i = 0; i < row.size(); ++i) csv << (i ? "," : "") << row[i];
-    csv << "\n";
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (i) csv += ',';
+      append_number(csv, row[i], 12);
+    }
+    csv += '\n';
   }
-  write_file_atomic(dir / "trajectory.csv", csv.str());
+  write_file_atomic(dir / "trajectory.csv", csv);
   for (const auto& [name, content] : r.files) write_file_atomic(dir / name, content);
   write_file_atomic(dir / "summary.json", r.summary.dump(2) + "\n");
 }
