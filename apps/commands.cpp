@@ -335,7 +335,7 @@ int run_cli(int argc, char** argv) {
   history->add_option("scene", hscene, "scene file (TOML)")->required();
   history->add_option("--out", hopt.out, "output directory (default out/<scene name>/history)");
   history->add_option("--kernels", hopt.kernels, "kernels to run (default all)")->delimiter(',');
-  history->add_option("--evaluators", hopt.evaluators, "soe, soe-step, direct (default soe and direct)")->delimiter(',');
+  history->add_option("--evaluators", hopt.evaluators, "soe-step, soe, direct (default all three)")->delimiter(',');
   history->add_flag("--no-plot", no_plot, "skip the PNG plot");
   add_common(history, hist_opt);
 
@@ -363,7 +363,7 @@ int run_cli(int argc, char** argv) {
   wp->add_option("--out", wopt.out, "output directory (default out/<scene name>/work_precision)");
   wp->add_option("--rtols", wopt.rtols, "the rtol ladder (atol = rtol)")->delimiter(',');
   wp->add_option("--integrators", wopt.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',');
-  wp->add_option("--evaluators", wopt.evaluators, "history evaluators soe, soe-step, direct (default soe and direct if the scene has history)")->delimiter(',');
+  wp->add_option("--evaluators", wopt.evaluators, "history evaluators soe-step, soe, direct (default all three if the scene has history)")->delimiter(',');
   wp->add_option("--direct-steps", wopt.direct_steps, "direct evaluator: multiples of its default step")->delimiter(',');
   wp->add_option("--direct-rtol", wopt.direct_rtol, "direct evaluator: rtol while its step varies");
   wp->add_option("--ref-rtol", wopt.ref_rtol, "reference run: rtol = atol");

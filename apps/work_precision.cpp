@@ -119,7 +119,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   }
   const bool history = base.has(Effect::history);
   std::vector<std::string> evaluators = opt.evaluators;
-  if (evaluators.empty()) evaluators = history ? std::vector<std::string>{"soe", "direct"} : std::vector<std::string>{"none"};
+  if (evaluators.empty()) evaluators = history ? std::vector<std::string>{"soe-step", "soe", "direct"} : std::vector<std::string>{"none"};
   for (const auto& e : evaluators) {
     if (e != "soe" && e != "soe-step" && e != "direct" && e != "none")
       throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");

@@ -12,7 +12,7 @@ struct WorkPrecisionOptions {
   std::string out;                                                  // default out/<scene>/work_precision
   std::vector<double> rtols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
   std::vector<std::string> integrators = {"cvode-dense", "cvode-gmres", "ida"};
-  std::vector<std::string> evaluators;  // soe, direct; default both if the scene has history, else none
+  std::vector<std::string> evaluators;  // soe-step, soe, direct; default all three if the scene has history, else none
   std::vector<double> direct_steps = {4, 2, 1, 0.5, 0.25};  // direct: multiples of its default step
   double direct_rtol = 1e-10;           // direct: the integrator tolerance while its step is varied
   double ref_rtol = 1e-13;              // reference: cvode dense, atol = rtol, soe fit tolerance ref_history_tol

@@ -101,8 +101,8 @@ struct Scene {
   } contact;
   struct History {
     KernelKind kernel = KernelKind::basset;  // basset | mei-adrian | kim | dorgan-loth (MODEL.md §2.3)
-    HistoryEvaluator evaluator = HistoryEvaluator::soe;  // soe (sum of exponentials, production) | soe-step (the same,
-                                                       // modes advanced per step outside the integrator's state) | direct
+    HistoryEvaluator evaluator = HistoryEvaluator::soe_step;  // soe-step (sum of exponentials, modes advanced per step
+                                                       // outside the integrator's state; default) | soe (modes as states) | direct
     double tolerance = 1e-6;           // soe: relative accuracy of the exponential fit of s^(-1/2)
     long modes = 0;                    // soe: > 0 fixes the number of exponentials instead of `tolerance`
     double min_lag = 0;                // s; shortest lag the exponentials resolve; 0 = automatic

@@ -577,7 +577,7 @@ Integrator::Integrator(DynamicalSystem& sys, const IntegratorSettings& st, Obser
   if (ls == LS::gmres || ls == LS::schur) {
     const std::string name = to_string(ls);
     if (!cvode) throw SolverError("the " + name + " linear solver is implemented for cvode only");
-    if (!modal) throw SolverError("the " + name + " linear solver needs a state with memory components (the history effect)");
+    if (!modal) throw SolverError("the " + name + " linear solver needs memory modes in the integrator's state: the history effect with history.evaluator = \"soe\"");
     m.cb.prec = &m.prec;
   }
   m.st.linear_solver = ls;
