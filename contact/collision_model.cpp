@@ -759,9 +759,19 @@ void CollisionModel::first_bounce_stop(double t) {
   stop_time_ = std::min(scene_.solver.t_end, std::max(t, *t_separation_ + scene_.measure.window));
 }
 
-void CollisionModel::observe(double t, const Evaluation& ev) {
+bool CollisionModel::observes_accelerations() const {
   const bool watched = phase_ == Phase::unloading || (all_bounces_ && phase_ == Phase::separated);
-  if (at_rest_ || !has_target() || !watched) {
+  return !at_rest_ && has_target() && watched;
+}
+
+Evaluation CollisionModel::kinematic_state(std::span<const double> y) const {
+  Evaluation ev;
+  kinematics(y, ev);
+  return ev;
+}
+
+void CollisionModel::observe(double t, const Evaluation& ev) {
+  if (!observes_accelerations()) {
     if (!at_rest_) quiet_since_.reset();
     return;
   }

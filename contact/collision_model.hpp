@@ -141,6 +141,11 @@ class CollisionModel : public DynamicalSystem {
   /// measure.window is at rest on the wall or moving with its partner: the run ends there (a longer run cannot
   /// change e = 0, and a stiff contact would otherwise be integrated to t_end at minute steps).
   void observe(double t, const Evaluation& ev);
+  /// Whether observe() reads the accelerations of its sample now (watching for rest); otherwise a kinematic
+  /// sample (kinematic_state) is enough.
+  bool observes_accelerations() const;
+  /// The positions, velocities and gap at y, without forces.
+  Evaluation kinematic_state(std::span<const double> y) const;
   std::optional<double> t_at_rest() const { return at_rest_ ? quiet_since_ : std::nullopt; }  // start of that window
   std::size_t n_spheres() const { return n_spheres_; }
   bool has_target() const { return target_ != Target::none; }

@@ -27,8 +27,8 @@ constexpr ForceColumn kForceColumns[] = {
 
 }  // namespace
 
-Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress)
-    : model_(model), sc_(sc), min_gap_(INFINITY), progress_(progress && ::isatty(2)) {
+Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces)
+    : model_(model), sc_(sc), min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
   const bool pair = model.n_spheres() == 2;
   columns_ = {"t", "z1", "u1"};
   if (model.has_target()) columns_.push_back("gap");
@@ -37,18 +37,20 @@ Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progres
     columns_.push_back("u2");
   }
   if (model.has_target()) columns_.push_back("u_rel");
-  for (int m = 1; m <= static_cast<int>(model.n_spheres()); ++m) {
+  for (int m = 1; forces_ && m <= static_cast<int>(model.n_spheres()); ++m) {
     const std::string k = std::to_string(m);
     for (const auto& c : kForceColumns)
       if (sc.has(c.effect)) columns_.push_back(c.name + k);
     columns_.push_back("a" + k);
   }
-  if (sc.has(Effect::flow)) columns_.push_back("H");
+  if (forces_ && sc.has(Effect::flow)) columns_.push_back("H");
   columns_.push_back("event");
 }
 
 void Recorder::sample(double t, std::span<const double> y, bool at_event) {
-  const Evaluation ev = model_.evaluate(t, y);
+  // Without force columns the forces are still needed where the model watches for rest.
+  const bool evaluate = forces_ || model_.observes_accelerations();
+  const Evaluation ev = evaluate ? model_.evaluate(t, y) : model_.kinematic_state(y);
   std::vector<double> r;
   r.reserve(columns_.size());
   r.insert(r.end(), {t, ev.z[0], ev.u[0]});
@@ -59,21 +61,21 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
     r.push_back(ev.u[1]);
   }
   if (model_.has_target()) r.push_back(ev.u_rel);
-  for (std::size_t m = 0; m < model_.n_spheres(); ++m) {
+  for (std::size_t m = 0; forces_ && m < model_.n_spheres(); ++m) {
     const auto& f = ev.f[m];
     for (const auto& c : kForceColumns)
       if (sc_.has(c.effect)) r.push_back(f.*c.field);
     r.push_back(f.accel);
     max_history_ = std::max(max_history_, std::abs(f.history));
   }
-  if (sc_.has(Effect::flow)) r.push_back(ev.H);
+  if (forces_ && sc_.has(Effect::flow)) r.push_back(ev.H);
   r.push_back(at_event ? 1.0 : 0.0);
   rows_.push_back(std::move(r));
   model_.observe(t, ev);  // may end the run: at rest on the wall, or moving with its partner
   if (progress_) show_progress(t);
   if (model_.has_target()) {
     min_gap_ = std::min(min_gap_, ev.gap);
-    max_force_ = std::max(max_force_, std::abs(ev.f[0].contact));
+    if (forces_) max_force_ = std::max(max_force_, std::abs(ev.f[0].contact));
   }
 }
 

@@ -14,8 +14,9 @@ namespace imcol::run {
 
 class Recorder : public Observer {
  public:
-  /// `progress`: a run still going after 2 s shows a progress line on stderr (a terminal only).
-  Recorder(contact::CollisionModel& model, const Scene& sc, bool progress);
+  /// `progress`: a run still going after 2 s shows a progress line on stderr (a terminal only). `forces`: the rows
+  /// carry the force terms and accelerations; without, only the kinematic columns and the event flag.
+  Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces = true);
 
   void sample(double t, std::span<const double> y, bool at_event) override;
   void stepped(long steps) override { steps_ = steps; }
@@ -25,8 +26,9 @@ class Recorder : public Observer {
   const std::vector<std::string>& columns() const { return columns_; }
   std::vector<std::vector<double>>& rows() { return rows_; }
   double min_gap() const { return min_gap_; }          // m, over the samples
-  double max_contact_force() const { return max_force_; }  // N, sphere 1
-  double max_history_force() const { return max_history_; }  // N, any sphere
+  bool forces() const { return forces_; }
+  double max_contact_force() const { return max_force_; }  // N, sphere 1 (forces() only)
+  double max_history_force() const { return max_history_; }  // N, any sphere (forces() only)
 
  private:
   void show_progress(double t);
@@ -37,7 +39,7 @@ class Recorder : public Observer {
   std::vector<std::vector<double>> rows_;
   double min_gap_, max_force_ = 0, max_history_ = 0;
   long steps_ = 0;
-  bool progress_ = false, shown_ = false;
+  bool forces_ = true, progress_ = false, shown_ = false;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
 };
 

@@ -36,14 +36,14 @@ IntegratorSettings integrator_settings(const Scene& sc) {
 
 }  // namespace
 
-RunResult simulate(const Scene& sc, bool progress) {
+RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   const auto setup_start = WallClock::now();
   CollisionModel model(sc);
   const double setup = seconds_since(setup_start);
 
   // Integrate: the reduced-order model alone, or coupled to the flow kernel.
   const auto wall_start = WallClock::now();
-  run::Recorder rec(model, sc, progress);
+  run::Recorder rec(model, sc, progress, recording == Recording::full);
   const IntegratorSettings st = integrator_settings(sc);
   std::unique_ptr<coupling::FlowCoupling> coupled;
   SolverStats stats;

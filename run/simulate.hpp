@@ -18,9 +18,14 @@ struct RunResult {
   std::vector<std::pair<std::string, std::string>> files;  // further files: name in the output directory, content
 };
 
+/// What the trajectory rows carry. `kinematics`: positions, velocities and events only (what e is measured from);
+/// the forces are evaluated only where the model needs them to end the run (at rest), so that sweeps skip their
+/// cost; the summary's max_contact_force_N and max_history_force_N are then null.
+enum class Recording { full, kinematics };
+
 /// Runs one scene. Throws InputError (bad scene), SolverError (integration failed).
 /// `progress`: a run still going after 2 s shows a progress line on a terminal (stderr).
-RunResult simulate(const Scene& scene, bool progress = false);
+RunResult simulate(const Scene& scene, bool progress = false, Recording recording = Recording::full);
 
 /// DIR/trajectory.csv and DIR/summary.json (and a coupled run's flow fields), each written completely or not at all.
 void write_outputs(const RunResult& r, const std::filesystem::path& dir);

@@ -46,10 +46,11 @@ void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, co
   s["velocities_m_s"] = {{"U_i1", or_null(m.u_i1)}, {"U_i2", or_null(m.u_i2)}, {"U_r1", or_null(m.u_r1)}, {"U_r2", or_null(m.u_r2)}};
   s["fit_window_s"] = m.fit_window;
   s["min_gap_m"] = model.has_target() ? nlohmann::ordered_json(rec.min_gap()) : nlohmann::ordered_json(nullptr);
-  s["max_contact_force_N"] = rec.max_contact_force();
+  s["max_contact_force_N"] = rec.forces() ? nlohmann::ordered_json(rec.max_contact_force()) : nlohmann::ordered_json(nullptr);
   s["group_velocity_m_s"] = or_null(m.group_velocity);
   if (m.group_velocity) s["group_velocity_at_s"] = *m.t_group;
-  if (sc.has(Effect::history)) s["max_history_force_N"] = rec.max_history_force();  // at the output samples and events
+  if (sc.has(Effect::history))  // at the output samples and events
+    s["max_history_force_N"] = rec.forces() ? nlohmann::ordered_json(rec.max_history_force()) : nlohmann::ordered_json(nullptr);
   if (!rows.empty()) {
     s["u1_final_m_s"] = rows.back()[2];
     if (pair) s["u2_final_m_s"] = rows.back()[5];

@@ -240,3 +240,25 @@ TEST(HardCases, ExtremeSpeedsAndViscositiesStayStable) {
         }
       }
 }
+
+TEST(Recording, KinematicsOnlyMeasuresTheSameCollision) {
+  // Sweeps record positions and velocities only (the forces are evaluated where the model watches for rest):
+  // the integration, the events and every measure of e are those of the full recording.
+  for (const char* name : {"default.toml", "gg3462.toml", "bouncing_steel.toml"}) {
+    SCOPED_TRACE(name);
+    const Scene sc = load_scene(data_dir() + "/scenes/" + name);
+    const RunResult full = simulate(sc), lean = simulate(sc, false, Recording::kinematics);
+    for (const char* k : {"e", "e_instant", "e_measures", "bounces", "events", "St", "min_gap_m", "at_rest_since_s", "contacts"})
+      EXPECT_EQ(lean.summary[k], full.summary[k]) << k;
+    EXPECT_EQ(lean.summary["solver"]["steps"], full.summary["solver"]["steps"]);
+    EXPECT_TRUE(lean.summary["max_contact_force_N"].is_null());
+    EXPECT_FALSE(full.summary["max_contact_force_N"].is_null());
+    ASSERT_EQ(lean.rows.size(), full.rows.size());
+    ASSERT_EQ(lean.columns.back(), "event");
+    ASSERT_LT(lean.columns.size(), full.columns.size());
+    for (std::size_t c = 0; c + 1 < lean.columns.size(); ++c) {
+      ASSERT_EQ(lean.columns[c], full.columns[c]);
+      for (std::size_t i = 0; i < lean.rows.size(); ++i) ASSERT_EQ(lean.rows[i][c], full.rows[i][c]) << lean.columns[c] << " row " << i;
+    }
+  }
+}
