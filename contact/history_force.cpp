@@ -201,9 +201,10 @@ void SphereHistory::fill_step(StepCache& c, double dt) const {
   std::array<double, kPoints + 1> dp{1};  // Δ^j
   for (int j = 1; j <= kPoints; ++j) dp[j] = dp[j - 1] * dt;
   const auto& lam = soe_->rates();
-  for (std::size_t i = 0; i < lam.size(); ++i) {
+  const std::size_t n = lam.size();
+  for (std::size_t i = 0; i < n; ++i) {
     const double x = lam[i] * dt;
-    double* M = &c.m[kPoints * i];
+    std::array<double, kPoints> M;
     if (x >= 0.5) {
       const double e = x > 40 ? 0.0 : std::exp(-x), il = inv_rate_[i];  // e^(−40) z is below rounding
       c.e[i] = e;
@@ -216,6 +217,7 @@ void SphereHistory::fill_step(StepCache& c, double dt) const {
       for (int j = top; j > 0; --j) M[j - 1] = (dp[j] - lam[i] * M[j]) * inv[j];
       c.e[i] = 1 - lam[i] * M[0];
     }
+    for (int j = 0; j < kPoints; ++j) c.m[j * n + i] = M[j];
   }
 }
 
@@ -244,7 +246,8 @@ bool SphereHistory::in_step(double t, double U) const {
       if (!basset_w_.empty()) {
         for (int j = 0; j < kPoints; ++j) {
           double sum = 0;
-          for (std::size_t i = 0; i < lam.size(); ++i) sum += basset_w_[i] * c.m[kPoints * i + j];
+          const double* Mj = &c.m[j * lam.size()];
+          for (std::size_t i = 0; i < lam.size(); ++i) sum += basset_w_[i] * Mj[i];
           c.sums[j + 1] = sum;
         }
       }
@@ -298,15 +301,22 @@ double SphereHistory::memory_sum(double t, double U, std::span<const double> w) 
 
 double SphereHistory::mode_in_step(const StepCache& c, std::size_t i) const {
   double inc = 0;
-  for (int j = 0; j < nd_; ++j) inc += d_[j] * c.m[kPoints * i + j];
+  for (int j = 0; j < nd_; ++j) inc += d_[j] * c.m[j * z_.size() + i];
   return c.ez[i] + inc;
 }
 
 void SphereHistory::advance_memory(double t, double U, bool restart) {
   if (!stepwise()) return;
   if (in_step(t, U)) {
+    // z_i = e^(−λ_i Δ) z_i + Σ_j d_j M_ij, summed over j in order as mode_in_step does, a column of M at a time.
     const StepCache& c = cache_[cur_];
-    for (std::size_t i = 0; i < z_.size(); ++i) z_[i] = mode_in_step(c, i);
+    const std::size_t n = z_.size();
+    std::fill(z_.begin(), z_.end(), 0.0);
+    for (int j = 0; j < nd_; ++j) {
+      const double dj = d_[j], *Mj = &c.m[j * n];
+      for (std::size_t i = 0; i < n; ++i) z_[i] += dj * Mj[i];
+    }
+    for (std::size_t i = 0; i < n; ++i) z_[i] += c.ez[i];
   } else if (np_ > 0 && !restart) {
     return;  // not a new time
   }

@@ -134,7 +134,7 @@ class SphereHistory {
   struct StepCache {
     double dt = -1;
     long z_gen = -1;
-    std::vector<double> e, ez, m;       // e^(−λ_i Δ), e^(−λ_i Δ) z_i; M_ij at [kPoints i + j]
+    std::vector<double> e, ez, m;       // e^(−λ_i Δ), e^(−λ_i Δ) z_i; M_ij at [j · modes + i]
     std::array<double, kPoints + 1> sums{};  // Basset: Σ w_i e^(−λ_i Δ) z_i, Σ w_i M_ij
   };
   long z_gen_ = 0;                      // bumped whenever z_ changes
