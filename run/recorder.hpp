@@ -1,6 +1,7 @@
 #pragma once
 // Samples a collision run into trajectory rows (one per output time and event) with the force terms of the
-// effects that ran, lets the model observe each sample (it may end the run: at rest), and shows progress.
+// effects that ran (or, for sweeps, the kinematics alone), lets the model observe each sample (it may end the
+// run: at rest), and shows progress.
 #include <chrono>
 #include <span>
 #include <string>
