@@ -16,7 +16,6 @@ struct SoeCache {
   using Key = std::tuple<int, double, double, double, double, double, int>;
   std::mutex mu;
   std::map<Key, std::shared_ptr<const SoeKernel>> kernels;
-  SoeCacheStats stats;
 };
 SoeCache& soe_cache() {
   static SoeCache c;
@@ -30,25 +29,15 @@ std::shared_ptr<const SoeKernel> shared_soe_kernel(const HistoryOptions& opt, do
   auto& c = soe_cache();
   {
     const std::lock_guard<std::mutex> lock(c.mu);
-    if (auto it = c.kernels.find(key); it != c.kernels.end()) {
-      ++c.stats.reused;
-      return it->second;
-    }
+    if (auto it = c.kernels.find(key); it != c.kernels.end()) return it->second;
   }
   // Built outside the lock: other threads keep running; two threads building the same key keep the first.
   const auto base = opt.modes > 0 ? inverse_sqrt_soe_modes(opt.min_lag, opt.horizon, opt.modes)
                                   : inverse_sqrt_soe(opt.min_lag, opt.horizon, opt.tolerance);
   auto k = std::make_shared<const SoeKernel>(HistoryKernel(opt.kernel, D, nu), base);
   const std::lock_guard<std::mutex> lock(c.mu);
-  ++c.stats.built;
   if (c.kernels.size() >= 256) c.kernels.clear();  // bounded: a long sweep of distinct scenes
   return c.kernels.emplace(key, std::move(k)).first->second;
-}
-
-SoeCacheStats soe_cache_stats() {
-  auto& c = soe_cache();
-  const std::lock_guard<std::mutex> lock(c.mu);
-  return c.stats;
 }
 
 SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, double rho_f, double U0)
@@ -68,14 +57,12 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
   }
   soe_ = shared_soe_kernel(opt, 2 * a, mu / rho_f);
   w_.assign(soe_->modes(), 0.0);
+  fixed_weights_ = kernel_.kind() == KernelKind::basset;  // Basset's weights and κ do not depend on Re
+  if (fixed_weights_) soe_->weights(0.0, w_, kappa_);
   if (stepwise()) {
     z_.assign(soe_->modes(), impulsive_ ? U0 : 0.0);
+    zs_.assign(soe_->modes(), 0.0);
     for (double l : soe_->rates()) inv_rate_.push_back(1 / l);
-    if (kernel_.kind() == KernelKind::basset) {
-      double kappa = 0;
-      basset_w_.assign(soe_->modes(), 0.0);
-      soe_->weights(0.0, basset_w_, kappa);
-    }
     for (auto& c : cache_) {
       c.e.assign(soe_->modes(), 0.0);
       c.ez.assign(soe_->modes(), 0.0);
@@ -135,8 +122,8 @@ SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std:
   const double cK = c_ * K_H;
   Term term;
   if (soe_) {
-    double kappa = 0;
-    soe_->weights(Re, w_, kappa);
+    double kappa = kappa_;
+    if (!fixed_weights_) soe_->weights(Re, w_, kappa);
     double sum = 0;
     if (stepwise()) {
       sum = memory_sum(t, U, w_);
@@ -211,7 +198,7 @@ void SphereHistory::fill_step(StepCache& c, double dt) const {
       M[0] = (1 - e) * il;
       for (int j = 1; j < kPoints; ++j) M[j] = (dp[j] - j * M[j - 1]) * il;
     } else {
-      double sum = kTopSeries[kTopTerms - 1];  // Horner: error below 4e-16 relative for x ≤ 1/2
+      double sum = kTopSeries[kTopTerms - 1];  // Horner: truncation 1.2e-15 relative at x = 1/2
       for (int k = kTopTerms - 2; k >= 0; --k) sum = kTopSeries[k] - x * sum;
       M[top] = dp[top + 1] * sum;
       for (int j = top; j > 0; --j) M[j - 1] = (dp[j] - lam[i] * M[j]) * inv[j];
@@ -237,18 +224,19 @@ bool SphereHistory::in_step(double t, double U) const {
       if (twin_)
         for (const auto& o : twin_->cache_)
           if (o.dt == dt) shared = &o;
-      if (shared) {
+      if (shared) {  // the same kernel: e, M and the weighted sums of M are the twin's
         c.e = shared->e;
         c.m = shared->m;
+        c.sums = shared->sums;
       } else {
         fill_step(c, dt);
-      }
-      if (!basset_w_.empty()) {
-        for (int j = 0; j < kPoints; ++j) {
-          double sum = 0;
-          const double* Mj = &c.m[j * lam.size()];
-          for (std::size_t i = 0; i < lam.size(); ++i) sum += basset_w_[i] * Mj[i];
-          c.sums[j + 1] = sum;
+        if (fixed_weights_) {
+          for (int j = 0; j < kPoints; ++j) {
+            double sum = 0;
+            const double* Mj = &c.m[j * lam.size()];
+            for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * Mj[i];
+            c.sums[j + 1] = sum;
+          }
         }
       }
       c.dt = dt;
@@ -257,9 +245,9 @@ bool SphereHistory::in_step(double t, double U) const {
   }
   if (StepCache& c = cache_[cur_]; c.z_gen != z_gen_) {
     for (std::size_t i = 0; i < lam.size(); ++i) c.ez[i] = c.e[i] * z_[i];
-    if (!basset_w_.empty()) {
+    if (fixed_weights_) {
       double sum = 0;
-      for (std::size_t i = 0; i < lam.size(); ++i) sum += basset_w_[i] * c.ez[i];
+      for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * c.ez[i];
       c.sums[0] = sum;
     }
     c.z_gen = z_gen_;
@@ -289,34 +277,32 @@ double SphereHistory::memory_sum(double t, double U, std::span<const double> w) 
     return sum;
   }
   const StepCache& c = cache_[cur_];
-  if (!basset_w_.empty()) {  // Re-independent weights: the sums in_step cached
+  if (fixed_weights_) {  // Re-independent weights: the sums in_step cached
     double sum = c.sums[0];
     for (int j = 0; j < nd_; ++j) sum += d_[j] * c.sums[j + 1];
     return sum;
   }
+  modes_in_step(c, zs_);
   double sum = 0;
-  for (std::size_t i = 0; i < z_.size(); ++i) sum += w[i] * mode_in_step(c, i);
+  for (std::size_t i = 0; i < z_.size(); ++i) sum += w[i] * zs_[i];
   return sum;
 }
 
-double SphereHistory::mode_in_step(const StepCache& c, std::size_t i) const {
-  double inc = 0;
-  for (int j = 0; j < nd_; ++j) inc += d_[j] * c.m[j * z_.size() + i];
-  return c.ez[i] + inc;
+void SphereHistory::modes_in_step(const StepCache& c, std::span<double> out) const {
+  // z_i = e^(−λ_i Δ) z_i + Σ_j d_j M_ij, the sum over j in order, a column of M at a time.
+  const std::size_t n = out.size();
+  std::fill(out.begin(), out.end(), 0.0);
+  for (int j = 0; j < nd_; ++j) {
+    const double dj = d_[j], *Mj = &c.m[j * n];
+    for (std::size_t i = 0; i < n; ++i) out[i] += dj * Mj[i];
+  }
+  for (std::size_t i = 0; i < n; ++i) out[i] += c.ez[i];
 }
 
 void SphereHistory::advance_memory(double t, double U, bool restart) {
   if (!stepwise()) return;
   if (in_step(t, U)) {
-    // z_i = e^(−λ_i Δ) z_i + Σ_j d_j M_ij, summed over j in order as mode_in_step does, a column of M at a time.
-    const StepCache& c = cache_[cur_];
-    const std::size_t n = z_.size();
-    std::fill(z_.begin(), z_.end(), 0.0);
-    for (int j = 0; j < nd_; ++j) {
-      const double dj = d_[j], *Mj = &c.m[j * n];
-      for (std::size_t i = 0; i < n; ++i) z_[i] += dj * Mj[i];
-    }
-    for (std::size_t i = 0; i < n; ++i) z_[i] += c.ez[i];
+    modes_in_step(cache_[cur_], z_);  // reads e^(−λΔ) z from the cache, not z_
   } else if (np_ > 0 && !restart) {
     return;  // not a new time
   }

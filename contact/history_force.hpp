@@ -9,7 +9,7 @@
 //          memory with U' taken constant). O(modes) per evaluation.
 //  soe-step the same exponentials, but the modes are not integrator states: over a step from t_n,
 //          z_i(t) = e^(−λ_i Δ) z_i(t_n) + ∫_0^Δ P'(σ) e^(−λ_i (Δ−σ)) dσ,  Δ = t − t_n,
-//          P the polynomial through the last (up to 5) accepted (t_j, U_j) and the current (t, U), integrated
+//          P the polynomial through the last (up to kPoints = 3) accepted (t_j, U_j) and the current (t, U), integrated
 //          exactly (M_j = ∫_0^Δ σ^j e^(−λ(Δ−σ)) dσ); advance_memory() moves t_n to each accepted step.
 //          A restart (event) forgets the earlier points, where U' may jump. O(1) per evaluation at a
 //          known Δ (Basset), O(modes) exponentials per new Δ.
@@ -48,11 +48,6 @@ struct HistoryOptions {
 /// The sum-of-exponentials kernel for these options, built once per process and per (kernel, D, ν, min_lag,
 /// horizon, tolerance | modes) and reused by every later run and sweep point (thread-safe; at most 256 kept).
 std::shared_ptr<const SoeKernel> shared_soe_kernel(const HistoryOptions& opt, double D, double nu);
-/// Kernels built (cache misses) and reused (hits) so far in this process.
-struct SoeCacheStats {
-  long built = 0, reused = 0;
-};
-SoeCacheStats soe_cache_stats();
 
 class SphereHistory {
  public:
@@ -89,8 +84,8 @@ class SphereHistory {
   /// An accepted step (restart = false) or a restart to t with velocity U: the modes move to t with the
   /// polynomial of that step; a restart keeps only (t, U) as the next polynomial's history.
   void advance_memory(double t, double U, bool restart);
-  /// soe-step: reuse `twin`'s e^(−λΔ) and M at the same t_n and Δ when both have the same exponentials (equal
-  /// spheres share one cached kernel); twin must be advanced first at each step.
+  /// soe-step: reuse `twin`'s e^(−λΔ), M and their weighted sums at the same Δ when both have the same exponentials
+  /// (equal spheres share one cached kernel).
   void share_steps_with(const SphereHistory* twin);
 
   // direct evaluator grid
@@ -99,7 +94,6 @@ class SphereHistory {
 
   // reporting
   std::size_t modes() const { return direct() ? 0 : soe_->modes(); }
-  double fit_error(double Re) const { return soe_ ? soe_->max_rel_error(Re) : 0.0; }
   double reynolds(double U) const;
   const SoeKernel* soe() const { return soe_.get(); }
 
@@ -118,15 +112,17 @@ class SphereHistory {
   bool impulsive_, initial_re_;
   double c_;        // 6πμa [kg/s]
   double D_, nu_, U0_, min_lag_;
-  mutable std::vector<double> w_;  // scratch for the current weights
+  mutable std::vector<double> w_;  // the current weights (Basset: fixed at construction)
+  bool fixed_weights_ = false;     // Basset: w_ and kappa_ do not depend on Re
+  double kappa_ = 0;               // Basset's short-lag coefficient κ
   double step_ = 0;
   std::vector<double> grid_u_;     // U at t_k = kΔ, k = 0..n
   // soe-step
   std::vector<double> z_;               // modes at t_n
   std::vector<double> inv_rate_;        // 1/λ_i
-  std::vector<double> basset_w_;        // Basset: the weights w_i (Re-independent), for the cached sums
+  mutable std::vector<double> zs_;      // scratch: the modes inside a step (finite-Re kernels)
   double tn_ = 0;
-  static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints (5 measured no better)
+  static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints
   std::array<double, kPoints> pt_{}, pu_{};  // accepted (t_j, U_j), most recent first (pt_[0] = t_n)
   int np_ = 0;
   // One Δ (two are kept: the step's end and an output sample in it). e, M and their Basset sums depend on Δ
@@ -142,7 +138,8 @@ class SphereHistory {
   mutable int cur_ = 0;                 // the slot in_step filled or found last
   const SphereHistory* twin_ = nullptr; // an equal sphere (same exponentials) whose e and M are reused
   void fill_step(StepCache& c, double dt) const;
-  double mode_in_step(const StepCache& c, std::size_t i) const;  // z_i(t) = e^(−λ_i Δ) z_i + Σ_j d_j M_ij (after in_step)
+  /// soe-step: every z_i(t) = e^(−λ_i Δ) z_i + Σ_j d_j M_ij into out (after in_step).
+  void modes_in_step(const StepCache& c, std::span<double> out) const;
   mutable std::array<double, kPoints> d_{};  // P'(σ) = Σ_j d_j σ^j
   mutable int nd_ = 0;
 };
