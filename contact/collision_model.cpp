@@ -107,7 +107,6 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
        << ": lower solver.t_end, or raise solver.step_budget to run anyway";
     throw InputError(sc.path, "solver.t_end", os.str());
   }
-  auto_max_step_ = has_target() && !(sc.solver.max_step > 0);
   stop_time_ = sc.solver.t_end;
   stall_speed_ = sc.measure.stall_fraction * std::max(0.0, u_rel0_);
   // Build the lookup tables now, not inside the first right-hand side.
@@ -189,10 +188,7 @@ void CollisionModel::setup_history() {
   }
   history_states_ = offset - core_size();
   if (n_spheres_ == 2) history_[1]->share_steps_with(history_[0].get());  // soe-step, equal exponentials
-  if (o.evaluator == HistoryEvaluator::direct) {
-    max_step_ = std::min(max_step_, o.direct_step);
-    auto_max_step_ = false;
-  }
+  if (o.evaluator == HistoryEvaluator::direct) max_step_ = std::min(max_step_, o.direct_step);
 }
 
 double CollisionModel::next_breakpoint(double) const {
@@ -304,8 +300,7 @@ void CollisionModel::initial_state(std::span<double> y) const {
 
 void CollisionModel::at_step(double t, std::span<const double> y, bool restart) {
   if (!history_[0] || hist_opt_.evaluator != HistoryEvaluator::soe_step) return;
-  Evaluation ev;
-  kinematics(y, ev);
+  const Evaluation ev = kinematic_state(y);
   for (std::size_t m = 0; m < n_spheres_; ++m) history_[m]->advance_memory(t, ev.u[m], restart);
 }
 
@@ -331,16 +326,17 @@ void CollisionModel::kinematics(std::span<const double> y, Evaluation& ev) const
 
 double CollisionModel::max_step(double, std::span<const double> y) const {
   if (!has_target()) return max_step_;
-  const double u_rel = target_ == Target::sphere ? y[1] - y[3] : y[1];
+  const Evaluation ev = kinematic_state(y);
   if (phase_ != Phase::loading && phase_ != Phase::unloading) {
-    // Approaching: a quarter of the time to reach the contact zone at the current speed, never below max_step_.
-    if (!auto_max_step_ || !(u_rel > 0)) return max_step_;
-    return std::max(max_step_, 0.25 * (y[0] - delta_ss_m_) / u_rel);
+    // Approaching: a quarter of the time to reach the contact zone at the current speed, never below max_step_
+    // (unless the cap is the user's solver.max_step or the direct evaluator's grid step).
+    const bool automatic = !(scene_.solver.max_step > 0) && hist_opt_.evaluator != HistoryEvaluator::direct;
+    if (!automatic || !(ev.u_rel > 0)) return max_step_;
+    return std::max(max_step_, 0.25 * (ev.gap - delta_ss_m_) / ev.u_rel);
   }
-  const double capped = std::min(max_step_, contact_max_step_);
-  const double above = y[0] - ramp_on_gap_;
-  if (!(above > 0)) return capped;
-  return std::min(max_step_, std::max(contact_max_step_, 0.25 * above / std::abs(u_rel)));
+  const double above = ev.gap - ramp_on_gap_;
+  if (!(above > 0)) return std::min(max_step_, contact_max_step_);
+  return std::min(max_step_, std::max(contact_max_step_, 0.25 * above / std::abs(ev.u_rel)));
 }
 
 double CollisionModel::contact_force(double gap) const {

@@ -246,7 +246,6 @@ class CollisionModel : public DynamicalSystem {
   std::vector<RootKind> armed_kind_;
   std::vector<EventRecord> events_;
   double stop_time_ = 0, max_step_ = 0, contact_max_step_ = std::numeric_limits<double>::infinity();
-  bool auto_max_step_ = false;  // max_step_ is the automatic cap (not solver.max_step, not the direct evaluator's grid)
   double ramp_on_gap_ = 0;  // m: the ramp force is below e^(-kRampTail) W_o above this gap (set with β)
   std::optional<double> quiet_since_;  // observe(): start of the current quiet stretch
   bool at_rest_ = false;

@@ -266,7 +266,15 @@ void check(int flag, const char* call) {
   if (flag < 0) throw SolverError(std::string("SUNDIALS setup call ") + call + " failed with flag " + std::to_string(flag));
 }
 
-/// The operations the event loop needs, implemented once for CVODE and once for IDA.
+std::vector<int> root_directions(const std::vector<RootSpec>& roots) {
+  std::vector<int> dir;
+  for (const auto& r : roots) dir.push_back(r.direction);
+  return dir;
+}
+
+/// The operations the event loop needs, implemented once for CVODE and once for IDA. Every call takes one
+/// internal step (CV_ONE_STEP / IDA_ONE_STEP), so solver.max_steps is the loop's own count (quiet_steps), not
+/// CVodeSetMaxNumSteps (which counts steps within one call).
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -289,7 +297,7 @@ class Backend {
 class CvodeBackend : public Backend {
  public:
   CvodeBackend(SUNContext ctx, Callback& cb, const IntegratorSettings& st, N_Vector y, N_Vector abstol)
-      : cb_(cb), st_(st), abstol_(abstol) {
+      : cb_(cb), abstol_(abstol) {
     mem_ = CVodeCreate(CV_BDF, ctx);
     if (!mem_) throw SolverError("CVodeCreate failed");
     check(CVodeSetErrHandlerFn(mem_, error_handler, &cb_), "CVodeSetErrHandlerFn");
@@ -318,14 +326,12 @@ class CvodeBackend : public Backend {
   }
   void init(double t, N_Vector y) override {
     check(CVodeReInit(mem_, t, y), "CVodeReInit");
-    check(CVodeSetMaxNumSteps(mem_, st_.max_steps), "CVodeSetMaxNumSteps");
   }
   void set_roots(const std::vector<RootSpec>& roots) override {
     cb_.nroots = roots.size();
     check(CVodeRootInit(mem_, static_cast<int>(roots.size()), roots.empty() ? nullptr : cv_root), "CVodeRootInit");
     if (roots.empty()) return;
-    std::vector<int> dir;
-    for (const auto& r : roots) dir.push_back(r.direction);
+    std::vector<int> dir = root_directions(roots);
     check(CVodeSetRootDirection(mem_, dir.data()), "CVodeSetRootDirection");
   }
   int step(double tout, double tstop, N_Vector y, double& t) override {
@@ -372,7 +378,6 @@ class CvodeBackend : public Backend {
 
  private:
   Callback& cb_;
-  const IntegratorSettings& st_;
   N_Vector abstol_;
   void* mem_ = nullptr;
   SUNMatrix A_ = nullptr;
@@ -382,7 +387,7 @@ class CvodeBackend : public Backend {
 class IdaBackend : public Backend {
  public:
   IdaBackend(SUNContext ctx, Callback& cb, const IntegratorSettings& st, N_Vector y, N_Vector abstol)
-      : cb_(cb), st_(st), abstol_(abstol) {
+      : cb_(cb), abstol_(abstol) {
     yp_ = N_VClone(y);
     consistent_yp(0.0, y);
     mem_ = IDACreate(ctx);
@@ -406,14 +411,12 @@ class IdaBackend : public Backend {
   void init(double t, N_Vector y) override {
     consistent_yp(t, y);
     check(IDAReInit(mem_, t, y, yp_), "IDAReInit");
-    check(IDASetMaxNumSteps(mem_, st_.max_steps), "IDASetMaxNumSteps");
   }
   void set_roots(const std::vector<RootSpec>& roots) override {
     cb_.nroots = roots.size();
     check(IDARootInit(mem_, static_cast<int>(roots.size()), roots.empty() ? nullptr : ida_root), "IDARootInit");
     if (roots.empty()) return;
-    std::vector<int> dir;
-    for (const auto& r : roots) dir.push_back(r.direction);
+    std::vector<int> dir = root_directions(roots);
     check(IDASetRootDirection(mem_, dir.data()), "IDASetRootDirection");
   }
   int step(double tout, double tstop, N_Vector y, double& t) override {
@@ -456,7 +459,6 @@ class IdaBackend : public Backend {
  private:
   void consistent_yp(double t, N_Vector y) { cb_.sys->rhs(t, view(y), mview(yp_)); }
   Callback& cb_;
-  const IntegratorSettings& st_;
   N_Vector abstol_;
   N_Vector yp_ = nullptr;
   void* mem_ = nullptr;
