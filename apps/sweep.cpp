@@ -58,7 +58,7 @@ struct PointResult {
   std::string row;  // CSV
 };
 
-nlohmann::ordered_json or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
+nlohmann::ordered_json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
 
 std::string csv_cell(const nlohmann::ordered_json& j) {
   if (j.is_null()) return "";
@@ -271,7 +271,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   j["spacing"] = opt.spacing;
   j["jobs"] = jobs;
   j["wall_time_s"] = wall;
-  j["collisions_per_second"] = or_null(ok / wall);
+  j["collisions_per_second"] = finite_or_null(ok / wall);
   j["failures"] = failures;
   j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : pts[0].summary["St_convention"];
   if (!pts.empty() && pts[0].ok) j["effects"] = pts[0].summary["effects"];

@@ -37,6 +37,9 @@ Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progres
     columns_.push_back("u2");
   }
   if (model.has_target()) columns_.push_back("u_rel");
+  if (forces_)
+    for (const auto& c : kForceColumns)
+      if (sc.has(c.effect)) fields_.push_back(c.field);
   for (int m = 1; forces_ && m <= static_cast<int>(model.n_spheres()); ++m) {
     const std::string k = std::to_string(m);
     for (const auto& c : kForceColumns)
@@ -63,8 +66,7 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
   if (model_.has_target()) r.push_back(ev.u_rel);
   for (std::size_t m = 0; forces_ && m < model_.n_spheres(); ++m) {
     const auto& f = ev.f[m];
-    for (const auto& c : kForceColumns)
-      if (sc_.has(c.effect)) r.push_back(f.*c.field);
+    for (auto field : fields_) r.push_back(f.*field);
     r.push_back(f.accel);
     max_history_ = std::max(max_history_, std::abs(f.history));
   }
@@ -84,10 +86,9 @@ void Recorder::finish_progress() {
 }
 
 void Recorder::show_progress(double t) {
-  const auto now = std::chrono::steady_clock::now();
-  const double run = std::chrono::duration<double>(now - start_).count();
-  if (run < 2.0 || std::chrono::duration<double>(now - last_).count() < 0.5) return;
-  last_ = now;
+  const double run = seconds_since(start_);
+  if (run < 2.0 || seconds_since(last_) < 0.5) return;
+  last_ = WallClock::now();
   shown_ = true;
   const double t_end = sc_.solver.t_end;
   const double left = t > 0 ? run * (t_end - t) / t : 0.0;  // at most: the run may stop once e is measured

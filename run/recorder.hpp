@@ -2,7 +2,6 @@
 // Samples a collision run into trajectory rows (one per output time and event) with the force terms of the
 // effects that ran (or, for sweeps, the kinematics alone), lets the model observe each sample (it may end the
 // run: at rest), and shows progress.
-#include <chrono>
 #include <span>
 #include <string>
 #include <vector>
@@ -10,6 +9,7 @@
 #include "contact/collision_model.hpp"
 #include "core/scene.hpp"
 #include "core/system.hpp"
+#include "core/timing.hpp"
 
 namespace imcol::run {
 
@@ -37,11 +37,12 @@ class Recorder : public Observer {
   contact::CollisionModel& model_;
   const Scene& sc_;
   std::vector<std::string> columns_;
+  std::vector<double contact::SphereForces::*> fields_;  // the force columns of each sphere, in column order
   std::vector<std::vector<double>> rows_;
   double min_gap_, max_force_ = 0, max_history_ = 0;
   long steps_ = 0;
   bool forces_ = true, progress_ = false, shown_ = false;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_ = start_;
+  WallClock::time_point start_ = WallClock::now(), last_ = start_;
 };
 
 }  // namespace imcol::run

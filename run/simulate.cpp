@@ -1,9 +1,7 @@
 #include "run/simulate.hpp"
 
-#include <chrono>
-#include <iomanip>
+#include <algorithm>
 #include <memory>
-#include <sstream>
 
 #include "contact/collision_model.hpp"
 #include "core/number_text.hpp"
@@ -73,7 +71,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   run::check_plausibility(model, sc, first, warnings);
   nlohmann::ordered_json bounces = nlohmann::ordered_json::array();
   if (model.has_target() && sc.has(Effect::elastic) && !res.rows.empty()) {
-    const std::size_t u_rel_column = model.n_spheres() == 2 ? 6 : 4;
+    const auto u_rel_column = static_cast<std::size_t>(std::find(res.columns.begin(), res.columns.end(), "u_rel") - res.columns.begin());
     bounces = run::measure_bounces(model, sc, run::track_from_rows(res.rows, u_rel_column), warnings);
   }
 
