@@ -94,12 +94,11 @@ void check_cost(const flow::FlowScene& sc, const FlowCommandOptions& opt) {
     moving = moving || p.velocity != 0 || p.amplitude != 0;
   }
   const flow::CostEstimate c = flow::estimate_cost(set, diameters, moving);
-  const double vertices = c.vertices, points = c.body_points, bytes = c.bytes, phys = flow::physical_memory_bytes();
+  const double vertices = c.vertices;
   const std::string where = sc.overridden.empty() ? sc.path : "command line (--cells/--levels)";
-  if (phys > 0 && bytes > 0.5 * phys)
+  if (const std::string why = flow::memory_refusal(c); !why.empty())
     throw InputError(sc.overridden.count("--cells") || sc.overridden.count("--levels") ? where : sc.path, "grid.cells_per_diameter",
-                     "the grid needs about " + fmt_number(bytes / 1e9) + " GB (" + fmt_number(vertices) + " vertices, " + fmt_number(points) +
-                         " body points), more than half of this machine's " + fmt_number(phys / 1e9) + " GB: use fewer cells or levels");
+                     "the grid " + why + ": use fewer cells or levels");
   const double steps = std::ceil(sc.t_end / sc.dt - 1e-9);
   const double seconds = steps * c.seconds_per_step;
   if (seconds > 3600 && !opt.allow_long)

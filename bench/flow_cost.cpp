@@ -17,8 +17,6 @@
 
 #include <atomic>
 #include <cerrno>
-
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,10 +26,13 @@
 
 #include "apps/flow_command.hpp"
 #include "contact/formulas.hpp"
+#include "core/timing.hpp"
 #include "flow/flow_scene.hpp"
 #include "flow/solver.hpp"
 
 using namespace imcol::flow;
+using imcol::seconds_since;
+using imcol::WallClock;
 
 // Every heap allocation of this process is counted (glibc's own allocator underneath).
 static std::atomic<long> g_allocs{0};
@@ -144,10 +145,10 @@ WallRun wall_run(const Settings& base, double gap, double u_sphere, double u_fra
   const SphereState sp{0.5, 0.5 + gap, u_sphere};
   Solver solver(s, {sp});
   WallRun r{};
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = WallClock::now();
   for (int n = 1; n <= steps; ++n) {
     const auto info = solver.step({sp});
-    if (n == 1) r.setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (n == 1) r.setup_s = seconds_since(t0);
     if (n == steps / 2) r.F_half = info.force[0];
     r.F = info.force[0];
     r.wall_force = info.wall_force;
@@ -189,16 +190,16 @@ int wall_mode(const std::vector<int>& cells, int levels, double Re, const std::v
       SphereState sp{0.5, 0.5 + 2.0, -1.0};
       Solver solver(s, {sp});
       auto adv = [&]() { if (moving) sp.z += sp.u * s.dt; return solver.step({sp}); };
-      const auto t0 = std::chrono::steady_clock::now();
+      const auto t0 = WallClock::now();
       adv();
-      const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double setup = seconds_since(t0);
       for (int n = 0; n < 59; ++n) adv();
       std::vector<double> t;
       long it = 0;
       for (int n = 0; n < 20; ++n) {
-        const auto t1 = std::chrono::steady_clock::now();
+        const auto t1 = WallClock::now();
         it += adv().krylov_iterations;
-        t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count());
+        t.push_back(1e3 * seconds_since(t1));
       }
       std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
       std::printf("%8s %8s %12zu %10.2f %10.3f %12.1f %12.2f\n", moving ? "moving" : "fixed", wall ? "yes" : "no",
@@ -302,9 +303,9 @@ int main(int argc, char** argv) {
       for (int n = 0; n < 3; ++n) solver.step({{0.5, 0.0, 0.0}});
       std::vector<double> t;
       for (int n = 0; n < steps; ++n) {
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = WallClock::now();
         solver.step({{0.5, 0.0, 0.0}});
-        t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        t.push_back(1e3 * seconds_since(t0));
       }
       std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
       const double ms = t[t.size() / 2];

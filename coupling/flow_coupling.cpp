@@ -239,12 +239,8 @@ void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre) co
   std::vector<double> diameters;
   for (std::size_t m = 0; m < n_; ++m) diameters.push_back(2 * radius_[m]);
   const flow::CostEstimate c = flow::estimate_cost(s, diameters, true);
-  const double phys = flow::physical_memory_bytes();
-  if (phys > 0 && c.bytes > 0.5 * phys)
-    throw InputError(sc_.path, "flow.cells_per_diameter",
-                     "the flow grid needs about " + fmt_number(c.bytes / 1e9) + " GB (" + fmt_number(c.vertices) + " vertices, " +
-                         fmt_number(c.body_points) + " body points), more than half of this machine's " + fmt_number(phys / 1e9) +
-                         " GB: use fewer cells per diameter or levels");
+  if (const std::string why = flow::memory_refusal(c); !why.empty())
+    throw InputError(sc_.path, "flow.cells_per_diameter", "the flow grid " + why + ": use fewer cells per diameter or levels");
   const double steps = double(n_pre) + std::ceil(sc_.solver.t_end / dt);
   const double hours = steps * c.seconds_per_step / 3600;
   if (hours > sc_.flow.max_wall_hours)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <unistd.h>
 
+#include "core/errors.hpp"
+
 namespace imcol::flow {
 
 CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters, bool moving) {
@@ -16,6 +18,13 @@ CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters,
   c.bytes = 100.0 * c.vertices + q_bytes * (moving ? 18.0 : 2.0);
   c.seconds_per_step = c.vertices * 5e-8 * (moving ? 2.0 : 1.0);
   return c;
+}
+
+std::string memory_refusal(const CostEstimate& c) {
+  const double phys = physical_memory_bytes();
+  if (!(phys > 0 && c.bytes > 0.5 * phys)) return {};
+  return "needs about " + fmt_number(c.bytes / 1e9) + " GB (" + fmt_number(c.vertices) + " vertices, " + fmt_number(c.body_points) +
+         " body points), more than half of this machine's " + fmt_number(phys / 1e9) + " GB";
 }
 
 double physical_memory_bytes() {

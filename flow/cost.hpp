@@ -4,6 +4,7 @@
 // (Q of the body points, its LU, and up to 16 cached preconditioner blocks per moving sphere); time ~50 ns per
 // vertex, level and step, twice that with moving bodies (GMRES on the force system).
 #include <span>
+#include <string>
 
 #include "flow/solver.hpp"
 
@@ -21,5 +22,9 @@ CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters,
 
 /// This machine's physical memory, B (0 if unknown).
 double physical_memory_bytes();
+
+/// Empty if the estimate fits in half of this machine's memory; otherwise why not ("needs about … GB (…
+/// vertices, … body points), more than half of this machine's … GB"), for the caller's error message.
+std::string memory_refusal(const CostEstimate& c);
 
 }  // namespace imcol::flow

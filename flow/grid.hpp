@@ -83,8 +83,6 @@ class FastSolver {
   /// As back, but writes only what prolong_boundary reads of a coarse level: the whole line full_row + 1 and, on
   /// lines 1..point_rows, the vertices j = nz/4 and 3nz/4 (direct sums; nz a multiple of 4).
   void back_prolong(int op, std::vector<double>& x, int full_row, int point_rows);
-  /// modes ← op⁻¹ modes (both sweeps).
-  void tridiag(int op);
   /// Makes the plans for transforms of the first `rows` rows (partial forward and inverse); other counts than
   /// those prepared (and all rows) fall back to all rows.
   void prepare_rows(int rows);
@@ -95,6 +93,8 @@ class FastSolver {
   std::size_t bytes() const;
 
  private:
+  /// modes ← op⁻¹ modes (both sweeps).
+  void tridiag(int op);
   struct Plans { int rows; fftw_plan_s* fwd; fftw_plan_s* bwd; };  // split: fwd r2c, bwd c2r; padded: fwd only
   const Plans& plans_for(int rows) const;      // the smallest prepared count ≥ rows
   std::size_t ext_len() const { return M_ ? static_cast<std::size_t>(N_) : 2 * static_cast<std::size_t>(N_); }  // odd extension: N or 2N

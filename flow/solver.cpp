@@ -281,14 +281,12 @@ void Solver::spread_source(const Eigen::VectorXd& g) {
       Bw_[l].apply_transpose_add(g.data() + o, L.src.data());
       o += Bw_[l].rows();
     }
+    // The axis and each line's ends are zeroed; Bᵀg reaches lines up to src_rows_[l] only, the lines beyond stay
+    // the zeros of the fill.
+    std::fill_n(&L.src[G.at(0, 0)], G.nz + 1, 0.0);
     const double scale = s_.dt / (2 * M_PI * G.h * G.h);
-    const int W = G.nz + 1;
-    for (int i = 0; i <= G.nr; ++i) {
+    for (int i = 1; i <= src_rows_[l]; ++i) {
       double* row = &L.src[G.at(i, 0)];
-      if (i == 0 || i == G.nr) {
-        std::fill_n(row, W, 0.0);
-        continue;
-      }
       const double c = scale * G.r(i);
       row[0] = row[G.nz] = 0.0;
       for (int j = 1; j < G.nz; ++j) row[j] *= c;
@@ -318,12 +316,6 @@ void Solver::final_pass(const Eigen::VectorXd& g) {
   }
   pass_streamfunction(&Level::etac, &Level::psic, false, true);
   point_velocity(&Level::psic, u_);
-}
-
-Eigen::VectorXd Solver::apply_Q(const Eigen::VectorXd& g) {
-  Eigen::VectorXd out;
-  apply_Q_into(g, out);
-  return out;
 }
 
 Eigen::MatrixXd Solver::force_matrix() { return diagonal_block_of_Q(0, static_cast<Eigen::Index>(2 * (pts_.size() + wall_count_))); }
@@ -367,7 +359,7 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
   pass_viscous(&Level::rhs, &Level::eta, false);
   for (auto& L : lv_) L.fast->save_modes(L.eta_modes);
   pass_streamfunction(&Level::eta, &Level::psi, true, false);
-  // 4. body forces: Q g = U_b − U∞ e_z − Bψ*, Q the multi-level operator of apply_Q
+  // 4. body forces: Q g = U_b − U∞ e_z − Bψ*, Q the multi-level operator of apply_Q_into
   StepInfo info;
   bool moved = false;
   for (std::size_t k = 0; k < next.size(); ++k) moved = moved || next[k].z != sph_[k].z;
@@ -485,7 +477,7 @@ void Solver::check_finite(const StepInfo& info) const {
   }
 }
 
-void Solver::precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+void Solver::precondition(const Eigen::Ref<const Eigen::VectorXd>& r, Eigen::VectorXd& z) const {
   z.resize(r.size());
   for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu->solve(r.segment(blk.offset, blk.size));
 }
@@ -536,8 +528,7 @@ std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
     int k = 0;  // columns of the Krylov basis in use
     while (k < restart && it < s_.krylov_max_iter) {
       ++it;
-      t1_ = V_.col(k);
-      precondition(t1_, z_);
+      precondition(V_.col(k), z_);
       apply_Q_into(z_, w_);
       for (int i = 0; i <= k; ++i) {  // modified Gram–Schmidt
         H_(i, k) = V_.col(i).dot(w_);

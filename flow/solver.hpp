@@ -137,8 +137,7 @@ class Solver {
   static void prolong_boundary(const Level& coarse, const std::vector<double>& fc, const Level& fine, std::vector<double>& ff);
   static void restrict_interior(const Level& fine, const std::vector<double>& ff, const Level& coarse, std::vector<double>& fc);
   /// Q g (see above) for the current body points (m/s).
-  Eigen::VectorXd apply_Q(const Eigen::VectorXd& g);
-  /// The dense Q, column by column (2N applications of apply_Q).
+  /// The dense Q, column by column (2N applications of apply_Q_into).
   Eigen::MatrixXd force_matrix();
 
  private:
@@ -168,7 +167,7 @@ class Solver {
   /// Solves Q g_ = b (warm start g_); returns iterations and the true relative residual. On return final_pass(g_)
   /// is current (its residual is the true one).
   std::pair<int, double> gmres(const Eigen::VectorXd& b);
-  void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+  void precondition(const Eigen::Ref<const Eigen::VectorXd>& r, Eigen::VectorXd& z) const;
   Settings s_;
   std::vector<Level> lv_;
   std::vector<SphereState> sph_;
