@@ -2,7 +2,8 @@
 // integrator (cvode dense, cvode gmres, cvode schur, cvode with the soe-step history evaluator, ida) and rtol, without and with the history effect
 // (sum of exponentials at its default tolerance). Counters: e, the integrator's steps, the state
 // size and the last run's model construction time (included in the timing).
-// One warm-up run per case keeps the one-off lookup tables out of the timing.
+// One warm-up run per case keeps the one-off lookup tables and the exponential fit (cached per process by
+// shared_soe_kernel) out of the timing: a single `imcol run` pays the fit, these figures do not.
 // Usage: imcol_bench_collision [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
