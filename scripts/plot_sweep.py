@@ -7,12 +7,16 @@ Usage: /usr/bin/python3 scripts/plot_sweep.py DIR [--compare DIR2]... [--out PNG
 import argparse
 import csv
 import json
+import math
 import sys
 from pathlib import Path
 
 from imcol_plot import plt, save_png
 
 SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li_2010_table_6_1.csv"
+# Legendre, Zenit, Daniel & Guiraud (2006), Chem. Eng. Sci. 61, 3543: e/e_dry = exp(-35/St_L),
+# St_L = (rho_p + rho_f/2) U d / (9 mu), a correlation of sphere-wall experiments (incl. Joseph et al. 2001, Gondret et al. 2002).
+LEGENDRE_ST_C = 35.0
 
 
 def read_csv(path):
@@ -43,6 +47,26 @@ def plot_sweep(ax, folder: Path, meta, style: str, tag: str) -> None:
                         mfc="none" if tag else None, label=(tag + label) if tag else label)
 
 
+def plot_legendre(ax, folder: Path, meta) -> bool:
+    """Sphere-wall sweeps: e/e_dry of the default measure against St_L, with Legendre et al. (2006)'s correlation."""
+    e_dry = meta.get("e_dry")
+    rows = [r for r in read_csv(folder / "sweep.csv") if r["status"] == "ok" and r.get("St_L") and r["e"]]
+    if not e_dry or not rows:
+        return False
+    pts = sorted((float(r["St_L"]), float(r["e"]) / e_dry) for r in rows)
+    ax.semilogx(*zip(*pts), "o-", color="C0", ms=4, label="imcol: e / e_dry (%s)" % meta.get("e_is", "e"))
+    lo, hi = min(p[0] for p in pts), max(p[0] for p in pts)
+    xs = [lo * (hi / lo) ** (i / 199) for i in range(200)] if hi > lo else [lo]
+    ax.semilogx(xs, [math.exp(-LEGENDRE_ST_C / x) for x in xs], "k--", lw=1.2,
+                label="Legendre et al. (2006): exp(-35/St_L), a correlation of experiments")
+    ax.set_xlabel("St_L = (rho_p + rho_f/2) U d / (9 mu)", fontsize=8)
+    ax.set_ylabel("e / e_dry")
+    ax.set_ylim(-0.02, 1.05)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
+    return True
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.strip().splitlines()[0])
     ap.add_argument("dir", type=Path, help="a sweep's output folder (sweep.csv, sweep.json)")
@@ -54,7 +78,12 @@ def main() -> int:
     meta = json.loads((out / "sweep.json").read_text())
     # the legend goes below the axes (it would cover the rise of e at St 10-30 or the high-St plateau):
     # a taller figure for two sweeps, whose ten entries stand in two columns (one per sweep)
-    fig, ax = plt.subplots(figsize=(9, 7) if args.compare else (8, 6.4))
+    # sphere-wall: a second panel, e/e_dry against St_L beside Legendre et al.'s correlation of experiments
+    wall = meta["configuration"] == "sphere-wall" and meta.get("e_dry")
+    if wall:
+        fig, (ax, ax_l) = plt.subplots(1, 2, figsize=(15, 7) if args.compare else (14, 6.4))
+    else:
+        fig, ax = plt.subplots(figsize=(9, 7) if args.compare else (8, 6.4))
     others = [(d, json.loads((d / "sweep.json").read_text())) for d in args.compare]
     plot_sweep(ax, out, meta, "-", sweep_label(meta) + ": " if others else "")
     for d, m in others:
@@ -77,6 +106,10 @@ def main() -> int:
     what = "%d points" % meta["points"] if not others else "%d sweeps" % (1 + len(others))
     ax.set_title("%s: e vs St (%s), %s%s" % (meta["scene"], ", ".join(meta.get("effects", [])) if not others else "each named measure",
                                              what, ", %d failed" % n_fail if n_fail else ""), fontsize=10)
+    if wall and not plot_legendre(ax_l, out, meta):
+        ax_l.set_axis_off()
+    elif wall:
+        ax_l.set_title("%s: e / e_dry vs St_L and a correlation of experiments" % meta["scene"], fontsize=10)
     fig.tight_layout()
     save_png(fig, args.out or out / "sweep.png")
     return 0
