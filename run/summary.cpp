@@ -30,7 +30,9 @@ void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, co
   s["bounces"] = bounces;
   s["St"] = or_null(m.St);
   if (pair) {
-    s["St_convention"] = "seed Table 6.1: half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
+    // Both conventions, named (docs/model-notes.md): `St` is St_B_table_6_1.
+    s["St_convention"] = "St_B_table_6_1: seed Table 6.1, half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
+    s["St_B_table_6_1"] = or_null(m.St);
     s["St_B_eq_6_2"] = or_null(m.St_62);
   } else {
     s["St_convention"] = "m U / (6 pi mu a^2)";
