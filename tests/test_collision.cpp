@@ -220,6 +220,16 @@ TEST(ImmersedCollision, SeedLubricationActsInTheRatioOfTheRadii) {
   EXPECT_LT(e_of(r), 0.97);
 }
 
+TEST(ImmersedCollision, SeedLubricationOnAWallIsBrenner) {
+  // For a wall a* = a: the seed's law is Brenner's series, and the whole run is the same.
+  const std::string scene = "effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n" + wall_scene(fluid(0.05), 0.2);
+  const auto b = run(scene, {{"lubrication.model", "\"brenner\""}}), s = run(scene, {{"lubrication.model", "\"seed\""}});
+  EXPECT_EQ(e_of(s), e_of(b));
+  EXPECT_EQ(s.summary["solver"]["steps"], b.summary["solver"]["steps"]);
+  EXPECT_GT(e_of(b), 0.0);
+  EXPECT_LT(e_of(b), 0.9);
+}
+
 TEST(ImmersedCollision, OnlyTheListedEffectsRun) {
   auto r = run("effects = [\"drag\", \"elastic\"]\n" + wall_scene(fluid(0.02), 0.3));
   const auto& cols = r.columns;
