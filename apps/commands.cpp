@@ -140,7 +140,7 @@ std::vector<SeedRun> read_table_6_1() {
   return runs;
 }
 
-/// The models `imcol validate seed` runs, by the gap law of the pair (docs/model-notes.md, "Lubrication").
+/// The models `imcol validate seed` runs, by the gap law of the pair (docs/model-notes.md, "Pairs").
 struct ValidateModel {
   std::string name;        // as in --models and the CSV's `model` column
   std::string lubrication;  // lubrication.model
