@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -99,10 +100,6 @@ int cmd_run(const std::string& scene_path, const std::string& out, const CommonO
   return 0;
 }
 
-/// Runs the six Table 6.1 scenes and prints St_B and e beside the seed's values.
-int cmd_validate_flow(const std::string& out, const CommonOptions& c);
-
-/// The scene with the `flow` effect added to its effects (coupled runs of the shipped reduced-order scenes).
 /// The overrides without the [flow] ones (for the reduced-order runs beside coupled ones).
 std::vector<Override> without_flow_keys(const std::vector<Override>& ov) {
   std::vector<Override> out;
@@ -111,6 +108,7 @@ std::vector<Override> without_flow_keys(const std::vector<Override>& ov) {
   return out;
 }
 
+/// The scene with the `flow` effect added to its effects (coupled runs of the shipped reduced-order scenes).
 Scene with_flow(const std::string& path, std::vector<Override> ov) {
   const Scene plain = load_scene(path, without_flow_keys(ov));  // the scene's own effects
   std::string list = "[";
@@ -120,18 +118,16 @@ Scene with_flow(const std::string& path, std::vector<Override> ov) {
   return load_scene(path, ov);
 }
 
-int cmd_validate(const std::string& what, const std::string& out, const CommonOptions& c, bool flow) {
-  if (what != "seed") throw InputError("validate", what, "unknown validation set (expected 'seed')");
-  if (flow) return cmd_validate_flow(out, c);
+/// One run of the seed's Table 6.1 (data/reference/li_2010_table_6_1.csv), its cells as printed.
+struct SeedRun {
+  std::string run, pair, St_B, e, Re;
+};
+
+std::vector<SeedRun> read_table_6_1() {
   const std::string table = data_dir() + "/reference/li_2010_table_6_1.csv";
   std::ifstream in(table);
   if (!in) throw InputError(table, "", "cannot open the reference table");
-  std::cout << "Seed Table 6.1 (Li 2010) vs imcol reduced-order model (no f_SIM; differences expected)\n";
-  std::cout << std::left << std::setw(5) << "run" << std::setw(13) << "pair" << std::right << std::setw(10) << "St_B seed"
-            << std::setw(10) << "St_B" << std::setw(8) << "e seed" << std::setw(8) << "e" << std::setw(10) << "Re seed"
-            << std::setw(8) << "Re" << std::setw(10) << "U_G mm/s" << std::setw(10) << "wall ms" << "\n";
-  std::ostringstream csv;
-  csv << "run,pair,St_B_seed,St_B,e_seed,e,e_instant,Re_seed,Re,group_velocity_m_s,steps,wall_time_s\n";
+  std::vector<SeedRun> runs;
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#' || line.rfind("run,", 0) == 0) continue;
@@ -139,64 +135,139 @@ int cmd_validate(const std::string& what, const std::string& out, const CommonOp
     std::stringstream ss(line);
     for (std::string x; std::getline(ss, x, ',');) cell.push_back(x);
     if (cell.size() < 9) throw InputError(table, "", "malformed row: " + line);
-    const std::string run = cell[0], pair = cell[8];
-    Scene sc = load_scene(data_dir() + "/scenes/seed_run" + run + ".toml", c.overrides());
-    RunResult r = simulate(sc);
-    const auto& s = r.summary;
-    std::cout << std::left << std::setw(5) << run << std::setw(13) << pair << std::right << std::setw(10) << cell[6]
-              << std::setw(10) << json_num(s["St"], 1) << std::setw(8) << cell[7] << std::setw(8) << json_num(s["e"], 3)
-              << std::setw(10) << cell[5] << std::setw(8) << json_num(s["Re"], 0) << std::setw(10)
-              << (s["group_velocity_m_s"].is_null() ? std::string("-") : fixed(1e3 * s["group_velocity_m_s"].get<double>(), 2))
-              << std::setw(10) << fixed(1e3 * s["wall_time_s"].get<double>(), 1) << "\n";
-    csv << run << "," << pair << "," << cell[6] << "," << s["St"] << "," << cell[7] << "," << s["e"] << ","
-        << s["e_instant"] << "," << cell[5] << "," << s["Re"] << "," << s["group_velocity_m_s"] << ","
-        << s["solver"]["steps"] << "," << s["wall_time_s"] << "\n";
+    runs.push_back({cell[0], cell[8], cell[6], cell[7], cell[5]});
   }
-  fs::path dir = out.empty() ? fs::path("out") / "validate_seed" : fs::path(out);
-  write_file_atomic(dir / "validate_seed.csv", csv.str());
-  std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";
-  return 0;
+  return runs;
 }
 
-/// Table 6.1 with the flow kernel coupled (MODEL.md (6.10)) beside the seed and the reduced-order model.
-int cmd_validate_flow(const std::string& out, const CommonOptions& c) {
-  const std::string table = data_dir() + "/reference/li_2010_table_6_1.csv";
-  std::ifstream in(table);
-  if (!in) throw InputError(table, "", "cannot open the reference table");
-  std::cout << "Seed Table 6.1 (Li 2010): coupled model (f_SIM from the flow kernel, blended by H) and reduced-order model\n";
-  std::cout << std::left << std::setw(5) << "run" << std::setw(13) << "pair" << std::right << std::setw(10) << "St_B seed"
-            << std::setw(8) << "St_B" << std::setw(8) << "e seed" << std::setw(9) << "e flow" << std::setw(10) << "e_inst"
-            << std::setw(10) << "e reduced" << std::setw(10) << "U_G mm/s" << std::setw(9) << "wall s" << std::setw(11) << "ms/step" << "\n";
-  std::ostringstream csv;
-  csv << "run,pair,St_B_seed,St_B,e_seed,e,e_instant,Re_seed,Re,group_velocity_m_s,steps,wall_time_s,"
-         "e_reduced_order,St_B_reduced_order,wall_time_reduced_order_s,flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s\n";
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line.rfind("run,", 0) == 0) continue;
-    std::vector<std::string> cell;
-    std::stringstream ss(line);
-    for (std::string x; std::getline(ss, x, ',');) cell.push_back(x);
-    if (cell.size() < 9) throw InputError(table, "", "malformed row: " + line);
-    const std::string run = cell[0], pair = cell[8];
-    const std::string path = data_dir() + "/scenes/seed_run" + run + ".toml";
-    const RunResult red = simulate(load_scene(path, without_flow_keys(c.overrides())));
-    const RunResult r = simulate(with_flow(path, c.overrides()), true);
-    const auto& s = r.summary;
-    const auto& f = s["flow"];
-    std::cout << std::left << std::setw(5) << run << std::setw(13) << pair << std::right << std::setw(10) << cell[6]
-              << std::setw(8) << json_num(s["St"], 1) << std::setw(8) << cell[7] << std::setw(9) << json_num(s["e"], 3)
-              << std::setw(10) << json_num(s["e_instant"], 3) << std::setw(10) << json_num(red.summary["e"], 3) << std::setw(10)
-              << (s["group_velocity_m_s"].is_null() ? std::string("-") : fixed(1e3 * s["group_velocity_m_s"].get<double>(), 2))
-              << std::setw(9) << fixed(s["wall_time_s"].get<double>(), 2) << std::setw(11) << fixed(f["ms_per_step"].get<double>(), 1) << "\n";
-    csv << run << "," << pair << "," << cell[6] << "," << s["St"] << "," << cell[7] << "," << s["e"] << ","
-        << s["e_instant"] << "," << cell[5] << "," << s["Re"] << "," << s["group_velocity_m_s"] << ","
-        << s["solver"]["steps"] << "," << s["wall_time_s"] << "," << red.summary["e"] << "," << red.summary["St"] << ","
-        << red.summary["wall_time_s"] << "," << f["steps"] << "," << f["ms_per_step"] << ","
-        << f["grid"]["cells_per_diameter"] << "," << f["dt_s"] << "\n";
+/// The models `imcol validate seed` runs, by the gap law of the pair (docs/model-notes.md, "Pairs").
+struct ValidateModel {
+  std::string name;        // as in --models and the CSV's `model` column
+  std::string lubrication;  // lubrication.model
+};
+const std::vector<ValidateModel> kValidateModels = {{"seed", "seed"}, {"exact", "asymptotic"}};
+
+std::vector<ValidateModel> validate_models(const std::vector<std::string>& names) {
+  if (names.empty()) return kValidateModels;
+  std::vector<ValidateModel> out;
+  for (const auto& n : names) {
+    auto it = std::find_if(kValidateModels.begin(), kValidateModels.end(), [&](const auto& m) { return m.name == n; });
+    if (it == kValidateModels.end()) throw InputError("command line", "--models", "unknown model '" + n + "' (expected seed, exact)");
+    if (std::none_of(out.begin(), out.end(), [&](const auto& m) { return m.name == n; })) out.push_back(*it);
   }
-  fs::path dir = out.empty() ? fs::path("out") / "validate_seed_flow" : fs::path(out);
+  return out;
+}
+
+std::string csv_cell(const nlohmann::ordered_json& j) { return j.is_null() ? std::string() : j.dump(); }
+std::optional<double> opt_num(const nlohmann::ordered_json& j) { return j.is_null() ? std::nullopt : std::optional<double>(j.get<double>()); }
+
+/// Agreement of one model with the seed's e: runs within the tolerance, and the largest miss.
+struct Agreement {
+  int within = 0, runs = 0;
+  double worst = 0;
+  std::string worst_run;
+  void add(const std::string& run, std::optional<double> e, double e_seed, double tol) {
+    ++runs;
+    const double d = e ? std::abs(*e - e_seed) : INFINITY;
+    if (d <= tol) ++within;
+    if (d >= worst) worst = d, worst_run = run;
+  }
+  std::string text(double tol) const {
+    std::ostringstream os;
+    os << "|e - e_seed| <= " << tol << " in " << within << " of " << runs << " runs; largest " << fixed(worst, 3) << " (run " << worst_run << ")";
+    return os.str();
+  }
+};
+
+struct ValidateOptions {
+  std::string out;
+  bool flow = false, plot = true;
+  std::vector<std::string> models;
+  double tolerance = 0.05;
+};
+
+/// The seed's Table 6.1: each run with the seed's own pair equations (lubrication.model = "seed") and with the exact
+/// gap law ("asymptotic"), reduced-order, and with --flow also coupled (MODEL.md (6.10)); both St_B conventions.
+int cmd_validate(const std::string& what, const ValidateOptions& opt, const CommonOptions& c) {
+  if (what != "seed") throw InputError("validate", what, "unknown validation set (expected 'seed')");
+  if (!(std::isfinite(opt.tolerance) && opt.tolerance > 0))
+    throw InputError("command line", "--tolerance", "must be a positive number (got " + fmt_number(opt.tolerance) + ")");
+  const auto models = validate_models(opt.models);
+  const auto runs = read_table_6_1();
+  OutDir out_dir(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
+  const bool flow = opt.flow;
+  std::cout << "Seed Table 6.1 (Li 2010) against imcol, " << (flow ? "coupled (f_SIM from the flow kernel, blended by H) and reduced-order"
+                                                                  : "reduced-order (no f_SIM)") << "\n"
+            << "  models: seed = the seed's pair equations (lubrication.model = \"seed\": 6 pi mu a_m (lambda(h/a*) - 1) U_rel);\n"
+            << "          exact = the exact gap law (\"asymptotic\": 6 pi mu a*^2 U_rel / h + ..., Jeffrey & Onishi)\n"
+            << "  St_B(6.1) = the table's convention, half of St_B(6.2) = m* U_rel / (6 pi mu a*^2)\n";
+  std::cout << std::left << std::setw(4) << "run" << std::setw(13) << "pair" << std::setw(7) << "model" << std::right << std::setw(10)
+            << "St_B seed" << std::setw(10) << "St_B(6.1)" << std::setw(10) << "St_B(6.2)" << std::setw(8) << "e seed" << std::setw(8)
+            << (flow ? "e flow" : "e") << std::setw(8) << "diff";
+  if (flow) std::cout << std::setw(10) << "e reduced" << std::setw(8) << "diff";
+  std::cout << std::setw(8) << "e_inst" << std::setw(10) << "U_G mm/s" << std::setw(10) << (flow ? "wall s" : "wall ms");
+  if (flow) std::cout << std::setw(9) << "ms/step";
+  std::cout << "\n";
+  std::ostringstream csv;
+  csv << "run,pair,model,lubrication_model,St_B_seed,e_seed,Re_seed,St_B,St_B_table_6_1,St_B_eq_6_2,e,e_minus_e_seed,e_instant,Re,"
+         "group_velocity_m_s,steps,wall_time_s";
+  if (flow)
+    csv << ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_reduced_order,St_B_eq_6_2_reduced_order,wall_time_reduced_order_s,"
+           "flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s";
+  csv << "\n";
+  std::vector<Agreement> agree(models.size()), agree_reduced(models.size());
+  for (const auto& sr : runs) {
+    const std::string path = data_dir() + "/scenes/seed_run" + sr.run + ".toml";
+    const double e_seed = std::stod(sr.e);
+    for (std::size_t k = 0; k < models.size(); ++k) {
+      const auto& model = models[k];
+      auto ov = c.overrides();
+      ov.push_back({"lubrication.model", "\"" + model.lubrication + "\""});  // the model's law, whatever --set says
+      const RunResult red = simulate(load_scene(path, without_flow_keys(ov)));
+      const RunResult cpl = flow ? simulate(with_flow(path, ov), true) : RunResult{};
+      const auto& s = flow ? cpl.summary : red.summary;
+      const auto& rs = red.summary;
+      const auto e = opt_num(s["e"]), e_red = opt_num(rs["e"]);
+      agree[k].add(sr.run, e, e_seed, opt.tolerance);
+      if (flow) agree_reduced[k].add(sr.run, e_red, e_seed, opt.tolerance);
+      auto diff = [&](std::optional<double> v) { return v ? std::optional<double>(*v - e_seed) : std::nullopt; };
+      auto show = [](std::optional<double> v, int prec) { return v ? fixed(*v, prec) : std::string("n/a"); };
+      std::cout << std::left << std::setw(4) << sr.run << std::setw(13) << sr.pair << std::setw(7) << model.name << std::right
+                << std::setw(10) << sr.St_B << std::setw(10) << json_num(s["St_B_table_6_1"], 1) << std::setw(10)
+                << json_num(s["St_B_eq_6_2"], 1) << std::setw(8) << sr.e << std::setw(8) << show(e, 3) << std::setw(8)
+                << show(diff(e), 3);
+      if (flow) std::cout << std::setw(10) << show(e_red, 3) << std::setw(8) << show(diff(e_red), 3);
+      std::cout << std::setw(8) << json_num(s["e_instant"], 3) << std::setw(10)
+                << (s["group_velocity_m_s"].is_null() ? std::string("-") : fixed(1e3 * s["group_velocity_m_s"].get<double>(), 2))
+                << std::setw(10) << (flow ? fixed(s["wall_time_s"].get<double>(), 2) : fixed(1e3 * s["wall_time_s"].get<double>(), 1));
+      if (flow) std::cout << std::setw(9) << fixed(s["flow"]["ms_per_step"].get<double>(), 1);
+      std::cout << "\n";
+      auto num = [](std::optional<double> v) { return v ? csv_number(*v) : std::string(); };
+      csv << sr.run << "," << sr.pair << "," << model.name << "," << model.lubrication << "," << sr.St_B << "," << sr.e << "," << sr.Re
+          << "," << csv_cell(s["St"]) << "," << csv_cell(s["St_B_table_6_1"]) << "," << csv_cell(s["St_B_eq_6_2"]) << "," << num(e)
+          << "," << num(diff(e)) << "," << csv_cell(s["e_instant"]) << "," << csv_cell(s["Re"]) << "," << csv_cell(s["group_velocity_m_s"])
+          << "," << csv_cell(s["solver"]["steps"]) << "," << csv_cell(s["wall_time_s"]);
+      if (flow) {
+        const auto& f = s["flow"];
+        csv << "," << num(e_red) << "," << num(diff(e_red)) << "," << csv_cell(rs["St_B_table_6_1"]) << "," << csv_cell(rs["St_B_eq_6_2"])
+            << "," << csv_cell(rs["wall_time_s"]) << "," << csv_cell(f["steps"]) << "," << csv_cell(f["ms_per_step"]) << ","
+            << csv_cell(f["grid"]["cells_per_diameter"]) << "," << csv_cell(f["dt_s"]);
+      }
+      csv << "\n";
+    }
+  }
+  for (std::size_t k = 0; k < models.size(); ++k) {
+    std::cout << "  " << models[k].name << (flow ? ", coupled: " : ": ") << agree[k].text(opt.tolerance) << "\n";
+    if (flow) std::cout << "  " << models[k].name << ", reduced-order: " << agree_reduced[k].text(opt.tolerance) << "\n";
+  }
+  const fs::path& dir = out_dir.path();
   write_file_atomic(dir / "validate_seed.csv", csv.str());
+  out_dir.keep();
   std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";
+  if (opt.plot) {
+    std::cout.flush();
+    run_plot_script("plot_validate_seed.py", dir, "validate_seed.png");
+  }
   return 0;
 }
 
@@ -304,12 +375,16 @@ int run_cli(int argc, char** argv) {
   run->add_flag("--no-plot", run_no_plot, "skip DIR/trajectory.png");
   add_common(run, run_opt);
 
-  std::string what, vout;
+  std::string what;
+  ValidateOptions vopt;
+  bool val_no_plot = false;
   auto* val = app.add_subcommand("validate", "run a validation set and compare with its reference ('seed': Table 6.1)");
   val->add_option("set", what, "validation set: seed")->required();
-  val->add_option("--out", vout, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)");
-  bool val_flow = false;
-  val->add_flag("--flow", val_flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
+  val->add_option("--out", vopt.out, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)");
+  val->add_flag("--flow", vopt.flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
+  val->add_option("--models", vopt.models, "seed (the seed's pair equations), exact (the exact gap law); default both")->delimiter(',');
+  val->add_option("--tolerance", vopt.tolerance, "|e - e_seed| counted as agreement in the closing lines (default 0.05)");
+  val->add_flag("--no-plot", val_no_plot, "skip DIR/validate_seed.png");
   add_common(val, val_opt);
 
   std::string bscene;
@@ -418,7 +493,10 @@ int run_cli(int argc, char** argv) {
 
   try {
     if (*run) return cmd_run(scene, out, run_opt, quiet, !run_no_plot);
-    if (*val) return cmd_validate(what, vout, val_opt, val_flow);
+    if (*val) {
+      vopt.plot = !val_no_plot;
+      return cmd_validate(what, vopt, val_opt);
+    }
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
     if (*effects) return cmd_effects(escene, eff_opt);
     if (*flowc) {

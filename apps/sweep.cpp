@@ -67,7 +67,7 @@ std::string csv_cell(const nlohmann::ordered_json& j) {
   return j.dump();
 }
 
-const char* kCsvHeader = "point,{},St,St_B_eq_6_2,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
+const char* kCsvHeader = "point,{},St,St_B_table_6_1,St_B_eq_6_2,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
 
 /// One finished point's CSV row (formatted once: the file is rewritten after every point).
 std::string csv_row(std::size_t i, const PointResult& p) {
@@ -81,7 +81,7 @@ std::string csv_row(std::size_t i, const PointResult& p) {
   for (char& c : msg)
     if (c == ',' || c == '\n') c = ';';
   std::ostringstream csv;
-  csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_eq_6_2") << "," << get("St_initial")
+  csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_table_6_1") << "," << get("St_B_eq_6_2") << "," << get("St_initial")
       << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << measure("fit_distance") << "," << measure("at_gap") << ","
       << measure("peak_rebound") << "," << get("separated") << "," << get("min_gap_m") << ","
       << (p.ok ? csv_cell(s["solver"]["steps"]) : "") << "," << (p.ok ? csv_cell(s["solver"]["rhs_evals"]) : "") << ","

@@ -79,7 +79,8 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   h_c_ = sc.lubrication.h_c * a_star_;
   dw_floor_ = sc.added_mass.dw_floor > 0 ? sc.added_mass.dw_floor : sc.contact.delta_ss * D_ / a_star_;
   drag_law_ = sc.drag.law;
-  brenner_ = sc.lubrication.model == LubricationModel::brenner;
+  lub_model_ = sc.lubrication.model;
+  gap_geo_ = {a_[0], target_ == Target::sphere ? a_[1] : inf, a_star_, c_log_, h_c_};
   lagrangian_am_ = sc.added_mass.model == AddedMassModel::lagrangian;
   mf_star_ = target_ == Target::sphere ? reduced(mf_[0], mf_[1]) : mf_[0];
 
@@ -114,7 +115,7 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
     w_floor_ = added_mass_W(dw_floor_);
     dw_slope_ = added_mass_dW(dw_floor_);
   }
-  if (has(Effect::lubrication) && brenner_) brenner_lambda(1.0);
+  if (has(Effect::lubrication) && lub_model_ != LubricationModel::asymptotic) brenner_lambda(1.0);
   if (has(Effect::history)) setup_history();
   if (start_inside) {
     // The contact begins at t = 0 with W_o and β frozen at the initial speed.
@@ -397,11 +398,10 @@ void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev)
     ev.f[1].added_mass = -f;
   }
   if (has(Effect::lubrication)) {
-    const double h = regularised_gap(ev.gap, h_min_);
-    const double R = brenner_ ? a_[0] * (brenner_lambda(h / a_[0]) - 1.0) : asymptotic_resistance(h, a_star_, c_log_, h_c_);
-    const double f = -six_pi_mu * R * ev.u_rel;
-    ev.f[0].lubrication = f;
-    if (pair) ev.f[1].lubrication = -f;
+    // Per sphere: equal and opposite for brenner and asymptotic, in the ratio a2/a1 for the seed's law.
+    const GapResistance R = gap_resistance(lub_model_, gap_geo_, regularised_gap(ev.gap, h_min_));
+    ev.f[0].lubrication = -six_pi_mu * R.on1 * ev.u_rel;
+    if (pair) ev.f[1].lubrication = six_pi_mu * R.on2 * ev.u_rel;
   }
   if (has(Effect::elastic)) {
     const double f = contact_force(ev.gap);
@@ -616,7 +616,7 @@ void CollisionModel::arm() {
                         instant_inside_ ? "gap=instant_gap (out)" : "gap=instant_gap (in)", instant_inside_ ? +1 : -1);
   else if (!u_in_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
   else if (!u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
-  if (has(Effect::lubrication) && !brenner_) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
+  if (has(Effect::lubrication) && lub_model_ == LubricationModel::asymptotic) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
   if (coupled_) {
     // The ends of the blend H (MODEL.md §2.5): diagnostic, the right-hand side stays continuous there. Not armed
     // while the gap sits on one of them (a start at 2δ_SL: CVODE refuses a root at the initial time).
@@ -816,8 +816,17 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
   if (has(Effect::drag)) c.push_back({"drag.law", to_string(sc.drag.law)});
   if (has(Effect::lubrication)) {
     c.push_back({"lubrication.model", to_string(sc.lubrication.model)});
+    c.push_back({"lubrication.law", lub_model_ == LubricationModel::asymptotic
+                                        ? "exact two-sphere asymptote: 6 pi mu [a*^2/h + c_log ln(a*/h)] U_rel (Jeffrey & Onishi), shifted to vanish at h_c"
+                                        : lub_model_ == LubricationModel::brenner
+                                              ? "exact sphere-wall series: 6 pi mu a (lambda(h/a) - 1) U (Brenner 1961)"
+                                              : "seed 6.2.1: 6 pi mu a_m (lambda(h/a*) - 1) U_rel on sphere m (Brenner's wall series at h/a*)"});
     c.push_back({"lubrication.cutoff_m", num(h_min_)});
-    if (!brenner_) c.push_back({"lubrication.h_c_m", num(h_c_)});
+    if (lub_model_ == LubricationModel::asymptotic) c.push_back({"lubrication.h_c_m", num(h_c_)});
+    if (lub_model_ == LubricationModel::seed && target_ == Target::sphere)
+      c.push_back({"lubrication.pair_forces", a_[0] == a_[1] ? std::string("equal and opposite (equal radii)")
+                                                             : "differ: |f_lub2/f_lub1| = a2/a1 = " + num(a_[1] / a_[0]) +
+                                                                   " (the seed's law does not conserve the pair's momentum)"});
   }
   if (has(Effect::added_mass)) {
     c.push_back({"added_mass.model", to_string(sc.added_mass.model)});

@@ -227,7 +227,8 @@ class CollisionModel : public DynamicalSystem {
   double u_rel0_ = 0;       // initial U1 − U2, m/s (> 0: approaching)
   double stall_speed_ = 0;  // U_rel below which an approach without contact counts as stopped
   DragLaw drag_law_ = DragLaw::stokes;
-  bool brenner_ = false;
+  LubricationModel lub_model_ = LubricationModel::asymptotic;
+  GapGeometry gap_geo_;  // the gap law's radii, a*, c_log, h_c
   bool lagrangian_am_ = false;
   double mf_star_ = 0;  // reduced fluid mass for the lagrangian pair added mass
   HistoryOptions hist_opt_;

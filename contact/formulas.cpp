@@ -145,6 +145,24 @@ double regularised_gap(double h, double h_min) {
   return h >= 0 ? 0.5 * (h + r) : 2 * h_min * h_min / (r - h);  // same value, no cancellation for h < 0
 }
 
+GapResistance gap_resistance(LubricationModel model, const GapGeometry& g, double h) {
+  switch (model) {
+    case LubricationModel::brenner: {
+      const double R = g.a1 * (brenner_lambda(h / g.a1) - 1.0);
+      return {R, R};
+    }
+    case LubricationModel::asymptotic: {
+      const double R = asymptotic_resistance(h, g.a_star, g.c_log, g.h_c);
+      return {R, R};
+    }
+    case LubricationModel::seed: {
+      const double gap_part = brenner_lambda(h / g.a_star) - 1.0;  // λ(δ**) − 1
+      return {g.a1 * gap_part, std::isinf(g.a2) ? g.a1 * gap_part : g.a2 * gap_part};
+    }
+  }
+  return {};
+}
+
 // ----- Added mass image series -----
 namespace {
 /// coth x − 1/x, accurate for small x

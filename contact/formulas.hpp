@@ -54,6 +54,23 @@ double asymptotic_resistance(double h, double a_star, double c_log, double h_c);
 /// Smooth lower bound on the gap used by the lubrication law: ½(h + √(h² + 4 h_min²)) ≥ 0.
 double regularised_gap(double h, double h_min);
 
+/// The pair's geometry as the gap laws see it: radii a1, a2 (a2 = +inf for a wall), a* and c_log [m], h_c [m].
+struct GapGeometry {
+  double a1 = 0, a2 = 0, a_star = 0, c_log = 0, h_c = 0;
+};
+/// Gap (lubrication) resistance lengths [m] of each sphere for the relative velocity U_rel = U1 − U2:
+/// the gap force on sphere 1 is −6πμ R1 U_rel, on sphere 2 +6πμ R2 U_rel (MODEL.md §2.1), at the gap h [m] (> 0).
+///   brenner     (wall) R1 = a1 (λ(h/a1) − 1), Brenner (1961): exact for a sphere and a plane.
+///   asymptotic  R1 = R2 = a*²/h + c_log ln(a*/h) shifted to vanish at h_c (Jeffrey & Onishi 1984): the exact
+///               two-sphere asymptote, equal and opposite; its a2 → ∞ limit is Cox & Brenner's (1967) wall law.
+///   seed        R_m = a_m (λ(h/a*) − 1): the seed's Ch. 6.2.1, Yang's wall law with δ* = h/a replaced by
+///               δ** = h/a*, times 6πμ a_m of each sphere. For a wall it is `brenner`; for an equal pair twice the
+///               exact value (R → 2 a*²/h); for unequal spheres R2/R1 = a2/a1, so the pair's momentum is not conserved.
+struct GapResistance {
+  double on1 = 0, on2 = 0;  // m
+};
+GapResistance gap_resistance(LubricationModel model, const GapGeometry& g, double h);
+
 // ---------- Added mass (seed eq. 6.8; MODEL.md §2.2) ----------
 /// W(δ) = Σ_{n≥2} (sinh α / sinh nα)³, cosh α = 1 + δ; direct summation.
 double added_mass_W_series(double delta);

@@ -10,7 +10,7 @@
 namespace imcol {
 
 enum class DragLaw { stokes, schiller_naumann };                  // MODEL.md §2.1
-enum class LubricationModel { brenner, asymptotic };              // Brenner series (wall) | Jeffrey–Onishi law
+enum class LubricationModel { brenner, asymptotic, seed };        // Brenner series (wall) | Jeffrey–Onishi law | seed 6.2.1
 enum class AddedMassModel { lagrangian, seed };                   // pair kinetic energy | seed (6.8), per sphere
 enum class KernelKind { basset, mei_adrian, kim, dorgan_loth };   // history kernel, MODEL.md §2.3
 enum class HistoryEvaluator { soe, soe_step, direct };            // sum of exponentials (modes in the state | per step) | product integration
@@ -38,7 +38,8 @@ template <class E> struct ChoiceNames;
     static constexpr auto list = std::to_array<std::pair<E, std::string_view>>({__VA_ARGS__}); \
   };
 IMCOL_CHOICE_NAMES(DragLaw, {DragLaw::stokes, "stokes"}, {DragLaw::schiller_naumann, "schiller-naumann"})
-IMCOL_CHOICE_NAMES(LubricationModel, {LubricationModel::brenner, "brenner"}, {LubricationModel::asymptotic, "asymptotic"})
+IMCOL_CHOICE_NAMES(LubricationModel, {LubricationModel::brenner, "brenner"}, {LubricationModel::asymptotic, "asymptotic"},
+                   {LubricationModel::seed, "seed"})
 IMCOL_CHOICE_NAMES(AddedMassModel, {AddedMassModel::lagrangian, "lagrangian"}, {AddedMassModel::seed, "seed"})
 IMCOL_CHOICE_NAMES(KernelKind, {KernelKind::basset, "basset"}, {KernelKind::mei_adrian, "mei-adrian"}, {KernelKind::kim, "kim"},
                    {KernelKind::dorgan_loth, "dorgan-loth"})

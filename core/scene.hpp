@@ -85,7 +85,7 @@ struct Scene {
 
   struct Drag { DragLaw law = DragLaw::stokes; } drag;                  // stokes | schiller-naumann
   struct Lubrication {
-    LubricationModel model = LubricationModel::asymptotic;  // brenner (wall only) | asymptotic; default: brenner for a wall
+    LubricationModel model = LubricationModel::asymptotic;  // brenner (wall only) | asymptotic | seed; default: brenner for a wall
     double cutoff = 1e-4;     // smallest effective gap, units of D (impact sphere)
     double h_c = 1.0;         // asymptotic model acts for h < h_c, units of a*
   } lubrication;

@@ -30,7 +30,9 @@ void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, co
   s["bounces"] = bounces;
   s["St"] = or_null(m.St);
   if (pair) {
-    s["St_convention"] = "seed Table 6.1: half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
+    // Both conventions, named (docs/model-notes.md): `St` is St_B_table_6_1.
+    s["St_convention"] = "St_B_table_6_1: seed Table 6.1, half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
+    s["St_B_table_6_1"] = or_null(m.St);
     s["St_B_eq_6_2"] = or_null(m.St_62);
   } else {
     s["St_convention"] = "m U / (6 pi mu a^2)";
@@ -101,8 +103,9 @@ std::string human_summary(const nlohmann::ordered_json& s) {
     return o.str();
   };
   os << "scene " << s["scene"].get<std::string>() << " (" << s["configuration"].get<std::string>() << ")\n";
-  os << "  e = " << num(s["e"]) << "   e_instant = " << num(s["e_instant"]) << "   St = " << num(s["St"])
-     << "   Re = " << num(s["Re"]) << "\n";
+  os << "  e = " << num(s["e"]) << "   e_instant = " << num(s["e_instant"]) << "   St = " << num(s["St"]);
+  if (s.contains("St_B_eq_6_2")) os << " (St_B, Table 6.1; eq. 6.2: " << num(s["St_B_eq_6_2"]) << ")";
+  os << "   Re = " << num(s["Re"]) << "\n";
   if (!s["group_velocity_m_s"].is_null())
     os << "  group velocity = " << num(s["group_velocity_m_s"]) << " m/s (no separation; centre-of-mass velocity at t = "
        << num(s["group_velocity_at_s"]) << " s, when the relative velocity vanished)\n";

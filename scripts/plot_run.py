@@ -74,7 +74,8 @@ def main() -> int:
     st = summary.get("St")
     title = f"{summary['scene']}: e = {e:.3f}" if e is not None else summary["scene"]
     if st is not None:
-        title += f", St = {st:.1f}"
+        st62 = summary.get("St_B_eq_6_2")
+        title += f", St_B = {st:.1f} (Table 6.1; eq. 6.2: {st62:.1f})" if st62 is not None else f", St = {st:.1f}"
     ax[0].set_title(title + "\neffects: " + ", ".join(summary["effects"]), fontsize=10)
     fig.tight_layout()
     save_png(fig, out / "trajectory.png", dpi=100)

@@ -199,6 +199,37 @@ TEST(ImmersedCollision, PairLubricationConservesMomentum) {
   EXPECT_GT(e_of(r), 0.0);
 }
 
+TEST(ImmersedCollision, SeedLubricationActsInTheRatioOfTheRadii) {
+  // lubrication.model = "seed": 6πμ a_m (λ(h/a*) − 1) U_rel on sphere m, so f_lub2 = −(a2/a1) f_lub1 (steel 12.7 mm,
+  // glass 10 mm), and the summary says that the forces differ.
+  auto r = run("effects = [\"lubrication\", \"elastic\"]\n" + pair_scene(fluid(0.05), 0.3, -0.1, "[lubrication]\nmodel = \"seed\"\n"),
+               {{"solver.rtol", "1e-10"}});
+  const auto col = [&](const std::string& c) { return std::find(r.columns.begin(), r.columns.end(), c) - r.columns.begin(); };
+  const auto i1 = col("f_lub1"), i2 = col("f_lub2");
+  ASSERT_LT(std::size_t(i2), r.columns.size());
+  int checked = 0;
+  for (const auto& row : r.rows)
+    if (std::abs(row[i1]) > 1e-12) {
+      EXPECT_NEAR(row[i2] / row[i1], -0.010 / 0.0127, 1e-12);
+      ++checked;
+    }
+  EXPECT_GT(checked, 10);
+  EXPECT_EQ(r.summary["model"]["lubrication.model"].get<std::string>(), "seed");
+  EXPECT_NE(r.summary["model"]["lubrication.pair_forces"].get<std::string>().find("differ"), std::string::npos);
+  EXPECT_GT(e_of(r), 0.0);
+  EXPECT_LT(e_of(r), 0.97);
+}
+
+TEST(ImmersedCollision, SeedLubricationOnAWallIsBrenner) {
+  // For a wall a* = a: the seed's law is Brenner's series, and the whole run is the same.
+  const std::string scene = "effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n" + wall_scene(fluid(0.05), 0.2);
+  const auto b = run(scene, {{"lubrication.model", "\"brenner\""}}), s = run(scene, {{"lubrication.model", "\"seed\""}});
+  EXPECT_EQ(e_of(s), e_of(b));
+  EXPECT_EQ(s.summary["solver"]["steps"], b.summary["solver"]["steps"]);
+  EXPECT_GT(e_of(b), 0.0);
+  EXPECT_LT(e_of(b), 0.9);
+}
+
 TEST(ImmersedCollision, OnlyTheListedEffectsRun) {
   auto r = run("effects = [\"drag\", \"elastic\"]\n" + wall_scene(fluid(0.02), 0.3));
   const auto& cols = r.columns;

@@ -117,6 +117,42 @@ TEST(Lubrication, AsymptoticLawLimits) {
   EXPECT_NEAR(unshifted / a, brenner_lambda_series(d) - 0.971264, 1e-3);
 }
 
+TEST(Lubrication, SeedLawForAnEqualPairIsTwiceTheExactAsymptote) {
+  // The seed's 6πμ a (λ(h/a*) − 1) against the leading two-sphere term 6πμ a*²/h: the ratio tends to 2 as h → 0
+  // (at h/a* = 1e-4 it is 2 (1 + (1/5) 1e-4 ln 1e4 + ...) = 2.0004).
+  const double as = a / 2;
+  const GapGeometry g{a, a, as, lubrication_log_coefficient(a, a), as};
+  const double h = 1e-4 * as;
+  const GapResistance seed = gap_resistance(LubricationModel::seed, g, h);
+  EXPECT_NEAR(seed.on1 / (as * as / h), 2.0, 1e-3);
+  EXPECT_DOUBLE_EQ(seed.on1, seed.on2);  // equal radii: equal and opposite
+  // The exact law's own ratio to its leading term is 1 there.
+  const GapResistance exact = gap_resistance(LubricationModel::asymptotic, g, h);
+  EXPECT_NEAR(exact.on1 / (as * as / h), 1.0, 1e-3);
+  EXPECT_NEAR(seed.on1 / exact.on1, 2.0, 1e-3);
+}
+
+TEST(Lubrication, SeedLawForAWallIsBrenner) {
+  const GapGeometry g{a, inf, a, a / 5, a};
+  for (double d : {1e-5, 1e-3, 0.05, 1.0, 30.0}) {
+    const GapResistance s = gap_resistance(LubricationModel::seed, g, d * a);
+    EXPECT_DOUBLE_EQ(s.on1, gap_resistance(LubricationModel::brenner, g, d * a).on1) << d;
+    EXPECT_DOUBLE_EQ(s.on1, a * (brenner_lambda(d) - 1)) << d;
+  }
+}
+
+TEST(Lubrication, SeedLawOnUnequalSpheresDiffersByTheRadiusRatio) {
+  const double a2 = 3 * a, as = reduced(a, a2);
+  const GapGeometry g{a, a2, as, lubrication_log_coefficient(a, a2), as};
+  for (double d : {1e-4, 0.02, 0.5}) {
+    const GapResistance s = gap_resistance(LubricationModel::seed, g, d * as);
+    EXPECT_NEAR(s.on2 / s.on1, a2 / a, 1e-14) << d;
+    EXPECT_DOUBLE_EQ(s.on1, a * (brenner_lambda(d) - 1)) << d;
+    const GapResistance x = gap_resistance(LubricationModel::asymptotic, g, d * as);
+    EXPECT_DOUBLE_EQ(x.on1, x.on2) << d;  // the exact law is equal and opposite
+  }
+}
+
 TEST(Lubrication, RegularisedGap) {
   const double hm = 1e-6;
   EXPECT_NEAR(regularised_gap(1e-3, hm), 1e-3, 1e-9);
