@@ -67,7 +67,7 @@ std::string csv_cell(const nlohmann::ordered_json& j) {
   return j.dump();
 }
 
-const char* kCsvHeader = "point,{},St,St_B_table_6_1,St_B_eq_6_2,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
+const char* kCsvHeader = "point,{},St,St_B_table_6_1,St_B_eq_6_2,St_L,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
 
 /// One finished point's CSV row (formatted once: the file is rewritten after every point).
 std::string csv_row(std::size_t i, const PointResult& p) {
@@ -81,7 +81,7 @@ std::string csv_row(std::size_t i, const PointResult& p) {
   for (char& c : msg)
     if (c == ',' || c == '\n') c = ';';
   std::ostringstream csv;
-  csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_table_6_1") << "," << get("St_B_eq_6_2") << "," << get("St_initial")
+  csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_table_6_1") << "," << get("St_B_eq_6_2") << "," << get("St_L") << "," << get("St_initial")
       << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << measure("fit_distance") << "," << measure("at_gap") << ","
       << measure("peak_rebound") << "," << get("separated") << "," << get("min_gap_m") << ","
       << (p.ok ? csv_cell(s["solver"]["steps"]) : "") << "," << (p.ok ? csv_cell(s["solver"]["rhs_evals"]) : "") << ","
@@ -274,7 +274,11 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   j["collisions_per_second"] = finite_or_null(ok / wall);
   j["failures"] = failures;
   j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : pts[0].summary["St_convention"];
-  if (!pts.empty() && pts[0].ok) j["effects"] = pts[0].summary["effects"];
+  if (!pts.empty() && pts[0].ok) {
+    j["effects"] = pts[0].summary["effects"];
+    j["e_is"] = pts[0].summary["e_is"];
+    if (pts[0].summary.contains("contact")) j["e_dry"] = pts[0].summary["contact"]["e_dry"];  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
+  }
   j["complete"] = true;  // every point ran (or failed with its reason)
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
   {

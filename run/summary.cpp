@@ -36,6 +36,12 @@ void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, co
     s["St_B_eq_6_2"] = or_null(m.St_62);
   } else {
     s["St_convention"] = "m U / (6 pi mu a^2)";
+    // Legendre, Zenit, Daniel & Guiraud (2006): the particle's inertia with half the displaced fluid's,
+    // St_L = (rho_p + rho_f/2) U d / (9 mu), the variable of their correlation e/e_dry = exp(-35/St_L).
+    if (m.St && sc.fluid && model.has_target())
+      s["St_L"] = *m.St * (1 + 0.5 * model.fluid_mass(0) / model.mass(0));
+    else
+      s["St_L"] = nullptr;
   }
   s["Re"] = or_null(m.Re);
   if (sc.fluid && model.has_target()) s["St_initial"] = stokes_numbers(model, sc, model.initial_u_rel()).first;  // nominal, same convention

@@ -54,7 +54,7 @@ def plot_legendre(ax, folder: Path, meta) -> bool:
     if not e_dry or not rows:
         return False
     pts = sorted((float(r["St_L"]), float(r["e"]) / e_dry) for r in rows)
-    ax.semilogx(*zip(*pts), "o-", color="C0", ms=4, label="imcol: e / e_dry (%s)" % meta.get("e_is", "e"))
+    ax.semilogx(*zip(*pts), "o-", color="C0", ms=4, label="imcol: e / e_dry (%s)" % str(meta.get("e_is") or "e").split(" (")[0])
     lo, hi = min(p[0] for p in pts), max(p[0] for p in pts)
     xs = [lo * (hi / lo) ** (i / 199) for i in range(200)] if hi > lo else [lo]
     ax.semilogx(xs, [math.exp(-LEGENDRE_ST_C / x) for x in xs], "k--", lw=1.2,
@@ -63,7 +63,7 @@ def plot_legendre(ax, folder: Path, meta) -> bool:
     ax.set_ylabel("e / e_dry")
     ax.set_ylim(-0.02, 1.05)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    ax.legend(fontsize=8, loc="lower right")
     return True
 
 
