@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -64,16 +65,27 @@ std::string csv_cell(const nlohmann::ordered_json& j) {
   if (j.is_null()) return "";
   if (j.is_boolean()) return j.get<bool>() ? "1" : "0";
   if (j.is_number()) return csv_number(j.get<double>());
+  if (j.is_string()) return j.get<std::string>();
   return j.dump();
 }
 
-const char* kCsvHeader = "point,{},St,St_B_table_6_1,St_B_eq_6_2,St_L,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,wall_time_s,status,message\n";
+const char* kCsvHeader =
+    "point,{},St,St_B_table_6_1,St_B_eq_6_2,St_L,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,"
+    "wall_time_s,status,message,e_is,e_status,e_fit_time,e_yang_hunt_2006,e_joseph_2001,e_gondret_2002\n";
+
+/// What became of e at a point that ran: measured (the named measures agree within measure.disagreement),
+/// measures_disagree (the message names them), or not_measured (the message says why).
+std::string e_status(const nlohmann::ordered_json& s) {
+  if (!s.contains("e") || s["e"].is_null()) return "not_measured";
+  return s.contains("measures_disagree") && s["measures_disagree"].is_object() && !s["measures_disagree"].empty() ? "measures_disagree"
+                                                                                                                    : "measured";
+}
 
 /// One finished point's CSV row (formatted once: the file is rewritten after every point).
 std::string csv_row(std::size_t i, const PointResult& p) {
   const auto& s = p.summary;
   auto get = [&](const char* k) { return s.contains(k) ? csv_cell(s[k]) : std::string(); };
-  // The named measures of e (docs/bounces.md); `e` is fit_time.
+  // The named measures of e (docs/bounces.md); `e` is the one e_is names (measure.e).
   auto measure = [&](const char* k) {
     return s.contains("e_measures") && s["e_measures"].is_object() ? csv_cell(s["e_measures"][k]["e"]) : std::string();
   };
@@ -85,7 +97,9 @@ std::string csv_row(std::size_t i, const PointResult& p) {
       << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << measure("fit_distance") << "," << measure("at_gap") << ","
       << measure("peak_rebound") << "," << get("separated") << "," << get("min_gap_m") << ","
       << (p.ok ? csv_cell(s["solver"]["steps"]) : "") << "," << (p.ok ? csv_cell(s["solver"]["rhs_evals"]) : "") << ","
-      << get("wall_time_s") << "," << (p.ok ? "ok" : "failed") << "," << msg << "\n";
+      << get("wall_time_s") << "," << (p.ok ? "ok" : "failed") << "," << msg << "," << get("e_is") << "," << (p.ok ? e_status(s) : "")
+      << "," << measure("fit_time") << "," << measure("yang_hunt_2006") << "," << measure("joseph_2001") << "," << measure("gondret_2002")
+      << "\n";
   return csv.str();
 }
 
@@ -95,6 +109,29 @@ std::string sweep_csv(const std::vector<PointResult>& pts, const Quantity& q) {
   for (const auto& p : pts)
     if (p.done) out += p.row;
   return out;
+}
+
+/// A point's message: why e is missing (with the hint to raise solver.t_end only where the retries with a longer t_end
+/// showed that it helps: then they were kept), or which named measures disagree with e, or the t_end it took.
+std::string point_message(const nlohmann::ordered_json& s, double t_end_scene, double t_end_run) {
+  std::ostringstream os;
+  os << std::setprecision(4);
+  const bool extended = t_end_run != t_end_scene;
+  if (s["e"].is_null()) {
+    std::string why = s.contains("e_missing") && s["e_missing"].is_string() ? s["e_missing"].get<std::string>() : "e is undefined";
+    const std::string hint = " (raise solver.t_end)";
+    if (auto k = why.find(hint); k != std::string::npos) why.erase(k, hint.size());
+    os << "e not measured: " << why;
+    if (s.value("t_end_too_short", false) && extended) os << "; still so with solver.t_end raised to " << t_end_run << " s";
+    return os.str();
+  }
+  if (extended) os << "t_end extended to " << t_end_run << " s";
+  if (e_status(s) == "measures_disagree") {
+    os << (extended ? "; " : "") << "measures disagree with e (" << s["e_is"].get<std::string>() << ") by more than "
+       << "measure.disagreement:";
+    for (const auto& [k, v] : s["measures_disagree"].items()) os << " " << k << " = " << v.get<double>();
+  }
+  return os.str();
 }
 
 }  // namespace
@@ -199,8 +236,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
           sc.solver.t_end *= 2;
         }
         r.ok = true;
-        if (sc.solver.t_end != scenes[i].solver.t_end) r.message = "t_end extended to " + std::to_string(sc.solver.t_end) + " s";
-        if (r.summary["e"].is_null() && !r.summary["warnings"].empty()) r.message = r.summary["warnings"][0].get<std::string>();
+        r.message = point_message(r.summary, scenes[i].solver.t_end, sc.solver.t_end);
       } catch (const std::exception& e) {
         r.message = e.what();  // a solver failure (or anything else) ends this point only
       }
@@ -255,6 +291,24 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
             << (ok ? 1e3 * cpu / ok : NAN) << " ms integration per point)\n";
   for (const auto& f : failures)
     std::cout << "failed: point " << f["point"] << " (" << opt.vary << " = " << f["value"] << "): " << f["reason"].get<std::string>() << "\n";
+  // Where e is not measured, and where the named measures disagree with it (docs/bounces.md).
+  std::map<std::string, int> disagreeing;
+  int n_disagree = 0, n_missing = 0;
+  for (const auto& p : pts) {
+    if (!p.ok) continue;
+    const std::string st = e_status(p.summary);
+    if (st == "not_measured") ++n_missing;
+    if (st != "measures_disagree") continue;
+    ++n_disagree;
+    for (const auto& [k, v] : p.summary["measures_disagree"].items()) ++disagreeing[k];
+  }
+  if (n_missing) std::cout << "e not measured at " << n_missing << " of " << ok << " points (status e_status = not_measured; the message says why)\n";
+  if (n_disagree) {
+    std::cout << "named measures disagree with e (" << to_string(base.measure.e) << ") by more than measure.disagreement at "
+              << n_disagree << " of " << ok << " points:";
+    for (const auto& [k, n] : disagreeing) std::cout << " " << k << " (" << n << ")";
+    std::cout << "\n";
+  }
 
   nlohmann::ordered_json j;
   j["scene"] = base.name;
@@ -279,6 +333,9 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
     j["e_is"] = pts[0].summary["e_is"];
     if (pts[0].summary.contains("contact")) j["e_dry"] = pts[0].summary["contact"]["e_dry"];  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
   }
+  j["e_not_measured_points"] = n_missing;
+  j["measures_disagree_points"] = n_disagree;
+  j["measures_disagree_counts"] = disagreeing;
   j["complete"] = true;  // every point ran (or failed with its reason)
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
   {

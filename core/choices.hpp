@@ -20,6 +20,8 @@ enum class WallCorrection { none, added_mass };                   // K_H = 1 | 1
 enum class IntegratorMethod { cvode, ida };
 enum class LinearSolverChoice { automatic, dense, schur, gmres };
 enum class BouncesMode { first, all };                            // measure.bounces
+/// The named measures of e (docs/bounces.md); measure.e picks the one reported as `e`.
+enum class EMeasure { contact_ends, fit_time, fit_distance, at_gap, peak_rebound, instant, yang_hunt_2006, joseph_2001, gondret_2002 };
 /// How the flow exists at t = 0 (the [flow] table).
 enum class FlowStart {
   impulsive,  // fluid at rest: the spheres' initial velocities are imposed over one flow step before t = 0
@@ -52,6 +54,10 @@ IMCOL_CHOICE_NAMES(IntegratorMethod, {IntegratorMethod::cvode, "cvode"}, {Integr
 IMCOL_CHOICE_NAMES(LinearSolverChoice, {LinearSolverChoice::automatic, "auto"}, {LinearSolverChoice::dense, "dense"},
                    {LinearSolverChoice::schur, "schur"}, {LinearSolverChoice::gmres, "gmres"})
 IMCOL_CHOICE_NAMES(BouncesMode, {BouncesMode::first, "first"}, {BouncesMode::all, "all"})
+IMCOL_CHOICE_NAMES(EMeasure, {EMeasure::contact_ends, "contact_ends"}, {EMeasure::fit_time, "fit_time"},
+                   {EMeasure::fit_distance, "fit_distance"}, {EMeasure::at_gap, "at_gap"}, {EMeasure::peak_rebound, "peak_rebound"},
+                   {EMeasure::instant, "instant"}, {EMeasure::yang_hunt_2006, "yang_hunt_2006"}, {EMeasure::joseph_2001, "joseph_2001"},
+                   {EMeasure::gondret_2002, "gondret_2002"})
 IMCOL_CHOICE_NAMES(FlowStart, {FlowStart::impulsive, "impulsive"}, {FlowStart::developed, "developed"})
 IMCOL_CHOICE_NAMES(ForceInStep, {ForceInStep::linear, "linear"}, {ForceInStep::held, "held"})
 #undef IMCOL_CHOICE_NAMES

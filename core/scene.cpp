@@ -318,6 +318,14 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     r.positive("fit_distance", sc.measure.fit_distance);
     sc.measure.at_gap = r.number("at_gap", sc.measure.at_gap);
     r.positive("at_gap", sc.measure.at_gap);
+    r.choice("e", sc.measure.e);
+    sc.measure.ends_distance = r.number("ends_distance", sc.measure.ends_distance);
+    r.in_range("ends_distance", sc.measure.ends_distance, 0.0, 10.0, true, false);
+    const long spw = r.integer("samples_per_window", sc.measure.samples_per_window);
+    if (spw < 4 || spw > 10000) r.fail("samples_per_window", "must lie in [4, 10000] (got " + std::to_string(spw) + ")");
+    sc.measure.samples_per_window = static_cast<int>(spw);
+    sc.measure.disagreement = r.number("disagreement", sc.measure.disagreement);
+    r.in_range("disagreement", sc.measure.disagreement, 0.0, 1.0, true, false);
     r.finish();
   }
   if (sc.measure.instant_gap < 0) sc.measure.instant_gap = sc.contact.delta_ss;

@@ -130,6 +130,10 @@ struct Scene {
     BouncesMode bounces = BouncesMode::first;  // first (stop after the first rebound is measured) | all (follow every contact)
     double fit_distance = 0.1;  // units of D: e_measures.fit_distance fits z over this distance beyond delta_ss
     double at_gap = 0.1;        // units of D: e_measures.at_gap takes the velocities at this gap
+    EMeasure e = EMeasure::contact_ends;  // the named measure reported as `e` (docs/bounces.md)
+    double ends_distance = 0.02;  // units of D: contact_ends fits over the time to travel this at the impact speed
+    int samples_per_window = 32;  // the measures' own sampling: at least this many samples per contact_ends window
+    double disagreement = 0.05;   // warn where a named measure's e differs from `e` by more than this
   } measure;
   struct Output { double dt = 0; } output;
   FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect  // s, trajectory sampling; 0 = window/100

@@ -1,6 +1,7 @@
 #include "run/bounces.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 
 #include "core/measure.hpp"
@@ -22,28 +23,33 @@ double Track::u_at(std::size_t i, double g) const {
 
 std::size_t Track::first_at_or_after(double t0) const { return std::lower_bound(t.begin(), t.end(), t0) - t.begin(); }
 
-Track track_from_rows(const std::vector<std::vector<double>>& rows, std::size_t u_rel_column) {
-  Track tr;
-  for (const auto& r : rows) {
-    tr.t.push_back(r[0]);
-    tr.gap.push_back(r[3]);
-    tr.u.push_back(r[u_rel_column]);
-  }
-  return tr;
-}
-
 namespace {
 
-/// U_rel from the least-squares slope of the gap over [t0, t1] (the gap closes at U_rel).
-std::optional<double> fitted_u(const Track& tr, double t0, double t1) {
+constexpr double kYangHuntWindow = 0.010;  // s: the seed's "10 to 15 ms" fit interval (Yang & Hunt 2006), its lower end
+constexpr double kJosephDistance = 0.1;    // units of D: the stretch "just prior to and after impact" (our reading)
+
+/// The gap's rate (−U_rel) beside the track, for the Hermite interpolant of the gap.
+std::vector<double> gap_rate(const Track& tr) {
+  std::vector<double> r(tr.u.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = -tr.u[i];
+  return r;
+}
+
+/// U_rel from a least-squares fit of the gap over [t0, t1] (degree 1: the line's slope; degree 2: the parabola's
+/// slope at t_ref): the gap closes at U_rel.
+std::optional<double> fitted_u(const Track& tr, const std::vector<double>& rate, double t0, double t1, int degree = 1,
+                               double t_ref = NAN) {
   if (!(t1 > t0)) return std::nullopt;
-  auto f = fit_line_continuous(tr.t, tr.gap, t0, t1);
+  auto f = fit_polynomial_hermite(tr.t, tr.gap, rate, t0, t1, degree, std::isnan(t_ref) ? 0.5 * (t0 + t1) : t_ref);
   if (!f) return std::nullopt;
   return -f->slope;
 }
 
-/// e from an impact and a rebound U_rel (< 0 moving apart): negative values are clipped to 0 and say why.
+/// e from an impact and a rebound U_rel (< 0 moving apart), and those velocities: negative values are clipped to 0
+/// and say why.
 void put_e(nlohmann::ordered_json& j, std::optional<double> u_in, std::optional<double> u_out, const char* why_negative) {
+  j["impact_velocity_m_s"] = or_null(u_in);
+  j["rebound_velocity_m_s"] = or_null(u_out);
   if (!u_in || !u_out || !(*u_in > 0)) {
     j["e"] = nullptr;
     return;
@@ -69,20 +75,66 @@ struct Flights {
   std::size_t a0, a1, r0, r1;  // samples: approach [a0, a1], rebound [r0, r1] (r1 also bounds the apex search)
 };
 
-/// fit_time: least-squares slopes over windows of W before the contact and after the separation, both shortened
-/// alike to the flights. Also sets the contact's impact and rebound velocities.
-nlohmann::ordered_json fit_time_measure(const Track& tr, const Flights& f, double W, nlohmann::ordered_json& b) {
-  nlohmann::ordered_json ft;
-  double Wk = std::min(W, f.c.t_in - f.t_from);
+/// A window of W before the contact and one after the separation, both shortened alike to the flights.
+double flight_window(const Flights& f, double W) {
+  double Wk = f.started ? W : std::min(W, f.c.t_in - f.t_from);
   if (f.sep) Wk = std::min(Wk, f.t_next - f.t_sep);
-  std::optional<double> ui = f.started ? std::optional<double>(f.c.u_in) : fitted_u(tr, f.c.t_in - Wk, f.c.t_in);
-  std::optional<double> ur = f.sep ? fitted_u(tr, f.t_sep, f.t_sep + Wk) : std::optional<double>(0.0);
+  return Wk;
+}
+
+/// fit_time (and yang_hunt_2006): least-squares slopes over windows of W before the contact and after the separation.
+nlohmann::ordered_json fit_time_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double W) {
+  nlohmann::ordered_json ft;
+  const double Wk = flight_window(f, W);
+  std::optional<double> ui = f.started ? std::optional<double>(f.c.u_in) : fitted_u(tr, rate, f.c.t_in - Wk, f.c.t_in);
+  std::optional<double> ur = f.sep ? fitted_u(tr, rate, f.t_sep, f.t_sep + Wk) : std::optional<double>(0.0);
   put_e(ft, ui, ur, "the rebound fit's slope points toward the target: the sphere fell back within the window; e clipped to 0");
   ft["window_s"] = Wk;
   if (!f.sep && ft["e"].is_number()) ft["e"] = 0.0;
-  b["impact_velocity_m_s"] = or_null(ui);
-  b["rebound_velocity_m_s"] = f.sep ? or_null(ur) : nlohmann::ordered_json(nullptr);
   return ft;
+}
+
+/// One fitted parabola of a sphere's position, for drawing: z(t) = z + u (t − t_ref) + ½ a (t − t_ref)².
+nlohmann::ordered_json parabola(const Track& tr, const std::vector<double>& z, const std::vector<double>& u, double t0, double t1,
+                                double t_ref) {
+  const auto p = fit_polynomial_hermite(tr.t, z, u, t0, t1, 2, t_ref);
+  if (!p) return nullptr;
+  return {{"t_ref_s", p->t_ref}, {"z_m", p->value}, {"u_m_s", p->slope}, {"a_m_s2", p->accel}};
+}
+
+/// contact_ends (the default e): parabolas z = z0 + U t + ½ a t² fitted by least squares to the gap over a window
+/// before the contact and after the separation, the velocities being their slopes at the contact's ends (the inward
+/// δ_SS crossing, the separation). The window is the time to travel `distance` (m) at the impact speed (U_rel at the
+/// inward δ_SS crossing), shortened alike to the flights. A steady force (gravity, drag nearly) is a constant
+/// acceleration: the parabola takes it up instead of tilting the velocity. A dry collision gives e = e_d exactly.
+nlohmann::ordered_json contact_ends_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double distance,
+                                            bool pair) {
+  nlohmann::ordered_json ce;
+  if (!(f.c.u_in > 0)) {
+    put_e(ce, std::nullopt, std::nullopt, "");
+    ce["missing"] = "no approach at the contact (U_rel <= 0 at the inward delta_ss crossing)";
+    return ce;
+  }
+  const double W = distance / f.c.u_in, Wk = flight_window(f, W);
+  const double a0 = f.c.t_in - Wk, r1 = f.t_sep + Wk;
+  std::optional<double> ui = f.started ? std::optional<double>(f.c.u_in) : fitted_u(tr, rate, a0, f.c.t_in, 2, f.c.t_in);
+  std::optional<double> ur = f.sep ? fitted_u(tr, rate, f.t_sep, r1, 2, f.t_sep) : std::optional<double>(0.0);
+  put_e(ce, ui, ur, "the rebound parabola's slope at the separation points toward the target; e clipped to 0");
+  if (!f.sep && ce["e"].is_number()) ce["e"] = 0.0;
+  ce["distance_m"] = distance;
+  ce["window_s"] = Wk;
+  if (Wk < W * (1 - 1e-9)) ce["shortened_from_s"] = W;
+  // The windows and each sphere's fitted position in them (for trajectory.png).
+  auto side = [&](double t0, double t1, double t_ref) {
+    nlohmann::ordered_json s = {{"t0_s", t0}, {"t1_s", t1}, {"z1", parabola(tr, tr.z1, tr.u1, t0, t1, t_ref)}};
+    if (pair) s["z2"] = parabola(tr, tr.z2, tr.u2, t0, t1, t_ref);
+    return s;
+  };
+  ce["approach"] = f.started ? nlohmann::ordered_json(nullptr) : side(a0, f.c.t_in, f.c.t_in);
+  ce["rebound"] = f.sep ? side(f.t_sep, r1, f.t_sep) : nlohmann::ordered_json(nullptr);
+  if (!ui && !f.started) ce["missing"] = "the approach window is not covered by the run";
+  else if (f.sep && !ur) ce["missing"] = "the rebound window is not covered by the run";
+  return ce;
 }
 
 struct Crossing {
@@ -112,17 +164,18 @@ void put_apex(const Track& tr, const Flights& f, nlohmann::ordered_json& b) {
 
 /// fit_distance: slopes from the last inward crossing of g_fd = delta_ss + d to the contact, and from the
 /// separation to the first outward crossing.
-nlohmann::ordered_json fit_distance_measure(const Track& tr, const Flights& f, double g_fd, double d_fit) {
+nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double g_fd,
+                                            double d_fit) {
   nlohmann::ordered_json fd;
   std::optional<double> fd_in, fd_out, ta, tb;
   for (std::size_t i = std::max<std::size_t>(f.a0, 1); i <= f.a1 && i < tr.t.size(); ++i)
     if (tr.gap[i - 1] >= g_fd && tr.gap[i] < g_fd) ta = tr.cross(i, g_fd);
   if (f.started) fd_in = f.c.u_in;
-  else if (ta) fd_in = fitted_u(tr, *ta, f.c.t_in);
+  else if (ta) fd_in = fitted_u(tr, rate, *ta, f.c.t_in);
   if (f.sep)
     for (std::size_t i = std::max<std::size_t>(f.r0, 1); i <= f.r1 && !tb; ++i)
       if (tr.gap[i - 1] < g_fd && tr.gap[i] >= g_fd) tb = tr.cross(i, g_fd);
-  if (f.sep && tb) fd_out = fitted_u(tr, f.t_sep, *tb);
+  if (f.sep && tb) fd_out = fitted_u(tr, rate, f.t_sep, *tb);
   else if (!f.sep) fd_out = 0.0;
   put_e(fd, fd_in, fd_out, "the fitted rebound moves toward the target; e clipped to 0");
   fd["distance_m"] = d_fit;
@@ -181,6 +234,8 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
   const double D = 2 * model.radius(0);
   const double d_fit = sc.measure.fit_distance * D, g_at = sc.measure.at_gap * D, g_fd = model.delta_ss_m() + d_fit;
   const double t_final = tr.t.empty() ? 0.0 : tr.t.back();
+  const std::vector<double> rate = gap_rate(tr);
+  const char* e_name = to_string(sc.measure.e);
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   bool any_clipped = false;
   for (std::size_t k = 0; k < cs.size(); ++k) {
@@ -196,21 +251,39 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
     b["t_contact_s"] = c.t_in;
     b["t_separation_s"] = or_null(c.t_out);
     b["impact_speed_at_delta_ss_m_s"] = c.u_in;
-    const nlohmann::ordered_json ft = fit_time_measure(tr, f, sc.measure.window, b);
-    if (ft.contains("e_raw")) any_clipped = true;
-    b["e"] = ft["e"];
-    b["e_instant"] = instant_e(inst, f);
+    nlohmann::ordered_json em;
+    em["contact_ends"] = contact_ends_measure(tr, rate, f, sc.measure.ends_distance * D, model.n_spheres() == 2);
+    em["yang_hunt_2006"] = fit_time_measure(tr, rate, f, kYangHuntWindow);
+    em["yang_hunt_2006"]["reference"] = "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms";
+    em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m() + kJosephDistance * D, kJosephDistance * D);
+    em["joseph_2001"]["reference"] = "Joseph, Zenit, Hunt & Rosenwinkel, J. Fluid Mech. 433 (2001): lines over the last/first 0.1 D (our reading)";
+    em["gondret_2002"] = peak_rebound_measure(tr, f);
+    em["gondret_2002"]["reference"] = "Gondret, Lance & Petit, Phys. Fluids 14, 643 (2002): peak speeds of the position signal (our reading)";
+    em["fit_time"] = fit_time_measure(tr, rate, f, sc.measure.window);
+    em["fit_distance"] = fit_distance_measure(tr, rate, f, g_fd, d_fit);
+    em["at_gap"] = at_gap_measure(tr, f, g_at, model.initial_gap());
+    em["peak_rebound"] = peak_rebound_measure(tr, f);
+    em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};
+    for (const char* k2 : {"fit_time", "yang_hunt_2006"})
+      if (em[k2].contains("e_raw")) any_clipped = true;
+    b["e"] = em[e_name]["e"];
+    b["e_is"] = e_name;
+    b["impact_velocity_m_s"] = em[e_name].value("impact_velocity_m_s", nlohmann::ordered_json(nullptr));
+    b["rebound_velocity_m_s"] = f.sep ? em[e_name].value("rebound_velocity_m_s", nlohmann::ordered_json(nullptr)) : nullptr;
+    b["e_instant"] = em["instant"]["e"];
     put_apex(tr, f, b);
-    b["e_measures"] = {{"fit_time", ft},
-                       {"fit_distance", fit_distance_measure(tr, f, g_fd, d_fit)},
-                       {"at_gap", at_gap_measure(tr, f, g_at, model.initial_gap())},
-                       {"peak_rebound", peak_rebound_measure(tr, f)},
-                       {"instant", {{"e", b["e_instant"]}, {"gap_m", sc.measure.instant_gap * D}}}};
+    // The measures whose e differs from `e` by more than measure.disagreement.
+    nlohmann::ordered_json dis = nlohmann::ordered_json::object();
+    if (b["e"].is_number())
+      for (const auto& [name, m] : em.items())
+        if (m["e"].is_number() && std::abs(m["e"].get<double>() - b["e"].get<double>()) > sc.measure.disagreement) dis[name] = m["e"];
+    b["measures_disagree"] = dis;
+    b["e_measures"] = em;
     out.push_back(b);
   }
   if (any_clipped)
-    warnings.push_back("a rebound fit over measure.window points toward the target (the sphere fell back within the window): "
-                       "that contact's e is clipped to 0 (e_raw in its e_measures.fit_time)");
+    warnings.push_back("a rebound fit over a fixed window (fit_time, yang_hunt_2006) points toward the target (the sphere fell back "
+                       "within the window): that measure's e is clipped to 0 (e_raw in its e_measures entry)");
   return out;
 }
 

@@ -27,17 +27,15 @@ std::pair<double, double> stokes_numbers(const CollisionModel& model, const Scen
   return {model.n_spheres() == 2 ? st62 / 2 : st62, st62};
 }
 
-FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc, const std::vector<std::vector<double>>& rows,
-                                   std::vector<std::string>& warnings) {
-  // Columns for the fits.
-  std::vector<double> t, z1, z2;
+FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc, const Track& tr, std::vector<std::string>& warnings) {
   const bool pair = model.n_spheres() == 2;
-  for (const auto& r : rows) {
-    t.push_back(r[0]);
-    z1.push_back(r[1]);
-    z2.push_back(pair ? r[4] : 0.0);
-  }
-  const double t_final = t.empty() ? 0.0 : t.back();
+  const double t_final = tr.t.empty() ? 0.0 : tr.t.back();
+  // Least-squares lines of each sphere's position (Hermite interpolant of the track).
+  auto line = [&](const std::vector<double>& z, const std::vector<double>& u, double t0, double t1) -> std::optional<LineFit> {
+    auto f = fit_polynomial_hermite(tr.t, z, u, t0, t1, 1, 0.0);
+    if (!f) return std::nullopt;
+    return LineFit{f->slope, f->value};
+  };
   const double W = sc.measure.window;
 
   FirstContact m;
@@ -48,10 +46,9 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
   const bool can_approach = model.initial_u_rel() > 0 || sc.has(Effect::gravity);
   m.t_end_too_short = model.has_target() && !collided && can_approach;
   if (model.has_target() && !collided) {
-    if (can_approach)
-      warnings.push_back("no collision by t_end: the gap never reached delta_ss and the approach never stopped; e is undefined");
-    else
-      warnings.push_back("no collision: the spheres are not approaching (U_rel(0) <= 0, no gravity), so no t_end gives one; e is undefined");
+    m.e_missing = can_approach ? "no collision by t_end: the gap never reached delta_ss and the approach never stopped; e is undefined"
+                               : "no collision: the spheres are not approaching (U_rel(0) <= 0, no gravity), so no t_end gives one; e is undefined";
+    warnings.push_back(*m.e_missing);
   }
   if (model.has_target() && collided) {
     // Approach window ends at the first δ_SS crossing, or at the closest approach without contact.
@@ -78,8 +75,8 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
       warnings.push_back(os.str());
     } else {
       if (Wfit < W) warnings.push_back("the approach lasted less than the fit window: both fits use windows of the approach's length");
-      auto f1 = fit_line_continuous(t, z1, t_ref - Wfit, t_ref);
-      auto f2 = pair ? fit_line_continuous(t, z2, t_ref - Wfit, t_ref) : std::optional<LineFit>(LineFit{});
+      auto f1 = line(tr.z1, tr.u1, t_ref - Wfit, t_ref);
+      auto f2 = pair ? line(tr.z2, tr.u2, t_ref - Wfit, t_ref) : std::optional<LineFit>(LineFit{});
       if (f1 && f2) {
         m.u_i1 = f1->slope;
         m.u_i2 = f2->slope;
@@ -87,8 +84,8 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
     }
     // Rebound window: from the separation, or the last window of the run.
     const double t_post = m.separated ? *model.t_separation() : std::max(t_ref, t_final - Wfit);
-    auto g1 = fit_line_continuous(t, z1, t_post, t_post + Wfit);
-    auto g2 = pair ? fit_line_continuous(t, z2, t_post, t_post + Wfit) : std::optional<LineFit>(LineFit{});
+    auto g1 = line(tr.z1, tr.u1, t_post, t_post + Wfit);
+    auto g2 = pair ? line(tr.z2, tr.u2, t_post, t_post + Wfit) : std::optional<LineFit>(LineFit{});
     m.fit_window = Wfit;
     if (g1 && g2) {
       m.u_r1 = g1->slope;
@@ -105,8 +102,8 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
           m.e_fit_raw = m.e;
           m.e = 0.0;
           std::ostringstream os;
-          os << "e = " << *m.e_fit_raw << " from the fits: the rebound fit's slope points toward the target (the sphere fell back "
-             << "within measure.window); e is clipped to 0 (e_fit_raw); e_measures.at_gap and peak_rebound do not have this defect";
+          os << "fit_time e = " << *m.e_fit_raw << ": the rebound line's slope points toward the target (the sphere fell back "
+             << "within measure.window); clipped to 0; contact_ends, at_gap and peak_rebound do not have this defect";
           warnings.push_back(os.str());
         }
       } else {
@@ -122,9 +119,9 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
             // or the stopped approach without contact), where the two spheres move together.
             m.t_group = group_moment(model);
             if (m.t_group) {
-              for (const auto& row : rows)
-                if (row[0] == *m.t_group) {
-                  m.group_velocity = (m1 * row[2] + m2 * row[5]) / (m1 + m2);
+              for (std::size_t i = 0; i < tr.t.size(); ++i)
+                if (tr.t[i] == *m.t_group) {
+                  m.group_velocity = (m1 * tr.u1[i] + m2 * tr.u2[i]) / (m1 + m2);
                   break;
                 }
             }
@@ -145,9 +142,14 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
       }
     }
     if (m.u_i1 && !m.u_r1 && !m.separated) {
-      m.t_end_too_short = true;
-      warnings.push_back("the run ended less than measure.window after the " + std::string(model.t_contact() ? "contact" : "closest approach") +
-                         ", without a separation: no rebound fit, so e is undefined (raise solver.t_end)");
+      if (model.t_at_rest()) {
+        m.e = 0.0;  // at rest on the target: no t_end changes e = 0
+      } else {
+        m.t_end_too_short = true;
+        m.e_missing = "the run ended less than measure.window after the " + std::string(model.t_contact() ? "contact" : "closest approach") +
+                      ", without a separation: no rebound fit, so e is undefined (raise solver.t_end)";
+        warnings.push_back(*m.e_missing);
+      }
     }
     if (m.u_i1 && sc.fluid) {
       const double u_rel = *m.u_i1 - *m.u_i2;
@@ -164,8 +166,36 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
     if (!m.e_instant && model.t_contact())
       warnings.push_back("e_instant: the gap did not cross measure.instant_gap inward and outward before t_end");
   }
+  // A run that ended at rest is complete: a longer t_end cannot change anything.
+  if (model.t_at_rest()) m.t_end_too_short = false;
 
   return m;
+}
+
+void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstContact& m, std::vector<std::string>& warnings) {
+  // Without a contact, or before a separation, e is the approach's verdict: 0 when the pair stopped or moves on
+  // together (at rest, group motion), null when a longer run could still show a rebound.
+  if (bounces.empty() || bounces[0]["t_separation_s"].is_null()) return;
+  const auto& b = bounces[0];
+  const char* name = to_string(sc.measure.e);
+  const auto& em = b["e_measures"][name];
+  m.e_fit_raw.reset();
+  if (em["e"].is_number()) {
+    m.e = em["e"].get<double>();
+    if (em.contains("e_raw")) m.e_fit_raw = em["e_raw"].get<double>();
+    m.e_missing.reset();
+  } else {
+    m.e.reset();
+    if (!m.e_missing) m.e_missing = std::string(name) + ": " + em.value("missing", std::string("the measure could not be taken"));
+    warnings.push_back("e is undefined: " + *m.e_missing);
+  }
+  if (m.e && !b["measures_disagree"].empty()) {
+    std::ostringstream os;
+    os << "named measures of e disagree: e = " << *m.e << " (" << name << "), but";
+    for (const auto& [k, v] : b["measures_disagree"].items()) os << " " << k << " = " << v.get<double>() << ",";
+    os << " more than measure.disagreement = " << sc.measure.disagreement << " away (docs/bounces.md)";
+    warnings.push_back(os.str());
+  }
 }
 
 void check_plausibility(const CollisionModel& model, const Scene& sc, const FirstContact& m, std::vector<std::string>& warnings) {

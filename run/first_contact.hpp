@@ -1,7 +1,8 @@
 #pragma once
 // The first contact of a run measured as the seed does (MODEL.md §3): impact and rebound velocities from
-// least-squares fits over measure.window (m/s), e (seed 6.1), e_instant at measure.instant_gap, St (6.2) and
+// least-squares lines over measure.window (m/s, fit_time), e (seed 6.1, fit_time), e_instant at measure.instant_gap, St (6.2) and
 // Re at impact, the group velocity of a pair that moves on together; with the warnings that qualify them.
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -9,6 +10,7 @@
 
 #include "contact/collision_model.hpp"
 #include "core/scene.hpp"
+#include "run/bounces.hpp"
 
 namespace imcol::run {
 
@@ -19,15 +21,20 @@ struct FirstContact {
   std::optional<double> group_velocity, t_group;  // m/s, s
   double fit_window = 0;                          // s, as used (shortened to a short approach)
   bool separated = false;
-  bool t_end_too_short = false;
+  bool t_end_too_short = false;  // a longer solver.t_end would change e (never when the run ended at rest)
+  std::optional<std::string> e_missing;  // why e is undefined
 };
 
 /// St in the reported convention (eq. 6.2 for a wall, half of it for a pair: seed Table 6.1) and St by (6.2).
 std::pair<double, double> stokes_numbers(const contact::CollisionModel& model, const Scene& sc, double u_rel);
 
-/// Measures the first contact on the trajectory rows (columns t, z1, u1, …, z2 at 4 and u2 at 5 for a pair).
-FirstContact measure_first_contact(const contact::CollisionModel& model, const Scene& sc,
-                                   const std::vector<std::vector<double>>& rows, std::vector<std::string>& warnings);
+/// Measures the first contact on the measures' track (Recorder::track()).
+FirstContact measure_first_contact(const contact::CollisionModel& model, const Scene& sc, const Track& track,
+                                   std::vector<std::string>& warnings);
+
+/// `e` is the first contact's named measure measure.e (from measure_bounces); without a contact, the approach's e
+/// (0 when the liquid stopped it). Warns where named measures differ from it by more than measure.disagreement.
+void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstContact& m, std::vector<std::string>& warnings);
 
 /// Warnings for an e that cannot be trusted: above e_dry (energy created), or from loose tolerances.
 void check_plausibility(const contact::CollisionModel& model, const Scene& sc, const FirstContact& m,

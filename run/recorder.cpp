@@ -27,8 +27,29 @@ constexpr ForceColumn kForceColumns[] = {
 
 }  // namespace
 
-Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces)
-    : model_(model), sc_(sc), min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
+double measure_interval(const contact::CollisionModel& model, const Scene& sc) {
+  const double dt = sc.output.dt;
+  if (!model.has_target()) return dt;
+  // An upper bound of the impact speed: the initial approach plus a fall over the initial gap at the buoyant
+  // acceleration of the densest contrast (no drag, no added mass), for either sphere.
+  double u = std::abs(model.initial_u_rel());
+  if (sc.has(Effect::gravity)) {
+    const double rho_f = sc.fluid ? sc.fluid->density : 0.0;
+    double g = 0;
+    for (std::size_t m = 0; m < model.n_spheres(); ++m) g += std::abs(sc.gravity) * std::abs(1 - rho_f / sc.spheres[m].density);
+    u += std::sqrt(2 * g * std::max(0.0, model.initial_gap()));
+  }
+  if (!(u > 0)) return dt;
+  const double window = sc.measure.ends_distance * 2 * model.radius(0) / u;
+  const double n = std::ceil(dt * sc.measure.samples_per_window / window);
+  return n > 1 ? dt / n : dt;
+}
+
+Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces, double sample_dt)
+    : model_(model), sc_(sc), sample_dt_(sample_dt > 0 ? sample_dt : sc.output.dt), next_row_(sc.output.dt),
+      // Near contact every sample is kept: within 10 contact_ends windows' travel of the contact zone (at least 0.1 D).
+      dense_gap_(model.has_target() ? model.delta_ss_m() + std::max(0.1, 10 * sc.measure.ends_distance) * 2 * model.radius(0) : 0.0),
+      min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
   const bool pair = model.n_spheres() == 2;
   columns_ = {"t", "z1", "u1"};
   if (model.has_target()) columns_.push_back("gap");
@@ -51,9 +72,27 @@ Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progres
 }
 
 void Recorder::sample(double t, std::span<const double> y, bool at_event) {
+  // A row: an event, the first sample, each output time k·output.dt, or a sample off the sampling grid (the last).
+  bool row = at_event || rows_.empty();
+  const double eps = 1e-6 * sample_dt_;
+  if (std::abs(t - std::round(t / sample_dt_) * sample_dt_) > eps) row = true;
+  while (t >= next_row_ - eps) {
+    row = true;
+    next_row_ = static_cast<double>(++k_row_) * sc_.output.dt;
+  }
+  if (!row) {
+    const Evaluation kin = model_.kinematic_state(y);
+    if (model_.has_target()) {
+      min_gap_ = std::min(min_gap_, kin.gap);
+      if (kin.gap < dense_gap_) add_to_track(t, kin);
+    }
+    if (progress_) show_progress(t);
+    return;
+  }
   // Without force columns the forces are still needed where the model watches for rest.
   const bool evaluate = forces_ || model_.observes_accelerations();
   const Evaluation ev = evaluate ? model_.evaluate(t, y) : model_.kinematic_state(y);
+  if (model_.has_target()) add_to_track(t, ev);
   std::vector<double> r;
   r.reserve(columns_.size());
   r.insert(r.end(), {t, ev.z[0], ev.u[0]});
@@ -79,6 +118,18 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
     min_gap_ = std::min(min_gap_, ev.gap);
     if (forces_) max_force_ = std::max(max_force_, std::abs(ev.f[0].contact));
   }
+}
+
+void Recorder::add_to_track(double t, const Evaluation& ev) {
+  if (!track_.t.empty() && !(t > track_.t.back())) return;  // an event sampled twice (at the same t)
+  const bool pair = model_.n_spheres() == 2;
+  track_.t.push_back(t);
+  track_.gap.push_back(ev.gap);
+  track_.u.push_back(ev.u_rel);
+  track_.z1.push_back(ev.z[0]);
+  track_.u1.push_back(ev.u[0]);
+  track_.z2.push_back(pair ? ev.z[1] : 0.0);
+  track_.u2.push_back(pair ? ev.u[1] : 0.0);
 }
 
 void Recorder::finish_progress() {

@@ -1,23 +1,31 @@
 #pragma once
 // Samples a collision run into trajectory rows (one per output time and event) with the force terms of the
-// effects that ran (or, for sweeps, the kinematics alone), lets the model observe each sample (it may end the
-// run: at rest), and shows progress.
+// effects that ran (or, for sweeps, the kinematics alone), lets the model observe each row (it may end the
+// run: at rest), and shows progress. The measures of e read their own track: the integrator samples at the
+// measures' interval (measure_interval, a divisor of output.dt), and near contact every sample is kept, so
+// that e does not depend on output.dt.
 #include <span>
 #include <string>
 #include <vector>
 
 #include "contact/collision_model.hpp"
+#include "run/bounces.hpp"
 #include "core/scene.hpp"
 #include "core/system.hpp"
 #include "core/timing.hpp"
 
 namespace imcol::run {
 
+/// The interval (s) at which the integrator samples a run: output.dt divided by the smallest whole number that brings it
+/// to at most the contact_ends window at an upper bound of the impact speed over measure.samples_per_window.
+double measure_interval(const contact::CollisionModel& model, const Scene& sc);
+
 class Recorder : public Observer {
  public:
   /// `progress`: a run still going after 2 s shows a progress line on stderr (a terminal only). `forces`: the rows
   /// carry the force terms and accelerations; without, only the kinematic columns and the event flag.
-  Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces = true);
+  /// `sample_dt`: the integrator's sampling interval (measure_interval); rows are kept every output.dt.
+  Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces = true, double sample_dt = 0);
 
   void sample(double t, std::span<const double> y, bool at_event) override;
   void stepped(long steps) override { steps_ = steps; }
@@ -26,6 +34,8 @@ class Recorder : public Observer {
 
   const std::vector<std::string>& columns() const { return columns_; }
   std::vector<std::vector<double>>& rows() { return rows_; }
+  /// The measures' samples: every row, and every sample within measure_zone() of the contact zone.
+  const Track& track() const { return track_; }
   double min_gap() const { return min_gap_; }          // m, over the samples
   bool forces() const { return forces_; }
   double max_contact_force() const { return max_force_; }  // N, sphere 1 (forces() only)
@@ -33,12 +43,16 @@ class Recorder : public Observer {
 
  private:
   void show_progress(double t);
+  void add_to_track(double t, const contact::Evaluation& ev);
 
   contact::CollisionModel& model_;
   const Scene& sc_;
   std::vector<std::string> columns_;
   std::vector<double contact::SphereForces::*> fields_;  // the force columns of each sphere, in column order
   std::vector<std::vector<double>> rows_;
+  Track track_;
+  double sample_dt_, next_row_, dense_gap_;  // s, s, m
+  long k_row_ = 1;
   double min_gap_, max_force_ = 0, max_history_ = 0;
   long steps_ = 0;
   bool forces_ = true, progress_ = false, shown_ = false;

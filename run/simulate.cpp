@@ -41,8 +41,10 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
 
   // Integrate: the reduced-order model alone, or coupled to the flow kernel.
   const auto wall_start = WallClock::now();
-  run::Recorder rec(model, sc, progress, recording == Recording::full);
-  const IntegratorSettings st = integrator_settings(sc);
+  // The integrator samples at the measures' own interval; the recorder keeps rows every output.dt.
+  IntegratorSettings st = integrator_settings(sc);
+  st.output_dt = run::measure_interval(model, sc);
+  run::Recorder rec(model, sc, progress, recording == Recording::full, st.output_dt);
   std::unique_ptr<coupling::FlowCoupling> coupled;
   SolverStats stats;
   try {
@@ -67,13 +69,12 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
 
   // Measure: the first contact as the seed does, then every contact with each named measure.
   std::vector<std::string> warnings;
-  const run::FirstContact first = run::measure_first_contact(model, sc, res.rows, warnings);
-  run::check_plausibility(model, sc, first, warnings);
+  run::FirstContact first = run::measure_first_contact(model, sc, rec.track(), warnings);
   nlohmann::ordered_json bounces = nlohmann::ordered_json::array();
-  if (model.has_target() && sc.has(Effect::elastic) && !res.rows.empty()) {
-    const auto u_rel_column = static_cast<std::size_t>(std::find(res.columns.begin(), res.columns.end(), "u_rel") - res.columns.begin());
-    bounces = run::measure_bounces(model, sc, run::track_from_rows(res.rows, u_rel_column), warnings);
-  }
+  if (model.has_target() && sc.has(Effect::elastic) && !rec.track().t.empty())
+    bounces = run::measure_bounces(model, sc, rec.track(), warnings);
+  run::choose_e(sc, bounces, first, warnings);
+  run::check_plausibility(model, sc, first, warnings);
 
   // Report.
   auto& s = res.summary;

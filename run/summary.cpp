@@ -13,16 +13,15 @@ void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, co
                       const nlohmann::ordered_json& bounces, const Recorder& rec, const std::vector<std::vector<double>>& rows) {
   const bool pair = model.n_spheres() == 2;
   s["e"] = or_null(m.e);
-  s["e_is"] = "fit_time (velocities fitted over measure.window before the first contact and after its separation)";
+  s["e_is"] = to_string(sc.measure.e);  // the named measure in e_measures (measure.e; docs/bounces.md)
   if (m.e_fit_raw) s["e_fit_raw"] = *m.e_fit_raw;
+  if (!m.e) s["e_missing"] = m.e_missing ? nlohmann::ordered_json(*m.e_missing) : nlohmann::ordered_json(nullptr);
   s["e_instant"] = or_null(m.e_instant);
   s["e_instant_gap_m"] = sc.measure.instant_gap * 2 * model.radius(0);
   // The named measures of the first contact (each contact's are in `bounces`).
   if (!bounces.empty()) {
-    auto em = bounces[0]["e_measures"];
-    em["fit_time"]["e"] = or_null(m.e);  // as `e` (symmetric windows, also for pairs)
-    em["fit_time"]["window_s"] = m.fit_window;
-    s["e_measures"] = em;
+    s["e_measures"] = bounces[0]["e_measures"];
+    s["measures_disagree"] = bounces[0]["measures_disagree"];
   } else {
     s["e_measures"] = nullptr;
   }

@@ -11,6 +11,38 @@ import sys
 from imcol_plot import out_dir, plt, save_png
 
 
+def draw_e_fits(ax, ax_u, summary) -> None:
+    """The windows and fitted parabolas behind e (contact_ends, first contact) on the position panel; the fitted
+    velocities at the contact's ends as crosses on the velocity panel."""
+    em = summary.get("e_measures") or {}
+    name = summary.get("e_is")
+    m = em.get(name) if isinstance(em, dict) else None
+    if not m or name != "contact_ends":
+        return
+    first = True
+    for side in ("approach", "rebound"):
+        w = m.get(side)
+        if not w:
+            continue
+        t0, t1 = w["t0_s"], w["t1_s"]
+        ax.axvspan(1e3 * t0, 1e3 * t1, color="orange", alpha=0.25, lw=0,
+                   label="contact_ends windows (%.3g ms)" % (1e3 * m["window_s"]) if first else None)
+        span = t1 - t0
+        for k in ("z1", "z2"):
+            p = w.get(k)
+            if not p:
+                continue
+            # the parabola over its window and one window beyond on the far side from the contact
+            a, b = (t0 - span, t1) if side == "approach" else (t0, t1 + span)
+            ts = [a + (b - a) * i / 60 for i in range(61)]
+            zs = [p["z_m"] + p["u_m_s"] * (t - p["t_ref_s"]) + 0.5 * p["a_m_s2"] * (t - p["t_ref_s"]) ** 2 for t in ts]
+            ax.plot([1e3 * t for t in ts], [1e3 * z for z in zs], color="k", lw=0.9, ls="--",
+                    label="fitted parabolas (slopes at the contact's ends)" if first else None)
+            ax_u.plot([1e3 * p["t_ref_s"]], [p["u_m_s"]], "x", color="k", ms=7,
+                      label="fitted velocities behind e" if first else None)
+            first = False
+
+
 def main() -> int:
     out = out_dir(__doc__)
     if out is None:
@@ -67,12 +99,13 @@ def main() -> int:
         ax[0].plot(ax_t, ax_z, "v", color="k", ms=6, label="apexes (largest gap before the next contact)")
         for b, t, z in zip(bounces, ax_t, ax_z):
             ax[0].annotate("%.2f mm" % (1e3 * b["apex_gap_m"]), (t, z), fontsize=7, xytext=(3, 5), textcoords="offset points")
+    draw_e_fits(ax[0], ax[1], summary)
     for a in ax:
         a.legend(fontsize=8)
         a.grid(alpha=0.3)
     e = summary.get("e")
     st = summary.get("St")
-    title = f"{summary['scene']}: e = {e:.3f}" if e is not None else summary["scene"]
+    title = f"{summary['scene']}: e = {e:.3f} ({summary.get('e_is')})" if e is not None else summary["scene"]
     if st is not None:
         st62 = summary.get("St_B_eq_6_2")
         title += f", St_B = {st:.1f} (Table 6.1; eq. 6.2: {st62:.1f})" if st62 is not None else f", St = {st:.1f}"

@@ -24,7 +24,8 @@ def read_csv(path):
         return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
-MEASURES = (("e", "e (fit over measure.window)", "o"),
+MEASURES = (("e", "e (the measure e_is names; default contact_ends)", "o"),
+            ("e_fit_time", "fit_time (lines over measure.window)", "s"),
             ("e_instant", "e_instant (at measure.instant_gap)", "x"),
             ("e_fit_distance", "fit over measure.fit_distance", "^"),
             ("e_at_gap", "velocities at measure.at_gap", "v"),

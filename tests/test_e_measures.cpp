@@ -1,0 +1,198 @@
+// The default measure of e (contact_ends, docs/bounces.md): it does not move with its window or with output.dt,
+// a dry collision gives e_dry, measure.e picks the measure, and a point that cannot be measured says why.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "apps/sweep.hpp"
+#include "core/errors.hpp"
+#include "core/materials.hpp"
+#include "core/scene.hpp"
+#include "run/simulate.hpp"
+#include "tests/scene_text.hpp"
+
+using namespace imcol;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string scene_file(const std::string& name) { return data_dir() + "/scenes/" + name + ".toml"; }
+
+/// e of the default measure (the callers override measure.e where a scene picks another).
+double e_default(const Scene& sc) {
+  const auto s = simulate(sc, false, Recording::kinematics).summary;
+  EXPECT_EQ(s["e_is"], "contact_ends");
+  return s["e"].is_number() ? s["e"].get<double>() : NAN;
+}
+
+/// Halving and doubling the contact_ends window and output.dt by 10 both ways move e by less than 0.01.
+void expect_robust(const std::function<Scene(std::vector<Override>)>& load, const std::string& what) {
+  SCOPED_TRACE(what);
+  const std::vector<Override> base = {{"measure.e", "\"contact_ends\""}};
+  const Scene sc = load(base);
+  const double e0 = e_default(sc);
+  ASSERT_TRUE(std::isfinite(e0));
+  auto with = [&](const std::string& k, double v) {
+    auto ov = base;
+    ov.push_back({k, test::num(v)});
+    return e_default(load(ov));
+  };
+  const double d = sc.measure.ends_distance, dt = sc.output.dt;
+  for (auto [k, v] : std::vector<std::pair<std::string, double>>{
+           {"measure.ends_distance", d / 2}, {"measure.ends_distance", 2 * d}, {"output.dt", dt / 10}, {"output.dt", 10 * dt}}) {
+    const double e = with(k, v);
+    EXPECT_LT(std::abs(e - e0), 0.01) << k << " = " << v << ": e = " << e << " against " << e0;
+  }
+  // output.dt alone: the same samples near contact, so e agrees to the integration's accuracy.
+  EXPECT_NEAR(with("output.dt", 10 * dt), e0, 1e-5);
+}
+
+std::map<std::string, std::string> csv_row(const fs::path& csv, int point) {
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  for (int i = 0; i < point; ++i) std::getline(in, line);  // point 1: the first data row
+  std::map<std::string, std::string> row;
+  std::stringstream hs(header), ls(line);
+  for (std::string h, v; std::getline(hs, h, ',');) {
+    std::getline(ls, v, ',');
+    row[h] = v;
+  }
+  return row;
+}
+
+}  // namespace
+
+TEST(EMeasures, DefaultDoesNotMoveWithItsWindowOrOutputDtOnTheShippedBouncingScenes) {
+  for (const char* name : {"default", "gg3462", "bouncing_steel", "seed_run1", "seed_run2", "seed_run3", "seed_run4", "seed_run5"})
+    expect_robust([&](std::vector<Override> ov) { return load_scene(scene_file(name), ov); }, name);
+}
+
+TEST(EMeasures, DefaultDoesNotMoveWithItsWindowOrOutputDtFromSt10To1000) {
+  // default.toml's viscosity swept over St ~ 10-1000 (reduced-order), eight points with a rebound.
+  for (double mu : {0.2, 0.12, 0.07, 0.04, 0.02, 0.01, 0.006, 0.0033})
+    expect_robust([&](std::vector<Override> ov) {
+      ov.push_back({"fluid.viscosity", test::num(mu)});
+      return load_scene(scene_file("default"), ov);
+    }, "viscosity " + std::to_string(mu));
+}
+
+TEST(EMeasures, DefaultIsNotBiasedByGravity) {
+  // A 6 mm steel sphere at terminal speed onto glass in silicone oil (St ~ 22): the 10 ms line (fit_time) averages
+  // the deceleration of the rise; the parabolas at the contact's ends do not, and agree with e_instant.
+  const std::string text = "gravity = 9.81\n" + test::fluid(0.1, 965) + test::sphere("steel", 0.006, -0.123, 0.0) +
+                           test::wall("glass", 0.0) + "[drag]\nlaw = \"schiller-naumann\"\n[solver]\nmax_step = 4e-5\n";
+  expect_robust([&](std::vector<Override> ov) { return parse_scene(text, "gravity.toml", ov); }, "gravity");
+  const auto s = simulate(parse_scene(text, "gravity.toml")).summary;
+  const double e = s["e"].get<double>();
+  EXPECT_NEAR(e, s["e_instant"].get<double>(), 0.01);
+  EXPECT_LT(s["e_measures"]["fit_time"]["e"].get<double>(), e - 0.2);
+  // The rebound parabola takes up the deceleration: about g (1 − ρ_f/ρ_p) plus the drag, toward the wall (+z).
+  const double a = s["e_measures"]["contact_ends"]["rebound"]["z1"]["a_m_s2"].get<double>();
+  EXPECT_GT(a, 9.81 * (1 - 965.0 / 7780) * 0.5);
+}
+
+TEST(EMeasures, DryCollisionGivesTheDryRestitutionInEveryFitMeasure) {
+  const std::string dry = test::sphere("steel", 0.0127, -0.0127, 0.2) + test::wall("zerodur", 0.0) + "[contact]\ne_dry = 0.9\n";
+  const auto s = simulate(parse_scene(dry, "dry.toml")).summary;
+  EXPECT_EQ(s["e_is"], "contact_ends");
+  EXPECT_NEAR(s["e"].get<double>(), 0.9, 1e-6);
+  for (const char* k : {"contact_ends", "yang_hunt_2006", "joseph_2001", "gondret_2002"})
+    EXPECT_NEAR(s["e_measures"][k]["e"].get<double>(), 0.9, 1e-6) << k;
+  EXPECT_TRUE(s["measures_disagree"].empty());
+}
+
+TEST(EMeasures, MeasureEPicksTheReportedMeasureAndDisagreementsAreNamed) {
+  // A 2 mm glass bead on steel in 50 wt% glycerol-water at St ~ 18: the 10 ms line and the parabolas differ by ~0.25.
+  const std::string bead = test::fluid(0.006, 1126) + test::sphere("glass", 0.002, -0.002, 0.2) + test::wall("steel", 0.0);
+  const auto d = simulate(parse_scene(bead, "bead.toml")).summary;
+  const auto f = simulate(parse_scene(bead, "bead.toml", {{"measure.e", "\"fit_time\""}})).summary;
+  EXPECT_EQ(f["e_is"], "fit_time");
+  EXPECT_DOUBLE_EQ(f["e"].get<double>(), f["e_measures"]["fit_time"]["e"].get<double>());
+  EXPECT_DOUBLE_EQ(d["e"].get<double>(), d["e_measures"]["contact_ends"]["e"].get<double>());
+  ASSERT_TRUE(d["measures_disagree"].contains("fit_time"));
+  bool named = false;
+  for (const auto& w : d["warnings"]) named = named || w.get<std::string>().find("fit_time = ") != std::string::npos;
+  EXPECT_TRUE(named) << d["warnings"].dump();
+  // The windows and the fitted parabolas are reported for the picture.
+  const auto& ce = d["e_measures"]["contact_ends"];
+  EXPECT_LT(ce["approach"]["t0_s"].get<double>(), ce["approach"]["t1_s"].get<double>());
+  EXPECT_NEAR(ce["approach"]["t1_s"].get<double>(), d["contact"]["t_contact_s"].get<double>(), 1e-15);
+  EXPECT_NEAR(ce["window_s"].get<double>(), 0.02 * 0.002 / d["bounces"][0]["impact_speed_at_delta_ss_m_s"].get<double>(), 1e-12);
+  // A bad measure name is an input error naming the key.
+  EXPECT_THROW(parse_scene(bead + "[measure]\ne = \"fit\"\n", "bad.toml"), InputError);
+}
+
+TEST(EMeasures, ARunThatEndedAtRestIsMeasuredAndASweepGivesNoUselessHint) {
+  // The bead at 0.097 m/s (St ~ 8) stops on the wall at 16 ms: e = 0, and a longer t_end would change nothing.
+  const std::string bead = test::fluid(0.006, 1126) + test::sphere("glass", 0.002, -0.002, 0.097) + test::wall("steel", 0.0);
+  const auto s = simulate(parse_scene(bead, "bead.toml")).summary;
+  ASSERT_TRUE(s["at_rest_since_s"].is_number());
+  EXPECT_FALSE(s["t_end_too_short"].get<bool>());
+  ASSERT_TRUE(s["e"].is_number());
+  EXPECT_EQ(s["e"].get<double>(), 0.0);
+  // In a sweep: measured, no t_end extension, no advice.
+  const fs::path dir = fs::temp_directory_path() / "imcol_e_measures_sweep";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  { std::ofstream(dir / "bead.toml") << bead; }
+  SweepOptions opt;
+  opt.vary = "velocity";
+  opt.from = 0.097;
+  opt.to = 0.3;
+  opt.points = 2;
+  opt.jobs = 1;
+  opt.out = (dir / "out").string();
+  opt.progress = false;
+  opt.plot = false;
+  ::testing::internal::CaptureStdout();
+  ASSERT_EQ(sweep((dir / "bead.toml").string(), {}, opt), 0);
+  const std::string printed = ::testing::internal::GetCapturedStdout();
+  const auto row = csv_row(dir / "out" / "sweep.csv", 1);
+  EXPECT_EQ(row.at("e"), "0");
+  EXPECT_EQ(row.at("e_status"), "measured");
+  EXPECT_EQ(row.at("message").find("t_end"), std::string::npos) << row.at("message");
+  // The faster point rebounds; its message names the measures that disagree with e.
+  const auto fast = csv_row(dir / "out" / "sweep.csv", 2);
+  EXPECT_EQ(fast.at("e_status"), "measures_disagree");
+  EXPECT_NE(fast.at("message").find("fit_time"), std::string::npos) << fast.at("message");
+  EXPECT_NE(printed.find("named measures disagree with e (contact_ends)"), std::string::npos) << printed;
+  fs::remove_all(dir);
+}
+
+TEST(EMeasures, APointThatNoTEndMeasuresSaysWhyWithoutAdvice) {
+  // A start far from the wall with a tiny t_end: no collision by t_end. The sweep's retries (t_end x4) do not reach
+  // contact either, so the message says why and that the longer t_end did not help.
+  const std::string far = test::fluid(0.02, 1200) + test::sphere("steel", 0.0127, -0.5, 0.3) + test::wall("zerodur", 0.0) +
+                          "[contact]\ne_dry = 0.97\n[solver]\nt_end = 0.05\n";
+  const fs::path dir = fs::temp_directory_path() / "imcol_e_measures_far";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  { std::ofstream(dir / "far.toml") << far; }
+  SweepOptions opt;
+  opt.vary = "viscosity";
+  opt.from = 0.02;
+  opt.to = 0.02;
+  opt.points = 1;
+  opt.jobs = 1;
+  opt.out = (dir / "out").string();
+  opt.progress = false;
+  opt.plot = false;
+  ::testing::internal::CaptureStdout();
+  ASSERT_EQ(sweep((dir / "far.toml").string(), {}, opt), 0);
+  const std::string printed = ::testing::internal::GetCapturedStdout();
+  const auto row = csv_row(dir / "out" / "sweep.csv", 1);
+  EXPECT_TRUE(row.at("e").empty());
+  EXPECT_EQ(row.at("e_status"), "not_measured");
+  EXPECT_NE(row.at("message").find("no collision by t_end"), std::string::npos) << row.at("message");
+  EXPECT_NE(row.at("message").find("still so with solver.t_end raised to 0.2 s"), std::string::npos) << row.at("message");
+  EXPECT_EQ(row.at("message").find("(raise solver.t_end)"), std::string::npos) << row.at("message");
+  EXPECT_NE(printed.find("e not measured at 1 of 1 points"), std::string::npos) << printed;
+  fs::remove_all(dir);
+}
