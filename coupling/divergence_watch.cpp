@@ -50,7 +50,8 @@ bool DivergenceWatch::energy_exceeded(std::span<const double> y) const {
 void DivergenceWatch::fail(double t, const std::string& what) const {
   std::ostringstream os;
   os << std::setprecision(4) << "the flow coupling diverged at t = " << t << " s: " << what << "; the flow kernel's step is too long for "
-     << "the fluid's speed (" << rule_ << "): lower flow.cfl or set a smaller flow.dt";
+     << "the fluid's speed (" << rule_ << "): lower flow.cfl or set a smaller flow.dt (if a smaller step fails sooner, the coupling's "
+     << "explicit fluid inertia is unstable for these spheres: docs/coupling.md \"Divergence\")";
   throw SolverError(os.str());
 }
 

@@ -8,13 +8,14 @@
 //   3. remove the model's added-mass estimate: f_rest = F_lab + M_A a_flow, a_flow the kernel's velocity change
 //      over the step / Δt, M_A the added-mass matrix the model keeps implicit (so light spheres stay stable: the
 //      fluid's inertia never enters explicitly, only the difference between the kernel's and the model's);
-//   (after 2, the kernel's force, and after 4, the spheres' speeds and energy are checked: divergence_watch.hpp)
 //   4. CVODE/IDA integrate particle and memory states over [t_n, t_{n+1}] with f_rest linear in t between its
 //      values at t_n and t_{n+1} (`flow.force_in_step = "linear"`, the default: averaging two steps damps the
 //      alternating mode that the remaining explicit part of the fluid's inertia drives; measured order in Δt ≈ 0.8)
 //      or held at the kernel's step value ("held": the IB force is the step's impulse over Δt, order ≈ 1.3, but
 //      unstable for light spheres); contact events inside the step are handled by the integrator as in the
 //      reduced model; a held force jumps at t_n, so the integrator is re-initialised there.
+// After 2 the kernel's force, after 4 the spheres' speeds and energy are checked (divergence_watch.hpp); the step
+// Δt comes from coupling/step_rule.hpp.
 // The flow starts impulsively (one prescribed step before t = 0) or developed (initial velocities prescribed over a
 // stated distance or time before t = 0). Near contact the gap seen by the kernel is kept at flow.min_gap_cells·h
 // or more (its rings would overlap): there H ≈ 1 and f_SIM's weight is small (documented in docs/coupling.md).
