@@ -1,5 +1,6 @@
 #include "apps/work_precision_flow.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -11,6 +12,7 @@
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
+#include "coupling/step_rule.hpp"
 
 namespace imcol {
 
@@ -46,7 +48,13 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
     std::cerr << "  " << ladder << ": " << cells << " cells/D, cfl " << cfl << " ...\n";
     rungs.push_back({ladder, cells, cfl, simulate(sc)});
   };
-  for (int c : opt.cells) run("grid", c, base.flow.cfl);
+  double u_ref = 0;  // the grid ladder keeps the scene's cfl, or the default cfl(Re) of coupling/step_rule.hpp
+  for (const auto& sp : base.spheres) u_ref = std::max(u_ref, std::abs(sp.velocity));
+  for (int c : opt.cells) {
+    Scene at = base;
+    at.flow.cells_per_diameter = c;
+    run("grid", c, base.flow.cfl > 0 ? base.flow.cfl : coupling::flow_step(at, 1.0, u_ref).cfl);
+  }
   for (double f : opt.cfls) run("step", base.flow.cells_per_diameter, f);
 
   std::ostringstream csv;

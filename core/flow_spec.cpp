@@ -23,7 +23,7 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   f.dt = r.number("dt", 0.0);
   if (r.has("dt")) r.positive("dt", f.dt);
   f.cfl = r.number("cfl", f.cfl);
-  r.in_range("cfl", f.cfl, 0.0, 1.0, true, false);
+  if (r.has("cfl")) r.in_range("cfl", f.cfl, 0.0, 1.0, true, false);  // absent: 0, the step rule's cfl(Re, N)
   f.theta = r.number("theta", f.theta);
   r.in_range("theta", f.theta, 0.5, 1.0, false, false);
   f.krylov_tol = r.number("krylov_tol", f.krylov_tol);
@@ -45,6 +45,12 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   f.added_mass_estimate = r.boolean("added_mass_estimate", f.added_mass_estimate);
   f.min_gap_cells = r.number("min_gap_cells", f.min_gap_cells);
   r.in_range("min_gap_cells", f.min_gap_cells, 1.0, 10.0, false, false);  // below one cell the rings of the two bodies overlap
+  f.energy_margin = r.number("energy_margin", f.energy_margin);
+  r.in_range("energy_margin", f.energy_margin, 0.0, 1e6, false, false);
+  f.speed_jump = r.number("speed_jump", f.speed_jump);
+  r.in_range("speed_jump", f.speed_jump, 1.0, 1e6, true, false);
+  f.speed_jump_floor = r.number("speed_jump_floor", f.speed_jump_floor);
+  r.in_range("speed_jump_floor", f.speed_jump_floor, 0.0, 1e6, true, false);
   f.max_wall_hours = r.number("max_wall_hours", f.max_wall_hours);
   r.in_range("max_wall_hours", f.max_wall_hours, 0.0, 1e4, true, false);
   f.fields = r.boolean("fields", f.fields);

@@ -16,7 +16,8 @@ struct FlowSpec {
   double ahead = 0.75;           // finest level beyond the leading sphere's surface, D
   double behind = 1.25;          // finest level behind the trailing sphere's surface (its wake), D
   double dt = 0;                 // flow step, s; 0: from cfl
-  double cfl = 0.5;              // dt = cfl h / U_ref (U_ref the largest initial sphere speed) when dt = 0
+  double cfl = 0;                // dt = cfl h / U_ref (U_ref the largest initial sphere speed) when dt = 0; 0: cfl(Re) of
+                                 // coupling/step_rule.hpp (0.5 up to Re = 250, 0.25 at Re = 1000)
   double theta = 0.5;            // implicit weight of the viscous term (0.5 Crank–Nicolson)
   double krylov_tol = 1e-8;      // GMRES relative residual of the force system
   int krylov_max_iter = 500;
@@ -30,6 +31,12 @@ struct FlowSpec {
   bool added_mass_estimate = true;  // keep the model's added mass implicit and remove it from f_SIM (false: f_SIM explicit,
                                     // unstable for light spheres; only without the added_mass effect; MODEL.md §5)
   double min_gap_cells = 1.0;    // smallest gap the kernel sees, finest cells, in [1, 10] (closer rings overlap)
+  // Divergence checks (coupling/divergence_watch.hpp): the spheres' kinetic energy may exceed what the initial motion
+  // and gravity supply by this fraction; a sphere's speed may grow by at most speed_jump times in one flow step (without
+  // solid contact), speeds below speed_jump_floor × √(2 E_avail/m) not judged.
+  double energy_margin = 0.25;
+  double speed_jump = 3.0;
+  double speed_jump_floor = 0.5;
   double max_wall_hours = 1.0;   // a run whose estimated wall time (flow/cost.hpp, up to t_end) exceeds this is refused
   bool fields = true;            // write the flow fields and pictures (gap 1 D, contact, one window after separation, end)
   int line = 0;                  // line of the [flow] table (0: not given)

@@ -8,6 +8,8 @@
 
 #include "core/errors.hpp"
 #include "core/timing.hpp"
+#include "coupling/divergence_watch.hpp"
+#include "coupling/step_rule.hpp"
 #include "flow/cost.hpp"
 #include "flow/snapshot.hpp"
 
@@ -110,6 +112,7 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   stats_.max_krylov_iterations = std::max(stats_.max_krylov_iterations, info.krylov_iterations);
   stats_.max_krylov_residual = std::max(stats_.max_krylov_residual, info.krylov_residual);
   stats_.max_slip = std::max(stats_.max_slip, info.slip);
+  stats_.max_courant = std::max(stats_.max_courant, kernel_->max_courant());
   // Lab force: the frame's buoyancy-like term ρ V a_frame (flow/solver.hpp set_stream); then the model's added mass
   // estimate is removed with the kernel's own acceleration of the sphere over the step.
   const contact::AddedMassMatrix M = model_.implicit_added_mass(p.gap);
@@ -134,12 +137,10 @@ void FlowCoupling::start_up() {
   // the approach, the spheres, and room ahead of and behind the pair (its wake) in the direction of motion.
   const double h = D_ / fs.cells_per_diameter;
   const double u_mid = n_ == 2 ? 0.5 * (sc_.spheres[0].velocity + sc_.spheres[1].velocity) : sc_.spheres[0].velocity;
-  double dt = fs.dt;
-  if (!(dt > 0)) {
-    const double u = std::max(u_ref_, 1e-12);
-    dt = fs.cfl * h / u;
-    if (u_ref_ == 0) dt = fs.cfl * h * h / (sc_.fluid->viscosity / rho_);  // at rest: a viscous step
-  }
+  const FlowStep step = flow_step(sc_, h, u_ref_);
+  const double dt = step.dt;
+  step_rule_ = step.rule;
+  stats_.cfl = step.cfl;
   double t_pre = dt;  // impulsive: one prescribed step
   if (fs.start == FlowStart::developed) {
     if (fs.developed_time > 0) t_pre = fs.developed_time;
@@ -225,12 +226,14 @@ void FlowCoupling::start_up() {
   // After a developed start the last prescribed step is a steady one: its force is f_rest at t = 0.
   have_f_rest_ = n_pre >= 2;
   f_rest_ = f;
+  start_force_ = f;
   stats_.pre_seconds = seconds_since(t0);
   stats_.flow_seconds = 0;
   stats_.krylov_iterations = 0;
   stats_.max_krylov_iterations = 0;
   stats_.max_slip = 0;
   stats_.max_krylov_residual = 0;
+  stats_.max_courant = 0;
   stats_.min_gap_clamped_steps = 0;
   stats_.frame_travel = 0;
 }
@@ -277,13 +280,18 @@ void FlowCoupling::maybe_snapshot(double t, double gap) {
 SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) {
   start_up();
   Integrator integ(model_, st, observer);
+  DivergenceWatch watch(model_, sc_, integ.state(), step_rule_);
   const double dt = stats_.dt;
+  // The start-up's last force is the one the spheres first feel: a kernel that diverged while the flow developed
+  // shows here, before the integrator turns it into an impossible impact.
+  watch.check_kernel_force(0.0, dt, acting(start_force_, integ.state()), integ.state());
   double t = 0;
   long n = 0;
   while (!integ.finished()) {
     const double t1 = static_cast<double>(n + 1) * dt;
     const Predicted p = predict(t, integ.state(), dt);
     const auto f1 = step_kernel(p, dt);
+    watch.check_kernel_force(t, dt, acting(f1, integ.state()), integ.state());
     contact::SimulatedForce sf;
     sf.t0 = t;
     sf.t1 = t1;
@@ -293,11 +301,23 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     if (sf.f0 != f_rest_ || n == 0) integ.reinit();  // the force jumps at t_n: restart the method there
     f_rest_ = f1;
     have_f_rest_ = true;
+    std::array<double, 2> z0{}, u0{};
+    model_.sphere_states(integ.state(), z0, u0);
+    const double t_start = t;
     const auto t0 = WallClock::now();
-    t = integ.advance(t1);
+    try {
+      t = integ.advance(t1);
+    } catch (const std::exception& e) {
+      // A contact at an impossible speed (contact.delta_ss) or a stalled integrator after the flow fed the spheres
+      // energy: name the flow coupling first.
+      if (watch.energy_exceeded(integ.state())) throw SolverError(watch.energy_message(integ.time(), integ.state(), e.what()));
+      throw;
+    }
     stats_.ode_seconds += seconds_since(t0);
     ++n;
     stats_.steps = n;
+    watch.check_step(t_start, t, u0, integ.state());
+    stats_.max_energy_ratio = watch.max_energy_ratio();
     std::array<double, 2> z{}, u{};
     model_.sphere_states(integ.state(), z, u);
     maybe_snapshot(t, gap_of(z));
@@ -308,6 +328,13 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     snaps_.push_back({"flow_end", "end of run", flow::snapshot_csv(*kernel_, lab_frame(), "end of run,")});
   }
   return integ.stats();
+}
+
+std::array<double, 2> FlowCoupling::acting(const std::array<double, 2>& f, std::span<const double> y) const {
+  std::array<double, 2> z{}, u{};
+  model_.sphere_states(y, z, u);
+  const double w = 1 - model_.blend(gap_of(z));  // f_SIM's weight, 1 − H
+  return {w * f[0], w * f[1]};
 }
 
 }  // namespace imcol::coupling

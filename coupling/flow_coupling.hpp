@@ -14,6 +14,8 @@
 //      or held at the kernel's step value ("held": the IB force is the step's impulse over Δt, order ≈ 1.3, but
 //      unstable for light spheres); contact events inside the step are handled by the integrator as in the
 //      reduced model; a held force jumps at t_n, so the integrator is re-initialised there.
+// After 2 the kernel's force, after 4 the spheres' speeds and energy are checked (divergence_watch.hpp); the step
+// Δt comes from coupling/step_rule.hpp.
 // The flow starts impulsively (one prescribed step before t = 0) or developed (initial velocities prescribed over a
 // stated distance or time before t = 0). Near contact the gap seen by the kernel is kept at flow.min_gap_cells·h
 // or more (its rings would overlap): there H ≈ 1 and f_SIM's weight is small (documented in docs/coupling.md).
@@ -40,6 +42,9 @@ struct FlowRunStats {
   long krylov_iterations = 0;
   int max_krylov_iterations = 0;
   double max_krylov_residual = 0, max_slip = 0;  // m/s
+  double cfl = 0;                  // Courant number of U_ref that gave dt (0: flow.dt given)
+  double max_courant = 0;          // the fluid's largest advective Courant number (flow/solver.hpp max_courant)
+  double max_energy_ratio = 0;     // largest kinetic energy / available energy (coupling/divergence_watch.hpp)
   long min_gap_clamped_steps = 0;  // steps where the kernel's gap was held at min_gap_cells·h
   double frame_travel = 0;         // m, how far the grid moved with the spheres
   std::size_t bytes = 0;
@@ -73,6 +78,7 @@ class FlowCoupling {
   /// Refuses (InputError) a grid beyond half the memory or a run beyond flow.max_wall_hours, before allocating.
   void check_cost(const flow::Settings& s, double dt, long n_pre) const;
   void maybe_snapshot(double t, double gap);
+  std::array<double, 2> acting(const std::array<double, 2>& f_rest, std::span<const double> y) const;  // (1 − H) f_rest
   flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
 
   contact::CollisionModel& model_;
@@ -85,6 +91,8 @@ class FlowCoupling {
   double t_pre_ = 0;                         // start-up time before t = 0, s
   std::array<double, 2> kernel_u_{};         // lab velocities the kernel last imposed (m/s)
   std::array<double, 2> f_rest_{};           // f_rest at the last flow time
+  std::array<double, 2> start_force_{};      // f_rest at the end of the start-up
+  std::string step_rule_;                    // how the flow step was chosen (coupling/step_rule.hpp), for messages
   bool have_f_rest_ = false;
   FlowRunStats stats_;
   std::vector<FlowSnapshot> snaps_;

@@ -577,6 +577,23 @@ std::vector<double> Solver::axis_velocity() const {
   return u;
 }
 
+double Solver::max_courant() const {
+  const Level& L = lv_[0];
+  const LevelGeometry& g = L.g;
+  const double* psi = L.psi.data();
+  double m = 0;
+  for (int i = 1; i < g.nr; ++i) {
+    const double* p0 = psi + g.at(i, 0);
+    const double* p1 = psi + g.at(i + 1, 0);
+    const double cz = 1.0 / (g.h * g.r(i + 0.5)), cr = 1.0 / (g.h * g.r(i));
+    for (int j = 0; j < g.nz; ++j) {
+      const double uz = (p1[j] - p0[j]) * cz + s_.u_inf, ur = (p0[j + 1] - p0[j]) * cr;
+      m = std::max(m, std::abs(uz) + std::abs(ur));
+    }
+  }
+  return m * s_.dt / g.h;
+}
+
 double Solver::wake_length(int s) const {
   const LevelGeometry& g = lv_[0].g;
   const auto u = axis_velocity();

@@ -128,6 +128,9 @@ class Solver {
   const Eigen::VectorXd& point_forces() const { return g_; }
   /// Axial velocity on the axis of the finest level (extrapolated from r = h/2, 3h/2), at z_j, m/s.
   std::vector<double> axis_velocity() const;
+  /// The fluid's advective Courant number on the finest level after the last step: max (|u_r| + |u_z|) Δt/h over its
+  /// faces, velocities relative to the grid (the stream included). The explicit AB2 advection breaks near 1.
+  double max_courant() const;
   /// Recirculation length behind sphere s (downstream of its rear, in the stream direction), m; 0 if none.
   double wake_length(int s) const;
   std::size_t bytes() const;

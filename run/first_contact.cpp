@@ -204,8 +204,13 @@ void check_plausibility(const CollisionModel& model, const Scene& sc, const Firs
   if (e && sc.has(Effect::elastic) && *e > model.e_dry() * (1 + 1e-9)) {
     // More elastic than the solids alone: energy was created. Known for the seed's per-sphere added mass with unequal spheres.
     std::ostringstream os;
-    os << "e = " << *e << " exceeds the dry restitution e_dry = " << model.e_dry()
-       << ": energy was created, by integration error (tighten solver.rtol, now " << sc.solver.rtol << ")";
+    os << "e = " << *e << " exceeds the dry restitution e_dry = " << model.e_dry() << ": energy was created, ";
+    if (sc.has(Effect::flow))  // coupled: e follows the grid far more than rtol (docs/coupling.md "Divergence")
+      os << "by the flow coupling's grid (flow.cells_per_diameter = " << sc.flow.cells_per_diameter << ", flow.levels = " << sc.flow.levels
+         << ") and blend (contact.delta_sl = " << sc.contact.delta_sl << "), not by solver.rtol: compare grids with `imcol work-precision "
+         << sc.path << "`, or refine the grid";
+    else
+      os << "by integration error (tighten solver.rtol, now " << sc.solver.rtol << ")";
     if (pair && sc.has(Effect::added_mass) && sc.added_mass.model == AddedMassModel::seed)
       os << " or by the seed's per-sphere added mass (6.8), which is not conservative for unequal spheres (use added_mass.model = \"lagrangian\")";
     warnings.push_back(os.str());

@@ -88,7 +88,7 @@ nlohmann::ordered_json flow_block(const coupling::FlowRunStats& fs, const Scene&
   const double ms = fs.steps ? 1e3 * fs.flow_seconds / fs.steps : 0.0;
   return {{"grid", {{"cells_per_diameter", fs.cells_per_diameter}, {"h_m", fs.h}, {"nr", fs.nr}, {"nz", fs.nz},
                     {"levels", fs.levels}, {"memory_MB", fs.bytes / 1e6}}},
-          {"dt_s", fs.dt}, {"start", to_string(sc.flow.start)}, {"start_up_steps", fs.pre_steps},
+          {"dt_s", fs.dt}, {"cfl", fs.cfl}, {"max_courant", fs.max_courant}, {"max_energy_ratio", fs.max_energy_ratio}, {"start", to_string(sc.flow.start)}, {"start_up_steps", fs.pre_steps},
           {"force_in_step", to_string(sc.flow.force_in_step)}, {"steps", fs.steps}, {"ms_per_step", ms},
           {"krylov_iterations", fs.krylov_iterations},
           {"krylov_iterations_per_step", fs.steps ? double(fs.krylov_iterations) / fs.steps : 0.0},

@@ -246,3 +246,33 @@ TEST(Coupling, SphereWallCollisionWithTheKernelsWall) {
   EXPECT_EQ(c.rows.front()[iH], 0.0);  // the sphere starts 0.5 D from the wall: beyond 2 delta_sl
   EXPECT_GT(c.summary["flow"]["steps"].get<long>(), 10);
 }
+
+TEST(Coupling, AFlowDivergenceEndsTheRunNamingTheFlowCoupling) {
+  // gondret_st742 (Re ≈ 966, 16 cells/D) at the old default cfl 0.5: the kernel's AB2 advection diverges while the flow
+  // develops, and its force would launch the sphere (it reached the wall at 4e7 m/s). The run must end with a
+  // SolverError (exit 3) that names the flow coupling and flow.cfl, not contact.delta_ss.
+  const std::vector<Override> ov = {{"flow.cfl", "0.5"}, {"flow.fields", "false"}, {"measure.bounces", "\"first\""}};
+  try {
+    simulate(load_scene(scene_path("coupled/gondret_st742.toml"), ov));
+    ADD_FAILURE() << "the diverging run was accepted";
+  } catch (const SolverError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("the flow coupling diverged"), std::string::npos) << m;
+    EXPECT_NE(m.find("flow.cfl"), std::string::npos) << m;
+    EXPECT_EQ(m.find("delta_ss"), std::string::npos) << m;
+  }
+}
+
+TEST(Coupling, TheDefaultFlowStepIsStableAtReynolds1000) {
+  // The same scene with the default step (cfl(Re, N) = 0.5 √(5600/(Re N)) = 0.30 here): a sane first bounce, the
+  // spheres' kinetic energy never beyond what the initial motion and gravity supply, the fluid's Courant number < 1.5.
+  const RunResult r = simulate(load_scene(scene_path("coupled/gondret_st742.toml"), {{"flow.fields", "false"}, {"measure.bounces", "\"first\""}}));
+  const auto& s = r.summary;
+  const double Re = 920.0 * 1.0467 * 0.005 / 0.005;
+  EXPECT_NEAR(s["flow"]["cfl"].get<double>(), 0.5 * std::sqrt(5600 / (Re * 16)), 1e-9);
+  const double e = s["e"].get<double>();
+  EXPECT_GT(e, 0.5);
+  EXPECT_LT(e, s["contact"]["e_dry"].get<double>());
+  EXPECT_LE(s["flow"]["max_energy_ratio"].get<double>(), 1.0);
+  EXPECT_LT(s["flow"]["max_courant"].get<double>(), 1.5);
+}

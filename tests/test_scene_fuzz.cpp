@@ -332,7 +332,7 @@ void check_scene(const Scene& sc, const std::string& context) {
     ASSERT_TRUE(!sc.has(e) || sc.fluid) << context;
   }
   ASSERT_TRUE(!sc.has(Effect::flow) || sc.fluid) << context;
-  ASSERT_TRUE(sc.flow.cells_per_diameter >= 4 && sc.flow.levels >= 1 && sc.flow.cfl > 0 && sc.flow.cfl <= 1) << context;
+  ASSERT_TRUE(sc.flow.cells_per_diameter >= 4 && sc.flow.levels >= 1 && sc.flow.cfl >= 0 && sc.flow.cfl <= 1) << context;
   ASSERT_TRUE(sc.flow.dt >= 0 && std::isfinite(sc.flow.dt) && sc.flow.krylov_tol > 0) << context;
   ASSERT_TRUE(!sc.has_target() || sc.has(Effect::elastic)) << context;
   ASSERT_TRUE(sc.solver.rtol >= 1e-14 && sc.solver.rtol < 1) << context;
