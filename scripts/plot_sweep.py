@@ -98,6 +98,10 @@ def main() -> int:
             ax.annotate(f"run {r['run']}", (float(r["St_B"]), float(r["e"])), fontsize=7,
                         xytext=(4, 8 if i % 2 else -12), textcoords="offset points")
     ax.set_xlabel("St (%s)" % (meta.get("St_convention") or "see summary"), fontsize=8)
+    if meta["configuration"] == "sphere-sphere":
+        # the other pair convention, named: St_B by eq. (6.2) is twice the Table 6.1 St_B on the bottom axis
+        top = ax.secondary_xaxis("top", functions=(lambda x: 2 * x, lambda x: x / 2))
+        top.set_xlabel("St_B, eq. (6.2): m* U_rel / (6 pi mu a*^2) = 2 x St_B (Table 6.1)", fontsize=8)
     ax.set_ylabel("e")
     ax.set_ylim(-0.02, 1.02)
     ax.grid(True, which="both", alpha=0.3)
