@@ -179,7 +179,7 @@ int run_cli(int argc, char** argv) {
   val->add_option("set", what, "validation set: seed")->required();
   val->add_option("--out", vopt.out, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)");
   val->add_flag("--flow", vopt.flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
-  val->add_option("--models", vopt.models, "seed (the seed's pair equations), exact (the exact gap law); default both")->delimiter(',');
+  val->add_option("--models", vopt.models, "seed (the seed's gap law), asymptotic (Jeffrey & Onishi's leading terms, exact as h -> 0); default both")->delimiter(',');
   val->add_option("--tolerance", vopt.tolerance, "|e - e_seed| counted as agreement in the closing lines (default 0.05)");
   val->add_flag("--no-plot", val_no_plot, "skip DIR/validate_seed.png");
   add_common(val, val_opt);
