@@ -1,6 +1,7 @@
 #include "apps/validate.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -64,6 +65,15 @@ struct Agreement {
   }
 };
 
+/// The reference table's columns, in order.
+constexpr const char* kColumns = "run,mu_cP,rho_l_g_cm3,rho_p_star_g_cm3,V_Io_cm_s,Re_Io,St_B,e,pair";
+std::string column_name(int k) {
+  std::stringstream ss(kColumns);
+  std::string name;
+  for (int i = 0; i <= k; ++i) std::getline(ss, name, ',');
+  return name;
+}
+
 }  // namespace
 
 std::vector<SeedRun> read_table_6_1() {
@@ -72,14 +82,29 @@ std::vector<SeedRun> read_table_6_1() {
   if (!in) throw InputError(table, "", "cannot open the reference table");
   std::vector<SeedRun> runs;
   std::string line;
-  while (std::getline(in, line)) {
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    double e = 0;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#' || line.rfind("run,", 0) == 0) continue;
     std::vector<std::string> cell;
     std::stringstream ss(line);
     for (std::string x; std::getline(ss, x, ',');) cell.push_back(x);
-    if (cell.size() < 9) throw InputError(table, "", "malformed row: " + line);
-    runs.push_back({cell[0], cell[8], cell[6], cell[7], cell[5], std::stod(cell[7])});
+    const std::string where = table + ":" + std::to_string(line_no);
+    if (cell.size() != 9) throw InputError(where, "", "expected 9 columns (" + std::string(kColumns) + "), got " + std::to_string(cell.size()));
+    // Every numeric cell must be a finite number (the run number a positive integer naming data/scenes/seed_run<run>.toml).
+    for (int k : {0, 1, 2, 3, 4, 5, 6, 7}) {
+      const std::string& c = cell[k];
+      double v = NAN;
+      const auto r = std::from_chars(c.data(), c.data() + c.size(), v);
+      const bool ok = !c.empty() && r.ec == std::errc() && r.ptr == c.data() + c.size() && std::isfinite(v) && v >= 0 &&
+                      (k != 0 || (v >= 1 && v == std::floor(v) && c.find_first_not_of("0123456789") == std::string::npos));
+      if (!ok) throw InputError(where, column_name(k), "'" + c + "' is not " + (k == 0 ? "a run number" : "a non-negative number"));
+      if (k == 7) e = v;
+    }
+    if (e > 1) throw InputError(where, "e", "'" + cell[7] + "' is not a coefficient of restitution in [0, 1]");
+    runs.push_back({cell[0], cell[8], cell[6], cell[7], cell[5], e});
   }
+  if (runs.empty()) throw InputError(table, "", "no runs in the reference table");
   return runs;
 }
 
@@ -102,6 +127,11 @@ int cmd_validate(const std::string& what, const ValidateOptions& opt, const std:
   if (what != "seed") throw InputError("validate", what, "unknown validation set (expected 'seed')");
   if (!(std::isfinite(opt.tolerance) && opt.tolerance > 0))
     throw InputError("command line", "--tolerance", "must be a positive number (got " + fmt_number(opt.tolerance) + ")");
+  // The gap law is what the models differ in: it is chosen with --models, never by --set.
+  for (const auto& o : overrides)
+    if (o.key == "lubrication.model" || (o.key == "lubrication" && o.value.find("model") != std::string::npos))
+      throw InputError("command line", "lubrication.model",
+                       "imcol validate sets the gap law of each model; choose the models with --models seed,asymptotic instead of --set");
   const auto models = validate_models(opt.models);
   const auto runs = read_table_6_1();
   OutDir out_dir(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
@@ -133,7 +163,7 @@ int cmd_validate(const std::string& what, const ValidateOptions& opt, const std:
     for (std::size_t k = 0; k < models.size(); ++k) {
       const auto& model = models[k];
       auto ov = overrides;
-      ov.push_back({"lubrication.model", std::string("\"") + to_string(model.lubrication) + "\""});  // the model's law, whatever --set says
+      ov.push_back({"lubrication.model", std::string("\"") + to_string(model.lubrication) + "\""});  // the model's law
       const RunResult red = simulate(load_scene(path, without_flow_keys(ov)));
       const RunResult cpl = flow ? simulate(with_flow(path, ov), true) : RunResult{};
       const auto& s = flow ? cpl.summary : red.summary;

@@ -276,3 +276,43 @@ TEST(Cli, ValidateSeedRunsBothGapLawsWithBothStokesNumbers) {
   EXPECT_EQ(bad.status, 2) << bad.err;
   EXPECT_NE(bad.err.find("--models"), std::string::npos) << bad.err;
 }
+
+TEST(Cli, ValidateRejectsBadInput) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_validate_bad";
+  fs::remove_all(out);
+  auto expect_exit2 = [&](const Result& r, std::initializer_list<const char*> fragments) {
+    EXPECT_EQ(r.status, 2) << r.err;
+    for (const char* f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << "'" << f << "' missing in: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  };
+  const std::string base = "validate seed --no-plot --out " + out.string() + " ";
+  expect_exit2(run_imcol(base + "--tolerance -0.1"), {"--tolerance", "positive"});
+  expect_exit2(run_imcol(base + "--tolerance 0"), {"--tolerance"});
+  EXPECT_EQ(run_imcol(base + "--tolerance abc").status, 2);
+  // The gap law is what the models differ in: --set cannot override it, --models chooses.
+  expect_exit2(run_imcol(base + "--set 'lubrication.model=\"asymptotic\"'"), {"lubrication.model", "--models"});
+  EXPECT_FALSE(fs::exists(out));  // nothing ran, nothing was created
+
+  // A malformed reference table (IMCOL_DATA_DIR makes it user input) names the file, the line and the column.
+  const fs::path data = fs::temp_directory_path() / "imcol_cli_validate_data";
+  fs::remove_all(data);
+  fs::create_directories(data / "reference");
+  fs::copy_file(fs::path(imcol::data_dir()) / "materials.csv", data / "materials.csv");
+  const fs::path table = data / "reference" / "li_2010_table_6_1.csv";
+  auto with_table = [&](const std::string& rows) {
+    std::ofstream(table) << "# a comment\nrun,mu_cP,rho_l_g_cm3,rho_p_star_g_cm3,V_Io_cm_s,Re_Io,St_B,e,pair\n"
+                            "1,4.1,1.11,7.78,8.4,264,197,0.87,steel-steel\n" << rows;
+    const std::string cmd = "IMCOL_DATA_DIR='" + data.string() + "' " + IMCOL_BINARY + " " + base + " >/dev/null 2>" + (data / "err").string();
+    const int raw = std::system(cmd.c_str());
+    std::ifstream in(data / "err");
+    return Result{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>())};
+  };
+  expect_exit2(with_table("2,4.1,1.11,3.83,9.6,294,104,0.7x5,steel-glass\n"), {(table.string() + ":4").c_str(), "key 'e'", "0.7x5"});
+  expect_exit2(with_table("2,4.1,1.11,3.83,9.6,294,,0.75,steel-glass\n"), {(table.string() + ":4").c_str(), "key 'St_B'"});
+  expect_exit2(with_table("2,4.1,1.11,3.83,9.6,294,104,0.75\n"), {(table.string() + ":4").c_str(), "9 columns"});
+  expect_exit2(with_table("x,4.1,1.11,3.83,9.6,294,104,0.75,steel-glass\n"), {(table.string() + ":4").c_str(), "key 'run'"});
+  expect_exit2(with_table("2,4.1,1.11,3.83,9.6,294,104,1.75,steel-glass\n"), {(table.string() + ":4").c_str(), "key 'e'"});
+  fs::remove_all(data);
+  EXPECT_FALSE(fs::exists(out));
+}
+
