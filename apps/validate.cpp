@@ -202,6 +202,11 @@ int cmd_validate(const std::string& what, const ValidateOptions& opt, const std:
     if (flow) std::cout << "  " << models[k].name << ", reduced-order: " << agree_reduced[k].text(opt.tolerance) << "\n";
   }
   const fs::path& dir = out_dir.path();
+  {
+    // An earlier run's picture goes first: with --no-plot or a failing plot no stale picture stays beside the new CSV.
+    std::error_code ec;
+    fs::remove(dir / "validate_seed.png", ec);
+  }
   write_file_atomic(dir / "validate_seed.csv", csv.str());
   out_dir.keep();
   std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";

@@ -316,3 +316,42 @@ TEST(Cli, ValidateRejectsBadInput) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(Cli, ValidatePlotsBothLayoutsAndLeavesNoStalePicture) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_validate_plot";
+  fs::remove_all(out);
+  fs::create_directories(out);
+  std::ofstream(out / "validate_seed.png") << "stale";
+  // --no-plot: the old picture goes, the CSV is new.
+  ASSERT_EQ(run_imcol("validate seed --no-plot --models seed --out " + out.string()).status, 0);
+  EXPECT_FALSE(fs::exists(out / "validate_seed.png"));
+  // With the plot (reduced-order layout, both models): a real PNG.
+  const Result r = run_imcol("validate seed --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  ASSERT_TRUE(fs::exists(out / "validate_seed.png"));
+  EXPECT_GT(fs::file_size(out / "validate_seed.png"), 10000u);
+  // The --flow layout (its extra columns; the coupled runs are too slow for a test): the reduced-order rows with the
+  // coupled columns filled from them, drawn by the script as the command would.
+  std::ifstream in(out / "validate_seed.csv");
+  std::string header, line, csv;
+  std::getline(in, header);
+  csv = header + ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_table_6_1_reduced_order,St_B_eq_6_2_reduced_order,"
+                 "wall_time_reduced_order_s,flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s\n";
+  const auto rows = read_csv(out / "validate_seed.csv");
+  ASSERT_EQ(rows.size(), 12u);
+  for (std::size_t i = 0; std::getline(in, line); ++i) {
+    const auto& row = rows.at(i);
+    csv += line + "," + row.at("e") + "," + row.at("e_minus_e_seed") + "," + row.at("St_B_table_6_1") + "," + row.at("St_B_eq_6_2") +
+           "," + row.at("wall_time_s") + ",10,1.0,16,0.001\n";
+  }
+  const fs::path flow = fs::temp_directory_path() / "imcol_cli_validate_plot_flow";
+  fs::remove_all(flow);
+  fs::create_directories(flow);
+  std::ofstream(flow / "validate_seed.csv") << csv;
+  const std::string script = (fs::path(imcol::data_dir()).parent_path() / "scripts" / "plot_validate_seed.py").string();
+  const int raw = std::system(("/usr/bin/python3 '" + script + "' '" + flow.string() + "' >/dev/null 2>&1").c_str());
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0);
+  EXPECT_TRUE(fs::exists(flow / "validate_seed.png"));
+  fs::remove_all(out);
+  fs::remove_all(flow);
+}
