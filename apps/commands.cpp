@@ -14,11 +14,13 @@
 
 #include "apps/compare_history.hpp"
 #include "apps/format.hpp"
+#include "apps/out_dir.hpp"
 #include "apps/plot.hpp"
 #include "core/toml_reader.hpp"
 #include "apps/flow_command.hpp"
 #include "run/simulate.hpp"
 #include "apps/sweep.hpp"
+#include "apps/validate.hpp"
 #include "apps/work_precision.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
@@ -50,40 +52,6 @@ void add_common(CLI::App* cmd, CommonOptions& c) {
   cmd->add_option("--set", c.sets, "override a scene key: dotted.key=value (TOML value syntax)");
 }
 
-std::string json_num(const nlohmann::ordered_json& j, int prec) { return j.is_null() ? "n/a" : fixed(j.get<double>(), prec); }
-
-/// The output directory, created before anything runs (a bad --out or name fails at once, exit 2). If the run
-/// fails before anything is written, the directories this created are removed again (no empty folder is left).
-class OutDir {
- public:
-  OutDir(const std::string& out, const fs::path& fallback) : dir_(out.empty() ? fallback : fs::path(out)) {
-    for (fs::path p = dir_; !p.empty() && !fs::exists(p); p = p.parent_path()) {
-      created_.push_back(p);
-      if (p == p.parent_path()) break;
-    }
-    std::error_code ec;
-    fs::create_directories(dir_, ec);
-    if (ec || !fs::is_directory(dir_))
-      throw InputError(out.empty() ? "scene key 'name'" : "command line", out.empty() ? "name" : "--out",
-                       "cannot create the output directory '" + dir_.string() + "'" + (ec ? ": " + ec.message() : ""));
-  }
-  ~OutDir() {
-    if (kept_) return;
-    std::error_code ec;
-    for (const auto& p : created_)  // innermost first; fs::remove deletes only empty directories
-      if (!fs::is_directory(p, ec) || !fs::is_empty(p, ec) || !fs::remove(p, ec)) break;
-  }
-  OutDir(const OutDir&) = delete;
-  OutDir& operator=(const OutDir&) = delete;
-  const fs::path& path() const { return dir_; }
-  void keep() { kept_ = true; }
-
- private:
-  fs::path dir_;
-  std::vector<fs::path> created_;
-  bool kept_ = false;
-};
-
 int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet, bool plot) {
   Scene sc = load_scene(scene_path, c.overrides());
   OutDir out_dir(out, fs::path("out") / sc.name);
@@ -96,177 +64,6 @@ int cmd_run(const std::string& scene_path, const std::string& out, const CommonO
     std::cout.flush();
     run_plot_script("plot_run.py", dir, "trajectory.png", quiet);
     if (sc.has(Effect::flow) && sc.flow.fields) run_plot_script("plot_coupled_flow.py", dir, "flow_*.png", quiet);
-  }
-  return 0;
-}
-
-/// The overrides without the [flow] ones (for the reduced-order runs beside coupled ones).
-std::vector<Override> without_flow_keys(const std::vector<Override>& ov) {
-  std::vector<Override> out;
-  for (const auto& o : ov)
-    if (o.key.rfind("flow.", 0) != 0) out.push_back(o);
-  return out;
-}
-
-/// The scene with the `flow` effect added to its effects (coupled runs of the shipped reduced-order scenes).
-Scene with_flow(const std::string& path, std::vector<Override> ov) {
-  const Scene plain = load_scene(path, without_flow_keys(ov));  // the scene's own effects
-  std::string list = "[";
-  for (Effect e : plain.effects) list += std::string("\"") + to_string(e) + "\",";
-  list += "\"flow\"]";
-  ov.push_back({"effects", list});
-  return load_scene(path, ov);
-}
-
-/// One run of the seed's Table 6.1 (data/reference/li_2010_table_6_1.csv), its cells as printed.
-struct SeedRun {
-  std::string run, pair, St_B, e, Re;
-};
-
-std::vector<SeedRun> read_table_6_1() {
-  const std::string table = data_dir() + "/reference/li_2010_table_6_1.csv";
-  std::ifstream in(table);
-  if (!in) throw InputError(table, "", "cannot open the reference table");
-  std::vector<SeedRun> runs;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line.rfind("run,", 0) == 0) continue;
-    std::vector<std::string> cell;
-    std::stringstream ss(line);
-    for (std::string x; std::getline(ss, x, ',');) cell.push_back(x);
-    if (cell.size() < 9) throw InputError(table, "", "malformed row: " + line);
-    runs.push_back({cell[0], cell[8], cell[6], cell[7], cell[5]});
-  }
-  return runs;
-}
-
-/// The models `imcol validate seed` runs, by the gap law of the pair (docs/model-notes.md, "Pairs").
-struct ValidateModel {
-  std::string name;        // as in --models and the CSV's `model` column
-  std::string lubrication;  // lubrication.model
-};
-const std::vector<ValidateModel> kValidateModels = {{"seed", "seed"}, {"exact", "asymptotic"}};
-
-std::vector<ValidateModel> validate_models(const std::vector<std::string>& names) {
-  if (names.empty()) return kValidateModels;
-  std::vector<ValidateModel> out;
-  for (const auto& n : names) {
-    auto it = std::find_if(kValidateModels.begin(), kValidateModels.end(), [&](const auto& m) { return m.name == n; });
-    if (it == kValidateModels.end()) throw InputError("command line", "--models", "unknown model '" + n + "' (expected seed, exact)");
-    if (std::none_of(out.begin(), out.end(), [&](const auto& m) { return m.name == n; })) out.push_back(*it);
-  }
-  return out;
-}
-
-std::string csv_cell(const nlohmann::ordered_json& j) { return j.is_null() ? std::string() : j.dump(); }
-std::optional<double> opt_num(const nlohmann::ordered_json& j) { return j.is_null() ? std::nullopt : std::optional<double>(j.get<double>()); }
-
-/// Agreement of one model with the seed's e: runs within the tolerance, and the largest miss.
-struct Agreement {
-  int within = 0, runs = 0;
-  double worst = 0;
-  std::string worst_run;
-  void add(const std::string& run, std::optional<double> e, double e_seed, double tol) {
-    ++runs;
-    const double d = e ? std::abs(*e - e_seed) : INFINITY;
-    if (d <= tol) ++within;
-    if (d >= worst) worst = d, worst_run = run;
-  }
-  std::string text(double tol) const {
-    std::ostringstream os;
-    os << "|e - e_seed| <= " << tol << " in " << within << " of " << runs << " runs; largest " << fixed(worst, 3) << " (run " << worst_run << ")";
-    return os.str();
-  }
-};
-
-struct ValidateOptions {
-  std::string out;
-  bool flow = false, plot = true;
-  std::vector<std::string> models;
-  double tolerance = 0.05;
-};
-
-/// The seed's Table 6.1: each run with the seed's own pair equations (lubrication.model = "seed") and with the exact
-/// gap law ("asymptotic"), reduced-order, and with --flow also coupled (MODEL.md (6.10)); both St_B conventions.
-int cmd_validate(const std::string& what, const ValidateOptions& opt, const CommonOptions& c) {
-  if (what != "seed") throw InputError("validate", what, "unknown validation set (expected 'seed')");
-  if (!(std::isfinite(opt.tolerance) && opt.tolerance > 0))
-    throw InputError("command line", "--tolerance", "must be a positive number (got " + fmt_number(opt.tolerance) + ")");
-  const auto models = validate_models(opt.models);
-  const auto runs = read_table_6_1();
-  OutDir out_dir(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
-  const bool flow = opt.flow;
-  std::cout << "Seed Table 6.1 (Li 2010) against imcol, " << (flow ? "coupled (f_SIM from the flow kernel, blended by H) and reduced-order"
-                                                                  : "reduced-order (no f_SIM)") << "\n"
-            << "  models: seed = the seed's pair equations (lubrication.model = \"seed\": 6 pi mu a_m (lambda(h/a*) - 1) U_rel);\n"
-            << "          exact = the exact gap law (\"asymptotic\": 6 pi mu a*^2 U_rel / h + ..., Jeffrey & Onishi)\n"
-            << "  St_B(6.1) = the table's convention, half of St_B(6.2) = m* U_rel / (6 pi mu a*^2)\n";
-  std::cout << std::left << std::setw(4) << "run" << std::setw(13) << "pair" << std::setw(7) << "model" << std::right << std::setw(10)
-            << "St_B seed" << std::setw(10) << "St_B(6.1)" << std::setw(10) << "St_B(6.2)" << std::setw(8) << "e seed" << std::setw(8)
-            << (flow ? "e flow" : "e") << std::setw(8) << "diff";
-  if (flow) std::cout << std::setw(10) << "e reduced" << std::setw(8) << "diff";
-  std::cout << std::setw(8) << "e_inst" << std::setw(10) << "U_G mm/s" << std::setw(10) << (flow ? "wall s" : "wall ms");
-  if (flow) std::cout << std::setw(9) << "ms/step";
-  std::cout << "\n";
-  std::ostringstream csv;
-  csv << "run,pair,model,lubrication_model,St_B_seed,e_seed,Re_seed,St_B,St_B_table_6_1,St_B_eq_6_2,e,e_minus_e_seed,e_instant,Re,"
-         "group_velocity_m_s,steps,wall_time_s";
-  if (flow)
-    csv << ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_reduced_order,St_B_eq_6_2_reduced_order,wall_time_reduced_order_s,"
-           "flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s";
-  csv << "\n";
-  std::vector<Agreement> agree(models.size()), agree_reduced(models.size());
-  for (const auto& sr : runs) {
-    const std::string path = data_dir() + "/scenes/seed_run" + sr.run + ".toml";
-    const double e_seed = std::stod(sr.e);
-    for (std::size_t k = 0; k < models.size(); ++k) {
-      const auto& model = models[k];
-      auto ov = c.overrides();
-      ov.push_back({"lubrication.model", "\"" + model.lubrication + "\""});  // the model's law, whatever --set says
-      const RunResult red = simulate(load_scene(path, without_flow_keys(ov)));
-      const RunResult cpl = flow ? simulate(with_flow(path, ov), true) : RunResult{};
-      const auto& s = flow ? cpl.summary : red.summary;
-      const auto& rs = red.summary;
-      const auto e = opt_num(s["e"]), e_red = opt_num(rs["e"]);
-      agree[k].add(sr.run, e, e_seed, opt.tolerance);
-      if (flow) agree_reduced[k].add(sr.run, e_red, e_seed, opt.tolerance);
-      auto diff = [&](std::optional<double> v) { return v ? std::optional<double>(*v - e_seed) : std::nullopt; };
-      auto show = [](std::optional<double> v, int prec) { return v ? fixed(*v, prec) : std::string("n/a"); };
-      std::cout << std::left << std::setw(4) << sr.run << std::setw(13) << sr.pair << std::setw(7) << model.name << std::right
-                << std::setw(10) << sr.St_B << std::setw(10) << json_num(s["St_B_table_6_1"], 1) << std::setw(10)
-                << json_num(s["St_B_eq_6_2"], 1) << std::setw(8) << sr.e << std::setw(8) << show(e, 3) << std::setw(8)
-                << show(diff(e), 3);
-      if (flow) std::cout << std::setw(10) << show(e_red, 3) << std::setw(8) << show(diff(e_red), 3);
-      std::cout << std::setw(8) << json_num(s["e_instant"], 3) << std::setw(10)
-                << (s["group_velocity_m_s"].is_null() ? std::string("-") : fixed(1e3 * s["group_velocity_m_s"].get<double>(), 2))
-                << std::setw(10) << (flow ? fixed(s["wall_time_s"].get<double>(), 2) : fixed(1e3 * s["wall_time_s"].get<double>(), 1));
-      if (flow) std::cout << std::setw(9) << fixed(s["flow"]["ms_per_step"].get<double>(), 1);
-      std::cout << "\n";
-      auto num = [](std::optional<double> v) { return v ? csv_number(*v) : std::string(); };
-      csv << sr.run << "," << sr.pair << "," << model.name << "," << model.lubrication << "," << sr.St_B << "," << sr.e << "," << sr.Re
-          << "," << csv_cell(s["St"]) << "," << csv_cell(s["St_B_table_6_1"]) << "," << csv_cell(s["St_B_eq_6_2"]) << "," << num(e)
-          << "," << num(diff(e)) << "," << csv_cell(s["e_instant"]) << "," << csv_cell(s["Re"]) << "," << csv_cell(s["group_velocity_m_s"])
-          << "," << csv_cell(s["solver"]["steps"]) << "," << csv_cell(s["wall_time_s"]);
-      if (flow) {
-        const auto& f = s["flow"];
-        csv << "," << num(e_red) << "," << num(diff(e_red)) << "," << csv_cell(rs["St_B_table_6_1"]) << "," << csv_cell(rs["St_B_eq_6_2"])
-            << "," << csv_cell(rs["wall_time_s"]) << "," << csv_cell(f["steps"]) << "," << csv_cell(f["ms_per_step"]) << ","
-            << csv_cell(f["grid"]["cells_per_diameter"]) << "," << csv_cell(f["dt_s"]);
-      }
-      csv << "\n";
-    }
-  }
-  for (std::size_t k = 0; k < models.size(); ++k) {
-    std::cout << "  " << models[k].name << (flow ? ", coupled: " : ": ") << agree[k].text(opt.tolerance) << "\n";
-    if (flow) std::cout << "  " << models[k].name << ", reduced-order: " << agree_reduced[k].text(opt.tolerance) << "\n";
-  }
-  const fs::path& dir = out_dir.path();
-  write_file_atomic(dir / "validate_seed.csv", csv.str());
-  out_dir.keep();
-  std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";
-  if (opt.plot) {
-    std::cout.flush();
-    run_plot_script("plot_validate_seed.py", dir, "validate_seed.png");
   }
   return 0;
 }
@@ -382,7 +179,7 @@ int run_cli(int argc, char** argv) {
   val->add_option("set", what, "validation set: seed")->required();
   val->add_option("--out", vopt.out, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)");
   val->add_flag("--flow", vopt.flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
-  val->add_option("--models", vopt.models, "seed (the seed's pair equations), exact (the exact gap law); default both")->delimiter(',');
+  val->add_option("--models", vopt.models, "seed (the seed's gap law), asymptotic (Jeffrey & Onishi's leading terms, exact as h -> 0); default both")->delimiter(',');
   val->add_option("--tolerance", vopt.tolerance, "|e - e_seed| counted as agreement in the closing lines (default 0.05)");
   val->add_flag("--no-plot", val_no_plot, "skip DIR/validate_seed.png");
   add_common(val, val_opt);
@@ -495,7 +292,7 @@ int run_cli(int argc, char** argv) {
     if (*run) return cmd_run(scene, out, run_opt, quiet, !run_no_plot);
     if (*val) {
       vopt.plot = !val_no_plot;
-      return cmd_validate(what, vopt, val_opt);
+      return cmd_validate(what, vopt, val_opt.overrides());
     }
     if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
     if (*effects) return cmd_effects(escene, eff_opt);

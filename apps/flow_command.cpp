@@ -30,7 +30,8 @@ namespace fs = std::filesystem;
 using flow::Solver;
 
 /// f_THR of two spheres on the scene's prescribed paths, from the collision model's own code
-/// (CollisionModel::analytic_fluid_force): Schiller–Naumann drag, the asymptotic gap lubrication, the added mass's
+/// (CollisionModel::analytic_fluid_force): Schiller–Naumann drag, the asymptotic gap lubrication (the pair default,
+/// not the seed's gap law; docs/model-notes.md, "Pairs"), the added mass's
 /// velocity part (accelerations taken as zero: the paths are at constant velocity). History forces are left out
 /// (they decay after the impulsive start). N along +z on each sphere.
 class AnalyticPairForce {

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "core/number_text.hpp"
 
 namespace imcol {
@@ -30,5 +32,17 @@ inline std::string csv_number(double v) {
   if (!std::isnan(v)) append_number(s, v, 12);
   return s;
 }
+
+/// A CSV cell from a summary value: empty for null, 1/0 for a boolean, csv_number for a number, a string as is.
+inline std::string csv_cell(const nlohmann::ordered_json& j) {
+  if (j.is_null()) return "";
+  if (j.is_boolean()) return j.get<bool>() ? "1" : "0";
+  if (j.is_number()) return csv_number(j.get<double>());
+  if (j.is_string()) return j.get<std::string>();
+  return j.dump();
+}
+
+/// A summary number in fixed notation with p digits; "n/a" for null.
+inline std::string json_num(const nlohmann::ordered_json& j, int p) { return j.is_null() ? "n/a" : fixed(j.get<double>(), p); }
 
 }  // namespace imcol

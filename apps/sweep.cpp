@@ -61,14 +61,6 @@ struct PointResult {
 
 nlohmann::ordered_json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
 
-std::string csv_cell(const nlohmann::ordered_json& j) {
-  if (j.is_null()) return "";
-  if (j.is_boolean()) return j.get<bool>() ? "1" : "0";
-  if (j.is_number()) return csv_number(j.get<double>());
-  if (j.is_string()) return j.get<std::string>();
-  return j.dump();
-}
-
 const char* kCsvHeader =
     "point,{},St,St_B_table_6_1,St_B_eq_6_2,St_L,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,"
     "wall_time_s,status,message,e_is,e_status,e_fit_time,e_yang_hunt_2006,e_joseph_2001,e_gondret_2002\n";

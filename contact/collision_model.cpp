@@ -817,10 +817,10 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
   if (has(Effect::lubrication)) {
     c.push_back({"lubrication.model", to_string(sc.lubrication.model)});
     c.push_back({"lubrication.law", lub_model_ == LubricationModel::asymptotic
-                                        ? "exact two-sphere asymptote: 6 pi mu [a*^2/h + c_log ln(a*/h)] U_rel (Jeffrey & Onishi), shifted to vanish at h_c"
+                                        ? "two-sphere asymptote, exact as h -> 0: 6 pi mu [a*^2/h + c_log ln(a*/h)] U_rel (Jeffrey & Onishi), shifted to vanish at h_c"
                                         : lub_model_ == LubricationModel::brenner
                                               ? "exact sphere-wall series: 6 pi mu a (lambda(h/a) - 1) U (Brenner 1961)"
-                                              : "seed 6.2.1: 6 pi mu a_m (lambda(h/a*) - 1) U_rel on sphere m (Brenner's wall series at h/a*)"});
+                                              : "the seed's gap law as read from its 6.2.1: 6 pi mu a_m (lambda(h/a*) - 1) U_rel on sphere m (Brenner's wall series at h/a*)"});
     c.push_back({"lubrication.cutoff_m", num(h_min_)});
     if (lub_model_ == LubricationModel::asymptotic) c.push_back({"lubrication.h_c_m", num(h_c_)});
     if (lub_model_ == LubricationModel::seed && target_ == Target::sphere)

@@ -61,11 +61,13 @@ struct GapGeometry {
 /// Gap (lubrication) resistance lengths [m] of each sphere for the relative velocity U_rel = U1 − U2:
 /// the gap force on sphere 1 is −6πμ R1 U_rel, on sphere 2 +6πμ R2 U_rel (MODEL.md §2.1), at the gap h [m] (> 0).
 ///   brenner     (wall) R1 = a1 (λ(h/a1) − 1), Brenner (1961): exact for a sphere and a plane.
-///   asymptotic  R1 = R2 = a*²/h + c_log ln(a*/h) shifted to vanish at h_c (Jeffrey & Onishi 1984): the exact
-///               two-sphere asymptote, equal and opposite; its a2 → ∞ limit is Cox & Brenner's (1967) wall law.
-///   seed        R_m = a_m (λ(h/a*) − 1): the seed's Ch. 6.2.1, Yang's wall law with δ* = h/a replaced by
-///               δ** = h/a*, times 6πμ a_m of each sphere. For a wall it is `brenner`; for an equal pair twice the
-///               exact value (R → 2 a*²/h); for unequal spheres R2/R1 = a2/a1, so the pair's momentum is not conserved.
+///   asymptotic  R1 = R2 = a*²/h + c_log ln(a*/h) shifted to vanish at h_c (Jeffrey & Onishi 1984): the two leading
+///               small-gap terms, exact as h → 0, equal and opposite; its a2 → ∞ limit is Cox & Brenner's (1967) wall law.
+///   seed        R_m = a_m (λ(h/a*) − 1): our reading of the seed's (6.7), which our copy lacks, from its (6.8), (6.9)
+///               and "λ(δ**, Re*_h) in the same manner as (4.3)": Yang's wall law with δ* = h/a replaced by δ** = h/a*,
+///               times 6πμ a_m of each sphere. Our choices: λ multiplies U_rel (free-stream drag stays on U_m), the +
+///               sign on sphere 2, no Re_h. For a wall it is `brenner`; for an equal pair twice `asymptotic`
+///               (R → 2 a*²/h); for unequal spheres R2/R1 = a2/a1, so the pair's momentum is not conserved.
 struct GapResistance {
   double on1 = 0, on2 = 0;  // m
 };

@@ -10,7 +10,7 @@
 namespace imcol {
 
 enum class DragLaw { stokes, schiller_naumann };                  // MODEL.md §2.1
-enum class LubricationModel { brenner, asymptotic, seed };        // Brenner series (wall) | Jeffrey–Onishi law | seed 6.2.1
+enum class LubricationModel { brenner, asymptotic, seed };        // Brenner series (wall) | Jeffrey–Onishi law | seed (our reading of its 6.7)
 enum class AddedMassModel { lagrangian, seed };                   // pair kinetic energy | seed (6.8), per sphere
 enum class KernelKind { basset, mei_adrian, kim, dorgan_loth };   // history kernel, MODEL.md §2.3
 enum class HistoryEvaluator { soe, soe_step, direct };            // sum of exponentials (modes in the state | per step) | product integration

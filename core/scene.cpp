@@ -225,9 +225,13 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     Reader r(*t, "lubrication", path);
     r.choice("model", sc.lubrication.model);
     if (sc.lubrication.model == LubricationModel::brenner && sc.two_spheres())
-      r.fail("model", "'brenner' is the sphere-wall series; use 'asymptotic' for two spheres");
+      r.fail("model", "'brenner' is the sphere-wall series; use 'asymptotic' or 'seed' for two spheres");
     sc.lubrication.cutoff = r.number("cutoff", sc.lubrication.cutoff);
     r.positive("cutoff", sc.lubrication.cutoff);
+    // h_c is the asymptotic law's range; the other laws act at every gap and would ignore it.
+    if (r.has("h_c") && sc.lubrication.model != LubricationModel::asymptotic)
+      r.fail("h_c", std::string("applies only to model = 'asymptotic' (the model is '") + to_string(sc.lubrication.model) +
+                        "', which acts at every gap)");
     sc.lubrication.h_c = r.number("h_c", sc.lubrication.h_c);
     r.positive("h_c", sc.lubrication.h_c);
     r.finish();

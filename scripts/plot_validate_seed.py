@@ -11,8 +11,9 @@ import sys
 
 from imcol_plot import out_dir, plt, save_png
 
-MODELS = {"seed": ("seed's pair equations (lubrication \"seed\")", "C0", "o"),
-          "exact": ("exact gap law (lubrication \"asymptotic\")", "C1", "^")}
+# Only the gap law differs between the models (docs/model-notes.md, "Pairs").
+MODELS = {"seed": ("seed's gap law (lubrication \"seed\")", "C0", "o"),
+          "asymptotic": ("asymptotic gap law, exact as h -> 0 (lubrication \"asymptotic\")", "C1", "^")}
 
 
 def num(row, key):
@@ -28,7 +29,7 @@ def main() -> int:
         rows = list(csv.DictReader(f))
     coupled = bool(rows) and "e_reduced_order" in rows[0]
     fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), sharey=True)
-    panels = ((axes[0], "St_B_table_6_1", "St_B_reduced_order", 1.0, "St_B, seed Table 6.1 convention (half of eq. 6.2)"),
+    panels = ((axes[0], "St_B_table_6_1", "St_B_table_6_1_reduced_order", 1.0, "St_B, seed Table 6.1 convention (half of eq. 6.2)"),
               (axes[1], "St_B_eq_6_2", "St_B_eq_6_2_reduced_order", 2.0, "St_B, eq. (6.2): m* U_rel / (6 pi mu a*^2)"))
     seed = {}
     for r in rows:

@@ -251,7 +251,7 @@ TEST(Cli, BadBouncesValueNamesFileLineAndKey) {
 }
 
 TEST(Cli, ValidateSeedRunsBothGapLawsWithBothStokesNumbers) {
-  // Reduced-order Table 6.1 (12 runs of a few ms): the seed's pair law and the exact law, both St_B conventions.
+  // Reduced-order Table 6.1 (12 runs of a few ms): the seed's gap law and the asymptotic one, both St_B conventions.
   const fs::path out = fs::temp_directory_path() / "imcol_cli_validate";
   fs::remove_all(out);
   const Result r = run_imcol("validate seed --no-plot --out " + out.string());
@@ -261,18 +261,97 @@ TEST(Cli, ValidateSeedRunsBothGapLawsWithBothStokesNumbers) {
   std::map<std::string, std::map<std::string, double>> e;  // model -> run -> e
   for (const auto& row : rows) {
     const double e_seed = std::stod(row.at("e_seed")), v = std::stod(row.at("e"));
-    EXPECT_EQ(row.at("lubrication_model"), row.at("model") == "seed" ? "seed" : "asymptotic");
+    EXPECT_EQ(row.at("lubrication_model"), row.at("model"));
     EXPECT_NEAR(std::stod(row.at("e_minus_e_seed")), v - e_seed, 1e-9);
     EXPECT_NEAR(std::stod(row.at("St_B_eq_6_2")) / std::stod(row.at("St_B_table_6_1")), 2.0, 1e-9);
     EXPECT_EQ(row.at("St_B"), row.at("St_B_table_6_1"));
     e[row.at("model")][row.at("run")] = v;
   }
   ASSERT_EQ(e["seed"].size(), 6u);
-  ASSERT_EQ(e["exact"].size(), 6u);
+  ASSERT_EQ(e["asymptotic"].size(), 6u);
   // Twice the gap resistance dissipates more: the seed's law never gives the larger e (equal radii in every run).
-  for (const auto& [run, v] : e["seed"]) EXPECT_LE(v, e["exact"][run] + 1e-9) << "run " << run;
-  EXPECT_LT(e["seed"]["4"], e["exact"]["4"] - 0.1);
+  for (const auto& [run, v] : e["seed"]) EXPECT_LE(v, e["asymptotic"][run] + 1e-9) << "run " << run;
+  EXPECT_LT(e["seed"]["4"], e["asymptotic"]["4"] - 0.1);
   const Result bad = run_imcol("validate seed --no-plot --models seed,wall --out " + out.string());
   EXPECT_EQ(bad.status, 2) << bad.err;
   EXPECT_NE(bad.err.find("--models"), std::string::npos) << bad.err;
+}
+
+TEST(Cli, ValidateRejectsBadInput) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_validate_bad";
+  fs::remove_all(out);
+  auto expect_exit2 = [&](const Result& r, std::initializer_list<const char*> fragments) {
+    EXPECT_EQ(r.status, 2) << r.err;
+    for (const char* f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << "'" << f << "' missing in: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  };
+  const std::string base = "validate seed --no-plot --out " + out.string() + " ";
+  expect_exit2(run_imcol(base + "--tolerance -0.1"), {"--tolerance", "positive"});
+  expect_exit2(run_imcol(base + "--tolerance 0"), {"--tolerance"});
+  EXPECT_EQ(run_imcol(base + "--tolerance abc").status, 2);
+  // The gap law is what the models differ in: --set cannot override it, --models chooses.
+  expect_exit2(run_imcol(base + "--set 'lubrication.model=\"asymptotic\"'"), {"lubrication.model", "--models"});
+  EXPECT_FALSE(fs::exists(out));  // nothing ran, nothing was created
+
+  // A malformed reference table (IMCOL_DATA_DIR makes it user input) names the file, the line and the column.
+  const fs::path data = fs::temp_directory_path() / "imcol_cli_validate_data";
+  fs::remove_all(data);
+  fs::create_directories(data / "reference");
+  fs::copy_file(fs::path(imcol::data_dir()) / "materials.csv", data / "materials.csv");
+  const fs::path table = data / "reference" / "li_2010_table_6_1.csv";
+  auto with_table = [&](const std::string& rows) {
+    std::ofstream(table) << "# a comment\nrun,mu_cP,rho_l_g_cm3,rho_p_star_g_cm3,V_Io_cm_s,Re_Io,St_B,e,pair\n"
+                            "1,4.1,1.11,7.78,8.4,264,197,0.87,steel-steel\n" << rows;
+    const std::string cmd = "IMCOL_DATA_DIR='" + data.string() + "' " + IMCOL_BINARY + " " + base + " >/dev/null 2>" + (data / "err").string();
+    const int raw = std::system(cmd.c_str());
+    std::ifstream in(data / "err");
+    return Result{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>())};
+  };
+  expect_exit2(with_table("2,4.1,1.11,3.83,9.6,294,104,0.7x5,steel-glass\n"), {(table.string() + ":4").c_str(), "key 'e'", "0.7x5"});
+  expect_exit2(with_table("2,4.1,1.11,3.83,9.6,294,,0.75,steel-glass\n"), {(table.string() + ":4").c_str(), "key 'St_B'"});
+  expect_exit2(with_table("2,4.1,1.11,3.83,9.6,294,104,0.75\n"), {(table.string() + ":4").c_str(), "9 columns"});
+  expect_exit2(with_table("x,4.1,1.11,3.83,9.6,294,104,0.75,steel-glass\n"), {(table.string() + ":4").c_str(), "key 'run'"});
+  expect_exit2(with_table("2,4.1,1.11,3.83,9.6,294,104,1.75,steel-glass\n"), {(table.string() + ":4").c_str(), "key 'e'"});
+  fs::remove_all(data);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, ValidatePlotsBothLayoutsAndLeavesNoStalePicture) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_validate_plot";
+  fs::remove_all(out);
+  fs::create_directories(out);
+  std::ofstream(out / "validate_seed.png") << "stale";
+  // --no-plot: the old picture goes, the CSV is new.
+  ASSERT_EQ(run_imcol("validate seed --no-plot --models seed --out " + out.string()).status, 0);
+  EXPECT_FALSE(fs::exists(out / "validate_seed.png"));
+  // With the plot (reduced-order layout, both models): a real PNG.
+  const Result r = run_imcol("validate seed --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  ASSERT_TRUE(fs::exists(out / "validate_seed.png"));
+  EXPECT_GT(fs::file_size(out / "validate_seed.png"), 10000u);
+  // The --flow layout (its extra columns; the coupled runs are too slow for a test): the reduced-order rows with the
+  // coupled columns filled from them, drawn by the script as the command would.
+  std::ifstream in(out / "validate_seed.csv");
+  std::string header, line, csv;
+  std::getline(in, header);
+  csv = header + ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_table_6_1_reduced_order,St_B_eq_6_2_reduced_order,"
+                 "wall_time_reduced_order_s,flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s\n";
+  const auto rows = read_csv(out / "validate_seed.csv");
+  ASSERT_EQ(rows.size(), 12u);
+  for (std::size_t i = 0; std::getline(in, line); ++i) {
+    const auto& row = rows.at(i);
+    csv += line + "," + row.at("e") + "," + row.at("e_minus_e_seed") + "," + row.at("St_B_table_6_1") + "," + row.at("St_B_eq_6_2") +
+           "," + row.at("wall_time_s") + ",10,1.0,16,0.001\n";
+  }
+  const fs::path flow = fs::temp_directory_path() / "imcol_cli_validate_plot_flow";
+  fs::remove_all(flow);
+  fs::create_directories(flow);
+  std::ofstream(flow / "validate_seed.csv") << csv;
+  const std::string script = (fs::path(imcol::data_dir()).parent_path() / "scripts" / "plot_validate_seed.py").string();
+  const int raw = std::system(("/usr/bin/python3 '" + script + "' '" + flow.string() + "' >/dev/null 2>&1").c_str());
+  EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0);
+  EXPECT_TRUE(fs::exists(flow / "validate_seed.png"));
+  fs::remove_all(out);
+  fs::remove_all(flow);
 }

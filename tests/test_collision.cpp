@@ -205,15 +205,29 @@ TEST(ImmersedCollision, SeedLubricationActsInTheRatioOfTheRadii) {
   auto r = run("effects = [\"lubrication\", \"elastic\"]\n" + pair_scene(fluid(0.05), 0.3, -0.1, "[lubrication]\nmodel = \"seed\"\n"),
                {{"solver.rtol", "1e-10"}});
   const auto col = [&](const std::string& c) { return std::find(r.columns.begin(), r.columns.end(), c) - r.columns.begin(); };
-  const auto i1 = col("f_lub1"), i2 = col("f_lub2");
+  const auto i1 = col("f_lub1"), i2 = col("f_lub2"), iu = col("u_rel");
   ASSERT_LT(std::size_t(i2), r.columns.size());
-  int checked = 0;
+  ASSERT_LT(std::size_t(iu), r.columns.size());
+  int checked = 0, approaching = 0, separating = 0;
   for (const auto& row : r.rows)
     if (std::abs(row[i1]) > 1e-12) {
       EXPECT_NEAR(row[i2] / row[i1], -0.010 / 0.0127, 1e-12);
       ++checked;
+      // The film resists the relative motion: it pushes the spheres apart while U_rel > 0 (sphere 1 back, sphere 2
+      // on), and holds them together while they separate.
+      if (row[iu] > 1e-6) {
+        EXPECT_LT(row[i1], 0) << "t = " << row[0];
+        EXPECT_GT(row[i2], 0) << "t = " << row[0];
+        ++approaching;
+      } else if (row[iu] < -1e-6) {
+        EXPECT_GT(row[i1], 0) << "t = " << row[0];
+        EXPECT_LT(row[i2], 0) << "t = " << row[0];
+        ++separating;
+      }
     }
   EXPECT_GT(checked, 10);
+  EXPECT_GT(approaching, 5);
+  EXPECT_GT(separating, 5);
   EXPECT_EQ(r.summary["model"]["lubrication.model"].get<std::string>(), "seed");
   EXPECT_NE(r.summary["model"]["lubrication.pair_forces"].get<std::string>().find("differ"), std::string::npos);
   EXPECT_GT(e_of(r), 0.0);

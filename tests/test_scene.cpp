@@ -89,6 +89,12 @@ TEST(Scene, RejectsOverlappingSpheresAndWrongLubrication) {
   expect_error(test::edit(test::edit(pair, "position = 0.02", "position = 0.0128"), "velocity = 0.1", "velocity = 0.0"),
                {"sphere[1].position", "contact zone", "not approaching"});
   expect_error(pair + "[lubrication]\nmodel = \"brenner\"\n", {"lubrication.model", "asymptotic"});
+  expect_error(pair + "[lubrication]\nmodel = \"implicit\"\n", {"lubrication.model", "brenner | asymptotic | seed"});
+  // h_c is the asymptotic law's range: with another law (given or the wall's default, brenner) it is an error.
+  EXPECT_NO_THROW(parse_scene(pair + "[lubrication]\nh_c = 0.5\n", "pair.toml"));
+  expect_error(pair + "[lubrication]\nmodel = \"seed\"\nh_c = 0.5\n", {"bad.toml:", "lubrication.h_c", "'asymptotic'", "'seed'"});
+  const std::string wall = test::basic_wall_scene();
+  expect_error(wall + "[lubrication]\nh_c = 0.5\n", {"lubrication.h_c", "'brenner'"});
   expect_error(pair + "[wall]\nmaterial = \"glass\"\nposition = 1.0\n", {"wall", "not both"});
 }
 

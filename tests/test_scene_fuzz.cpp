@@ -39,7 +39,7 @@ std::string full_wall_scene() {
          test::wall("glass", 0.0) +
          "[contact]\ndelta_ss = 0.017\ndelta_sl = 0.1\ne_dry = 0.97\nbeta = 200.0\n"
          "[drag]\nlaw = \"schiller-naumann\"\n"
-         "[lubrication]\nmodel = \"brenner\"\ncutoff = 1e-4\nh_c = 1.0\n"
+         "[lubrication]\nmodel = \"brenner\"\ncutoff = 1e-4\n"  // h_c: asymptotic only (the pair scene)
          "[added_mass]\nmodel = \"lagrangian\"\ndw_floor = 0.034\n"
          "[history]\nkernel = \"kim\"\nevaluator = \"soe\"\ntolerance = 1e-6\nmodes = 20\nmin_lag = 1e-6\n"
          "horizon = 1.0\nstart = \"impulsive\"\nreynolds = \"initial\"\nwall_correction = \"added-mass\"\n"

@@ -1,0 +1,220 @@
+#include "apps/validate.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "apps/format.hpp"
+#include "apps/out_dir.hpp"
+#include "apps/plot.hpp"
+#include "core/errors.hpp"
+#include "core/materials.hpp"
+#include "core/report.hpp"
+#include "run/simulate.hpp"
+
+namespace imcol {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// The overrides without the [flow] ones (for the reduced-order runs beside coupled ones).
+std::vector<Override> without_flow_keys(const std::vector<Override>& ov) {
+  std::vector<Override> out;
+  for (const auto& o : ov)
+    if (o.key.rfind("flow.", 0) != 0) out.push_back(o);
+  return out;
+}
+
+/// The scene with the `flow` effect added to its effects (coupled runs of the shipped reduced-order scenes).
+Scene with_flow(const std::string& path, std::vector<Override> ov) {
+  const Scene plain = load_scene(path, without_flow_keys(ov));  // the scene's own effects
+  std::string list = "[";
+  for (Effect e : plain.effects) list += std::string("\"") + to_string(e) + "\",";
+  list += "\"flow\"]";
+  ov.push_back({"effects", list});
+  return load_scene(path, ov);
+}
+
+/// The models, by the gap law of the pair (docs/model-notes.md, "Pairs").
+const std::vector<ValidateModel> kValidateModels = {{"seed", LubricationModel::seed}, {"asymptotic", LubricationModel::asymptotic}};
+
+std::optional<double> opt_num(const nlohmann::ordered_json& j) { return j.is_null() ? std::nullopt : std::optional<double>(j.get<double>()); }
+
+/// Agreement of one model with the seed's e: runs within the tolerance, and the largest miss.
+struct Agreement {
+  int within = 0, runs = 0;
+  double worst = 0;
+  std::string worst_run;
+  void add(const std::string& run, std::optional<double> e, double e_seed, double tol) {
+    ++runs;
+    const double d = e ? std::abs(*e - e_seed) : INFINITY;
+    if (d <= tol) ++within;
+    if (d >= worst) worst = d, worst_run = run;
+  }
+  std::string text(double tol) const {
+    std::ostringstream os;
+    os << "|e - e_seed| <= " << tol << " in " << within << " of " << runs << " runs; largest " << fixed(worst, 3) << " (run " << worst_run << ")";
+    return os.str();
+  }
+};
+
+/// The reference table's columns, in order.
+constexpr const char* kColumns = "run,mu_cP,rho_l_g_cm3,rho_p_star_g_cm3,V_Io_cm_s,Re_Io,St_B,e,pair";
+std::string column_name(int k) {
+  std::stringstream ss(kColumns);
+  std::string name;
+  for (int i = 0; i <= k; ++i) std::getline(ss, name, ',');
+  return name;
+}
+
+}  // namespace
+
+std::vector<SeedRun> read_table_6_1() {
+  const std::string table = data_dir() + "/reference/li_2010_table_6_1.csv";
+  std::ifstream in(table);
+  if (!in) throw InputError(table, "", "cannot open the reference table");
+  std::vector<SeedRun> runs;
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    double e = 0;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#' || line.rfind("run,", 0) == 0) continue;
+    std::vector<std::string> cell;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) cell.push_back(x);
+    const std::string where = table + ":" + std::to_string(line_no);
+    if (cell.size() != 9) throw InputError(where, "", "expected 9 columns (" + std::string(kColumns) + "), got " + std::to_string(cell.size()));
+    // Every numeric cell must be a finite number (the run number a positive integer naming data/scenes/seed_run<run>.toml).
+    for (int k : {0, 1, 2, 3, 4, 5, 6, 7}) {
+      const std::string& c = cell[k];
+      double v = NAN;
+      const auto r = std::from_chars(c.data(), c.data() + c.size(), v);
+      const bool ok = !c.empty() && r.ec == std::errc() && r.ptr == c.data() + c.size() && std::isfinite(v) && v >= 0 &&
+                      (k != 0 || (v >= 1 && v == std::floor(v) && c.find_first_not_of("0123456789") == std::string::npos));
+      if (!ok) throw InputError(where, column_name(k), "'" + c + "' is not " + (k == 0 ? "a run number" : "a non-negative number"));
+      if (k == 7) e = v;
+    }
+    if (e > 1) throw InputError(where, "e", "'" + cell[7] + "' is not a coefficient of restitution in [0, 1]");
+    runs.push_back({cell[0], cell[8], cell[6], cell[7], cell[5], e});
+  }
+  if (runs.empty()) throw InputError(table, "", "no runs in the reference table");
+  return runs;
+}
+
+std::vector<ValidateModel> validate_models(const std::vector<std::string>& names) {
+  if (names.empty()) return kValidateModels;
+  std::vector<ValidateModel> out;
+  for (const auto& n : names) {
+    auto it = std::find_if(kValidateModels.begin(), kValidateModels.end(), [&](const auto& m) { return m.name == n; });
+    if (it == kValidateModels.end()) throw InputError("command line", "--models", "unknown model '" + n + "' (expected seed, asymptotic)");
+    if (std::none_of(out.begin(), out.end(), [&](const auto& m) { return m.name == n; })) out.push_back(*it);
+  }
+  return out;
+}
+
+/// The seed's Table 6.1: each run with the seed's gap law (lubrication.model = "seed", our reading of its (6.7)) and with
+/// the asymptotic one (exact as h -> 0), reduced-order, and with --flow also coupled (MODEL.md (6.10)); both St_B
+/// conventions. Only the gap law differs between the models: the rest of the pair model is the scenes' (lagrangian
+/// added mass, K_H = 1, λ without the gap Reynolds number).
+int cmd_validate(const std::string& what, const ValidateOptions& opt, const std::vector<Override>& overrides) {
+  if (what != "seed") throw InputError("validate", what, "unknown validation set (expected 'seed')");
+  if (!(std::isfinite(opt.tolerance) && opt.tolerance > 0))
+    throw InputError("command line", "--tolerance", "must be a positive number (got " + fmt_number(opt.tolerance) + ")");
+  // The gap law is what the models differ in: it is chosen with --models, never by --set.
+  for (const auto& o : overrides)
+    if (o.key == "lubrication.model" || (o.key == "lubrication" && o.value.find("model") != std::string::npos))
+      throw InputError("command line", "lubrication.model",
+                       "imcol validate sets the gap law of each model; choose the models with --models seed,asymptotic instead of --set");
+  const auto models = validate_models(opt.models);
+  const auto runs = read_table_6_1();
+  OutDir out_dir(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
+  const bool flow = opt.flow;
+  std::cout << "Seed Table 6.1 (Li 2010) against imcol, " << (flow ? "coupled (f_SIM from the flow kernel, blended by H) and reduced-order"
+                                                                  : "reduced-order (no f_SIM)") << "\n"
+            << "  models (only the gap law differs; the scenes keep lagrangian added mass, K_H = 1, lambda without Re_h):\n"
+            << "    seed       = the seed's gap law as we read its (6.7): 6 pi mu a_m (lambda(h/a*) - 1) U_rel on sphere m\n"
+            << "    asymptotic = 6 pi mu [a*^2/h + c_log ln(a*/h)] U_rel, shifted to vanish at h_c (Jeffrey & Onishi; exact as h -> 0)\n"
+            << "  St_B(T6.1) = the seed's Table 6.1 convention, half of St_B(eq6.2) = m* U_rel / (6 pi mu a*^2)\n";
+  std::cout << std::left << std::setw(4) << "run" << std::setw(13) << "pair" << std::setw(11) << "model" << std::right << std::setw(10)
+            << "St_B seed" << std::setw(11) << "St_B(T6.1)" << std::setw(12) << "St_B(eq6.2)" << std::setw(8) << "e seed" << std::setw(8)
+            << (flow ? "e flow" : "e") << std::setw(8) << "diff";
+  if (flow) std::cout << std::setw(10) << "e reduced" << std::setw(8) << "diff";
+  std::cout << std::setw(8) << "e_inst" << std::setw(10) << "U_G mm/s" << std::setw(10) << (flow ? "wall s" : "wall ms");
+  if (flow) std::cout << std::setw(9) << "ms/step";
+  std::cout << "\n";
+  std::ostringstream csv;
+  csv << "run,pair,model,lubrication_model,St_B_seed,e_seed,Re_seed,St_B,St_B_table_6_1,St_B_eq_6_2,e,e_minus_e_seed,e_instant,Re,"
+         "group_velocity_m_s,steps,wall_time_s";
+  if (flow)
+    csv << ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_table_6_1_reduced_order,St_B_eq_6_2_reduced_order,wall_time_reduced_order_s,"
+           "flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s";
+  csv << "\n";
+  std::vector<Agreement> agree(models.size()), agree_reduced(models.size());
+  for (const auto& sr : runs) {
+    const std::string path = data_dir() + "/scenes/seed_run" + sr.run + ".toml";
+    const double e_seed = sr.e_value;
+    for (std::size_t k = 0; k < models.size(); ++k) {
+      const auto& model = models[k];
+      auto ov = overrides;
+      ov.push_back({"lubrication.model", std::string("\"") + to_string(model.lubrication) + "\""});  // the model's law
+      const RunResult red = simulate(load_scene(path, without_flow_keys(ov)));
+      const RunResult cpl = flow ? simulate(with_flow(path, ov), true) : RunResult{};
+      const auto& s = flow ? cpl.summary : red.summary;
+      const auto& rs = red.summary;
+      const auto e = opt_num(s["e"]), e_red = opt_num(rs["e"]);
+      agree[k].add(sr.run, e, e_seed, opt.tolerance);
+      if (flow) agree_reduced[k].add(sr.run, e_red, e_seed, opt.tolerance);
+      auto diff = [&](std::optional<double> v) { return v ? std::optional<double>(*v - e_seed) : std::nullopt; };
+      auto show = [](std::optional<double> v, int prec) { return v ? fixed(*v, prec) : std::string("n/a"); };
+      std::cout << std::left << std::setw(4) << sr.run << std::setw(13) << sr.pair << std::setw(11) << model.name << std::right
+                << std::setw(10) << sr.St_B << std::setw(11) << json_num(s["St_B_table_6_1"], 1) << std::setw(12)
+                << json_num(s["St_B_eq_6_2"], 1) << std::setw(8) << sr.e << std::setw(8) << show(e, 3) << std::setw(8)
+                << show(diff(e), 3);
+      if (flow) std::cout << std::setw(10) << show(e_red, 3) << std::setw(8) << show(diff(e_red), 3);
+      std::cout << std::setw(8) << json_num(s["e_instant"], 3) << std::setw(10)
+                << (s["group_velocity_m_s"].is_null() ? std::string("-") : fixed(1e3 * s["group_velocity_m_s"].get<double>(), 2))
+                << std::setw(10) << (flow ? fixed(s["wall_time_s"].get<double>(), 2) : fixed(1e3 * s["wall_time_s"].get<double>(), 1));
+      if (flow) std::cout << std::setw(9) << fixed(s["flow"]["ms_per_step"].get<double>(), 1);
+      std::cout << "\n";
+      auto num = [](std::optional<double> v) { return v ? csv_number(*v) : std::string(); };
+      csv << sr.run << "," << sr.pair << "," << model.name << "," << to_string(model.lubrication) << "," << sr.St_B << "," << sr.e << ","
+          << sr.Re << "," << csv_cell(s["St"]) << "," << csv_cell(s["St_B_table_6_1"]) << "," << csv_cell(s["St_B_eq_6_2"]) << ","
+          << num(e) << "," << num(diff(e)) << "," << csv_cell(s["e_instant"]) << "," << csv_cell(s["Re"]) << ","
+          << csv_cell(s["group_velocity_m_s"]) << "," << csv_cell(s["solver"]["steps"]) << "," << csv_cell(s["wall_time_s"]);
+      if (flow) {
+        const auto& f = s["flow"];
+        csv << "," << num(e_red) << "," << num(diff(e_red)) << "," << csv_cell(rs["St_B_table_6_1"]) << "," << csv_cell(rs["St_B_eq_6_2"])
+            << "," << csv_cell(rs["wall_time_s"]) << "," << csv_cell(f["steps"]) << "," << csv_cell(f["ms_per_step"]) << ","
+            << csv_cell(f["grid"]["cells_per_diameter"]) << "," << csv_cell(f["dt_s"]);
+      }
+      csv << "\n";
+    }
+  }
+  for (std::size_t k = 0; k < models.size(); ++k) {
+    std::cout << "  " << models[k].name << (flow ? ", coupled: " : ": ") << agree[k].text(opt.tolerance) << "\n";
+    if (flow) std::cout << "  " << models[k].name << ", reduced-order: " << agree_reduced[k].text(opt.tolerance) << "\n";
+  }
+  const fs::path& dir = out_dir.path();
+  {
+    // An earlier run's picture goes first: with --no-plot or a failing plot no stale picture stays beside the new CSV.
+    std::error_code ec;
+    fs::remove(dir / "validate_seed.png", ec);
+  }
+  write_file_atomic(dir / "validate_seed.csv", csv.str());
+  out_dir.keep();
+  std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";
+  if (opt.plot) {
+    std::cout.flush();
+    run_plot_script("plot_validate_seed.py", dir, "validate_seed.png");
+  }
+  return 0;
+}
+
+}  // namespace imcol
