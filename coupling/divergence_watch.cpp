@@ -9,6 +9,11 @@
 
 namespace imcol::coupling {
 
+bool is_solid_contact(contact::EventKind k) {
+  using K = contact::EventKind;
+  return k == K::contact_in || k == K::contact_out || k == K::unload || k == K::touch || k == K::start_in_contact;
+}
+
 DivergenceWatch::DivergenceWatch(const contact::CollisionModel& model, const Scene& sc, std::span<const double> y0, std::string step_rule)
     : model_(model), sc_(sc), n_(model.n_spheres()), rule_(std::move(step_rule)) {
   std::array<double, 2> u{};
@@ -94,7 +99,7 @@ void DivergenceWatch::check_step(double t0, double t1, const std::array<double, 
   // sphere around or sets a target moving within one flow step: the speed jump is not judged there.
   bool contact = false;
   for (const auto& ev : model_.events())
-    if (ev.t >= t0 && ev.t <= t1 && ev.name.find("delta_ss") != std::string::npos) contact = true;
+    if (ev.t >= t0 && ev.t <= t1 && is_solid_contact(ev.kind)) contact = true;
   const double gap = n_ == 2 ? z[1] - z[0] - model_.radius(0) - model_.radius(1)
                              : (sc_.wall ? sc_.wall->position - z[0] - model_.radius(0) : 1e300);
   if (gap <= model_.delta_ss_m()) contact = true;

@@ -21,6 +21,10 @@
 
 namespace imcol::coupling {
 
+/// Whether an event is solid contact (the δ_SS crossings, unloading, the gap closing, a start in contact): a flow step
+/// holding one is not judged by the speed jump.
+bool is_solid_contact(contact::EventKind kind);
+
 class DivergenceWatch {
  public:
   /// `step_rule`: how the flow step was chosen (for the message), e.g. "flow.cfl = 0.37 (the Re rule), dt = 1e-4 s".

@@ -10,7 +10,10 @@
 #include <string>
 
 #include "run/simulate.hpp"
+#include "contact/collision_model.hpp"
 #include "core/errors.hpp"
+#include "coupling/divergence_watch.hpp"
+#include "integrators/integrator.hpp"
 #include "core/scene.hpp"
 #include "flow/flow_scene.hpp"
 
@@ -275,4 +278,37 @@ TEST(Coupling, TheDefaultFlowStepIsStableAtReynolds1000) {
   EXPECT_LT(e, s["contact"]["e_dry"].get<double>());
   EXPECT_LE(s["flow"]["max_energy_ratio"].get<double>(), 1.0);
   EXPECT_LT(s["flow"]["max_courant"].get<double>(), 1.5);
+}
+
+TEST(Coupling, TheSpeedJumpCheckKnowsSolidContactByTheEventKind) {
+  // The first rebound's measurement root "gap=max(at_gap, delta_ss+fit_distance) (out)" names delta_ss but is no
+  // contact: the speed-jump check goes by the event's kind, not its name.
+  const Scene sc = load_scene(scene_path("default.toml"));
+  contact::CollisionModel model(sc);
+  struct : Observer {
+    void sample(double, std::span<const double>, bool) override {}
+  } quiet;
+  integrate(model, IntegratorSettings{}, quiet);
+  int in = 0, out = 0, measure = 0;
+  for (const auto& ev : model.events()) {
+    if (ev.kind == contact::EventKind::contact_in) {
+      ++in;
+      EXPECT_EQ(ev.name, "gap=delta_ss (in)");
+    }
+    if (ev.kind == contact::EventKind::contact_out) {
+      ++out;
+      EXPECT_EQ(ev.name, "gap=delta_ss (out)");
+    }
+    if (ev.kind == contact::EventKind::measure_out) {
+      ++measure;
+      EXPECT_NE(ev.name.find("delta_ss"), std::string::npos) << ev.name;
+      EXPECT_FALSE(coupling::is_solid_contact(ev.kind));
+    }
+    if (ev.kind == contact::EventKind::contact_in || ev.kind == contact::EventKind::contact_out) EXPECT_TRUE(coupling::is_solid_contact(ev.kind));
+  }
+  EXPECT_EQ(in, 1);
+  EXPECT_EQ(out, 1);
+  EXPECT_EQ(measure, 1);
+  EXPECT_TRUE(coupling::is_solid_contact(contact::EventKind::touch));
+  EXPECT_FALSE(coupling::is_solid_contact(contact::EventKind::blend_edge));
 }
