@@ -33,7 +33,7 @@ struct FlowStep {
   double u_ref = 0;    // m/s
   double tau_p = 0;    // s, the smallest (m + ½ m_f)/(6π μ a)
   StepLimit limit = StepLimit::given;
-  // how dt was chosen, for messages, e.g. "flow.cfl = 0.3 (the default at Re = 966, U_ref = 1.05 m/s: the initial
+  // how dt was chosen, for messages, e.g. "flow.cfl = 0.301 (the default at Re = 966, U_ref = 1.05 m/s: the initial
   // speed of sphere 1), dt = 9.9e-05 s"
   std::string rule;
 };
