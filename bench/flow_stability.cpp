@@ -1,9 +1,8 @@
 // Where the flow kernel's step breaks: a sphere (D = 1, U = 1, ρ = 1, ν = 1/Re) on a prescribed path, as the coupled
 // runs' start-up and approach move it, stepped at Δt = cfl·h/U for a table of Re, cfl and cells per diameter.
 //   wall: lab frame, a plane wall at z = 0, the sphere from a gap of 4 D toward it at U until the gap is 0.5 D;
-//   pair: the frame of the midpoint, two spheres approaching at ±U/2 in a stream −U/2... no: the frame moves with the
-//         midpoint, which moves at U/2: stream −U/2, sphere 1 at +U/2, sphere 2 at −U/2 (target at rest in the lab),
-//         from a gap of 3.5 D to 0.5 D;
+//   pair: the frame of the midpoint, which moves at U/2 (sphere 1 at U toward a target at rest in the lab): stream
+//         −U/2, sphere 1 at +U/2, sphere 2 at −U/2, from a gap of 3.5 D to 0.5 D;
 //   free: the sphere held in a stream −U (a free sphere's frame), 3 D of travel.
 // Outcome per run: "ok", or "diverged" (a force beyond 10× the standard-curve drag ½ρU²πa²·C_D(Re) + 10 ρV U²/D,
 // a non-finite force, or GMRES failing), with the step where it happened, the largest advective Courant number of the
@@ -46,21 +45,6 @@ double cd_standard(double re) {
   if (re <= 260) return 24 / re * (1 + 0.1935 * std::pow(re, 0.6305));
   if (re <= 1500) return std::pow(10.0, 1.6435 - 1.1242 * w + 0.1558 * w * w);
   return std::pow(10.0, -2.4571 + 2.5558 * w - 0.9295 * w * w + 0.1049 * w * w * w);
-}
-
-/// Largest (|u_r| + |u_z|) on the finest level, lab velocity relative to the grid (the stream included).
-double max_speed(const Solver& s) {
-  const Level& L = s.levels()[0];
-  const LevelGeometry& g = L.g;
-  const double u_inf = s.settings().u_inf;
-  double m = 0;
-  for (int i = 1; i < g.nr; ++i)
-    for (int j = 0; j < g.nz; ++j) {
-      const double uz = (L.psi[g.at(i + 1, j)] - L.psi[g.at(i, j)]) / (g.h * g.r(i + 0.5)) + u_inf;
-      const double ur = -(L.psi[g.at(i, j + 1)] - L.psi[g.at(i, j)]) / (g.h * g.r(i));
-      m = std::max(m, std::abs(uz) + std::abs(ur));
-    }
-  return m;
 }
 
 struct Outcome {
@@ -113,7 +97,7 @@ Outcome run(const std::string& kind, double Re, double dt, int cpd, int levels) 
     for (long n = 1; n <= o.steps; ++n) {
       for (auto& b : sp) b.z += b.u * dt;
       const StepInfo info = solver.step(sp);
-      o.courant = std::max(o.courant, max_speed(solver) * dt / s.h);
+      o.courant = std::max(o.courant, solver.max_courant());
       double f = 0;
       for (double x : info.force) f = std::max(f, std::abs(x));
       if (n > 1) o.f_max = std::max(o.f_max, f);  // step 1 carries the impulsive start

@@ -131,7 +131,7 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
     initial_state(y0);
     freeze_contact(0.0, u_rel0_);
     phase_ = Phase::loading;
-    record(0.0, "start inside the contact zone", y0);
+    record(0.0, EventKind::start_in_contact, "start inside the contact zone", y0);
     if (initial_gap() <= instant_gap_m_) u_in_ = u_rel0_;
   }
   arm();
@@ -649,11 +649,11 @@ void CollisionModel::root_values(double, std::span<const double> y, std::span<do
   }
 }
 
-void CollisionModel::record(double t, const std::string& name, std::span<const double> y) {
+void CollisionModel::record(double t, EventKind kind, const std::string& name, std::span<const double> y) {
   Evaluation ev;
   kinematics(y, ev);
   arm_gap_ = ev.gap;
-  events_.push_back({t, name, ev.gap, ev.u_rel});
+  events_.push_back({t, name, ev.gap, ev.u_rel, kind});
 }
 
 void CollisionModel::freeze_contact(double t, double u_rel) {
@@ -685,7 +685,7 @@ void CollisionModel::freeze_contact(double t, double u_rel) {
 }
 
 void CollisionModel::handle(RootKind kind, const std::string& name, double t, std::span<const double> y) {
-  record(t, name, y);
+  record(t, kind, name, y);
   Evaluation ev;
   kinematics(y, ev);
   const double window = scene_.measure.window;
@@ -699,7 +699,7 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
         at_rest_ = true;
         quiet_since_ = t;
         stop_time_ = std::min(stop_time_, t);
-        events_.push_back({t, "at rest (impact speed below stall_fraction x the first impact speed)", ev.gap, ev.u_rel});
+        events_.push_back({t, "at rest (impact speed below stall_fraction x the first impact speed)", ev.gap, ev.u_rel, EventKind::at_rest});
       }
       break;
     case RootKind::unload:
@@ -782,7 +782,7 @@ void CollisionModel::observe(double t, const Evaluation& ev) {
   if (t - *quiet_since_ >= window * (1 - 1e-9)) {
     at_rest_ = true;
     stop_time_ = std::min(stop_time_, t);
-    events_.push_back({t, "at rest (|U_rel| and |dU_rel/dt| window below stall_fraction x impact speed for one window)", ev.gap, ev.u_rel});
+    events_.push_back({t, "at rest (|U_rel| and |dU_rel/dt| window below stall_fraction x impact speed for one window)", ev.gap, ev.u_rel, EventKind::at_rest});
   }
 }
 

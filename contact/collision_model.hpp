@@ -71,12 +71,17 @@ struct Evaluation {
   std::array<SphereForces, 2> f{};
 };
 
+/// What an event is: the root that fired, or a state the model declared (a start in contact, at rest).
+enum class EventKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge, blend_edge, blend_end,
+                       apex, rebound_stalled, measure_out, start_in_contact, at_rest };
+
 /// A discrete event in the run, for the summary.
 struct EventRecord {
   double t;
   std::string name;
   double gap;
   double u_rel;
+  EventKind kind;
 };
 
 enum class Phase { approach, loading, unloading, separated };
@@ -187,8 +192,7 @@ class CollisionModel : public DynamicalSystem {
 
  private:
   enum class Target { none, wall, sphere };
-  enum class RootKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge, blend_edge, blend_end,
-                        apex, rebound_stalled, measure_out };
+  using RootKind = EventKind;
 
   void arm();
   void kinematics(std::span<const double> y, Evaluation& ev) const;
@@ -206,7 +210,7 @@ class CollisionModel : public DynamicalSystem {
   double contact_force(double gap) const;  // magnitude, pushes the pair apart
   void freeze_contact(double t, double u_rel);
   void handle(RootKind kind, const std::string& name, double t, std::span<const double> y);
-  void record(double t, const std::string& name, std::span<const double> y);
+  void record(double t, EventKind kind, const std::string& name, std::span<const double> y);
   /// bounces = "first": the stop time once the rebound's measurements are complete (or can no longer be).
   void first_bounce_stop(double t);
 

@@ -24,6 +24,9 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   if (r.has("dt")) r.positive("dt", f.dt);
   f.cfl = r.number("cfl", f.cfl);
   if (r.has("cfl")) r.in_range("cfl", f.cfl, 0.0, 1.0, true, false);  // absent: 0, the step rule's cfl(Re, N)
+  if (r.has("dt") && r.has("tau_p_fraction")) r.fail("tau_p_fraction", "give either dt or tau_p_fraction, not both");
+  f.tau_p_fraction = r.number("tau_p_fraction", f.tau_p_fraction);
+  r.in_range("tau_p_fraction", f.tau_p_fraction, 0.0, 1e6, true, false);
   f.theta = r.number("theta", f.theta);
   r.in_range("theta", f.theta, 0.5, 1.0, false, false);
   f.krylov_tol = r.number("krylov_tol", f.krylov_tol);

@@ -16,8 +16,9 @@ struct FlowSpec {
   double ahead = 0.75;           // finest level beyond the leading sphere's surface, D
   double behind = 1.25;          // finest level behind the trailing sphere's surface (its wake), D
   double dt = 0;                 // flow step, s; 0: from cfl
-  double cfl = 0;                // dt = cfl h / U_ref (U_ref the largest initial sphere speed) when dt = 0; 0: cfl(Re) of
-                                 // coupling/step_rule.hpp (0.5 up to Re = 250, 0.25 at Re = 1000)
+  double cfl = 0;                // dt = cfl h / U_ref (U_ref: coupling/reference_speed.hpp) when dt = 0; 0: cfl(Re, N) of
+                                 // coupling/step_rule.hpp (0.5 up to Re N = 5600: Re 175 at 32 cells/D; 0.21 at Re 1000)
+  double tau_p_fraction = 0.2;   // and dt ≤ this × τ_p = (m + ½ m_f)/(6π μ a), the smallest over the spheres, when dt = 0
   double theta = 0.5;            // implicit weight of the viscous term (0.5 Crank–Nicolson)
   double krylov_tol = 1e-8;      // GMRES relative residual of the force system
   int krylov_max_iter = 500;

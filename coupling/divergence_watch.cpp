@@ -9,8 +9,13 @@
 
 namespace imcol::coupling {
 
-DivergenceWatch::DivergenceWatch(const contact::CollisionModel& model, const Scene& sc, std::span<const double> y0, std::string step_rule)
-    : model_(model), sc_(sc), n_(model.n_spheres()), rule_(std::move(step_rule)) {
+bool is_solid_contact(contact::EventKind k) {
+  using K = contact::EventKind;
+  return k == K::contact_in || k == K::contact_out || k == K::unload || k == K::touch || k == K::start_in_contact;
+}
+
+DivergenceWatch::DivergenceWatch(const contact::CollisionModel& model, const Scene& sc, std::span<const double> y0, FlowStep step)
+    : model_(model), sc_(sc), n_(model.n_spheres()), step_(std::move(step)) {
   std::array<double, 2> u{};
   model_.sphere_states(y0, z0_, u);
   for (std::size_t m = 0; m < n_; ++m) {
@@ -49,9 +54,9 @@ bool DivergenceWatch::energy_exceeded(std::span<const double> y) const {
 
 void DivergenceWatch::fail(double t, const std::string& what) const {
   std::ostringstream os;
-  os << std::setprecision(4) << "the flow coupling diverged at t = " << t << " s: " << what << "; the flow kernel's step is too long for "
-     << "the fluid's speed (" << rule_ << "): lower flow.cfl or set a smaller flow.dt (if a smaller step fails sooner, the coupling's "
-     << "explicit fluid inertia is unstable for these spheres: docs/coupling.md \"Divergence\")";
+  os << std::setprecision(4) << "the flow coupling diverged at t = " << t << " s: " << what << "; " << step_advice(step_)
+     << " (if a smaller step fails sooner, the coupling's explicit fluid inertia is unstable for these spheres: docs/coupling.md "
+     << "\"Divergence\")";
   throw SolverError(os.str());
 }
 
@@ -59,8 +64,7 @@ std::string DivergenceWatch::energy_message(double t, std::span<const double> y,
   std::ostringstream os;
   os << std::setprecision(4) << "the flow coupling diverged by t = " << t << " s: the spheres' kinetic energy " << kinetic(y)
      << " J exceeds (1 + flow.energy_margin = " << sc_.flow.energy_margin << ") x the " << available(y)
-     << " J that the initial motion and gravity can supply; the flow kernel's step is too long for the fluid's speed (" << rule_
-     << "): lower flow.cfl or set a smaller flow.dt (then: " << then << ")";
+     << " J that the initial motion and gravity can supply; " << step_advice(step_) << " (then: " << then << ")";
   return os.str();
 }
 
@@ -94,7 +98,7 @@ void DivergenceWatch::check_step(double t0, double t1, const std::array<double, 
   // sphere around or sets a target moving within one flow step: the speed jump is not judged there.
   bool contact = false;
   for (const auto& ev : model_.events())
-    if (ev.t >= t0 && ev.t <= t1 && ev.name.find("delta_ss") != std::string::npos) contact = true;
+    if (ev.t >= t0 && ev.t <= t1 && is_solid_contact(ev.kind)) contact = true;
   const double gap = n_ == 2 ? z[1] - z[0] - model_.radius(0) - model_.radius(1)
                              : (sc_.wall ? sc_.wall->position - z[0] - model_.radius(0) : 1e300);
   if (gap <= model_.delta_ss_m()) contact = true;

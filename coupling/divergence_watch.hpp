@@ -18,13 +18,18 @@
 
 #include "contact/collision_model.hpp"
 #include "core/scene.hpp"
+#include "coupling/step_rule.hpp"
 
 namespace imcol::coupling {
 
+/// Whether an event is solid contact (the δ_SS crossings, unloading, the gap closing, a start in contact): a flow step
+/// holding one is not judged by the speed jump.
+bool is_solid_contact(contact::EventKind kind);
+
 class DivergenceWatch {
  public:
-  /// `step_rule`: how the flow step was chosen (for the message), e.g. "flow.cfl = 0.37 (the Re rule), dt = 1e-4 s".
-  DivergenceWatch(const contact::CollisionModel& model, const Scene& sc, std::span<const double> y0, std::string step_rule);
+  /// `step`: the flow step and how it was chosen (its rule and advice go into the message, step_advice()).
+  DivergenceWatch(const contact::CollisionModel& model, const Scene& sc, std::span<const double> y0, FlowStep step);
   /// Before integrating [t, t + dt]: the force the kernel adds, (1 − H) f_rest on each sphere (N), at the state y.
   void check_kernel_force(double t, double dt, const std::array<double, 2>& f_acting, std::span<const double> y);
   /// After integrating [t0, t1] from y0 to y1 (y0's velocities as u0).
@@ -46,7 +51,7 @@ class DivergenceWatch {
   std::array<double, 2> z0_{}, m_{}, mf_{};
   double e0_ = 0, g_ = 0, e_abs_ = 0;
   double max_ratio_ = 0;
-  std::string rule_;
+  FlowStep step_;
 };
 
 }  // namespace imcol::coupling

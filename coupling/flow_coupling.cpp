@@ -137,9 +137,9 @@ void FlowCoupling::start_up() {
   // the approach, the spheres, and room ahead of and behind the pair (its wake) in the direction of motion.
   const double h = D_ / fs.cells_per_diameter;
   const double u_mid = n_ == 2 ? 0.5 * (sc_.spheres[0].velocity + sc_.spheres[1].velocity) : sc_.spheres[0].velocity;
-  const FlowStep step = flow_step(sc_, h, u_ref_);
+  const FlowStep step = flow_step(sc_, h);
   const double dt = step.dt;
-  step_rule_ = step.rule;
+  step_ = step;
   stats_.cfl = step.cfl;
   double t_pre = dt;  // impulsive: one prescribed step
   if (fs.start == FlowStart::developed) {
@@ -280,7 +280,7 @@ void FlowCoupling::maybe_snapshot(double t, double gap) {
 SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) {
   start_up();
   Integrator integ(model_, st, observer);
-  DivergenceWatch watch(model_, sc_, integ.state(), step_rule_);
+  DivergenceWatch watch(model_, sc_, integ.state(), step_);
   const double dt = stats_.dt;
   // The start-up's last force is the one the spheres first feel: a kernel that diverged while the flow developed
   // shows here, before the integrator turns it into an impossible impact.

@@ -26,6 +26,7 @@
 
 #include "contact/collision_model.hpp"
 #include "core/scene.hpp"
+#include "coupling/step_rule.hpp"
 #include "flow/snapshot.hpp"
 #include "flow/solver.hpp"
 #include "integrators/integrator.hpp"
@@ -92,7 +93,7 @@ class FlowCoupling {
   std::array<double, 2> kernel_u_{};         // lab velocities the kernel last imposed (m/s)
   std::array<double, 2> f_rest_{};           // f_rest at the last flow time
   std::array<double, 2> start_force_{};      // f_rest at the end of the start-up
-  std::string step_rule_;                    // how the flow step was chosen (coupling/step_rule.hpp), for messages
+  FlowStep step_;                            // the flow step and how it was chosen (coupling/step_rule.hpp)
   bool have_f_rest_ = false;
   FlowRunStats stats_;
   std::vector<FlowSnapshot> snaps_;

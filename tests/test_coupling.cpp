@@ -10,7 +10,11 @@
 #include <string>
 
 #include "run/simulate.hpp"
+#include "contact/collision_model.hpp"
 #include "core/errors.hpp"
+#include "coupling/divergence_watch.hpp"
+#include "coupling/step_rule.hpp"
+#include "integrators/integrator.hpp"
 #include "core/scene.hpp"
 #include "flow/flow_scene.hpp"
 
@@ -168,6 +172,8 @@ position = 0.013
   EXPECT_NE(error_of(base + "[flow]\ncells_per_diameter = 2\n").find("flow.cells_per_diameter"), std::string::npos);
   EXPECT_NE(error_of(base + "[flow]\nstart = \"warm\"\n").find("flow.start"), std::string::npos);
   EXPECT_NE(error_of(base + "[flow]\ndt = 0.001\ncfl = 0.3\n").find("either dt or cfl"), std::string::npos);
+  EXPECT_NE(error_of(base + "[flow]\ntau_p_fraction = 0.0\n").find("s.toml:15: key 'flow.tau_p_fraction'"), std::string::npos);
+  EXPECT_NE(error_of(base + "[flow]\ndt = 0.001\ntau_p_fraction = 0.3\n").find("either dt or tau_p_fraction"), std::string::npos);
   std::string no_effect = base;
   no_effect.replace(no_effect.find(",\"flow\""), 7, "");
   EXPECT_NE(error_of(no_effect + "[flow]\nlevels = 3\n").find("needs the 'flow' effect"), std::string::npos);
@@ -275,4 +281,125 @@ TEST(Coupling, TheDefaultFlowStepIsStableAtReynolds1000) {
   EXPECT_LT(e, s["contact"]["e_dry"].get<double>());
   EXPECT_LE(s["flow"]["max_energy_ratio"].get<double>(), 1.0);
   EXPECT_LT(s["flow"]["max_courant"].get<double>(), 1.5);
+}
+
+TEST(Coupling, TheSpeedJumpCheckKnowsSolidContactByTheEventKind) {
+  // The first rebound's measurement root "gap=max(at_gap, delta_ss+fit_distance) (out)" names delta_ss but is no
+  // contact: the speed-jump check goes by the event's kind, not its name.
+  const Scene sc = load_scene(scene_path("default.toml"));
+  contact::CollisionModel model(sc);
+  struct : Observer {
+    void sample(double, std::span<const double>, bool) override {}
+  } quiet;
+  integrate(model, IntegratorSettings{}, quiet);
+  int in = 0, out = 0, measure = 0;
+  for (const auto& ev : model.events()) {
+    if (ev.kind == contact::EventKind::contact_in) {
+      ++in;
+      EXPECT_EQ(ev.name, "gap=delta_ss (in)");
+    }
+    if (ev.kind == contact::EventKind::contact_out) {
+      ++out;
+      EXPECT_EQ(ev.name, "gap=delta_ss (out)");
+    }
+    if (ev.kind == contact::EventKind::measure_out) {
+      ++measure;
+      EXPECT_NE(ev.name.find("delta_ss"), std::string::npos) << ev.name;
+      EXPECT_FALSE(coupling::is_solid_contact(ev.kind));
+    }
+    if (ev.kind == contact::EventKind::contact_in || ev.kind == contact::EventKind::contact_out) EXPECT_TRUE(coupling::is_solid_contact(ev.kind));
+  }
+  EXPECT_EQ(in, 1);
+  EXPECT_EQ(out, 1);
+  EXPECT_EQ(measure, 1);
+  EXPECT_TRUE(coupling::is_solid_contact(contact::EventKind::touch));
+  EXPECT_FALSE(coupling::is_solid_contact(contact::EventKind::blend_edge));
+}
+
+TEST(Coupling, TheStepRuleScalesAStartFromRestByTheSpeedItCanReach) {
+  // free_fall_re100 without its flow.dt: U_ref is the terminal speed on the standard drag curve (0.3469 m/s, the
+  // scene's comment), not 0 (which gave the viscous step and a Courant number near 2 at t = 0.21 s).
+  Scene sc = load_scene(scene_path("coupled/free_fall_re100.toml"));
+  sc.flow.dt = 0;
+  const coupling::ReferenceSpeed u = coupling::reference_speed(sc);
+  EXPECT_NEAR(u.u, 0.3469, 0.002);
+  EXPECT_NE(u.source.find("terminal speed"), std::string::npos) << u.source;
+  const coupling::FlowStep st = coupling::flow_step(sc, 0.01 / 24);
+  EXPECT_EQ(st.limit, coupling::StepLimit::courant);
+  EXPECT_NEAR(st.cfl, 0.5, 1e-12);  // Re 100 x 24 cells/D < 5600
+  EXPECT_NEAR(st.dt, 0.5 * 0.01 / 24 / u.u, 1e-12);
+  EXPECT_NE(st.rule.find("Re = 100"), std::string::npos) << st.rule;
+  // Near a wall the fall bounds it: from rest 0.2 D above the plate, √(2 g' L) with g' = g (ρ_p − ρ_f)/(ρ_p + ρ_f/2).
+  Scene w = sc;
+  w.wall = WallSpec{};
+  w.wall->position = 0.005 + 0.002;  // + is toward the target: gravity must point there
+  w.gravity = 9.81;
+  const double g_eff = 9.81 * 1000.0 / 2500.0;
+  EXPECT_NEAR(coupling::reference_speed(w).u, std::sqrt(2 * g_eff * 0.002), 1e-9);
+  // Away from the wall (buoyancy lifts it): the terminal speed again.
+  w.gravity = -9.81;
+  EXPECT_NEAR(coupling::reference_speed(w).u, u.u, 1e-9);
+  // The file's flow.dt is kept.
+  const coupling::FlowStep given = coupling::flow_step(load_scene(scene_path("coupled/free_fall_re100.toml")), 0.01 / 24);
+  EXPECT_EQ(given.dt, 0.0005);
+  EXPECT_EQ(given.limit, coupling::StepLimit::given);
+}
+
+TEST(Coupling, ALowReynoldsSphereRunsSaneAtTheDefaultStep) {
+  // Glass, D = 3 mm, U = 0.05 m/s, mu = 1 Pa s (Re = 0.15), 12 cells/D, 1 D from a wall. The Courant step (cfl 0.5:
+  // 2.5 ms) is 1.6 tau_p: the explicit fluid force overshoots and the run diverged. The default step is
+  // flow.tau_p_fraction x tau_p; the sphere then slows without reversing (no oscillation) and never gains energy.
+  const std::string text = std::string(R"(effects = ["drag", "lubrication", "added_mass", "history", "elastic", "flow"]
+[fluid]
+density = 1000.0
+viscosity = 1.0
+[[sphere]]
+material = "glass"
+diameter = 0.003
+position = 0.0
+velocity = 0.05
+[wall]
+material = "glass"
+position = 0.0045
+[flow]
+cells_per_diameter = 12
+levels = 3
+fields = false
+[solver]
+t_end = 0.02
+)");
+  const Scene sc = parse_scene(text, "low_re.toml");
+  const double tau_p = coupling::relaxation_time(sc, 0);
+  const double rho_p = sc.spheres[0].density;
+  EXPECT_NEAR(tau_p, (rho_p + 500.0) * 0.003 * 0.003 / 18.0, 1e-12);
+  const coupling::FlowStep st = coupling::flow_step(sc, 0.003 / 12);
+  EXPECT_EQ(st.limit, coupling::StepLimit::relaxation);
+  EXPECT_NEAR(st.dt, sc.flow.tau_p_fraction * tau_p, 1e-15);
+  const RunResult r = simulate(sc);
+  EXPECT_LE(r.summary["flow"]["max_energy_ratio"].get<double>(), 1.0);
+  const std::size_t iu = column(r, "u1");
+  int reversals = 0;
+  for (std::size_t k = 1; k < r.rows.size(); ++k)
+    if (r.rows[k][0] > 3 * tau_p && r.rows[k][iu] * r.rows[k - 1][iu] < 0) ++reversals;
+  EXPECT_EQ(reversals, 0);
+  // At the Courant step alone (tau_p_fraction large) the run ends with exit 3 naming the flow coupling and flow.cfl.
+  Scene courant = sc;
+  courant.flow.tau_p_fraction = 1e6;
+  try {
+    simulate(courant);
+    ADD_FAILURE() << "the run at 1.6 tau_p was accepted";
+  } catch (const SolverError& e) {
+    EXPECT_NE(std::string(e.what()).find("the flow coupling diverged"), std::string::npos) << e.what();
+  }
+  // A divergence while tau_p limits the step names tau_p, not the fluid's speed.
+  Scene tau = sc;
+  tau.flow.tau_p_fraction = 1.0;
+  try {
+    simulate(tau);
+    ADD_FAILURE() << "the run at 1.0 tau_p was accepted";
+  } catch (const SolverError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("flow.tau_p_fraction"), std::string::npos) << m;
+    EXPECT_EQ(m.find("the fluid's speed"), std::string::npos) << m;
+  }
 }
