@@ -2,7 +2,8 @@
 // Detects a coupled run that is no longer physical (docs/coupling.md "Divergence"): the flow kernel's explicit AB2
 // advection breaks when the fluid's Courant number nears 1, and the partitioned f_SIM then feeds the spheres energy
 // that nothing supplies. Three checks, all thresholds [flow] settings:
-//   energy:      Σ ½ m_m u_m² > (1 + energy_margin) E_avail(t) + ½ m_1 (1 µm/s)², with
+//   energy:      Σ ½ m_m u_m² > (1 + energy_margin) E_avail(t) + E_floor, E_floor = ½ m_1 (1 µm/s)² + Σ |m_m − m_f,m| |g| h
+//                (h the finest spacing: the net weight's work over one cell, below what the kernel resolves), with
 //                E_avail(t) = Σ ½ (m_m + m_f,m) u_m(0)² + max(0, Σ (m_m − m_f,m) g (z_m(t) − z_m(0)))
 //                (J: the initial motion of the spheres and of the fluid they displace — more than the added mass's
 //                ½ m_f — plus the work of gravity and buoyancy so far);
