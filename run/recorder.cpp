@@ -46,10 +46,7 @@ double measure_interval(const contact::CollisionModel& model, const Scene& sc) {
 }
 
 Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces, double sample_dt)
-    : model_(model), sc_(sc), sample_dt_(sample_dt > 0 ? sample_dt : sc.output.dt), next_row_(sc.output.dt),
-      // Near contact every sample is kept: within 10 contact_ends windows' travel of the contact zone (at least 0.1 D).
-      dense_gap_(model.has_target() ? model.delta_ss_m() + std::max(0.1, 10 * sc.measure.ends_distance) * 2 * model.radius(0) : 0.0),
-      min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
+    : model_(model), sc_(sc), sample_dt_(sample_dt > 0 ? sample_dt : sc.output.dt), next_row_(sc.output.dt), min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
   const bool pair = model.n_spheres() == 2;
   columns_ = {"t", "z1", "u1"};
   if (model.has_target()) columns_.push_back("gap");
@@ -84,7 +81,7 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
     const Evaluation kin = model_.kinematic_state(y);
     if (model_.has_target()) {
       min_gap_ = std::min(min_gap_, kin.gap);
-      if (kin.gap < dense_gap_) add_to_track(t, kin);
+      add_to_track(t, kin);
     }
     if (progress_) show_progress(t);
     return;
