@@ -326,6 +326,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     sc.measure.samples_per_window = static_cast<int>(spw);
     sc.measure.disagreement = r.number("disagreement", sc.measure.disagreement);
     r.in_range("disagreement", sc.measure.disagreement, 0.0, 1.0, true, false);
+    sc.measure.max_samples = r.number("max_samples", sc.measure.max_samples);
+    r.in_range("max_samples", sc.measure.max_samples, 1e3, 1e9, false, false);
     r.finish();
   }
   if (sc.measure.instant_gap < 0) sc.measure.instant_gap = sc.contact.delta_ss;

@@ -134,6 +134,7 @@ struct Scene {
     double ends_distance = 0.02;  // units of D: contact_ends fits over the time to travel this at the impact speed
     int samples_per_window = 32;  // the measures' own sampling: at least this many samples per contact_ends window
     double disagreement = 0.05;   // warn where a named measure's e differs from `e` by more than this
+    double max_samples = 1e7;     // refuse a run whose measures would sample it more often than this up to t_end
   } measure;
   struct Output { double dt = 0; } output;
   FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect  // s, trajectory sampling; 0 = window/100

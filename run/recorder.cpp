@@ -4,7 +4,10 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <unistd.h>
+
+#include "core/errors.hpp"
 
 namespace imcol::run {
 
@@ -25,24 +28,58 @@ constexpr ForceColumn kForceColumns[] = {
     {Effect::gravity, "f_grav", &SphereForces::gravity},    {Effect::history, "f_hist", &SphereForces::history},
     {Effect::flow, "f_sim", &SphereForces::f_sim},          {Effect::flow, "f_thr", &SphereForces::f_thr}};
 
+/// Terminal speed (m/s) of sphere m under gravity alone with the scene's steady drag (MODEL.md §2.1):
+/// |ρ_p − ρ_f| g V = 6πμ a U φ(Re), φ = 1 (stokes) or 1 + 0.15 Re^0.687 (schiller-naumann); by bisection.
+double terminal_speed(const Scene& sc, std::size_t m) {
+  const auto& sp = sc.spheres[m];
+  const double a = sp.diameter / 2, mu = sc.fluid->viscosity, rho_f = sc.fluid->density;
+  const double u_stokes = 2.0 / 9.0 * std::abs(sp.density - rho_f) * std::abs(sc.gravity) * a * a / mu;
+  if (sc.drag.law == DragLaw::stokes || !(u_stokes > 0)) return u_stokes;
+  double lo = 0, hi = u_stokes;  // φ ≥ 1: the Stokes speed bounds it
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+    const double u = 0.5 * (lo + hi), re = rho_f * sp.diameter * u / mu;
+    (u * (1 + 0.15 * std::pow(re, 0.687)) > u_stokes ? hi : lo) = u;
+  }
+  return hi;
+}
+
+/// An upper bound of the impact speed (m/s): the initial approach plus a fall over the initial gap at the buoyant
+/// acceleration of the densest contrast (no drag, no added mass), for either sphere; with drag, no sphere is faster than
+/// the larger of its initial and its terminal speed.
+double impact_speed_bound(const contact::CollisionModel& model, const Scene& sc) {
+  double u = std::abs(model.initial_u_rel());
+  if (!sc.has(Effect::gravity)) return u;
+  const double rho_f = sc.fluid ? sc.fluid->density : 0.0;
+  double g = 0, u_drag = 0;
+  for (std::size_t m = 0; m < model.n_spheres(); ++m) {
+    g += std::abs(sc.gravity) * std::abs(1 - rho_f / sc.spheres[m].density);
+    if (sc.fluid && sc.has(Effect::drag)) u_drag += std::max(std::abs(sc.spheres[m].velocity), terminal_speed(sc, m));
+  }
+  u += std::sqrt(2 * g * std::max(0.0, model.initial_gap()));
+  return sc.fluid && sc.has(Effect::drag) ? std::min(u, std::max(u_drag, std::abs(model.initial_u_rel()))) : u;
+}
+
 }  // namespace
 
 double measure_interval(const contact::CollisionModel& model, const Scene& sc) {
   const double dt = sc.output.dt;
   if (!model.has_target()) return dt;
-  // An upper bound of the impact speed: the initial approach plus a fall over the initial gap at the buoyant
-  // acceleration of the densest contrast (no drag, no added mass), for either sphere.
-  double u = std::abs(model.initial_u_rel());
-  if (sc.has(Effect::gravity)) {
-    const double rho_f = sc.fluid ? sc.fluid->density : 0.0;
-    double g = 0;
-    for (std::size_t m = 0; m < model.n_spheres(); ++m) g += std::abs(sc.gravity) * std::abs(1 - rho_f / sc.spheres[m].density);
-    u += std::sqrt(2 * g * std::max(0.0, model.initial_gap()));
-  }
+  const double u = impact_speed_bound(model, sc);
   if (!(u > 0)) return dt;
   const double window = sc.measure.ends_distance * 2 * model.radius(0) / u;
   const double n = std::ceil(dt * sc.measure.samples_per_window / window);
-  return n > 1 ? dt / n : dt;
+  const double interval = n > 1 ? dt / n : dt;
+  // Every sample is kept (56 bytes) and costs an interpolation: refuse a run that would take too many.
+  const double count = sc.solver.t_end / interval;
+  if (count > sc.measure.max_samples) {
+    std::ostringstream os;
+    os << "the measures would sample the run " << fmt_number(count) << " times (every " << fmt_number(interval)
+       << " s up to t_end, " << sc.measure.samples_per_window << " samples per contact_ends window at an impact speed of up to "
+       << fmt_number(u) << " m/s), more than measure.max_samples = " << fmt_number(sc.measure.max_samples)
+       << ": raise measure.ends_distance, lower measure.samples_per_window or solver.t_end";
+    throw InputError(sc.path, sc.measure.samples_per_window != decltype(sc.measure){}.samples_per_window ? "measure.samples_per_window" : "measure.ends_distance", os.str());
+  }
+  return interval;
 }
 
 Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces, double sample_dt)

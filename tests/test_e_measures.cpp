@@ -11,9 +11,11 @@
 #include <string>
 
 #include "apps/sweep.hpp"
+#include "contact/collision_model.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"
+#include "run/recorder.hpp"
 #include "run/simulate.hpp"
 #include "tests/scene_text.hpp"
 
@@ -98,6 +100,34 @@ TEST(EMeasures, EveryNamedMeasureIsIndependentOfOutputDt) {
         if (w.is_number()) EXPECT_NEAR(w.get<double>(), v["e"].get<double>(), 1e-5) << "contact " << k + 1 << " " << m;
       }
   }
+}
+
+TEST(EMeasures, TooManyMeasureSamplesAreRefusedNamingTheKey) {
+  // default.toml (0.3 m/s, D = 12.7 mm, t_end 1 s): a window of 1e-5 D is 0.42 us, 32 samples each: 7.6e7 samples.
+  auto refused = [](const std::vector<Override>& ov, const std::string& key) {
+    try {
+      simulate(load_scene(scene_file("default"), ov), false, Recording::kinematics);
+      ADD_FAILURE() << key << ": not refused";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), key) << e.what();
+      EXPECT_NE(std::string(e.what()).find("measure.max_samples"), std::string::npos) << e.what();
+    }
+  };
+  refused({{"measure.ends_distance", "1e-5"}}, "measure.ends_distance");
+  refused({{"measure.ends_distance", "1e-3"}, {"measure.samples_per_window", "10000"}}, "measure.samples_per_window");
+  refused({{"measure.ends_distance", "1e-3"}, {"measure.max_samples", "1e5"}}, "measure.ends_distance");
+  // A 2 mm steel sphere released 2 m above a wall in a viscous liquid: a free fall would reach 5.8 m/s (9.4e7 samples
+  // over 20 s); with drag its speed stays below the Stokes terminal speed, 0.15 m/s (2.4e6 samples).
+  const std::string tall = "gravity = 9.81\n" + test::fluid(0.1, 1000) + test::sphere("steel", 0.002, -2.001, 0.0) +
+                           test::wall("glass", 0.0) + "[drag]\nlaw = \"stokes\"\n[solver]\nt_end = 20.0\n[output]\ndt = 1e-2\n";
+  const Scene with_drag = parse_scene(tall, "tall.toml");
+  const contact::CollisionModel model(with_drag);
+  const double dt = run::measure_interval(model, with_drag);
+  EXPECT_LT(with_drag.solver.t_end / dt, 1e7);
+  EXPECT_GT(with_drag.solver.t_end / dt, 1e6);
+  const Scene no_drag = parse_scene(tall, "tall.toml", {{"effects", "[\"lubrication\", \"added_mass\", \"elastic\", \"gravity\"]"}});
+  const contact::CollisionModel model2(no_drag);
+  EXPECT_THROW(run::measure_interval(model2, no_drag), InputError);
 }
 
 TEST(EMeasures, DefaultIsNotBiasedByGravity) {
