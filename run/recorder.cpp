@@ -66,7 +66,10 @@ double measure_interval(const contact::CollisionModel& model, const Scene& sc) {
   if (!model.has_target()) return dt;
   const double u = impact_speed_bound(model, sc);
   if (!(u > 0)) return dt;
-  const double window = sc.measure.ends_distance * 2 * model.radius(0) / u;
+  // The contact_ends window; for a start inside the contact zone, which shortens the zone to the initial gap, at most the
+  // time to cross that gap: the liquid film there can brake the rebound within a small part of the window.
+  const double distance = sc.measure.ends_distance * 2 * model.radius(0);
+  const double window = (model.started_in_contact() ? std::min(distance, model.delta_ss_m()) : distance) / u;
   const double n = std::ceil(dt * sc.measure.samples_per_window / window);
   const double interval = n > 1 ? dt / n : dt;
   // Every sample is kept (56 bytes) and costs an interpolation: refuse a run that would take too many.

@@ -130,6 +130,38 @@ TEST(EMeasures, TooManyMeasureSamplesAreRefusedNamingTheKey) {
   EXPECT_THROW(run::measure_interval(model2, no_drag), InputError);
 }
 
+TEST(EMeasures, AReboundTheFilmBrakesWithinTheWindowIsFittedOverAShorterWindowAndWarned) {
+  // Started 1e-4 D from the wall at 0.01 m/s: the 0.02 D window is 25 ms, but the liquid film brakes the rebound to a
+  // stop within 0.006 D. The window ends where U_rel has lost a quarter of its speed at the separation (0.57 ms).
+  const auto s = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml"), false, Recording::kinematics).summary;
+  double u_in = NAN, u_out = NAN;
+  for (const auto& ev : s["events"]) {
+    if (ev["event"] == "start inside the contact zone") u_in = ev["u_rel_m_s"].get<double>();
+    if (ev["event"] == "gap=delta_ss (out)" && std::isnan(u_out)) u_out = ev["u_rel_m_s"].get<double>();
+  }
+  ASSERT_TRUE(std::isfinite(u_in) && std::isfinite(u_out));
+  ASSERT_EQ(s["e_is"], "contact_ends");
+  const double e = s["e"].get<double>(), e_sep = -u_out / u_in;
+  EXPECT_NEAR(e, e_sep, 0.05) << "separation-speed ratio " << e_sep;
+  const auto& ce = s["e_measures"]["contact_ends"];
+  EXPECT_EQ(ce["shortened_by"], "rebound speed change");
+  EXPECT_LT(ce["window_s"].get<double>(), 0.1 * ce["shortened_from_s"].get<double>());
+  // The end slope misses U_rel at the separation by more than measure.ends_tolerance (0.02): the run says so.
+  const double mis = ce["end_mismatch"]["rebound"].get<double>();
+  EXPECT_NEAR(mis, std::abs(e - e_sep), 1e-9);
+  EXPECT_GT(mis, 0.02);
+  bool warned = false;
+  for (const auto& w : s["warnings"]) warned = warned || w.get<std::string>().find("measure.ends_tolerance") != std::string::npos;
+  EXPECT_TRUE(warned) << s["warnings"].dump();
+  // Not with a tolerance above the mismatch; and e does not move with output.dt.
+  const auto loose = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml", {{"measure.ends_tolerance", "0.05"}}),
+                              false, Recording::kinematics).summary;
+  for (const auto& w : loose["warnings"]) EXPECT_EQ(w.get<std::string>().find("measure.ends_tolerance"), std::string::npos) << w;
+  const auto coarse = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml", {{"output.dt", "1e-2"}}),
+                               false, Recording::kinematics).summary;
+  EXPECT_NEAR(coarse["e"].get<double>(), e, 1e-5);
+}
+
 TEST(EMeasures, DefaultIsNotBiasedByGravity) {
   // A 6 mm steel sphere at terminal speed onto glass in silicone oil (St ~ 22): the 10 ms line (fit_time) averages
   // the deceleration of the rise; the parabolas at the contact's ends do not, and agree with e_instant.
