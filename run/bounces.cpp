@@ -115,6 +115,7 @@ nlohmann::ordered_json fit_time_measure(const Track& tr, const std::vector<doubl
   std::optional<double> ur = f.sep ? fitted_u(tr, rate, f.t_sep, f.t_sep + Wk) : std::optional<double>(0.0);
   put_e(ft, ui, ur, "the rebound fit's slope points toward the target: the sphere fell back within the window; e clipped to 0");
   ft["window_s"] = Wk;
+  ft["cut_by_end_of_run"] = f.sep && f.last && f.t_next - f.t_sep < W * (1 - 1e-9) && Wk == f.t_next - f.t_sep;
   if (!f.sep && ft["e"].is_number()) ft["e"] = 0.0;
   return ft;
 }

@@ -245,6 +245,32 @@ TEST(EMeasures, ARunThatEndedAtRestIsMeasuredAndASweepGivesNoUselessHint) {
   fs::remove_all(dir);
 }
 
+TEST(EMeasures, TEndTooShortIsJudgedByTheMeasureThatEIs) {
+  // default.toml separates at 22.3 ms; t_end = 24.5 ms cuts the 10 ms lines (fit_time) but not the 0.88 ms parabolas.
+  const std::vector<Override> ov = {{"solver.t_end", "0.0245"}};
+  auto cut_warning = [](const nlohmann::ordered_json& s) {
+    for (const auto& w : s["warnings"])
+      if (w.get<std::string>().find("t_end cut") != std::string::npos) return true;
+    return false;
+  };
+  const auto ce = simulate(load_scene(scene_file("default"), ov), false, Recording::kinematics).summary;
+  ASSERT_EQ(ce["e_is"], "contact_ends");
+  ASSERT_TRUE(ce["e"].is_number());
+  EXPECT_LT(ce["solver"]["t_final_s"].get<double>(), ce["bounces"][0]["t_separation_s"].get<double>() + 0.010);
+  EXPECT_FALSE(ce["t_end_too_short"].get<bool>());
+  EXPECT_FALSE(cut_warning(ce)) << ce["warnings"].dump();
+  EXPECT_FALSE(ce["e_measures"]["contact_ends"]["cut_by_end_of_run"].get<bool>());
+  auto ov_ft = ov;
+  ov_ft.push_back({"measure.e", "\"fit_time\""});
+  const auto ft = simulate(load_scene(scene_file("default"), ov_ft), false, Recording::kinematics).summary;
+  ASSERT_EQ(ft["e_is"], "fit_time");
+  EXPECT_TRUE(ft["t_end_too_short"].get<bool>());
+  EXPECT_TRUE(cut_warning(ft)) << ft["warnings"].dump();
+  // A window cut by t_end, not by the stop after the first rebound: the default t_end gives neither.
+  EXPECT_FALSE(simulate(load_scene(scene_file("default"), {{"measure.e", "\"fit_time\""}}), false, Recording::kinematics)
+                   .summary["t_end_too_short"].get<bool>());
+}
+
 TEST(EMeasures, APointThatNoTEndMeasuresSaysWhyWithoutAdvice) {
   // A start far from the wall with a tiny t_end: no collision by t_end. The sweep's retries (t_end x4) do not reach
   // contact either, so the message says why and that the longer t_end did not help.
