@@ -287,6 +287,22 @@ nlohmann::ordered_json peak_rebound_measure(const Track& tr, const Flights& f) {
 
 }  // namespace
 
+std::string measure_label(const Scene& sc, const std::string& name) {
+  // Pairs identical by construction: the generic measure first, the paper's procedure second.
+  const struct {
+    const char *generic, *paper;
+    bool same;
+  } pairs[] = {{"fit_time", "yang_hunt_2006", sc.measure.window == kYangHuntWindow},
+               {"fit_distance", "joseph_2001", sc.measure.fit_distance == kJosephDistance},
+               {"peak_rebound", "gondret_2002", true}};
+  for (const auto& p : pairs) {
+    if (!p.same) continue;
+    if (name == p.generic) return std::string(p.generic) + "/" + p.paper;
+    if (name == p.paper) return "";
+  }
+  return name;
+}
+
 nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene& sc, const Track& tr, std::vector<std::string>& warnings) {
   std::vector<Contact> cs;
   std::vector<Crossing> inst;
@@ -344,11 +360,15 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
     b["rebound_velocity_m_s"] = f.sep ? em[e_name].value("rebound_velocity_m_s", nlohmann::ordered_json(nullptr)) : nullptr;
     b["e_instant"] = em["instant"]["e"];
     put_apex(tr, f, b);
-    // The measures whose e differs from `e` by more than measure.disagreement.
+    // The distinct measures whose e differs from `e` by more than measure.disagreement (a pair identical by construction
+    // once, under both names).
     nlohmann::ordered_json dis = nlohmann::ordered_json::object();
     if (b["e"].is_number())
-      for (const auto& [name, m] : em.items())
-        if (m["e"].is_number() && std::abs(m["e"].get<double>() - b["e"].get<double>()) > sc.measure.disagreement) dis[name] = m["e"];
+      for (const auto& [name, m] : em.items()) {
+        const std::string label = measure_label(sc, name);
+        if (!label.empty() && m["e"].is_number() && std::abs(m["e"].get<double>() - b["e"].get<double>()) > sc.measure.disagreement)
+          dis[label] = m["e"];
+      }
     b["measures_disagree"] = dis;
     b["e_measures"] = em;
     out.push_back(b);

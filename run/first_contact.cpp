@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <tuple>
 
@@ -194,10 +195,19 @@ void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstConta
                            : "t_end ended the run before " + std::string(name) + " could measure the rebound");
   }
   if (m.e && !b["measures_disagree"].empty()) {
+    // One line: e and the distinct measures more than measure.disagreement from it, with their spread.
+    double lo = *m.e, hi = *m.e;
+    for (const auto& [k, v] : b["measures_disagree"].items()) {
+      lo = std::min(lo, v.get<double>());
+      hi = std::max(hi, v.get<double>());
+    }
+    std::string e_label = measure_label(sc, name);
+    if (e_label.empty()) e_label = name;
     std::ostringstream os;
-    os << "named measures of e disagree: e = " << *m.e << " (" << name << "), but";
-    for (const auto& [k, v] : b["measures_disagree"].items()) os << " " << k << " = " << v.get<double>() << ",";
-    os << " more than measure.disagreement = " << sc.measure.disagreement << " away (docs/bounces.md)";
+    os << std::fixed << std::setprecision(3) << "e depends on how it is measured here (spread " << hi - lo << "): " << e_label << " "
+       << *m.e << " (e)";
+    for (const auto& [k, v] : b["measures_disagree"].items()) os << ", " << k << " " << v.get<double>();
+    os << " (more than measure.disagreement = " << std::defaultfloat << sc.measure.disagreement << " from e; docs/bounces.md)";
     warnings.push_back(os.str());
   }
 }

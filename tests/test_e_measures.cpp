@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"
+#include "run/bounces.hpp"
 #include "run/recorder.hpp"
 #include "run/simulate.hpp"
 #include "tests/scene_text.hpp"
@@ -195,10 +196,29 @@ TEST(EMeasures, MeasureEPicksTheReportedMeasureAndDisagreementsAreNamed) {
   EXPECT_EQ(f["e_is"], "fit_time");
   EXPECT_DOUBLE_EQ(f["e"].get<double>(), f["e_measures"]["fit_time"]["e"].get<double>());
   EXPECT_DOUBLE_EQ(d["e"].get<double>(), d["e_measures"]["contact_ends"]["e"].get<double>());
-  ASSERT_TRUE(d["measures_disagree"].contains("fit_time"));
-  bool named = false;
-  for (const auto& w : d["warnings"]) named = named || w.get<std::string>().find("fit_time = ") != std::string::npos;
-  EXPECT_TRUE(named) << d["warnings"].dump();
+  // Measures identical by construction (fit_time over 10 ms = yang_hunt_2006, peak_rebound = gondret_2002) are compared
+  // once, under both names, and the warning is one line with the spread.
+  ASSERT_TRUE(d["measures_disagree"].contains("fit_time/yang_hunt_2006")) << d["measures_disagree"].dump();
+  EXPECT_FALSE(d["measures_disagree"].contains("fit_time"));
+  EXPECT_FALSE(d["measures_disagree"].contains("yang_hunt_2006"));
+  int named = 0;
+  for (const auto& w : d["warnings"]) {
+    const std::string t = w.get<std::string>();
+    if (t.find("e depends on how it is measured here (spread ") == std::string::npos) continue;
+    ++named;
+    EXPECT_NE(t.find("contact_ends "), std::string::npos) << t;
+    EXPECT_NE(t.find("fit_time/yang_hunt_2006 "), std::string::npos) << t;
+    EXPECT_EQ(t.find("yang_hunt_2006"), t.rfind("yang_hunt_2006")) << t;
+    EXPECT_EQ(t.find('\n'), std::string::npos) << t;
+  }
+  EXPECT_EQ(named, 1) << d["warnings"].dump();
+  // With another measure.window the two are different measures, compared under their own names.
+  const Scene other = parse_scene(bead, "bead.toml", {{"measure.window", "0.012"}, {"measure.fit_distance", "0.2"}});
+  EXPECT_EQ(run::measure_label(other, "fit_time"), "fit_time");
+  EXPECT_EQ(run::measure_label(other, "yang_hunt_2006"), "yang_hunt_2006");
+  EXPECT_EQ(run::measure_label(other, "joseph_2001"), "joseph_2001");
+  EXPECT_EQ(run::measure_label(other, "gondret_2002"), "");
+  EXPECT_EQ(run::measure_label(other, "peak_rebound"), "peak_rebound/gondret_2002");
   // The windows and the fitted parabolas are reported for the picture.
   const auto& ce = d["e_measures"]["contact_ends"];
   EXPECT_LT(ce["approach"]["t0_s"].get<double>(), ce["approach"]["t1_s"].get<double>());
