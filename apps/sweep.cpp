@@ -294,13 +294,14 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
     ++n_disagree;
     for (const auto& [k, v] : p.summary["measures_disagree"].items()) ++disagreeing[k];
   }
-  if (n_missing) std::cout << "e not measured at " << n_missing << " of " << ok << " points (status e_status = not_measured; the message says why)\n";
+  // One closing line (e_status in sweep.csv; each point's message says why).
+  if (n_missing) std::cout << "e not measured at " << n_missing << " of " << ok << " points (e_status = not_measured)";
   if (n_disagree) {
-    std::cout << "named measures disagree with e (" << to_string(base.measure.e) << ") by more than measure.disagreement at "
+    std::cout << (n_missing ? "; " : "") << "named measures disagree with e (" << to_string(base.measure.e) << ") by more than measure.disagreement at "
               << n_disagree << " of " << ok << " points:";
-    for (const auto& [k, n] : disagreeing) std::cout << " " << k << " (" << n << ")";
-    std::cout << "\n";
+    for (auto it = disagreeing.begin(); it != disagreeing.end(); ++it) std::cout << (it == disagreeing.begin() ? " " : ", ") << it->first << " (" << it->second << ")";
   }
+  if (n_missing || n_disagree) std::cout << " (docs/bounces.md)\n";
 
   nlohmann::ordered_json j;
   j["scene"] = base.name;

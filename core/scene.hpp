@@ -132,8 +132,11 @@ struct Scene {
     double at_gap = 0.1;        // units of D: e_measures.at_gap takes the velocities at this gap
     EMeasure e = EMeasure::contact_ends;  // the named measure reported as `e` (docs/bounces.md)
     double ends_distance = 0.02;  // units of D: contact_ends fits over the time to travel this at the impact speed
+    double ends_speed_change = 0.25;  // contact_ends windows end before U_rel has changed by more than this fraction
+    double ends_tolerance = 0.02;     // warn where contact_ends' end slopes differ from U_rel at δ_SS by more (× impact speed)
     int samples_per_window = 32;  // the measures' own sampling: at least this many samples per contact_ends window
     double disagreement = 0.05;   // warn where a named measure's e differs from `e` by more than this
+    double max_samples = 1e7;     // refuse a run whose measures would sample it more often than this up to t_end
   } measure;
   struct Output { double dt = 0; } output;
   FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect  // s, trajectory sampling; 0 = window/100

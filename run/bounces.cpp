@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <optional>
+#include <sstream>
 
 #include "core/measure.hpp"
 #include "run/json_util.hpp"
@@ -65,13 +67,14 @@ void put_e(nlohmann::ordered_json& j, std::optional<double> u_in, std::optional<
 /// One contact and the flights around it: the approach [t_from, t_in] and the rebound [t_sep, t_next].
 struct Contact {
   double t_in, u_in;
-  std::optional<double> t_out;
+  std::optional<double> t_out, u_out;  // the separation (outward δ_SS crossing) and U_rel there
 };
 struct Flights {
   const Contact& c;
   double t_from, t_next, t_sep;
   bool sep;      // the contact separated
   bool started;  // the run started inside this contact zone: its impact velocity is the initial one
+  bool last;     // the rebound's flight ends with the run (t_next is the run's last sample)
   std::size_t a0, a1, r0, r1;  // samples: approach [a0, a1], rebound [r0, r1] (r1 also bounds the apex search)
 };
 
@@ -82,6 +85,28 @@ double flight_window(const Flights& f, double W) {
   return Wk;
 }
 
+/// The time from t0 until U_rel first differs from u0 by more than `fraction` of |u0| (linear between samples), going
+/// forward (dir = +1) or backward (dir = −1) no further than t_stop; +inf if it does not.
+double speed_change_time(const Track& tr, double t0, double u0, double fraction, int dir, double t_stop) {
+  const double du = fraction * std::abs(u0);
+  if (dir > 0) {
+    for (std::size_t i = tr.first_at_or_after(t0); i < tr.t.size() && tr.t[i] <= t_stop; ++i) {
+      if (!(std::abs(tr.u[i] - u0) > du)) continue;
+      if (i == 0 || tr.t[i - 1] < t0) return tr.t[i] - t0;
+      const double a = std::abs(tr.u[i - 1] - u0), b = std::abs(tr.u[i] - u0);
+      return tr.t[i - 1] + (du - a) / (b - a) * (tr.t[i] - tr.t[i - 1]) - t0;
+    }
+  } else {
+    for (std::size_t i = tr.first_at_or_after(t0); i-- > 0 && tr.t[i] >= t_stop;) {
+      if (!(std::abs(tr.u[i] - u0) > du)) continue;
+      if (i + 1 >= tr.t.size() || tr.t[i + 1] > t0) return t0 - tr.t[i];
+      const double a = std::abs(tr.u[i + 1] - u0), b = std::abs(tr.u[i] - u0);
+      return t0 - (tr.t[i + 1] - (du - a) / (b - a) * (tr.t[i + 1] - tr.t[i]));
+    }
+  }
+  return INFINITY;
+}
+
 /// fit_time (and yang_hunt_2006): least-squares slopes over windows of W before the contact and after the separation.
 nlohmann::ordered_json fit_time_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double W) {
   nlohmann::ordered_json ft;
@@ -90,6 +115,7 @@ nlohmann::ordered_json fit_time_measure(const Track& tr, const std::vector<doubl
   std::optional<double> ur = f.sep ? fitted_u(tr, rate, f.t_sep, f.t_sep + Wk) : std::optional<double>(0.0);
   put_e(ft, ui, ur, "the rebound fit's slope points toward the target: the sphere fell back within the window; e clipped to 0");
   ft["window_s"] = Wk;
+  ft["cut_by_end_of_run"] = f.sep && f.last && f.t_next - f.t_sep < W * (1 - 1e-9) && Wk == f.t_next - f.t_sep;
   if (!f.sep && ft["e"].is_number()) ft["e"] = 0.0;
   return ft;
 }
@@ -105,17 +131,38 @@ nlohmann::ordered_json parabola(const Track& tr, const std::vector<double>& z, c
 /// contact_ends (the default e): parabolas z = z0 + U t + ½ a t² fitted by least squares to the gap over a window
 /// before the contact and after the separation, the velocities being their slopes at the contact's ends (the inward
 /// δ_SS crossing, the separation). The window is the time to travel `distance` (m) at the impact speed (U_rel at the
-/// inward δ_SS crossing), shortened alike to the flights. A steady force (gravity, drag nearly) is a constant
-/// acceleration: the parabola takes it up instead of tilting the velocity. A dry collision gives e = e_d exactly.
+/// inward δ_SS crossing), shortened alike to the flights and to where U_rel has changed by `speed_change` of its value
+/// at either end. A steady force (gravity, drag nearly) is a constant acceleration: the parabola takes it up instead of
+/// tilting the velocity. A dry collision gives e = e_d exactly. The end slopes are compared with U_rel at the δ_SS
+/// crossings (`end_mismatch`, in units of the impact speed); above `tolerance` the entry carries a `warning`.
 nlohmann::ordered_json contact_ends_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double distance,
-                                            bool pair) {
+                                            double speed_change, double tolerance, bool pair) {
   nlohmann::ordered_json ce;
   if (!(f.c.u_in > 0)) {
     put_e(ce, std::nullopt, std::nullopt, "");
     ce["missing"] = "no approach at the contact (U_rel <= 0 at the inward delta_ss crossing)";
     return ce;
   }
-  const double W = distance / f.c.u_in, Wk = flight_window(f, W);
+  const double W = distance / f.c.u_in;
+  // The window: W, or the shortest of the bounds below (both windows alike). A parabola describes the flight only while
+  // U_rel changes little: each window ends before U_rel has changed by more than speed_change of its value at the
+  // contact's end (under a constant deceleration, that fraction of the time to the apex or from the start of the fall).
+  double Wk = W;
+  std::string by;
+  auto bound = [&](double w, const char* why) {
+    if (w < Wk) {
+      Wk = w;
+      by = why;
+    }
+  };
+  if (!f.started) {
+    bound(f.c.t_in - f.t_from, "approach flight");
+    bound(speed_change_time(tr, f.c.t_in, f.c.u_in, speed_change, -1, f.t_from), "approach speed change");
+  }
+  if (f.sep) {
+    bound(f.t_next - f.t_sep, f.last ? "end of run" : "rebound flight");
+    if (f.c.u_out) bound(speed_change_time(tr, f.t_sep, *f.c.u_out, speed_change, +1, f.t_next), "rebound speed change");
+  }
   const double a0 = f.c.t_in - Wk, r1 = f.t_sep + Wk;
   std::optional<double> ui = f.started ? std::optional<double>(f.c.u_in) : fitted_u(tr, rate, a0, f.c.t_in, 2, f.c.t_in);
   std::optional<double> ur = f.sep ? fitted_u(tr, rate, f.t_sep, r1, 2, f.t_sep) : std::optional<double>(0.0);
@@ -123,7 +170,26 @@ nlohmann::ordered_json contact_ends_measure(const Track& tr, const std::vector<d
   if (!f.sep && ce["e"].is_number()) ce["e"] = 0.0;
   ce["distance_m"] = distance;
   ce["window_s"] = Wk;
-  if (Wk < W * (1 - 1e-9)) ce["shortened_from_s"] = W;
+  if (!by.empty()) {
+    ce["shortened_from_s"] = W;
+    ce["shortened_by"] = by;
+  }
+  ce["cut_by_end_of_run"] = by == "end of run";
+  // The end slopes against U_rel at the δ_SS crossings (the model's exact values), in units of the impact speed.
+  std::optional<double> mis_in, mis_out;
+  if (ui && !f.started) mis_in = std::abs(*ui - f.c.u_in) / f.c.u_in;
+  if (ur && f.sep && f.c.u_out) mis_out = std::abs(*ur - *f.c.u_out) / f.c.u_in;
+  ce["end_mismatch"] = {{"approach", or_null(mis_in)}, {"rebound", or_null(mis_out)}};
+  const bool bad_in = mis_in && *mis_in > tolerance, bad_out = mis_out && *mis_out > tolerance;
+  if (bad_in || bad_out) {
+    std::ostringstream os;
+    os << std::setprecision(3) << "the " << (bad_out ? "rebound" : "approach") << " parabola's slope at the "
+       << (bad_out ? "separation" : "contact") << " differs from U_rel at the delta_ss crossing by " << (bad_out ? *mis_out : *mis_in)
+       << " of the impact speed (more than measure.ends_tolerance = " << tolerance << "): U_rel changes fast there";
+    if (!by.empty()) os << " (window " << 1e3 * Wk << " ms, shortened from " << 1e3 * W << " ms by the " << by << ")";
+    os << ", so a parabola over a trajectory's stretch misses it";
+    ce["warning"] = os.str();
+  }
   // The windows and each sphere's fitted position in them (for trajectory.png).
   auto side = [&](double t0, double t1, double t_ref) {
     nlohmann::ordered_json s = {{"t0_s", t0}, {"t1_s", t1}, {"z1", parabola(tr, tr.z1, tr.u1, t0, t1, t_ref)}};
@@ -221,12 +287,31 @@ nlohmann::ordered_json peak_rebound_measure(const Track& tr, const Flights& f) {
 
 }  // namespace
 
+std::string measure_label(const Scene& sc, const std::string& name) {
+  // Pairs identical by construction: the generic measure first, the paper's procedure second.
+  const struct {
+    const char *generic, *paper;
+    bool same;
+  } pairs[] = {{"fit_time", "yang_hunt_2006", sc.measure.window == kYangHuntWindow},
+               {"fit_distance", "joseph_2001", sc.measure.fit_distance == kJosephDistance},
+               {"peak_rebound", "gondret_2002", true}};
+  for (const auto& p : pairs) {
+    if (!p.same) continue;
+    if (name == p.generic) return std::string(p.generic) + "/" + p.paper;
+    if (name == p.paper) return "";
+  }
+  return name;
+}
+
 nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene& sc, const Track& tr, std::vector<std::string>& warnings) {
   std::vector<Contact> cs;
   std::vector<Crossing> inst;
   for (const auto& ev : model.events()) {
     if (ev.name == "gap=delta_ss (in)" || ev.name == "start inside the contact zone") cs.push_back({ev.t, ev.u_rel, std::nullopt});
-    else if (ev.name == "gap=delta_ss (out)" && !cs.empty() && !cs.back().t_out) cs.back().t_out = ev.t;
+    else if (ev.name == "gap=delta_ss (out)" && !cs.empty() && !cs.back().t_out) {
+      cs.back().t_out = ev.t;
+      cs.back().u_out = ev.u_rel;
+    }
     else if (ev.name == "gap=instant_gap (in)") inst.push_back({ev.t, ev.u_rel, true});
     else if (ev.name == "gap=instant_gap (out)") inst.push_back({ev.t, ev.u_rel, false});
   }
@@ -238,12 +323,13 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
   const char* e_name = to_string(sc.measure.e);
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   bool any_clipped = false;
+  std::vector<std::size_t> ends_warned;  // contacts whose contact_ends e misses U_rel at the δ_SS crossings
   for (std::size_t k = 0; k < cs.size(); ++k) {
     const Contact& c = cs[k];
     const double t_from = k == 0 ? 0.0 : cs[k - 1].t_out.value_or(cs[k - 1].t_in);  // this approach's flight begins
     const double t_next = k + 1 < cs.size() ? cs[k + 1].t_in : t_final;               // the rebound's flight ends
     const double t_sep = c.t_out.value_or(t_next);
-    const Flights f{c, t_from, t_next, t_sep, c.t_out.has_value(), model.started_in_contact() && k == 0,
+    const Flights f{c, t_from, t_next, t_sep, c.t_out.has_value(), model.started_in_contact() && k == 0, k + 1 == cs.size(),
                     tr.first_at_or_after(t_from), tr.first_at_or_after(c.t_in), tr.first_at_or_after(t_sep),
                     std::min(tr.first_at_or_after(t_next), tr.t.size() - 1)};
     nlohmann::ordered_json b;
@@ -252,7 +338,8 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
     b["t_separation_s"] = or_null(c.t_out);
     b["impact_speed_at_delta_ss_m_s"] = c.u_in;
     nlohmann::ordered_json em;
-    em["contact_ends"] = contact_ends_measure(tr, rate, f, sc.measure.ends_distance * D, model.n_spheres() == 2);
+    em["contact_ends"] = contact_ends_measure(tr, rate, f, sc.measure.ends_distance * D, sc.measure.ends_speed_change,
+                                              sc.measure.ends_tolerance, model.n_spheres() == 2);
     em["yang_hunt_2006"] = fit_time_measure(tr, rate, f, kYangHuntWindow);
     em["yang_hunt_2006"]["reference"] = "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms";
     em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m() + kJosephDistance * D, kJosephDistance * D);
@@ -266,20 +353,31 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
     em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};
     for (const char* k2 : {"fit_time", "yang_hunt_2006"})
       if (em[k2].contains("e_raw")) any_clipped = true;
+    if (sc.measure.e == EMeasure::contact_ends && em["contact_ends"].contains("warning")) ends_warned.push_back(k + 1);
     b["e"] = em[e_name]["e"];
     b["e_is"] = e_name;
     b["impact_velocity_m_s"] = em[e_name].value("impact_velocity_m_s", nlohmann::ordered_json(nullptr));
     b["rebound_velocity_m_s"] = f.sep ? em[e_name].value("rebound_velocity_m_s", nlohmann::ordered_json(nullptr)) : nullptr;
     b["e_instant"] = em["instant"]["e"];
     put_apex(tr, f, b);
-    // The measures whose e differs from `e` by more than measure.disagreement.
+    // The distinct measures whose e differs from `e` by more than measure.disagreement (a pair identical by construction
+    // once, under both names).
     nlohmann::ordered_json dis = nlohmann::ordered_json::object();
     if (b["e"].is_number())
-      for (const auto& [name, m] : em.items())
-        if (m["e"].is_number() && std::abs(m["e"].get<double>() - b["e"].get<double>()) > sc.measure.disagreement) dis[name] = m["e"];
+      for (const auto& [name, m] : em.items()) {
+        const std::string label = measure_label(sc, name);
+        if (!label.empty() && m["e"].is_number() && std::abs(m["e"].get<double>() - b["e"].get<double>()) > sc.measure.disagreement)
+          dis[label] = m["e"];
+      }
     b["measures_disagree"] = dis;
     b["e_measures"] = em;
     out.push_back(b);
+  }
+  if (!ends_warned.empty()) {
+    std::ostringstream os;
+    os << "e (contact_ends) at contact " << ends_warned[0] << ": " << out[ends_warned[0] - 1]["e_measures"]["contact_ends"]["warning"].get<std::string>();
+    for (std::size_t i = 1; i < ends_warned.size(); ++i) os << (i == 1 ? "; also at contact " : ", ") << ends_warned[i];
+    warnings.push_back(os.str());
   }
   if (any_clipped)
     warnings.push_back("a rebound fit over a fixed window (fit_time, yang_hunt_2006) points toward the target (the sphere fell back "

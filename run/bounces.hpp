@@ -23,8 +23,14 @@ struct Track {
   std::size_t first_at_or_after(double t0) const;
 };
 
+/// The name under which measure `name` is compared and reported in measures_disagree: measures identical by construction
+/// at the scene's settings share one, e.g. "fit_time/yang_hunt_2006" (measure.window = 10 ms), "fit_distance/joseph_2001"
+/// (measure.fit_distance = 0.1), "peak_rebound/gondret_2002"; empty for the second name of such a pair.
+std::string measure_label(const Scene& sc, const std::string& name);
+
 /// One object per contact, in order: times, velocities and e of the measure measure.e names, e_instant, apex,
-/// `e_measures` and `measures_disagree` (those whose e differs from e by more than measure.disagreement).
+/// `e_measures` and `measures_disagree` (the distinct measures, by measure_label, whose e differs from e by more than
+/// measure.disagreement).
 /// Appends a warning when a fit e was clipped to 0.
 nlohmann::ordered_json measure_bounces(const contact::CollisionModel& model, const Scene& sc, const Track& tr,
                                        std::vector<std::string>& warnings);

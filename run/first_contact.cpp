@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <tuple>
 
@@ -91,10 +92,6 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
       m.u_r1 = g1->slope;
       m.u_r2 = g2->slope;
     }
-    if (m.separated && t_final < *model.t_separation() + W * (1 - 1e-9)) {
-      m.t_end_too_short = true;
-      warnings.push_back("t_end cut the rebound fit window short");
-    }
     if (m.u_i1 && m.u_r1) {
       if (m.separated) {
         m.e = restitution(*m.u_i1, *m.u_i2, *m.u_r1, *m.u_r2);
@@ -168,6 +165,7 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
   }
   // A run that ended at rest is complete: a longer t_end cannot change anything.
   if (model.t_at_rest()) m.t_end_too_short = false;
+  m.stopped_by_t_end = !model.t_at_rest() && t_final >= sc.solver.t_end * (1 - 1e-12);
 
   return m;
 }
@@ -189,11 +187,27 @@ void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstConta
     if (!m.e_missing) m.e_missing = std::string(name) + ": " + em.value("missing", std::string("the measure could not be taken"));
     warnings.push_back("e is undefined: " + *m.e_missing);
   }
+  // t_end too short: judged by the measure e is, when the run stopped at t_end (not at rest, not by measure.bounces):
+  // its rebound window was cut by the run's end, or it could not be taken.
+  if (m.stopped_by_t_end && (em.value("cut_by_end_of_run", false) || (!m.e && bounces.size() == 1))) {
+    m.t_end_too_short = true;
+    warnings.push_back(m.e ? "t_end cut the " + std::string(name) + " rebound window short"
+                           : "t_end ended the run before " + std::string(name) + " could measure the rebound");
+  }
   if (m.e && !b["measures_disagree"].empty()) {
+    // One line: e and the distinct measures more than measure.disagreement from it, with their spread.
+    double lo = *m.e, hi = *m.e;
+    for (const auto& [k, v] : b["measures_disagree"].items()) {
+      lo = std::min(lo, v.get<double>());
+      hi = std::max(hi, v.get<double>());
+    }
+    std::string e_label = measure_label(sc, name);
+    if (e_label.empty()) e_label = name;
     std::ostringstream os;
-    os << "named measures of e disagree: e = " << *m.e << " (" << name << "), but";
-    for (const auto& [k, v] : b["measures_disagree"].items()) os << " " << k << " = " << v.get<double>() << ",";
-    os << " more than measure.disagreement = " << sc.measure.disagreement << " away (docs/bounces.md)";
+    os << std::fixed << std::setprecision(3) << "e depends on how it is measured here (spread " << hi - lo << "): " << e_label << " "
+       << *m.e << " (e)";
+    for (const auto& [k, v] : b["measures_disagree"].items()) os << ", " << k << " " << v.get<double>();
+    os << " (more than measure.disagreement = " << std::defaultfloat << sc.measure.disagreement << " from e; docs/bounces.md)";
     warnings.push_back(os.str());
   }
 }

@@ -22,6 +22,7 @@ struct FirstContact {
   double fit_window = 0;                          // s, as used (shortened to a short approach)
   bool separated = false;
   bool t_end_too_short = false;  // a longer solver.t_end would change e (never when the run ended at rest)
+  bool stopped_by_t_end = false;  // the run ran to solver.t_end (did not end at rest or once e was measured)
   std::optional<std::string> e_missing;  // why e is undefined
 };
 

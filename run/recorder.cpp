@@ -4,7 +4,10 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 #include <unistd.h>
+
+#include "core/errors.hpp"
 
 namespace imcol::run {
 
@@ -25,31 +28,65 @@ constexpr ForceColumn kForceColumns[] = {
     {Effect::gravity, "f_grav", &SphereForces::gravity},    {Effect::history, "f_hist", &SphereForces::history},
     {Effect::flow, "f_sim", &SphereForces::f_sim},          {Effect::flow, "f_thr", &SphereForces::f_thr}};
 
+/// Terminal speed (m/s) of sphere m under gravity alone with the scene's steady drag (MODEL.md §2.1):
+/// |ρ_p − ρ_f| g V = 6πμ a U φ(Re), φ = 1 (stokes) or 1 + 0.15 Re^0.687 (schiller-naumann); by bisection.
+double terminal_speed(const Scene& sc, std::size_t m) {
+  const auto& sp = sc.spheres[m];
+  const double a = sp.diameter / 2, mu = sc.fluid->viscosity, rho_f = sc.fluid->density;
+  const double u_stokes = 2.0 / 9.0 * std::abs(sp.density - rho_f) * std::abs(sc.gravity) * a * a / mu;
+  if (sc.drag.law == DragLaw::stokes || !(u_stokes > 0)) return u_stokes;
+  double lo = 0, hi = u_stokes;  // φ ≥ 1: the Stokes speed bounds it
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+    const double u = 0.5 * (lo + hi), re = rho_f * sp.diameter * u / mu;
+    (u * (1 + 0.15 * std::pow(re, 0.687)) > u_stokes ? hi : lo) = u;
+  }
+  return hi;
+}
+
+/// An upper bound of the impact speed (m/s): the initial approach plus a fall over the initial gap at the buoyant
+/// acceleration of the densest contrast (no drag, no added mass), for either sphere; with drag, no sphere is faster than
+/// the larger of its initial and its terminal speed.
+double impact_speed_bound(const contact::CollisionModel& model, const Scene& sc) {
+  double u = std::abs(model.initial_u_rel());
+  if (!sc.has(Effect::gravity)) return u;
+  const double rho_f = sc.fluid ? sc.fluid->density : 0.0;
+  double g = 0, u_drag = 0;
+  for (std::size_t m = 0; m < model.n_spheres(); ++m) {
+    g += std::abs(sc.gravity) * std::abs(1 - rho_f / sc.spheres[m].density);
+    if (sc.fluid && sc.has(Effect::drag)) u_drag += std::max(std::abs(sc.spheres[m].velocity), terminal_speed(sc, m));
+  }
+  u += std::sqrt(2 * g * std::max(0.0, model.initial_gap()));
+  return sc.fluid && sc.has(Effect::drag) ? std::min(u, std::max(u_drag, std::abs(model.initial_u_rel()))) : u;
+}
+
 }  // namespace
 
 double measure_interval(const contact::CollisionModel& model, const Scene& sc) {
   const double dt = sc.output.dt;
   if (!model.has_target()) return dt;
-  // An upper bound of the impact speed: the initial approach plus a fall over the initial gap at the buoyant
-  // acceleration of the densest contrast (no drag, no added mass), for either sphere.
-  double u = std::abs(model.initial_u_rel());
-  if (sc.has(Effect::gravity)) {
-    const double rho_f = sc.fluid ? sc.fluid->density : 0.0;
-    double g = 0;
-    for (std::size_t m = 0; m < model.n_spheres(); ++m) g += std::abs(sc.gravity) * std::abs(1 - rho_f / sc.spheres[m].density);
-    u += std::sqrt(2 * g * std::max(0.0, model.initial_gap()));
-  }
+  const double u = impact_speed_bound(model, sc);
   if (!(u > 0)) return dt;
-  const double window = sc.measure.ends_distance * 2 * model.radius(0) / u;
+  // The contact_ends window; for a start inside the contact zone, which shortens the zone to the initial gap, at most the
+  // time to cross that gap: the liquid film there can brake the rebound within a small part of the window.
+  const double distance = sc.measure.ends_distance * 2 * model.radius(0);
+  const double window = (model.started_in_contact() ? std::min(distance, model.delta_ss_m()) : distance) / u;
   const double n = std::ceil(dt * sc.measure.samples_per_window / window);
-  return n > 1 ? dt / n : dt;
+  const double interval = n > 1 ? dt / n : dt;
+  // Every sample is kept (56 bytes) and costs an interpolation: refuse a run that would take too many.
+  const double count = sc.solver.t_end / interval;
+  if (count > sc.measure.max_samples) {
+    std::ostringstream os;
+    os << "the measures would sample the run " << fmt_number(count) << " times (every " << fmt_number(interval)
+       << " s up to t_end, " << sc.measure.samples_per_window << " samples per contact_ends window at an impact speed of up to "
+       << fmt_number(u) << " m/s), more than measure.max_samples = " << fmt_number(sc.measure.max_samples)
+       << ": raise measure.ends_distance, lower measure.samples_per_window or solver.t_end";
+    throw InputError(sc.path, sc.measure.samples_per_window != decltype(sc.measure){}.samples_per_window ? "measure.samples_per_window" : "measure.ends_distance", os.str());
+  }
+  return interval;
 }
 
 Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces, double sample_dt)
-    : model_(model), sc_(sc), sample_dt_(sample_dt > 0 ? sample_dt : sc.output.dt), next_row_(sc.output.dt),
-      // Near contact every sample is kept: within 10 contact_ends windows' travel of the contact zone (at least 0.1 D).
-      dense_gap_(model.has_target() ? model.delta_ss_m() + std::max(0.1, 10 * sc.measure.ends_distance) * 2 * model.radius(0) : 0.0),
-      min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
+    : model_(model), sc_(sc), sample_dt_(sample_dt > 0 ? sample_dt : sc.output.dt), next_row_(sc.output.dt), min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
   const bool pair = model.n_spheres() == 2;
   columns_ = {"t", "z1", "u1"};
   if (model.has_target()) columns_.push_back("gap");
@@ -84,7 +121,7 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
     const Evaluation kin = model_.kinematic_state(y);
     if (model_.has_target()) {
       min_gap_ = std::min(min_gap_, kin.gap);
-      if (kin.gap < dense_gap_) add_to_track(t, kin);
+      add_to_track(t, kin);
     }
     if (progress_) show_progress(t);
     return;

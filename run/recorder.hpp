@@ -2,8 +2,8 @@
 // Samples a collision run into trajectory rows (one per output time and event) with the force terms of the
 // effects that ran (or, for sweeps, the kinematics alone), lets the model observe each row (it may end the
 // run: at rest), and shows progress. The measures of e read their own track: the integrator samples at the
-// measures' interval (measure_interval, a divisor of output.dt), and near contact every sample is kept, so
-// that e does not depend on output.dt.
+// measures' interval (measure_interval, a divisor of output.dt) and every sample is kept, so that no named
+// measure depends on output.dt.
 #include <span>
 #include <string>
 #include <vector>
@@ -34,7 +34,7 @@ class Recorder : public Observer {
 
   const std::vector<std::string>& columns() const { return columns_; }
   std::vector<std::vector<double>>& rows() { return rows_; }
-  /// The measures' samples: every row, and every sample within measure_zone() of the contact zone.
+  /// The measures' samples: every sample of the run (each row among them).
   const Track& track() const { return track_; }
   double min_gap() const { return min_gap_; }          // m, over the samples
   bool forces() const { return forces_; }
@@ -51,7 +51,7 @@ class Recorder : public Observer {
   std::vector<double contact::SphereForces::*> fields_;  // the force columns of each sphere, in column order
   std::vector<std::vector<double>> rows_;
   Track track_;
-  double sample_dt_, next_row_, dense_gap_;  // s, s, m
+  double sample_dt_, next_row_;  // s
   long k_row_ = 1;
   double min_gap_, max_force_ = 0, max_history_ = 0;
   long steps_ = 0;

@@ -90,6 +90,8 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   for (const auto& [k, v] : model.choices()) mod[k] = v;
   s["model"] = mod;
   s["solver"] = run::solver_block(model, st, stats, t_final);
+  s["solver"]["measure_interval_s"] = st.output_dt;  // the integrator's sampling, which the measures read
+  s["solver"]["measure_samples"] = rec.track().t.size();
   nlohmann::ordered_json ev = nlohmann::ordered_json::array();
   for (const auto& x : model.events()) ev.push_back({{"t", x.t}, {"event", x.name}, {"gap_m", x.gap}, {"u_rel_m_s", x.u_rel}});
   s["events"] = ev;

@@ -11,9 +11,12 @@
 #include <string>
 
 #include "apps/sweep.hpp"
+#include "contact/collision_model.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"
+#include "run/bounces.hpp"
+#include "run/recorder.hpp"
 #include "run/simulate.hpp"
 #include "tests/scene_text.hpp"
 
@@ -83,6 +86,83 @@ TEST(EMeasures, DefaultDoesNotMoveWithItsWindowOrOutputDtFromSt10To1000) {
     }, "viscosity " + std::to_string(mu));
 }
 
+TEST(EMeasures, EveryNamedMeasureIsIndependentOfOutputDt) {
+  // Every measure sample is kept, not only the rows: fit_time (the seed_run scenes' e), gondret_2002 and the others
+  // agree at output.dt = 1e-2 (one row per 10 ms) with the default 1e-4 to the integration's accuracy.
+  for (const char* name : {"bouncing_steel", "seed_run1", "default"}) {
+    SCOPED_TRACE(name);
+    const auto a = simulate(load_scene(scene_file(name)), false, Recording::kinematics).summary;
+    const auto b = simulate(load_scene(scene_file(name), {{"output.dt", "1e-2"}}), false, Recording::kinematics).summary;
+    ASSERT_EQ(a["bounces"].size(), b["bounces"].size());
+    for (std::size_t k = 0; k < a["bounces"].size(); ++k)
+      for (const auto& [m, v] : a["bounces"][k]["e_measures"].items()) {
+        const auto& w = b["bounces"][k]["e_measures"][m]["e"];
+        ASSERT_EQ(v["e"].is_number(), w.is_number()) << "contact " << k + 1 << " " << m;
+        if (w.is_number()) EXPECT_NEAR(w.get<double>(), v["e"].get<double>(), 1e-5) << "contact " << k + 1 << " " << m;
+      }
+  }
+}
+
+TEST(EMeasures, TooManyMeasureSamplesAreRefusedNamingTheKey) {
+  // default.toml (0.3 m/s, D = 12.7 mm, t_end 1 s): a window of 1e-5 D is 0.42 us, 32 samples each: 7.6e7 samples.
+  auto refused = [](const std::vector<Override>& ov, const std::string& key) {
+    try {
+      simulate(load_scene(scene_file("default"), ov), false, Recording::kinematics);
+      ADD_FAILURE() << key << ": not refused";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), key) << e.what();
+      EXPECT_NE(std::string(e.what()).find("measure.max_samples"), std::string::npos) << e.what();
+    }
+  };
+  refused({{"measure.ends_distance", "1e-5"}}, "measure.ends_distance");
+  refused({{"measure.ends_distance", "1e-3"}, {"measure.samples_per_window", "10000"}}, "measure.samples_per_window");
+  refused({{"measure.ends_distance", "1e-3"}, {"measure.max_samples", "1e5"}}, "measure.ends_distance");
+  // A 2 mm steel sphere released 2 m above a wall in a viscous liquid: a free fall would reach 5.8 m/s (9.4e7 samples
+  // over 20 s); with drag its speed stays below the Stokes terminal speed, 0.15 m/s (2.4e6 samples).
+  const std::string tall = "gravity = 9.81\n" + test::fluid(0.1, 1000) + test::sphere("steel", 0.002, -2.001, 0.0) +
+                           test::wall("glass", 0.0) + "[drag]\nlaw = \"stokes\"\n[solver]\nt_end = 20.0\n[output]\ndt = 1e-2\n";
+  const Scene with_drag = parse_scene(tall, "tall.toml");
+  const contact::CollisionModel model(with_drag);
+  const double dt = run::measure_interval(model, with_drag);
+  EXPECT_LT(with_drag.solver.t_end / dt, 1e7);
+  EXPECT_GT(with_drag.solver.t_end / dt, 1e6);
+  const Scene no_drag = parse_scene(tall, "tall.toml", {{"effects", "[\"lubrication\", \"added_mass\", \"elastic\", \"gravity\"]"}});
+  const contact::CollisionModel model2(no_drag);
+  EXPECT_THROW(run::measure_interval(model2, no_drag), InputError);
+}
+
+TEST(EMeasures, AReboundTheFilmBrakesWithinTheWindowIsFittedOverAShorterWindowAndWarned) {
+  // Started 1e-4 D from the wall at 0.01 m/s: the 0.02 D window is 25 ms, but the liquid film brakes the rebound to a
+  // stop within 0.006 D. The window ends where U_rel has lost a quarter of its speed at the separation (0.57 ms).
+  const auto s = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml"), false, Recording::kinematics).summary;
+  double u_in = NAN, u_out = NAN;
+  for (const auto& ev : s["events"]) {
+    if (ev["event"] == "start inside the contact zone") u_in = ev["u_rel_m_s"].get<double>();
+    if (ev["event"] == "gap=delta_ss (out)" && std::isnan(u_out)) u_out = ev["u_rel_m_s"].get<double>();
+  }
+  ASSERT_TRUE(std::isfinite(u_in) && std::isfinite(u_out));
+  ASSERT_EQ(s["e_is"], "contact_ends");
+  const double e = s["e"].get<double>(), e_sep = -u_out / u_in;
+  EXPECT_NEAR(e, e_sep, 0.05) << "separation-speed ratio " << e_sep;
+  const auto& ce = s["e_measures"]["contact_ends"];
+  EXPECT_EQ(ce["shortened_by"], "rebound speed change");
+  EXPECT_LT(ce["window_s"].get<double>(), 0.1 * ce["shortened_from_s"].get<double>());
+  // The end slope misses U_rel at the separation by more than measure.ends_tolerance (0.02): the run says so.
+  const double mis = ce["end_mismatch"]["rebound"].get<double>();
+  EXPECT_NEAR(mis, std::abs(e - e_sep), 1e-9);
+  EXPECT_GT(mis, 0.02);
+  bool warned = false;
+  for (const auto& w : s["warnings"]) warned = warned || w.get<std::string>().find("measure.ends_tolerance") != std::string::npos;
+  EXPECT_TRUE(warned) << s["warnings"].dump();
+  // Not with a tolerance above the mismatch; and e does not move with output.dt.
+  const auto loose = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml", {{"measure.ends_tolerance", "0.05"}}),
+                              false, Recording::kinematics).summary;
+  for (const auto& w : loose["warnings"]) EXPECT_EQ(w.get<std::string>().find("measure.ends_tolerance"), std::string::npos) << w;
+  const auto coarse = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml", {{"output.dt", "1e-2"}}),
+                               false, Recording::kinematics).summary;
+  EXPECT_NEAR(coarse["e"].get<double>(), e, 1e-5);
+}
+
 TEST(EMeasures, DefaultIsNotBiasedByGravity) {
   // A 6 mm steel sphere at terminal speed onto glass in silicone oil (St ~ 22): the 10 ms line (fit_time) averages
   // the deceleration of the rise; the parabolas at the contact's ends do not, and agree with e_instant.
@@ -116,10 +196,29 @@ TEST(EMeasures, MeasureEPicksTheReportedMeasureAndDisagreementsAreNamed) {
   EXPECT_EQ(f["e_is"], "fit_time");
   EXPECT_DOUBLE_EQ(f["e"].get<double>(), f["e_measures"]["fit_time"]["e"].get<double>());
   EXPECT_DOUBLE_EQ(d["e"].get<double>(), d["e_measures"]["contact_ends"]["e"].get<double>());
-  ASSERT_TRUE(d["measures_disagree"].contains("fit_time"));
-  bool named = false;
-  for (const auto& w : d["warnings"]) named = named || w.get<std::string>().find("fit_time = ") != std::string::npos;
-  EXPECT_TRUE(named) << d["warnings"].dump();
+  // Measures identical by construction (fit_time over 10 ms = yang_hunt_2006, peak_rebound = gondret_2002) are compared
+  // once, under both names, and the warning is one line with the spread.
+  ASSERT_TRUE(d["measures_disagree"].contains("fit_time/yang_hunt_2006")) << d["measures_disagree"].dump();
+  EXPECT_FALSE(d["measures_disagree"].contains("fit_time"));
+  EXPECT_FALSE(d["measures_disagree"].contains("yang_hunt_2006"));
+  int named = 0;
+  for (const auto& w : d["warnings"]) {
+    const std::string t = w.get<std::string>();
+    if (t.find("e depends on how it is measured here (spread ") == std::string::npos) continue;
+    ++named;
+    EXPECT_NE(t.find("contact_ends "), std::string::npos) << t;
+    EXPECT_NE(t.find("fit_time/yang_hunt_2006 "), std::string::npos) << t;
+    EXPECT_EQ(t.find("yang_hunt_2006"), t.rfind("yang_hunt_2006")) << t;
+    EXPECT_EQ(t.find('\n'), std::string::npos) << t;
+  }
+  EXPECT_EQ(named, 1) << d["warnings"].dump();
+  // With another measure.window the two are different measures, compared under their own names.
+  const Scene other = parse_scene(bead, "bead.toml", {{"measure.window", "0.012"}, {"measure.fit_distance", "0.2"}});
+  EXPECT_EQ(run::measure_label(other, "fit_time"), "fit_time");
+  EXPECT_EQ(run::measure_label(other, "yang_hunt_2006"), "yang_hunt_2006");
+  EXPECT_EQ(run::measure_label(other, "joseph_2001"), "joseph_2001");
+  EXPECT_EQ(run::measure_label(other, "gondret_2002"), "");
+  EXPECT_EQ(run::measure_label(other, "peak_rebound"), "peak_rebound/gondret_2002");
   // The windows and the fitted parabolas are reported for the picture.
   const auto& ce = d["e_measures"]["contact_ends"];
   EXPECT_LT(ce["approach"]["t0_s"].get<double>(), ce["approach"]["t1_s"].get<double>());
@@ -164,6 +263,32 @@ TEST(EMeasures, ARunThatEndedAtRestIsMeasuredAndASweepGivesNoUselessHint) {
   EXPECT_NE(fast.at("message").find("fit_time"), std::string::npos) << fast.at("message");
   EXPECT_NE(printed.find("named measures disagree with e (contact_ends)"), std::string::npos) << printed;
   fs::remove_all(dir);
+}
+
+TEST(EMeasures, TEndTooShortIsJudgedByTheMeasureThatEIs) {
+  // default.toml separates at 22.3 ms; t_end = 24.5 ms cuts the 10 ms lines (fit_time) but not the 0.88 ms parabolas.
+  const std::vector<Override> ov = {{"solver.t_end", "0.0245"}};
+  auto cut_warning = [](const nlohmann::ordered_json& s) {
+    for (const auto& w : s["warnings"])
+      if (w.get<std::string>().find("t_end cut") != std::string::npos) return true;
+    return false;
+  };
+  const auto ce = simulate(load_scene(scene_file("default"), ov), false, Recording::kinematics).summary;
+  ASSERT_EQ(ce["e_is"], "contact_ends");
+  ASSERT_TRUE(ce["e"].is_number());
+  EXPECT_LT(ce["solver"]["t_final_s"].get<double>(), ce["bounces"][0]["t_separation_s"].get<double>() + 0.010);
+  EXPECT_FALSE(ce["t_end_too_short"].get<bool>());
+  EXPECT_FALSE(cut_warning(ce)) << ce["warnings"].dump();
+  EXPECT_FALSE(ce["e_measures"]["contact_ends"]["cut_by_end_of_run"].get<bool>());
+  auto ov_ft = ov;
+  ov_ft.push_back({"measure.e", "\"fit_time\""});
+  const auto ft = simulate(load_scene(scene_file("default"), ov_ft), false, Recording::kinematics).summary;
+  ASSERT_EQ(ft["e_is"], "fit_time");
+  EXPECT_TRUE(ft["t_end_too_short"].get<bool>());
+  EXPECT_TRUE(cut_warning(ft)) << ft["warnings"].dump();
+  // A window cut by t_end, not by the stop after the first rebound: the default t_end gives neither.
+  EXPECT_FALSE(simulate(load_scene(scene_file("default"), {{"measure.e", "\"fit_time\""}}), false, Recording::kinematics)
+                   .summary["t_end_too_short"].get<bool>());
 }
 
 TEST(EMeasures, APointThatNoTEndMeasuresSaysWhyWithoutAdvice) {
