@@ -1,4 +1,4 @@
-// What a new user meets in the first hour, and the defects of issue 13: bad command-line values, runaway
+// What a new user meets in the first hour, and the defects found there: bad command-line values, runaway
 // runs, plots written concurrently, killed sweeps, loose tolerances, unresolved flow gaps, odd scene files.
 // Each test runs the imcol program and checks its exit status, its message (problem and place) and its files.
 #include <gtest/gtest.h>
