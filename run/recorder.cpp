@@ -79,8 +79,15 @@ double measure_interval(const contact::CollisionModel& model, const Scene& sc) {
     os << "the measures would sample the run " << fmt_number(count) << " times (every " << fmt_number(interval)
        << " s up to t_end, " << sc.measure.samples_per_window << " samples per contact_ends window at an impact speed of up to "
        << fmt_number(u) << " m/s), more than measure.max_samples = " << fmt_number(sc.measure.max_samples)
-       << ": raise measure.ends_distance, lower measure.samples_per_window or solver.t_end";
-    throw InputError(sc.path, sc.measure.samples_per_window != decltype(sc.measure){}.samples_per_window ? "measure.samples_per_window" : "measure.ends_distance", os.str());
+       << ": lower solver.t_end (the samples are counted up to it, even for a run that comes to rest sooner), raise "
+       << "measure.ends_distance, lower measure.samples_per_window, or raise measure.max_samples (up to 1e9)";
+    // The key named is the one of these the scene changed from its default, else t_end.
+    const Scene::Measure defaults{};
+    const char* key = sc.measure.samples_per_window != defaults.samples_per_window ? "measure.samples_per_window"
+                      : sc.measure.ends_distance != defaults.ends_distance             ? "measure.ends_distance"
+                      : sc.measure.max_samples != defaults.max_samples               ? "measure.max_samples"
+                                                                                     : "solver.t_end";
+    throw InputError(sc.path, key, os.str());
   }
   return interval;
 }

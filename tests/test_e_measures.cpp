@@ -117,6 +117,8 @@ TEST(EMeasures, TooManyMeasureSamplesAreRefusedNamingTheKey) {
   refused({{"measure.ends_distance", "1e-5"}}, "measure.ends_distance");
   refused({{"measure.ends_distance", "1e-3"}, {"measure.samples_per_window", "10000"}}, "measure.samples_per_window");
   refused({{"measure.ends_distance", "1e-3"}, {"measure.max_samples", "1e5"}}, "measure.ends_distance");
+  refused({{"measure.max_samples", "1e4"}}, "measure.max_samples");
+  refused({{"solver.t_end", "1000"}}, "solver.t_end");  // 3.8e7 samples at the defaults
   // A 2 mm steel sphere released 2 m above a wall in a viscous liquid: a free fall would reach 5.8 m/s (9.4e7 samples
   // over 20 s); with drag its speed stays below the Stokes terminal speed, 0.15 m/s (2.4e6 samples).
   const std::string tall = "gravity = 9.81\n" + test::fluid(0.1, 1000) + test::sphere("steel", 0.002, -2.001, 0.0) +
