@@ -113,7 +113,8 @@ std::vector<ValidateModel> validate_models(const std::vector<std::string>& names
   std::vector<ValidateModel> out;
   for (const auto& n : names) {
     auto it = std::find_if(kValidateModels.begin(), kValidateModels.end(), [&](const auto& m) { return m.name == n; });
-    if (it == kValidateModels.end()) throw InputError("command line", "--models", "unknown model '" + n + "' (expected seed, asymptotic)");
+    if (it == kValidateModels.end()) throw InputError("command line", "--models", "unknown model '" + n + "' (expected seed, asymptotic" +
+                                                         (n == "exact" ? "; 'exact' is called 'asymptotic' since 0.3.0)" : ")"));
     if (std::none_of(out.begin(), out.end(), [&](const auto& m) { return m.name == n; })) out.push_back(*it);
   }
   return out;

@@ -322,7 +322,7 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
   const std::vector<double> rate = gap_rate(tr);
   const char* e_name = to_string(sc.measure.e);
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  bool any_clipped = false;
+  std::vector<std::size_t> clipped;  // contacts whose fixed-window rebound line was clipped
   std::vector<std::size_t> ends_warned;  // contacts whose contact_ends e misses U_rel at the δ_SS crossings
   for (std::size_t k = 0; k < cs.size(); ++k) {
     const Contact& c = cs[k];
@@ -351,8 +351,7 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
     em["at_gap"] = at_gap_measure(tr, f, g_at, model.initial_gap());
     em["peak_rebound"] = peak_rebound_measure(tr, f);
     em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};
-    for (const char* k2 : {"fit_time", "yang_hunt_2006"})
-      if (em[k2].contains("e_raw")) any_clipped = true;
+    if (em["fit_time"].contains("e_raw") || em["yang_hunt_2006"].contains("e_raw")) clipped.push_back(k + 1);
     if (sc.measure.e == EMeasure::contact_ends && em["contact_ends"].contains("warning")) ends_warned.push_back(k + 1);
     b["e"] = em[e_name]["e"];
     b["e_is"] = e_name;
@@ -379,9 +378,14 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
     for (std::size_t i = 1; i < ends_warned.size(); ++i) os << (i == 1 ? "; also at contact " : ", ") << ends_warned[i];
     warnings.push_back(os.str());
   }
-  if (any_clipped)
-    warnings.push_back("a rebound fit over a fixed window (fit_time, yang_hunt_2006) points toward the target (the sphere fell back "
-                       "within the window): that measure's e is clipped to 0 (e_raw in its e_measures entry)");
+  if (!clipped.empty()) {
+    std::ostringstream os;
+    os << "at contact";
+    for (std::size_t i = 0; i < clipped.size(); ++i) os << (i ? ", " : " ") << clipped[i];
+    os << " a rebound fit over a fixed window (fit_time, yang_hunt_2006) points toward the target (the sphere fell back "
+          "within the window): that measure's e is clipped to 0 (e_raw in its e_measures entry)";
+    warnings.push_back(os.str());
+  }
   return out;
 }
 
