@@ -13,6 +13,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 
 #include "apps/format.hpp"
@@ -212,6 +213,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   std::atomic<int> next{0};
   int finished = 0, failed = 0;
   double last_write = -1;
+  std::string write_error;  // the first failed write of sweep.csv: the sweep stops taking points and reports it
   const auto start = WallClock::now();
   auto elapsed = [&] { return seconds_since(start); };
 
@@ -239,8 +241,13 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
       ++finished;
       if (!pts[i].ok) ++failed;
       // Finished points survive what follows: the file is rewritten at most every 0.25 s, and at the end.
-      if (finished == opt.points || elapsed() - last_write >= 0.25) {
-        write_file_atomic(dir / "sweep.csv", sweep_csv(pts, *q));
+      if (write_error.empty() && (finished == opt.points || elapsed() - last_write >= 0.25)) {
+        try {
+          write_file_atomic(dir / "sweep.csv", sweep_csv(pts, *q));
+        } catch (const std::exception& e) {  // a full disk, a vanished folder: not a crash of the worker thread
+          write_error = e.what();
+          next = opt.points;
+        }
         last_write = elapsed();
       }
       if (tty) {
@@ -256,6 +263,10 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   for (auto& t : threads) t.join();
   const double wall = elapsed();
   if (tty) std::cerr << "\n";
+  if (!write_error.empty())
+    throw std::runtime_error("sweep stopped after " + std::to_string(finished) + " of " + std::to_string(opt.points) +
+                             " points: writing " + (dir / "sweep.csv").string() + " failed (" + write_error +
+                             "); sweep.partial marks what is there as incomplete");
 
   // Table, failures, throughput.
   std::cout << "scene " << base.name << ": sweep of " << opt.vary << " from " << opt.from << " to " << opt.to << " (" << opt.points

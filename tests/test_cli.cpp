@@ -2,6 +2,8 @@
 // complete outputs for good input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -237,6 +239,23 @@ TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
   const Result neg = run_imcol("sweep " + scene + " --vary velocity --from 0.1 --to 0.2 --points 2 --set fluid.viscosity=-1 --out " + out.string());
   EXPECT_EQ(neg.status, 2) << neg.err;
   EXPECT_NE(neg.err.find("fluid.viscosity"), std::string::npos) << neg.err;
+}
+
+TEST(Cli, SweepThatCannotWriteItsTableStopsWithOneLineAndKeepsThePartialMarker) {
+  // sweep.csv cannot be replaced (a non-empty folder of that name): the write fails in a worker thread.
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_sweep_unwritable";
+  fs::remove_all(out);
+  fs::create_directories(out / "sweep.csv" / "x");
+  const Result r = run_imcol("sweep " + imcol::data_dir() + "/scenes/default.toml --vary velocity --from 0.1 --to 0.3 --points 20 "
+                             "--jobs 2 --no-plot --no-progress --out " + out.string());
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("imcol: error: sweep stopped after ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("sweep.csv"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(fs::exists(out / "sweep.partial"));
+  EXPECT_FALSE(fs::exists(out / "sweep.json"));
+  for (const auto& f : fs::directory_iterator(out)) EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
+  fs::remove_all(out);
 }
 
 TEST(Cli, BadBouncesValueNamesFileLineAndKey) {
