@@ -146,7 +146,14 @@ void FlowCoupling::start_up() {
     if (fs.developed_time > 0) t_pre = fs.developed_time;
     else if (u_ref_ > 0) t_pre = fs.developed_distance * D_ / u_ref_;  // the faster sphere travels that far
   }
-  const long n_pre = std::max(1L, std::lround(t_pre / dt));
+  // The start-up's flow steps, counted in double first: a huge developed_time must be refused, not overflow a long.
+  const double n_pre_d = std::max(1.0, std::round(t_pre / dt));
+  if (!(n_pre_d <= 1e8)) {
+    std::ostringstream os;
+    os << "the developed start would take " << n_pre_d << " flow steps of " << dt << " s before t = 0 (more than 1e8)";
+    throw InputError(sc_.path, fs.developed_time > 0 ? "flow.developed_time" : "flow.developed_distance", os.str());
+  }
+  const long n_pre = static_cast<long>(n_pre_d);
   t_pre = static_cast<double>(n_pre) * dt;
   t_pre_ = t_pre;
   double sep = 0;  // centre distance

@@ -403,3 +403,13 @@ t_end = 0.02
     EXPECT_EQ(m.find("the fluid's speed"), std::string::npos) << m;
   }
 }
+
+TEST(Coupling, AHugeDevelopedTimeIsRefusedNotOverflowed) {
+  // 1e29 s of start-up at a 1.8 ms flow step: 5.5e31 steps, which std::lround cannot hold (it used to run one step).
+  try {
+    simulate(load_scene(scene_path("coupled/gg3462.toml"), {{"flow.developed_time", "1e29"}, {"flow.fields", "false"}}));
+    ADD_FAILURE() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "flow.developed_time") << e.what();
+  }
+}
