@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "apps/sweep.hpp"
 #include "contact/collision_model.hpp"
@@ -68,6 +69,31 @@ std::map<std::string, std::string> csv_row(const fs::path& csv, int point) {
     row[h] = v;
   }
   return row;
+}
+
+
+/// Runs `imcol sweep` on the scene text (one job, no plot) into a fresh folder under the temporary directory; returns
+/// the folder (its sweep output is in out/) and what the sweep printed.
+std::pair<fs::path, std::string> run_sweep(const std::string& name, const std::string& scene, const std::string& vary, double from,
+                                           double to, int points) {
+  const fs::path dir = fs::temp_directory_path() / ("imcol_e_measures_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  { std::ofstream(dir / (name + ".toml")) << scene; }
+  SweepOptions opt;
+  opt.vary = vary;
+  opt.from = from;
+  opt.to = to;
+  opt.points = points;
+  opt.jobs = 1;
+  opt.out = (dir / "out").string();
+  opt.progress = false;
+  opt.plot = false;
+  ::testing::internal::CaptureStdout();
+  const int status = sweep((dir / (name + ".toml")).string(), {}, opt);
+  const std::string printed = ::testing::internal::GetCapturedStdout();
+  EXPECT_EQ(status, 0) << printed;
+  return {dir, printed};
 }
 
 }  // namespace
@@ -239,22 +265,7 @@ TEST(EMeasures, ARunThatEndedAtRestIsMeasuredAndASweepGivesNoUselessHint) {
   ASSERT_TRUE(s["e"].is_number());
   EXPECT_EQ(s["e"].get<double>(), 0.0);
   // In a sweep: measured, no t_end extension, no advice.
-  const fs::path dir = fs::temp_directory_path() / "imcol_e_measures_sweep";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  { std::ofstream(dir / "bead.toml") << bead; }
-  SweepOptions opt;
-  opt.vary = "velocity";
-  opt.from = 0.097;
-  opt.to = 0.3;
-  opt.points = 2;
-  opt.jobs = 1;
-  opt.out = (dir / "out").string();
-  opt.progress = false;
-  opt.plot = false;
-  ::testing::internal::CaptureStdout();
-  ASSERT_EQ(sweep((dir / "bead.toml").string(), {}, opt), 0);
-  const std::string printed = ::testing::internal::GetCapturedStdout();
+  const auto [dir, printed] = run_sweep("bead", bead, "velocity", 0.097, 0.3, 2);
   const auto row = csv_row(dir / "out" / "sweep.csv", 1);
   EXPECT_EQ(row.at("e"), "0");
   EXPECT_EQ(row.at("e_status"), "measured");
@@ -298,22 +309,7 @@ TEST(EMeasures, APointThatNoTEndMeasuresSaysWhyWithoutAdvice) {
   // contact either, so the message says why and that the longer t_end did not help.
   const std::string far = test::fluid(0.02, 1200) + test::sphere("steel", 0.0127, -0.5, 0.3) + test::wall("zerodur", 0.0) +
                           "[contact]\ne_dry = 0.97\n[solver]\nt_end = 0.05\n";
-  const fs::path dir = fs::temp_directory_path() / "imcol_e_measures_far";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  { std::ofstream(dir / "far.toml") << far; }
-  SweepOptions opt;
-  opt.vary = "viscosity";
-  opt.from = 0.02;
-  opt.to = 0.02;
-  opt.points = 1;
-  opt.jobs = 1;
-  opt.out = (dir / "out").string();
-  opt.progress = false;
-  opt.plot = false;
-  ::testing::internal::CaptureStdout();
-  ASSERT_EQ(sweep((dir / "far.toml").string(), {}, opt), 0);
-  const std::string printed = ::testing::internal::GetCapturedStdout();
+  const auto [dir, printed] = run_sweep("far", far, "viscosity", 0.02, 0.02, 1);
   const auto row = csv_row(dir / "out" / "sweep.csv", 1);
   EXPECT_TRUE(row.at("e").empty());
   EXPECT_EQ(row.at("e_status"), "not_measured");
