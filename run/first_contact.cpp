@@ -17,7 +17,7 @@ namespace {
 /// When the relative velocity of a pair first vanished: the first loading -> unloading switch, or the stopped approach.
 std::optional<double> group_moment(const CollisionModel& model) {
   for (const auto& ev : model.events())
-    if (ev.name.rfind("u_rel=0", 0) == 0) return ev.t;
+    if (ev.kind == contact::EventKind::unload || ev.kind == contact::EventKind::apex) return ev.t;
   return model.t_closest();
 }
 
@@ -61,7 +61,7 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
     if (m.separated) {
       int n_in = 0;
       for (const auto& x : model.events())
-        if (x.name == "gap=delta_ss (in)" && ++n_in == (in_contact ? 1 : 2)) {
+        if (x.kind == contact::EventKind::contact_in && ++n_in == (in_contact ? 1 : 2)) {
           Wfit = std::min(Wfit, x.t - *model.t_separation());
           break;
         }
