@@ -51,6 +51,11 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
                                : "no collision: the spheres are not approaching (U_rel(0) <= 0, no gravity), so no t_end gives one; e is undefined";
     warnings.push_back(*m.e_missing);
   }
+  if (!model.has_target()) {
+    // A free sphere (no wall, no second sphere): a settling or rising motion, not a collision; said once, like every null e.
+    m.e_missing = "a free sphere: no wall or second sphere, so no collision and no e (the trajectory is the result)";
+    warnings.push_back(*m.e_missing);
+  }
   if (model.has_target() && collided) {
     // Approach window ends at the first δ_SS crossing, or at the closest approach without contact.
     const double t_ref = model.t_contact().value_or(*model.t_closest());
