@@ -131,6 +131,11 @@ class TableReader {
       fail(key, "must be in " + std::string(lo_open ? "(" : "[") + fmt_number(lo) + ", " + fmt_number(hi) + (hi_open ? ")" : "]") +
                     " (got " + fmt_number(v) + ")");
   }
+  /// Reads the number `key` into `field` (kept when the key is absent) and checks it lies in the stated interval.
+  void number_in(const std::string& key, double& field, double lo, double hi, bool lo_open, bool hi_open) {
+    field = number(key, field);
+    in_range(key, field, lo, hi, lo_open, hi_open);
+  }
   /// Reads the choice `key` into `out` (kept when the key is absent); an unknown spelling fails with the options.
   template <class E>
   void choice(const std::string& key, E& out) {
