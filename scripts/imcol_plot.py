@@ -2,6 +2,7 @@
 
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
 """
+import csv
 import os
 import sys
 from pathlib import Path
@@ -43,3 +44,9 @@ def write_text(path: Path, text: str) -> None:
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def read_rows(path: Path) -> list:
+    """The rows of a CSV file written by imcol, as dicts by column name (lines starting with '#' are comments)."""
+    with open(path, newline="") as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))

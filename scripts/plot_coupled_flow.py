@@ -6,13 +6,12 @@ Reads DIR/flow_*.csv (written at the first flow step with a gap of 1 D or less, 
 after separation and at the end), and DIR/trajectory.csv and DIR/summary.json when present (the true gap at
 each snapshot's time; the wall's position); writes DIR/flow_*.png. Needs Debian's python3-matplotlib.
 """
-import csv
 import json
 import sys
 
 import numpy as np
 
-from imcol_plot import out_dir
+from imcol_plot import out_dir, read_rows
 from plot_flow import plot_snapshot
 
 
@@ -39,8 +38,7 @@ def label_and_time(path):
 def read_trajectory(out):
     """t, z1 and gap from DIR/trajectory.csv (the run's true motion), or None."""
     try:
-        with open(out / "trajectory.csv", newline="") as f:
-            rows = list(csv.DictReader(f))
+        rows = read_rows(out / "trajectory.csv")
         t = np.array([float(r["t"]) for r in rows])
         return t, np.array([float(r["z1"]) for r in rows]), np.array([float(r["gap"]) for r in rows])
     except (OSError, KeyError, ValueError):

@@ -7,13 +7,12 @@ approaching a wall also DIR/forces_vs_gap.png and DIR/forces_vs_gap.csv (f_SIM a
 seed's Fig. 6.4 for pairs).
 Needs Debian's python3-matplotlib and numpy (importable from /usr/bin/python3 only).
 """
-import csv
 import sys
 from pathlib import Path
 
 import numpy as np
 
-from imcol_plot import out_dir, plt, save_png, write_text
+from imcol_plot import out_dir, plt, save_png, write_text, read_rows
 
 
 def plot_wall_gap(out: Path, rows, summary) -> None:
@@ -125,8 +124,7 @@ def main() -> int:
     out = out_dir(__doc__)
     if out is None:
         return 2
-    with open(out / "forces.csv", newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(out / "forces.csv")
     nb = sum(1 for k in rows[0] if k.startswith("F") and k[1:].isdigit())
     t = np.array([float(r["t"]) for r in rows])
     last = rows[-1]

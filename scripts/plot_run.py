@@ -4,11 +4,10 @@
 Usage: /usr/bin/python3 scripts/plot_run.py OUT_DIR   (writes OUT_DIR/trajectory.png)
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
 """
-import csv
 import json
 import sys
 
-from imcol_plot import out_dir, plt, save_png
+from imcol_plot import out_dir, plt, save_png, read_rows
 
 
 def draw_e_fits(ax, ax_u, summary) -> None:
@@ -47,8 +46,7 @@ def main() -> int:
     out = out_dir(__doc__)
     if out is None:
         return 2
-    with open(out / "trajectory.csv", newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(out / "trajectory.csv")
     summary = json.loads((out / "summary.json").read_text())
     col = {k: [float(r[k]) for r in rows] for k in rows[0]}
     t_ms = [1e3 * x for x in col["t"]]

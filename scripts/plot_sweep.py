@@ -5,23 +5,17 @@ Usage: /usr/bin/python3 scripts/plot_sweep.py DIR [--compare DIR2]... [--out PNG
 (reads DIR/sweep.csv and DIR/sweep.json, writes DIR/sweep.png; --compare draws another sweep dashed beside it)
 """
 import argparse
-import csv
 import json
 import math
 import sys
 from pathlib import Path
 
-from imcol_plot import plt, save_png
+from imcol_plot import plt, save_png, read_rows
 
 SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li_2010_table_6_1.csv"
 # Legendre, Zenit, Daniel & Guiraud (2006), Chem. Eng. Sci. 61, 3543: e/e_dry = exp(-35/St_L),
 # St_L = (rho_p + rho_f/2) U d / (9 mu), a correlation of sphere-wall experiments (incl. Joseph et al. 2001, Gondret et al. 2002).
 LEGENDRE_ST_C = 35.0
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(line for line in f if not line.startswith("#")))
 
 
 MEASURES = (("e", "e (the measure e_is names; default contact_ends)", "o"),
@@ -39,7 +33,7 @@ def sweep_label(meta) -> str:
 
 def plot_sweep(ax, folder: Path, meta, style: str, tag: str) -> None:
     """Every named measure of one sweep: one colour per measure, `style` per sweep."""
-    rows = [r for r in read_csv(folder / "sweep.csv") if r["status"] == "ok" and r["St"] and r["e"]]
+    rows = [r for r in read_rows(folder / "sweep.csv") if r["status"] == "ok" and r["St"] and r["e"]]
     rows.sort(key=lambda r: float(r["St"]))
     for i, (key, label, mk) in enumerate(MEASURES):
         pts = [(float(r["St"]), float(r[key])) for r in rows if r.get(key)]
@@ -51,7 +45,7 @@ def plot_sweep(ax, folder: Path, meta, style: str, tag: str) -> None:
 def plot_legendre(ax, folder: Path, meta) -> bool:
     """Sphere-wall sweeps: e/e_dry of the default measure against St_L, with Legendre et al. (2006)'s correlation."""
     e_dry = meta.get("e_dry")
-    rows = [r for r in read_csv(folder / "sweep.csv") if r["status"] == "ok" and r.get("St_L") and r["e"]]
+    rows = [r for r in read_rows(folder / "sweep.csv") if r["status"] == "ok" and r.get("St_L") and r["e"]]
     if not e_dry or not rows:
         return False
     pts = sorted((float(r["St_L"]), float(r["e"]) / e_dry) for r in rows)
@@ -90,7 +84,7 @@ def main() -> int:
     for d, m in others:
         plot_sweep(ax, d, m, "--", sweep_label(m) + ": ")
     if meta["configuration"] == "sphere-sphere" and SEED_TABLE.exists():
-        seed = read_csv(SEED_TABLE)
+        seed = read_rows(SEED_TABLE)
         ax.semilogx([float(r["St_B"]) for r in seed], [float(r["e"]) for r in seed], "s", color="k", mfc="none", ms=7,
                     label="Li (2010) Table 6.1, simulated (St_B; run numbers)")
         # run numbers, alternately above and below their points so that neighbours' labels do not overlap

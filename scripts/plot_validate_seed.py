@@ -6,10 +6,9 @@ Usage: /usr/bin/python3 scripts/plot_validate_seed.py DIR
 Left: St_B as the seed's Table 6.1 gives it, half of eq. (6.2); right: St_B by eq. (6.2), m* U_rel / (6 pi mu a*^2),
 where the seed's points stand at twice their printed St_B (every Table 6.1 pair has equal radii).
 """
-import csv
 import sys
 
-from imcol_plot import out_dir, plt, save_png
+from imcol_plot import out_dir, plt, save_png, read_rows
 
 # Only the gap law differs between the models (docs/model-notes.md, "Pairs").
 MODELS = {"seed": ("seed's gap law (lubrication \"seed\")", "C0", "o"),
@@ -25,8 +24,7 @@ def main() -> int:
     folder = out_dir(__doc__)
     if folder is None:
         return 2
-    with open(folder / "validate_seed.csv", newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = read_rows(folder / "validate_seed.csv")
     coupled = bool(rows) and "e_reduced_order" in rows[0]
     fig, axes = plt.subplots(1, 2, figsize=(11, 5.2), sharey=True)
     panels = ((axes[0], "St_B_table_6_1", "St_B_table_6_1_reduced_order", 1.0, "St_B, seed Table 6.1 convention (half of eq. 6.2)"),
