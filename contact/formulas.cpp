@@ -68,6 +68,17 @@ double blend_H(double x) {
   return 1.0 - t * t * (3.0 - 2.0 * t);
 }
 
+double terminal_speed(double D, double rho_p, double rho_f, double mu, double g, const std::function<double(double)>& phi) {
+  const double u_stokes = std::abs(rho_p - rho_f) * std::abs(g) * D * D / (18 * mu);  // φ = 1
+  if (!(u_stokes > 0)) return 0;
+  double lo = 1e-12 * u_stokes, hi = u_stokes;  // φ ≥ 1: the Stokes speed bounds it
+  for (int k = 0; k < 200 && hi / lo > 1 + 1e-12; ++k) {
+    const double mid = std::sqrt(lo * hi);
+    (mid * phi(rho_f * mid * D / mu) < u_stokes ? lo : hi) = mid;
+  }
+  return std::sqrt(lo * hi);
+}
+
 double drag_factor(DragLaw law, double Re) {
   if (law == DragLaw::stokes) return 1.0;
   return 1.0 + 0.15 * std::pow(std::abs(Re), 0.687);

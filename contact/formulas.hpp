@@ -1,6 +1,7 @@
 #pragma once
 // Analytic force laws of the reduced-order collision model (MODEL.md §2). SI units throughout.
 #include <array>
+#include <functional>
 #include <string>
 
 #include "core/choices.hpp"
@@ -39,6 +40,10 @@ double blend_H(double x);
 // ---------- Drag (MODEL.md §2.1) ----------
 /// φ(Re): 1 (Stokes) or 1 + 0.15 Re^0.687 (Schiller–Naumann); drag = −6πμ a U φ
 double drag_factor(DragLaw law, double Re);
+/// Terminal speed U (m/s) of a sphere of diameter D (m) and density rho_p in a liquid (rho_f, mu) under |g| (m/s²):
+/// |ρ_p − ρ_f| g πD³/6 = 3πμ D U φ(Re), Re = ρ_f U D/μ, with the drag factor φ ≥ 1 given (drag_factor, or
+/// C_D Re/24 of a drag curve); bisection in ln U. 0 when ρ_p = ρ_f.
+double terminal_speed(double D, double rho_p, double rho_f, double mu, double g, const std::function<double(double)>& phi);
 
 // ---------- Lubrication (MODEL.md §2.1) ----------
 /// Brenner (1961) exact series λ(h/a) for a sphere approaching a plane wall; direct summation.

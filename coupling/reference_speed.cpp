@@ -5,25 +5,18 @@
 #include <limits>
 #include <sstream>
 
+#include "contact/formulas.hpp"
 #include "flow/flow_scene.hpp"
 
 namespace imcol::coupling {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 double drag_coefficient(double re) { return flow::standard_drag_coefficient(std::min(re, 1500.0)); }
 }  // namespace
 
 double terminal_speed(double D, double rho_p, double rho_f, double mu, double g) {
-  const double weight = std::abs(rho_p - rho_f) * std::abs(g) * kPi * D * D * D / 6;  // N, net of buoyancy
-  if (!(weight > 0)) return 0;
-  auto drag = [&](double U) { return 0.5 * rho_f * U * U * drag_coefficient(rho_f * U * D / mu) * kPi * D * D / 4; };
-  double lo = 1e-12, hi = 1e4;  // the drag grows with U on the curve: bisect in log U
-  for (int k = 0; k < 200 && hi / lo > 1 + 1e-12; ++k) {
-    const double mid = std::sqrt(lo * hi);
-    (drag(mid) < weight ? lo : hi) = mid;
-  }
-  return std::sqrt(lo * hi);
+  // φ = C_D Re/24 on the standard curve (C_D = 24/Re as Re → 0)
+  return contact::terminal_speed(D, rho_p, rho_f, mu, g, [](double re) { return re > 0 ? drag_coefficient(re) * re / 24 : 1.0; });
 }
 
 ReferenceSpeed reference_speed(const Scene& sc) {

@@ -28,19 +28,12 @@ constexpr ForceColumn kForceColumns[] = {
     {Effect::gravity, "f_grav", &SphereForces::gravity},    {Effect::history, "f_hist", &SphereForces::history},
     {Effect::flow, "f_sim", &SphereForces::f_sim},          {Effect::flow, "f_thr", &SphereForces::f_thr}};
 
-/// Terminal speed (m/s) of sphere m under gravity alone with the scene's steady drag (MODEL.md §2.1):
-/// |ρ_p − ρ_f| g V = 6πμ a U φ(Re), φ = 1 (stokes) or 1 + 0.15 Re^0.687 (schiller-naumann); by bisection.
+/// Terminal speed (m/s) of sphere m under gravity alone with the scene's steady drag law (MODEL.md §2.1).
 double terminal_speed(const Scene& sc, std::size_t m) {
   const auto& sp = sc.spheres[m];
-  const double a = sp.diameter / 2, mu = sc.fluid->viscosity, rho_f = sc.fluid->density;
-  const double u_stokes = 2.0 / 9.0 * std::abs(sp.density - rho_f) * std::abs(sc.gravity) * a * a / mu;
-  if (sc.drag.law == DragLaw::stokes || !(u_stokes > 0)) return u_stokes;
-  double lo = 0, hi = u_stokes;  // φ ≥ 1: the Stokes speed bounds it
-  for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
-    const double u = 0.5 * (lo + hi), re = rho_f * sp.diameter * u / mu;
-    (u * (1 + 0.15 * std::pow(re, 0.687)) > u_stokes ? hi : lo) = u;
-  }
-  return hi;
+  const DragLaw law = sc.drag.law;
+  return contact::terminal_speed(sp.diameter, sp.density, sc.fluid->density, sc.fluid->viscosity, sc.gravity,
+                                 [law](double re) { return contact::drag_factor(law, re); });
 }
 
 /// An upper bound of the impact speed (m/s): the initial approach plus a fall over the initial gap at the buoyant
