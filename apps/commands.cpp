@@ -14,7 +14,7 @@
 
 #include "apps/compare_history.hpp"
 #include "apps/format.hpp"
-#include "apps/out_dir.hpp"
+#include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
 #include "core/toml_reader.hpp"
 #include "apps/flow_command.hpp"
@@ -54,17 +54,18 @@ void add_common(CLI::App* cmd, CommonOptions& c) {
 
 int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet, bool plot) {
   Scene sc = load_scene(scene_path, c.overrides());
-  OutDir out_dir(out, fs::path("out") / sc.name);
-  const fs::path& dir = out_dir.path();
+  OutputUnit unit(out, fs::path("out") / sc.name, sc.path);
   RunResult r = simulate(sc, !quiet);
-  write_outputs(r, dir);
-  out_dir.keep();
-  if (!quiet) std::cout << human_summary(r) << "  wrote " << (dir / "trajectory.csv").string() << " and " << (dir / "summary.json").string() << "\n";
+  r.summary["run"] = unit.run();
+  write_outputs(r, unit.dir());
+  if (!quiet) std::cout << human_summary(r);
   if (plot) {
     std::cout.flush();
-    run_plot_script("plot_run.py", dir, "trajectory.png", quiet);
-    if (sc.has(Effect::flow) && sc.flow.fields) run_plot_script("plot_coupled_flow.py", dir, "flow_*.png", quiet);
+    run_plot_script("plot_run.py", unit, "trajectory.png", quiet);
+    if (sc.has(Effect::flow) && sc.flow.fields) run_plot_script("plot_coupled_flow.py", unit, "flow_*.png", quiet);
   }
+  unit.commit();
+  if (!quiet) std::cout << "  wrote " << (unit.target() / "trajectory.csv").string() << " and " << (unit.target() / "summary.json").string() << "\n";
   return 0;
 }
 
@@ -158,6 +159,7 @@ int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
 }  // namespace
 
 int run_cli(int argc, char** argv) {
+  set_command_line(argc, argv);
   CLI::App app{"imcol: head-on collisions of spheres immersed in a viscous liquid"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("imcol ") + IMCOL_VERSION);

@@ -45,6 +45,7 @@ std::map<double, double> force_samples(const RunResult& r) {
 
 int compare_history(const std::string& scene_path, const std::vector<Override>& overrides, const HistoryCompareOptions& opt) {
   Scene base = load_scene(scene_path, overrides);
+  OutputUnit unit(opt.out, fs::path("out") / base.name / "history", base.path);
   if (!base.fluid) throw InputError(scene_path, "fluid", "the history force needs a [fluid] table");
   for (const auto& k : opt.kernels)
     if (!choice_from_string<KernelKind>(k))
@@ -122,11 +123,11 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
     if (r.kernel != "none")
       for (const auto& [t, f] : force_samples(r.run)) forces << r.kernel << " " << r.evaluator << "," << t << "," << f << "\n";
   }
-  const fs::path dir = opt.out.empty() ? fs::path("out") / base.name / "history" : fs::path(opt.out);
-  write_file_atomic(dir / "history.csv", csv.str());
-  write_file_atomic(dir / "history_forces.csv", forces.str());
-  std::cout << "wrote " << (dir / "history.csv").string() << " and " << (dir / "history_forces.csv").string() << "\n";
-  if (opt.plot) run_plot_script("plot_history.py", dir, "history.png");
+  write_file_atomic(unit.dir() / "history.csv", csv.str());
+  write_file_atomic(unit.dir() / "history_forces.csv", forces.str());
+  if (opt.plot) run_plot_script("plot_history.py", unit, "history.png");
+  unit.commit();
+  std::cout << "wrote " << (unit.target() / "history.csv").string() << " and " << (unit.target() / "history_forces.csv").string() << "\n";
   return 0;
 }
 

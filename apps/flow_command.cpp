@@ -10,6 +10,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
 #include "contact/collision_model.hpp"
 #include "contact/formulas.hpp"
@@ -110,12 +111,12 @@ void check_cost(const flow::FlowScene& sc, const FlowCommandOptions& opt) {
 
 }  // namespace
 
-nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowCommandOptions& opt) {
+nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowCommandOptions& opt, const fs::path& dir,
+                                      const nlohmann::ordered_json& run) {
   flow::FlowScene sc = flow::load_flow_scene(scene_path);
   apply_overrides(sc, opt);
   flow::check_flow_scene(sc);
   check_cost(sc, opt);
-  const fs::path dir = opt.out.empty() ? fs::path("out") / sc.name : fs::path(opt.out);
   const flow::Settings set = sc.settings();
   const int nb = static_cast<int>(sc.spheres.size());
   const double D = sc.D(), a = 0.5 * D, U = sc.U(), Re = sc.Re(), mu = sc.viscosity, nu = sc.nu();
@@ -341,15 +342,16 @@ nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowC
   j["memory_bytes"] = solver.bytes();
   j["force_solver"] = {{"krylov_tol", sc.krylov_tol}, {"krylov_iterations_mean", steps_done ? double(krylov_total) / steps_done : 0.0},
                        {"krylov_iterations_max", krylov_max}, {"max_slip", slip_max}};
+  if (!run.is_null()) j["run"] = run;
   write_file_atomic(dir / "forces.csv", hist.str());
   write_file_atomic(dir / "summary.json", j.dump(2) + "\n");
   return j;
 }
 
 int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
-  const auto j = run_flow_scene(scene_path, opt);
   const flow::FlowScene sc = flow::load_flow_scene(scene_path);
-  const fs::path dir = opt.out.empty() ? fs::path("out") / sc.name : fs::path(opt.out);
+  OutputUnit unit(opt.out, fs::path("out") / sc.name, scene_path);
+  const auto j = run_flow_scene(scene_path, opt, unit.dir(), unit.run());
   std::cout << std::setprecision(5);
   std::cout << "Re = " << j["Re"].get<double>() << "  C_D = " << j["drag_coefficient"].get<double>();
   if (!j["drag_coefficient_standard"].is_null())
@@ -383,13 +385,14 @@ int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
               << j["impulsive_start"]["window_t"][1].get<double>() << " s (0.8 <= nu t / a^2 <= 4)\n";
   std::cout << "steps " << j["steps"].get<long>() << ", wall " << j["wall_time_s"].get<double>() << " s ("
             << j["ms_per_step"].get<double>() << " ms/step)\n";
-  std::cout << "wrote " << (dir / "forces.csv").string() << ", " << (dir / "summary.json").string() << ", snapshots\n";
   if (opt.plot) {
     std::cout.flush();
-    run_plot_script("plot_flow.py", dir, "forces.png");  // also snapshot_NN.png
+    run_plot_script("plot_flow.py", unit, "forces.png");  // also snapshot_NN.png
     if (j.contains("f_sim_vs_f_thr") && !j.contains("wall"))
-      run_plot_script("plot_force_vs_gap.py", dir, "forces_vs_gap.png");  // seed Fig. 6.4 (a wall: plot_flow.py draws it)
+      run_plot_script("plot_force_vs_gap.py", unit, "forces_vs_gap.png");  // seed Fig. 6.4 (a wall: plot_flow.py draws it)
   }
+  unit.commit();
+  std::cout << "wrote " << (unit.target() / "forces.csv").string() << ", " << (unit.target() / "summary.json").string() << ", snapshots\n";
   return 0;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // `imcol flow SCENE [--out DIR] [--no-plot]`: runs a flow scene (data/scenes/flow/) with the immersed-boundary
 // kernel and writes DIR/forces.csv, DIR/summary.json, DIR/snapshot_NN.csv (+ PNGs via scripts/plot_flow.py).
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -20,8 +21,10 @@ struct FlowCommandOptions {
   bool allow_long = false;    // run even if the estimated wall time exceeds an hour
 };
 
-/// Runs the scene; returns the summary written to DIR/summary.json.
-nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowCommandOptions& opt);
+/// Runs the scene and writes its files into `dir` (opt.out is not read); returns the summary written to
+/// dir/summary.json, which holds `run` when that is given.
+nlohmann::ordered_json run_flow_scene(const std::string& scene_path, const FlowCommandOptions& opt, const std::filesystem::path& dir,
+                                      const nlohmann::ordered_json& run = nullptr);
 int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt);
 
 }  // namespace imcol

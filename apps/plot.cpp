@@ -18,7 +18,8 @@ std::string shell_quote(const std::string& s) {
 }
 }  // namespace
 
-bool run_plot_script(const std::string& script, const std::filesystem::path& dir, const std::string& png, bool quiet) {
+bool run_plot_script(const std::string& script, const OutputUnit& unit, const std::string& png, bool quiet) {
+  const std::filesystem::path& dir = unit.dir();
   const auto path = std::filesystem::path(data_dir()).parent_path() / "scripts" / script;
   const std::string cmd = "/usr/bin/python3 " + shell_quote(path.string()) + " " + shell_quote(dir.string()) + " 2>&1";
   std::string output;
@@ -29,7 +30,7 @@ bool run_plot_script(const std::string& script, const std::filesystem::path& dir
     status = ::pclose(p);
   }
   if (status == 0) {
-    if (!quiet) std::cout << "wrote " << (dir / png).string() << "\n";
+    if (!quiet) std::cout << "wrote " << (unit.target() / png).string() << "\n";
     return true;
   }
   // The script's own last non-empty line (a Python exception names its type and cause), on one line.
@@ -38,7 +39,7 @@ bool run_plot_script(const std::string& script, const std::filesystem::path& dir
   for (std::string line; std::getline(lines, line);)
     if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
   if (last.empty()) last = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status)) : "did not run";
-  std::cerr << "imcol: warning: the plot " << (dir / png).string() << " failed (/usr/bin/python3 scripts/" << script << "): " << last
+  std::cerr << "imcol: warning: the plot " << (unit.target() / png).string() << " failed (/usr/bin/python3 scripts/" << script << "): " << last
             << "; the data files are complete\n";
   return false;
 }

@@ -3,10 +3,12 @@
 #include <filesystem>
 #include <string>
 
+#include "apps/output_unit.hpp"
+
 namespace imcol {
 
-/// Runs scripts/<script> DIR; prints "wrote DIR/<png>" (unless quiet) or a warning that quotes the script's
-/// last output line (a Python error), the data files staying complete. Returns true if the script succeeded.
-bool run_plot_script(const std::string& script, const std::filesystem::path& dir, const std::string& png, bool quiet = false);
+/// Runs scripts/<script> on the unit's staged folder; prints "wrote TARGET/<png>" (unless quiet) or a warning that
+/// quotes the script's last output line (a Python error), the data files staying complete. True if it succeeded.
+bool run_plot_script(const std::string& script, const OutputUnit& unit, const std::string& png, bool quiet = false);
 
 }  // namespace imcol

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "apps/format.hpp"
+#include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
@@ -196,16 +197,13 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
     }
   }
 
-  const fs::path dir = opt.out.empty() ? fs::path("out") / base.name / ("sweep_" + opt.vary) : fs::path(opt.out);
-  // A previous run's results go first, and a marker says that sweep.csv is partial until the sweep completes:
-  // a killed run leaves sweep.partial beside its partial sweep.csv, never a stale sweep.json or sweep.png.
-  {
-    std::error_code ec;
-    for (const char* f : {"sweep.json", "sweep.png", "sweep.csv"}) fs::remove(dir / f, ec);
-    write_file_atomic(dir / "sweep.partial",
-                      "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
-                          "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
-  }
+  // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
+  // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
+  OutputUnit unit(opt.out, fs::path("out") / base.name / ("sweep_" + opt.vary), base.path);
+  const fs::path& dir = unit.dir();
+  write_file_atomic(dir / "sweep.partial",
+                    "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
+                        "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = std::min(opt.points, opt.jobs > 0 ? opt.jobs : static_cast<int>(hw));
   const bool tty = opt.progress && isatty(STDERR_FILENO);
@@ -263,10 +261,16 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   for (auto& t : threads) t.join();
   const double wall = elapsed();
   if (tty) std::cerr << "\n";
-  if (!write_error.empty())
+  if (!write_error.empty()) {
+    std::string kept = "sweep.partial marks what is there as incomplete";
+    try {
+      unit.commit();
+    } catch (const std::exception& e) {
+      kept = "the points finished so far could not be kept either (" + std::string(e.what()) + ")";
+    }
     throw std::runtime_error("sweep stopped after " + std::to_string(finished) + " of " + std::to_string(opt.points) +
-                             " points: writing " + (dir / "sweep.csv").string() + " failed (" + write_error +
-                             "); sweep.partial marks what is there as incomplete");
+                             " points: writing " + (unit.target() / "sweep.csv").string() + " failed (" + write_error + "); " + kept);
+  }
 
   // Table, failures, throughput.
   std::cout << "scene " << base.name << ": sweep of " << opt.vary << " from " << opt.from << " to " << opt.to << " (" << opt.points
@@ -341,13 +345,12 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   j["measures_disagree_points"] = n_disagree;
   j["measures_disagree_counts"] = disagreeing;
   j["complete"] = true;  // every point ran (or failed with its reason)
+  j["run"] = unit.run();
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
-  {
-    std::error_code ec;
-    fs::remove(dir / "sweep.partial", ec);
-  }
-  std::cout << "wrote " << (dir / "sweep.csv").string() << " and " << (dir / "sweep.json").string() << "\n";
-  if (opt.plot) run_plot_script("plot_sweep.py", dir, "sweep.png");
+  fs::remove(dir / "sweep.partial");
+  if (opt.plot) run_plot_script("plot_sweep.py", unit, "sweep.png");
+  unit.commit();
+  std::cout << "wrote " << (unit.target() / "sweep.csv").string() << " and " << (unit.target() / "sweep.json").string() << "\n";
   return failed ? 3 : 0;
 }
 

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "apps/format.hpp"
-#include "apps/out_dir.hpp"
+#include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
@@ -135,7 +135,7 @@ int cmd_validate(const std::string& what, const ValidateOptions& opt, const std:
                        "imcol validate sets the gap law of each model; choose the models with --models seed,asymptotic instead of --set");
   const auto models = validate_models(opt.models);
   const auto runs = read_table_6_1();
-  OutDir out_dir(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
+  OutputUnit unit(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
   const bool flow = opt.flow;
   std::cout << "Seed Table 6.1 (Li 2010) against imcol, " << (flow ? "coupled (f_SIM from the flow kernel, blended by H) and reduced-order"
                                                                   : "reduced-order (no f_SIM)") << "\n"
@@ -202,19 +202,13 @@ int cmd_validate(const std::string& what, const ValidateOptions& opt, const std:
     std::cout << "  " << models[k].name << (flow ? ", coupled: " : ": ") << agree[k].text(opt.tolerance) << "\n";
     if (flow) std::cout << "  " << models[k].name << ", reduced-order: " << agree_reduced[k].text(opt.tolerance) << "\n";
   }
-  const fs::path& dir = out_dir.path();
-  {
-    // An earlier run's picture goes first: with --no-plot or a failing plot no stale picture stays beside the new CSV.
-    std::error_code ec;
-    fs::remove(dir / "validate_seed.png", ec);
-  }
-  write_file_atomic(dir / "validate_seed.csv", csv.str());
-  out_dir.keep();
-  std::cout << "wrote " << (dir / "validate_seed.csv").string() << "\n";
+  write_file_atomic(unit.dir() / "validate_seed.csv", csv.str());
   if (opt.plot) {
     std::cout.flush();
-    run_plot_script("plot_validate_seed.py", dir, "validate_seed.png");
+    run_plot_script("plot_validate_seed.py", unit, "validate_seed.png");
   }
+  unit.commit();
+  std::cout << "wrote " << (unit.target() / "validate_seed.csv").string() << "\n";
   return 0;
 }
 

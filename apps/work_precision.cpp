@@ -98,10 +98,11 @@ std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>&
 
 int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
   Scene base = load_scene(scene_path, overrides);
+  OutputUnit unit(opt.out, fs::path("out") / base.name / "work_precision", base.path);
   if (base.has(Effect::flow)) {  // a coupled scene: the ladder is the grid and the flow step
     FlowLadderOptions fo;
     fo.out = opt.out;
-    return work_precision_flow(base, overrides, fo);
+    return work_precision_flow(base, overrides, fo, unit);
   }
   if (opt.repeat < 1) throw InputError("--repeat", "repeat", "must be >= 1");
   if (opt.rtols.empty()) throw InputError("--rtols", "rtols", "give at least one tolerance");
@@ -326,11 +327,12 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   j["observed_order"] = orders;
   j["cheapest"] = cheapest;
   j["effects"] = ref.summary["effects"];
-  const fs::path dir = opt.out.empty() ? fs::path("out") / base.name / "work_precision" : fs::path(opt.out);
-  write_file_atomic(dir / "work_precision.csv", csv.str());
-  write_file_atomic(dir / "work_precision.json", j.dump(2) + "\n");
-  std::cout << "wrote " << (dir / "work_precision.csv").string() << " and " << (dir / "work_precision.json").string() << "\n";
-  if (opt.plot) run_plot_script("plot_work_precision.py", dir, "work_precision.png");
+  j["run"] = unit.run();
+  write_file_atomic(unit.dir() / "work_precision.csv", csv.str());
+  write_file_atomic(unit.dir() / "work_precision.json", j.dump(2) + "\n");
+  if (opt.plot) run_plot_script("plot_work_precision.py", unit, "work_precision.png");
+  unit.commit();
+  std::cout << "wrote " << (unit.target() / "work_precision.csv").string() << " and " << (unit.target() / "work_precision.json").string() << "\n";
   return 0;
 }
 

@@ -29,7 +29,7 @@ double number_or_nan(const nlohmann::ordered_json& j) { return j.is_null() ? std
 
 }  // namespace
 
-int work_precision_flow(const Scene& base, const std::vector<Override>& overrides, const FlowLadderOptions& opt) {
+int work_precision_flow(const Scene& base, const std::vector<Override>& overrides, const FlowLadderOptions& opt, OutputUnit& unit) {
   if (opt.cells.size() < 2 || opt.cfls.size() < 2) throw InputError("work-precision", "ladder", "each ladder needs two rungs or more");
   for (int c : opt.cells)
     if (c < 4 || c > 512) throw InputError("--cells", "cells", "cells per diameter must lie in [4, 512]");
@@ -88,11 +88,11 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
                              {"flow", f}});
     }
   }
-  namespace fs = std::filesystem;
-  const fs::path dir = opt.out.empty() ? fs::path("out") / base.name / "work_precision" : fs::path(opt.out);
-  write_file_atomic(dir / "work_precision_flow.csv", csv.str());
-  write_file_atomic(dir / "work_precision_flow.json", js.dump(2) + "\n");
-  std::cout << "wrote " << (dir / "work_precision_flow.csv").string() << " and .json\n";
+  js["run"] = unit.run();
+  write_file_atomic(unit.dir() / "work_precision_flow.csv", csv.str());
+  write_file_atomic(unit.dir() / "work_precision_flow.json", js.dump(2) + "\n");
+  unit.commit();
+  std::cout << "wrote " << (unit.target() / "work_precision_flow.csv").string() << " and .json\n";
   return 0;
 }
 

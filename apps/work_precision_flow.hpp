@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/output_unit.hpp"
 #include "core/scene.hpp"
 
 namespace imcol {
@@ -17,6 +18,6 @@ struct FlowLadderOptions {
 
 /// Prints both ladders (e, |e − e_finest|, e_instant, wall time, flow steps, ms per flow step) and writes
 /// DIR/work_precision_flow.csv and .json.
-int work_precision_flow(const Scene& base, const std::vector<Override>& overrides, const FlowLadderOptions& opt);
+int work_precision_flow(const Scene& base, const std::vector<Override>& overrides, const FlowLadderOptions& opt, OutputUnit& unit);
 
 }  // namespace imcol

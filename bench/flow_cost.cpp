@@ -250,7 +250,7 @@ int main(int argc, char** argv) {
       o.out = "out/refine_" + sc.name + "_" + std::to_string(c);
       o.cells_per_diameter = c;
       o.dt = sc.dt * sc.cells_per_diameter / c;
-      const auto j = imcol::run_flow_scene(refine, o);
+      const auto j = imcol::run_flow_scene(refine, o, o.out);
       const double cd = j["drag_coefficient"].get<double>();
       cds.push_back(cd);
       std::string order = "-";
@@ -333,7 +333,7 @@ int main(int argc, char** argv) {
     o.quiet = true;
     o.out = "out/bench_flow_re100";
     o.cells_per_diameter = steady_cells;
-    const auto j = imcol::run_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml", o);
+    const auto j = imcol::run_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml", o, o.out);
     std::printf("Re = 100 cold start, %d cells/D, %d levels: C_D = %.4f (standard %.4f, %+.2f %%); within 3 %% from t = %s after %s s wall; "
                 "whole run %.2f s for %ld steps\n",
                 j["grid"]["cells_per_diameter"].get<int>(), j["grid"]["levels"].get<int>(), j["drag_coefficient"].get<double>(),

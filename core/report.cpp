@@ -1,5 +1,7 @@
 #include "core/report.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
@@ -16,12 +18,14 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
   tmp += ".tmp." + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + tmp.string());
+    if (!out) throw std::runtime_error("cannot write " + tmp.string() + ": " + std::strerror(errno));
+    errno = 0;
     out << content;
     out.flush();
     if (!out) {
+      const int err = errno;
       fs::remove(tmp, ec);
-      throw std::runtime_error("write failed for " + tmp.string());
+      throw std::runtime_error("write failed for " + path.string() + (err ? std::string(": ") + std::strerror(err) : std::string()));
     }
   }
   fs::rename(tmp, path, ec);

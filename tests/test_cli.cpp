@@ -26,9 +26,10 @@ struct Result {
   std::string err;
 };
 
-Result run_imcol(const std::string& args) {
+/// Runs imcol with `args`; `shell_prefix` runs first in the same shell (e.g. a ulimit).
+Result run_imcol(const std::string& args, const std::string& shell_prefix = "") {
   const fs::path errf = fs::temp_directory_path() / ("imcol_cli_err_" + std::to_string(::getpid()));
-  const std::string cmd = std::string(IMCOL_BINARY) + " " + args + " >/dev/null 2>" + errf.string();
+  const std::string cmd = shell_prefix + std::string(IMCOL_BINARY) + " " + args + " >/dev/null 2>" + errf.string();
   const int raw = std::system(cmd.c_str());
   std::ifstream in(errf);
   std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -242,19 +243,22 @@ TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
 }
 
 TEST(Cli, SweepThatCannotWriteItsTableStopsWithOneLineAndKeepsThePartialMarker) {
-  // sweep.csv cannot be replaced (a non-empty folder of that name): the write fails in a worker thread.
+  // A file-size limit of 1 KiB: sweep.csv outgrows it after a few points, and the write fails in a worker thread.
   const fs::path out = fs::temp_directory_path() / "imcol_cli_sweep_unwritable";
   fs::remove_all(out);
-  fs::create_directories(out / "sweep.csv" / "x");
-  const Result r = run_imcol("sweep " + imcol::data_dir() + "/scenes/default.toml --vary velocity --from 0.1 --to 0.3 --points 20 "
-                             "--jobs 2 --no-plot --no-progress --out " + out.string());
+  const Result r = run_imcol("sweep " + imcol::data_dir() + "/scenes/default.toml --vary velocity --from 0.1 --to 0.3 --points 200 "
+                             "--jobs 2 --no-plot --no-progress --out " + out.string(), "ulimit -f 2; ");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(r.err.rfind("imcol: error: sweep stopped after ", 0), 0u) << r.err;
   EXPECT_NE(r.err.find("sweep.csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_TRUE(fs::exists(out / "sweep.partial"));
+  EXPECT_TRUE(fs::exists(out / "sweep.csv"));
   EXPECT_FALSE(fs::exists(out / "sweep.json"));
   for (const auto& f : fs::directory_iterator(out)) EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
+  for (const auto& f : fs::directory_iterator(out.parent_path()))
+    EXPECT_NE(f.path().filename().string().rfind("." + out.filename().string() + ".", 0), 0u) << f.path();
   fs::remove_all(out);
 }
 

@@ -10,7 +10,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <csignal>
+#include <chrono>
 #include <sys/wait.h>
+#include <thread>
+#include <vector>
 #include <unistd.h>
 
 #include "apps/plot.hpp"
@@ -118,9 +122,10 @@ TEST(FirstHour, ConcurrentPlotsIntoOneFolderAllSucceed) {
 
 TEST(FirstHour, AFailingPlotQuotesThePythonError) {
   const fs::path dir = tmp("noplot");
-  fs::create_directories(dir);  // no trajectory.csv: the script fails
+  fs::remove_all(dir);
+  imcol::OutputUnit unit(dir.string(), "unused");  // no trajectory.csv: the script fails
   testing::internal::CaptureStderr();
-  const bool ok = imcol::run_plot_script("plot_run.py", dir, "trajectory.png", true);
+  const bool ok = imcol::run_plot_script("plot_run.py", unit, "trajectory.png", true);
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_FALSE(ok);
   EXPECT_NE(err.find("FileNotFoundError"), std::string::npos) << err;
@@ -128,26 +133,53 @@ TEST(FirstHour, AFailingPlotQuotesThePythonError) {
   fs::remove_all(dir);
 }
 
-// 5. A killed sweep leaves sweep.partial beside its partial sweep.csv and no stale sweep.json or sweep.png.
-TEST(FirstHour, AKilledSweepIsMarkedPartial) {
+// 5. A killed sweep leaves the folder's previous result whole (its own partial sweep stays in a staging folder beside
+// it, which the next sweep into that folder removes); a complete sweep replaces the whole folder.
+TEST(FirstHour, AKilledSweepLeavesThePreviousResultWhole) {
   const fs::path dir = tmp("sweep");
+  fs::remove_all(dir);
   fs::create_directories(dir);
-  std::ofstream(dir / "sweep.json") << "{\"stale\": true}\n";
-  std::ofstream(dir / "sweep.png") << "stale";
-  const std::string cmd = "cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && timeout -s KILL 2.5 " + IMCOL_BINARY +
-                          " sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 2000 --jobs 1 --no-plot"
-                          " --no-progress --out " + dir.string() + " >/dev/null 2>&1";
-  const int raw = std::system(cmd.c_str());
-  ASSERT_FALSE(WIFEXITED(raw) && WEXITSTATUS(raw) == 0) << "the sweep finished before it was killed";
-  EXPECT_TRUE(fs::exists(dir / "sweep.partial"));
-  EXPECT_FALSE(fs::exists(dir / "sweep.json"));
-  EXPECT_FALSE(fs::exists(dir / "sweep.png"));
-  // A complete sweep removes the marker and says so.
+  std::ofstream(dir / "sweep.json") << "{\"previous\": true}\n";
+  std::ofstream(dir / "sweep.png") << "previous";
+  // Started in the background; killed (-9) once its partial sweep.csv is there.
+  const fs::path pid_file = tmp("sweep.pid");
+  const std::string cmd = "cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && { " + IMCOL_BINARY +
+                          " sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 4000 --jobs 1 --no-plot"
+                          " --no-progress --out " + dir.string() + " >/dev/null 2>&1 & echo $! > " + pid_file.string() + "; }";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const pid_t pid = std::stoi(slurp(pid_file));
+  fs::remove(pid_file);
+  auto staged = [&] {
+    std::vector<fs::path> v;
+    for (const auto& f : fs::directory_iterator(dir.parent_path()))
+      if (f.path().filename().string().rfind("." + dir.filename().string() + ".part-", 0) == 0) v.push_back(f.path());
+    return v;
+  };
+  for (int i = 0; i < 3000 && (staged().empty() || !fs::exists(staged()[0] / "sweep.csv")); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(::kill(pid, SIGKILL), 0) << "the sweep finished before it was killed";
+  for (int i = 0; i < 500 && fs::exists("/proc/" + std::to_string(pid) + "/cmdline") &&
+                  slurp("/proc/" + std::to_string(pid) + "/cmdline").find("imcol") != std::string::npos;
+       ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_TRUE(nlohmann::json::parse(slurp(dir / "sweep.json"))["previous"].get<bool>());
+  EXPECT_TRUE(fs::exists(dir / "sweep.png"));
+  EXPECT_FALSE(fs::exists(dir / "sweep.csv"));
+  EXPECT_FALSE(fs::exists(dir / "sweep.partial"));
+  const std::vector<fs::path> left = staged();
+  ASSERT_EQ(left.size(), 1u);
+  EXPECT_TRUE(fs::exists(left[0] / "sweep.partial"));
+  EXPECT_TRUE(fs::exists(left[0] / "sweep.csv"));
+  // The next sweep removes the killed one's staging folder and replaces the whole folder.
   const Outcome r = run_imcol("sweep data/scenes/gg3462.toml --vary velocity --from 0.2 --to 0.4 --points 3 --no-plot --no-progress --out " +
                       dir.string());
   ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_FALSE(fs::exists(left[0]));
   EXPECT_FALSE(fs::exists(dir / "sweep.partial"));
-  EXPECT_TRUE(nlohmann::json::parse(slurp(dir / "sweep.json"))["complete"].get<bool>());
+  EXPECT_FALSE(fs::exists(dir / "sweep.png"));  // the previous run's picture (--no-plot now)
+  const auto j = nlohmann::json::parse(slurp(dir / "sweep.json"));
+  EXPECT_TRUE(j["complete"].get<bool>());
+  EXPECT_EQ(j["run"]["id"], nlohmann::json::parse(slurp(dir / ".imcol-run.json"))["id"]);
   fs::remove_all(dir);
 }
 

@@ -1,0 +1,54 @@
+#pragma once
+// A command's output folder as one unit: all of one run's files or none of them.
+//
+// The files are built in a staging folder beside the target (`.NAME.part-PID`) and swapped in by one rename
+// (renameat2 RENAME_EXCHANGE), so a reader, a crash or kill -9 never sees files of two runs side by side. An
+// exclusive lock (flock) on the target folder refuses a second writer; the lock holder removes the staging
+// folders that killed runs left behind. `.imcol-run.json` in the folder names the run that wrote it.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace imcol {
+
+/// The command line of this process, recorded in every output folder (set once by run_cli).
+void set_command_line(int argc, char** argv);
+
+class OutputUnit {
+ public:
+  /// `out`: the --out value, or empty for `fallback`. Errors (exit 2) name `--out`, or the scene key 'name' of
+  /// `scene_path` when the folder comes from the scene's name. Refuses a folder another imcol process is writing,
+  /// the current folder or one that contains it, and a folder holding files imcol did not write.
+  OutputUnit(const std::string& out, const std::filesystem::path& fallback, const std::string& scene_path = "");
+  ~OutputUnit();
+  OutputUnit(const OutputUnit&) = delete;
+  OutputUnit& operator=(const OutputUnit&) = delete;
+
+  /// Where to write now (the staging folder).
+  const std::filesystem::path& dir() const { return staging_; }
+  /// Where the files will be once committed.
+  const std::filesystem::path& target() const { return target_; }
+  /// The run that writes this unit: id, command, imcol version, host, pid, start time (UTC).
+  const nlohmann::ordered_json& run() const { return run_; }
+
+  /// Swaps the staged files in as the folder's whole content (the previous content is removed). Throws
+  /// std::runtime_error if the swap fails (the target then keeps its previous content).
+  void commit();
+
+ private:
+  void lock_target();
+  void check_contents() const;
+  void remove_leftovers() const;
+  std::filesystem::path sibling(const std::string& kind, long pid) const;
+
+  std::filesystem::path target_, staging_;
+  std::vector<std::filesystem::path> created_;  // folders this created for the target, innermost first
+  std::string place_, key_;                     // where the folder came from, for messages
+  nlohmann::ordered_json run_;
+  int lock_fd_ = -1;
+  bool committed_ = false;
+};
+
+}  // namespace imcol

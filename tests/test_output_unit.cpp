@@ -1,0 +1,290 @@
+// An output folder is one unit: all of one run's files or none of them, one writer at a time
+// (apps/output_unit.hpp). Unit tests of OutputUnit, then faults through the binary: kill -9 at random
+// moments of a run and of a sweep, and concurrent writers into one folder.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/output_unit.hpp"
+#include "core/errors.hpp"
+#include "core/materials.hpp"
+
+namespace fs = std::filesystem;
+using imcol::OutputUnit;
+
+namespace {
+
+fs::path fresh(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("imcol_unit_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  return p;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+struct Outcome {
+  int status;  // exit status, or -signal
+  std::string err;
+};
+
+Outcome run_shell(const std::string& cmd) {
+  const fs::path errf = fs::temp_directory_path() / ("imcol_unit_err_" + std::to_string(::getpid()) + "_" +
+                                                     std::to_string(std::hash<std::string>{}(cmd)));
+  const int raw = std::system((cmd + " >/dev/null 2>" + errf.string()).c_str());
+  Outcome o{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(errf)};
+  fs::remove(errf);
+  return o;
+}
+
+std::string imcol_cmd(const std::string& args) {
+  return "cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && " + IMCOL_BINARY + " " + args;
+}
+
+/// Staging folders left beside `dir`.
+std::vector<fs::path> staged_beside(const fs::path& dir) {
+  std::vector<fs::path> v;
+  for (const auto& f : fs::directory_iterator(dir.parent_path()))
+    if (f.path().filename().string().rfind("." + dir.filename().string() + ".", 0) == 0) v.push_back(f.path());
+  return v;
+}
+
+/// The folder is empty, or one run's whole unit: the marker lists exactly the files present, summary.json names
+/// the same run, and the trajectory starts at the velocity the run was given. Returns the velocity (0 if empty).
+double check_run_unit(const fs::path& dir) {
+  if (!fs::exists(dir) || fs::is_empty(dir)) return 0;
+  const auto marker = nlohmann::json::parse(slurp(dir / ".imcol-run.json"));
+  std::set<std::string> listed, present;
+  for (const auto& f : marker["files"]) listed.insert(f.get<std::string>());
+  for (const auto& f : fs::directory_iterator(dir))
+    if (f.path().filename() != ".imcol-run.json") present.insert(f.path().filename().string());
+  EXPECT_EQ(listed, present) << dir;
+  const auto summary = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_EQ(summary["run"]["id"], marker["id"]);
+  const std::string command = summary["run"]["command"].get<std::string>();
+  const auto at = command.find("velocity=");
+  EXPECT_NE(at, std::string::npos) << command;
+  const double given = std::stod(command.substr(at + 9));
+  std::istringstream csv(slurp(dir / "trajectory.csv"));
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  std::vector<std::string> cells;
+  std::istringstream r(row);
+  for (std::string c; std::getline(r, c, ',');) cells.push_back(c);
+  EXPECT_GE(cells.size(), 3u);
+  EXPECT_EQ(header.rfind("t,z1,u1,", 0), 0u) << header;
+  EXPECT_DOUBLE_EQ(std::stod(cells.at(2)), given) << "trajectory and summary from different runs in " << dir;
+  return given;
+}
+
+}  // namespace
+
+TEST(OutputUnit, CommitReplacesTheWholeFolderAndNamesTheRun) {
+  const fs::path dir = fresh("replace");
+  fs::create_directories(dir);
+  std::ofstream(dir / "flow_00.csv") << "old\n";  // a coupled run's field, a picture, a killed writer's temporary
+  std::ofstream(dir / "trajectory.png") << "old";
+  std::ofstream(dir / "summary.json.tmp.12345") << "old";
+  {
+    OutputUnit unit(dir.string(), "unused");
+    EXPECT_NE(unit.dir(), dir);
+    std::ofstream(unit.dir() / "summary.json") << "{}\n";
+    EXPECT_TRUE(fs::exists(dir / "flow_00.csv"));  // nothing changes until the commit
+    unit.commit();
+  }
+  std::set<std::string> names;
+  for (const auto& f : fs::directory_iterator(dir)) names.insert(f.path().filename().string());
+  EXPECT_EQ(names, (std::set<std::string>{".imcol-run.json", "summary.json"}));
+  const auto marker = nlohmann::json::parse(slurp(dir / ".imcol-run.json"));
+  EXPECT_FALSE(marker["id"].get<std::string>().empty());
+  EXPECT_EQ(marker["pid"].get<long>(), ::getpid());
+  EXPECT_EQ(marker["files"], nlohmann::json::array({"summary.json"}));
+  EXPECT_TRUE(staged_beside(dir).empty());
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, AnUncommittedUnitLeavesThePreviousResultAndNoTrace) {
+  const fs::path dir = fresh("uncommitted");
+  fs::create_directories(dir);
+  std::ofstream(dir / "summary.json") << "previous\n";
+  { OutputUnit unit(dir.string(), "unused"); std::ofstream(unit.dir() / "summary.json") << "new\n"; }
+  EXPECT_EQ(slurp(dir / "summary.json"), "previous\n");
+  EXPECT_TRUE(staged_beside(dir).empty());
+  // A folder created for a run that never committed is removed again, with the parents it created.
+  const fs::path nested = fresh("nested") / "a" / "b";
+  { OutputUnit unit(nested.string(), "unused"); }
+  EXPECT_FALSE(fs::exists(nested.parent_path().parent_path()));
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, ASecondWriterIsRefusedWhileTheFirstHoldsTheFolder) {
+  const fs::path dir = fresh("second");
+  OutputUnit first(dir.string(), "unused");
+  try {
+    OutputUnit second(dir.string(), "unused");
+    FAIL() << "a second writer was let in";
+  } catch (const imcol::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("being written by another imcol process (pid " + std::to_string(::getpid()) + ")"),
+              std::string::npos) << e.what();
+    EXPECT_EQ(e.key(), "--out");
+  }
+  // Another process too: exit 2 and one line, before anything runs.
+  const Outcome o = run_shell(imcol_cmd("run data/scenes/default.toml --no-plot --quiet --out " + dir.string()));
+  EXPECT_EQ(o.status, 2) << o.err;
+  EXPECT_EQ(o.err.rfind("imcol: error: command line: key '--out': the output folder", 0), 0u) << o.err;
+  EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+  first.commit();
+  // Once committed, the folder is free again.
+  OutputUnit third(dir.string(), "unused");
+  third.commit();
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, FoldersThatAreNotImcolOutputsAreRefused) {
+  const fs::path dir = fresh("foreign");
+  fs::create_directories(dir / "notes");
+  std::ofstream(dir / "thesis.tex") << "mine";
+  try {
+    OutputUnit unit(dir.string(), "unused");
+    FAIL() << "a folder of other files was taken";
+  } catch (const imcol::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("which imcol did not write"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(slurp(dir / "thesis.tex"), "mine");
+  EXPECT_TRUE(staged_beside(dir).empty());
+  // The current folder (or one containing it) cannot be swapped out.
+  const fs::path cwd = fs::current_path();
+  fs::create_directories(dir / "inner");
+  fs::current_path(dir / "inner");
+  for (const std::string& out : std::vector<std::string>{".", "..", dir.string()}) {
+    try {
+      OutputUnit unit(out, "unused");
+      ADD_FAILURE() << out << " was taken";
+    } catch (const imcol::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("current folder"), std::string::npos) << e.what();
+    }
+  }
+  fs::current_path(cwd);
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, AnImpossiblePlaceIsRefusedBeforeAnythingRuns) {
+  // A folder under a regular file: exit 2 naming --out, at once (the run itself would take seconds).
+  const fs::path file = fresh("file");
+  std::ofstream(file) << "x";
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome o = run_shell(imcol_cmd("sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 2000 --no-plot --no-progress --out " +
+                                        (file / "x").string()));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  EXPECT_EQ(o.status, 2) << o.err;
+  EXPECT_EQ(o.err.rfind("imcol: error: command line: key '--out': cannot create the output folder", 0), 0u) << o.err;
+  fs::remove(file);
+}
+
+TEST(OutputUnit, KilledRunsLeaveEitherTheOldResultOrTheNewOneWhole) {
+  // kill -9 at random moments (seeded) of a run that replaces a run at another velocity, with and without plots.
+  const fs::path dir = fresh("killed");
+  ASSERT_EQ(run_shell(imcol_cmd("run data/scenes/default.toml --no-plot --quiet --set sphere[0].velocity=0.1 --out " + dir.string())).status, 0);
+  ASSERT_DOUBLE_EQ(check_run_unit(dir), 0.1);
+  std::mt19937 rng(20261126);
+  int old_seen = 0, new_seen = 0;
+  for (const bool plot : {false, true}) {
+    // The time of a whole run, measured here, sets the range of the kill moments.
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string args = std::string("run data/scenes/default.toml --quiet ") + (plot ? "" : "--no-plot ") + "--out " + dir.string();
+    ASSERT_EQ(run_shell(imcol_cmd(args + " --set sphere[0].velocity=0.2")).status, 0);
+    const double whole = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (int k = 0; k < (plot ? 4 : 10); ++k) {
+      const double prior = check_run_unit(dir);
+      const double v = k % 2 ? 0.2 : 0.3;
+      const double at = std::uniform_real_distribution<double>(0.005, 1.2 * whole)(rng);
+      std::ostringstream cmd;
+      cmd << "timeout -s KILL " << at << " " << IMCOL_BINARY << " " << args << " --set sphere[0].velocity=" << v;
+      run_shell("cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && " + cmd.str());
+      const double now = check_run_unit(dir);
+      EXPECT_TRUE(now == prior || now == v) << "after a kill at " << at << " s: velocity " << now;
+      (now == prior && prior != v ? old_seen : new_seen)++;
+    }
+  }
+  // The next run cleans up whatever the killed ones left beside the folder.
+  ASSERT_EQ(run_shell(imcol_cmd("run data/scenes/default.toml --no-plot --quiet --set sphere[0].velocity=0.25 --out " + dir.string())).status, 0);
+  EXPECT_DOUBLE_EQ(check_run_unit(dir), 0.25);
+  EXPECT_TRUE(staged_beside(dir).empty());
+  std::cout << "kills that left the previous result: " << old_seen << ", the new one: " << new_seen << "\n";
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, ConcurrentWritersNeverMixAFolder) {
+  // Four processes at four velocities into one folder, five rounds: each one either writes the whole folder or is
+  // refused with one line (exit 2); the folder always holds one of the writers' whole results.
+  const fs::path dir = fresh("concurrent");
+  for (int round = 0; round < 5; ++round) {
+    std::vector<std::thread> threads;
+    std::vector<Outcome> outcomes(4);
+    for (int w = 0; w < 4; ++w)
+      threads.emplace_back([&, w] {
+        outcomes[w] = run_shell(imcol_cmd("run data/scenes/default.toml --quiet --no-plot --out " + dir.string() +
+                                          " --set sphere[0].velocity=0." + std::to_string(w + 1)));
+      });
+    for (auto& t : threads) t.join();
+    std::set<double> written;
+    for (int w = 0; w < 4; ++w) {
+      if (outcomes[w].status == 0) {
+        written.insert(0.1 * (w + 1));
+        continue;
+      }
+      EXPECT_EQ(outcomes[w].status, 2) << outcomes[w].err;
+      EXPECT_NE(outcomes[w].err.find("being written by another imcol process"), std::string::npos) << outcomes[w].err;
+      EXPECT_EQ(std::count(outcomes[w].err.begin(), outcomes[w].err.end(), '\n'), 1) << outcomes[w].err;
+    }
+    ASSERT_FALSE(written.empty());
+    const double v = check_run_unit(dir);
+    bool from_a_writer = false;
+    for (double x : written) from_a_writer = from_a_writer || std::abs(x - v) < 1e-12;
+    EXPECT_TRUE(from_a_writer) << v;
+  }
+  EXPECT_TRUE(staged_beside(dir).empty());
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, TwoSweepsIntoOneFolderDoNotMix) {
+  // A second sweep is refused while the first runs; the first then completes as one unit.
+  const fs::path dir = fresh("sweeps");
+  const std::string first = imcol_cmd("sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 400 --jobs 1 --no-plot "
+                                      "--no-progress --out " + dir.string());
+  std::thread t([&] { EXPECT_EQ(run_shell(first).status, 0); });
+  // Wait until the first sweep holds the folder (its staging folder appears).
+  for (int i = 0; i < 500 && (!fs::exists(dir.parent_path()) || staged_beside(dir).empty()); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const Outcome second = run_shell(imcol_cmd("sweep data/scenes/gg3462.toml --vary viscosity --from 0.01 --to 0.1 --points 5 --no-plot "
+                                             "--no-progress --out " + dir.string()));
+  t.join();
+  EXPECT_EQ(second.status, 2) << second.err;
+  EXPECT_NE(second.err.find("being written by another imcol process"), std::string::npos) << second.err;
+  const auto j = nlohmann::json::parse(slurp(dir / "sweep.json"));
+  EXPECT_EQ(j["vary"], "velocity");
+  EXPECT_EQ(j["points"], 400);
+  std::istringstream csv(slurp(dir / "sweep.csv"));
+  int rows = -1;
+  for (std::string line; std::getline(csv, line);) rows += !line.empty() && line[0] != '#';
+  EXPECT_EQ(rows, 400);
+  EXPECT_FALSE(fs::exists(dir / "sweep.partial"));
+  fs::remove_all(dir);
+}
