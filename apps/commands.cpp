@@ -58,14 +58,14 @@ int cmd_run(const std::string& scene_path, const std::string& out, const CommonO
   RunResult r = simulate(sc, !quiet);
   r.summary["run"] = unit.run();
   write_outputs(r, unit.dir());
-  if (!quiet) std::cout << human_summary(r);
+  // "wrote" names the files where they are once the unit is committed, a moment later.
+  if (!quiet) std::cout << human_summary(r) << "  wrote " << (unit.target() / "trajectory.csv").string() << " and " << (unit.target() / "summary.json").string() << "\n";
   if (plot) {
     std::cout.flush();
     run_plot_script("plot_run.py", unit, "trajectory.png", quiet);
     if (sc.has(Effect::flow) && sc.flow.fields) run_plot_script("plot_coupled_flow.py", unit, "flow_*.png", quiet);
   }
   unit.commit();
-  if (!quiet) std::cout << "  wrote " << (unit.target() / "trajectory.csv").string() << " and " << (unit.target() / "summary.json").string() << "\n";
   return 0;
 }
 
@@ -207,7 +207,7 @@ int run_cli(int argc, char** argv) {
   bool no_plot = false;
   auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history)");
   history->add_option("scene", hscene, "scene file (TOML)")->required();
-  history->add_option("--out", hopt.out, "output directory (default out/<scene name>/history)");
+  history->add_option("--out", hopt.out, "output directory (default out/<scene name>-history)");
   history->add_option("--kernels", hopt.kernels, "kernels to run (default all)")->delimiter(',');
   history->add_option("--evaluators", hopt.evaluators, "soe-step, soe, direct (default all three)")->delimiter(',');
   history->add_flag("--no-plot", no_plot, "skip the PNG plot");
@@ -234,7 +234,7 @@ int run_cli(int argc, char** argv) {
   bool wp_no_plot = false;
   auto* wp = app.add_subcommand("work-precision", "what accuracy costs: a tolerance ladder per integrator and history evaluator against a tight reference");
   wp->add_option("scene", wscene, "scene file (TOML)")->required();
-  wp->add_option("--out", wopt.out, "output directory (default out/<scene name>/work_precision)");
+  wp->add_option("--out", wopt.out, "output directory (default out/<scene name>-work_precision)");
   wp->add_option("--rtols", wopt.rtols, "the rtol ladder (atol = rtol)")->delimiter(',');
   wp->add_option("--integrators", wopt.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',');
   wp->add_option("--evaluators", wopt.evaluators, "history evaluators soe-step, soe, direct (default all three if the scene has history)")->delimiter(',');
@@ -260,7 +260,7 @@ int run_cli(int argc, char** argv) {
   sw->add_option("--points", sopt.points, "number of points")->required();
   sw->add_option("--spacing", sopt.spacing, "log (default) | linear")->check(CLI::IsMember({"log", "linear"}));
   sw->add_option("--jobs", sopt.jobs, "parallel runs (default: all cores)");
-  sw->add_option("--out", sopt.out, "output directory (default out/<scene name>/sweep_<quantity>)");
+  sw->add_option("--out", sopt.out, "output directory (default out/<scene name>-sweep_<quantity>)");
   sw->add_flag("--no-progress", sw_no_progress, "no progress line on the terminal");
   sw->add_flag("--no-plot", sw_no_plot, "skip the PNG plot");
   add_common(sw, sw_opt);

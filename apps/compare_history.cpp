@@ -45,7 +45,7 @@ std::map<double, double> force_samples(const RunResult& r) {
 
 int compare_history(const std::string& scene_path, const std::vector<Override>& overrides, const HistoryCompareOptions& opt) {
   Scene base = load_scene(scene_path, overrides);
-  OutputUnit unit(opt.out, fs::path("out") / base.name / "history", base.path);
+  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-history"), base.path);
   if (!base.fluid) throw InputError(scene_path, "fluid", "the history force needs a [fluid] table");
   for (const auto& k : opt.kernels)
     if (!choice_from_string<KernelKind>(k))

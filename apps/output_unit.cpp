@@ -84,7 +84,7 @@ constexpr const char* kMarker = ".imcol-run.json";
 
 void set_command_line(int argc, char** argv) {
   std::string s = "imcol";
-  for (int i = 1; i < argc; ++i) s += " " + shell_word(argv[i]);
+  for (int i = 1; i < argc; ++i) s.append(" ").append(shell_word(argv[i]));
   g_command_line = s;
 }
 
@@ -94,6 +94,8 @@ OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const s
   const fs::path given = out.empty() ? fallback : fs::path(out);
   std::error_code ec;
   if (given.empty()) throw InputError(place_, key_, "the output folder is empty: give a folder name");
+  shown_ = given.lexically_normal();
+  if (!shown_.has_filename() && shown_.has_parent_path()) shown_ = shown_.parent_path();
   target_ = fs::weakly_canonical(fs::absolute(given, ec), ec);
   if (ec) throw InputError(place_, key_, "cannot resolve the output folder '" + given.string() + "': " + ec.message());
   if (!target_.has_filename()) target_ = target_.parent_path();
@@ -107,7 +109,7 @@ OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const s
     remove_leftovers();
     staging_ = sibling("part", ::getpid());
     fs::create_directory(staging_, ec);
-    if (ec) throw InputError(place_, key_, "cannot write beside the output folder '" + target_.string() + "': " + ec.message());
+    if (ec) throw InputError(place_, key_, "cannot write beside the output folder '" + shown_.string() + "': " + ec.message());
   } catch (...) {
     if (lock_fd_ >= 0) ::close(lock_fd_);
     for (const auto& p : created_)
@@ -123,7 +125,9 @@ OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const s
 }
 
 fs::path OutputUnit::sibling(const std::string& kind, long pid) const {
-  return target_.parent_path() / ("." + target_.filename().string() + "." + kind + "-" + std::to_string(pid));
+  std::string name = ".";
+  name.append(target_.filename().string()).append(".").append(kind).append("-").append(std::to_string(pid));
+  return target_.parent_path() / name;
 }
 
 void OutputUnit::lock_target() {
@@ -135,20 +139,20 @@ void OutputUnit::lock_target() {
     }
     fs::create_directories(target_, ec);
     if (ec || !fs::is_directory(target_))
-      throw InputError(place_, key_, "cannot create the output folder '" + target_.string() + "'" + (ec ? ": " + ec.message() : ""));
+      throw InputError(place_, key_, "cannot create the output folder '" + shown_.string() + "'" + (ec ? ": " + ec.message() : ""));
     const int fd = ::open(target_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) throw InputError(place_, key_, "cannot open the output folder '" + target_.string() + "': " + std::strerror(errno));
+    if (fd < 0) throw InputError(place_, key_, "cannot open the output folder '" + shown_.string() + "': " + std::strerror(errno));
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;
       ::close(fd);
-      if (err != EWOULDBLOCK) throw InputError(place_, key_, "cannot lock the output folder '" + target_.string() + "': " + std::strerror(err));
+      if (err != EWOULDBLOCK) throw InputError(place_, key_, "cannot lock the output folder '" + shown_.string() + "': " + std::strerror(err));
       std::string holder;
-      const std::string prefix = "." + target_.filename().string() + ".part-";
+      const std::string prefix = std::string(".").append(target_.filename().string()).append(".part-");
       for (const auto& f : fs::directory_iterator(target_.parent_path(), ec)) {
         const std::string n = f.path().filename().string();
         if (n.rfind(prefix, 0) == 0) holder = " (pid " + n.substr(prefix.size()) + ")";
       }
-      throw InputError(place_, key_, "the output folder '" + target_.string() + "' is being written by another imcol process" + holder +
+      throw InputError(place_, key_, "the output folder '" + shown_.string() + "' is being written by another imcol process" + holder +
                                          ": wait for it to finish, or choose another folder");
     }
     // The lock holds only if the folder at the path is still the one locked (a finishing run swaps it).
@@ -160,7 +164,7 @@ void OutputUnit::lock_target() {
     ::close(fd);
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  throw InputError(place_, key_, "the output folder '" + target_.string() + "' keeps changing: another process is replacing it");
+  throw InputError(place_, key_, "the output folder '" + shown_.string() + "' keeps changing: another process is replacing it");
 }
 
 void OutputUnit::check_contents() const {
@@ -168,15 +172,15 @@ void OutputUnit::check_contents() const {
   if (fs::exists(target_ / kMarker, ec)) return;
   for (const auto& f : fs::directory_iterator(target_, ec))
     if (!written_by_imcol(f))
-      throw InputError(place_, key_, "the output folder '" + target_.string() + "' holds '" + f.path().filename().string() +
+      throw InputError(place_, key_, "the output folder '" + shown_.string() + "' holds '" + f.path().filename().string() +
                                          "', which imcol did not write: a run replaces its whole output folder, so give a new or empty one");
-  if (ec) throw InputError(place_, key_, "cannot read the output folder '" + target_.string() + "': " + ec.message());
+  if (ec) throw InputError(place_, key_, "cannot read the output folder '" + shown_.string() + "': " + ec.message());
 }
 
 void OutputUnit::remove_leftovers() const {
   // Staging folders of runs that were killed (the lock says none of them is running).
   std::error_code ec;
-  const std::string name = "." + target_.filename().string() + ".";
+  const std::string name = std::string(".").append(target_.filename().string()).append(".");
   std::vector<fs::path> stale;
   for (const auto& f : fs::directory_iterator(target_.parent_path(), ec)) {
     const std::string n = f.path().filename().string();
@@ -212,7 +216,7 @@ void OutputUnit::commit() {
     }
     if (!moved) {
       committed_ = true;  // keep the staged files: they are the run's complete result
-      throw std::runtime_error("cannot move the results into '" + target_.string() + "' (" + std::strerror(err) +
+      throw std::runtime_error("cannot move the results into '" + shown_.string() + "' (" + std::strerror(err) +
                                "); they are complete in '" + staging_.string() + "'");
     }
   }

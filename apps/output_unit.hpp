@@ -28,8 +28,8 @@ class OutputUnit {
 
   /// Where to write now (the staging folder).
   const std::filesystem::path& dir() const { return staging_; }
-  /// Where the files will be once committed.
-  const std::filesystem::path& target() const { return target_; }
+  /// Where the files will be once committed, as given (relative paths stay relative).
+  const std::filesystem::path& target() const { return shown_; }
   /// The run that writes this unit: id, command, imcol version, host, pid, start time (UTC).
   const nlohmann::ordered_json& run() const { return run_; }
 
@@ -43,7 +43,7 @@ class OutputUnit {
   void remove_leftovers() const;
   std::filesystem::path sibling(const std::string& kind, long pid) const;
 
-  std::filesystem::path target_, staging_;
+  std::filesystem::path shown_, target_, staging_;  // as given; absolute; where the files are built
   std::vector<std::filesystem::path> created_;  // folders this created for the target, innermost first
   std::string place_, key_;                     // where the folder came from, for messages
   nlohmann::ordered_json run_;

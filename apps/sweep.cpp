@@ -199,7 +199,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
 
   // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
   // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
-  OutputUnit unit(opt.out, fs::path("out") / base.name / ("sweep_" + opt.vary), base.path);
+  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-sweep_" + opt.vary), base.path);
   const fs::path& dir = unit.dir();
   write_file_atomic(dir / "sweep.partial",
                     "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +

@@ -13,7 +13,7 @@ struct SweepOptions {
   int points = 0;
   std::string spacing = "log";  // log | linear
   int jobs = 0;              // 0 = all cores
-  std::string out;           // default out/<scene>/sweep_<vary>
+  std::string out;           // default out/<scene>-sweep_<vary>
   bool progress = true;      // on a terminal only
   bool plot = true;
 };

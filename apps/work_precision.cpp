@@ -98,7 +98,7 @@ std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>&
 
 int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
   Scene base = load_scene(scene_path, overrides);
-  OutputUnit unit(opt.out, fs::path("out") / base.name / "work_precision", base.path);
+  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-work_precision"), base.path);
   if (base.has(Effect::flow)) {  // a coupled scene: the ladder is the grid and the flow step
     FlowLadderOptions fo;
     fo.out = opt.out;

@@ -9,7 +9,7 @@
 namespace imcol {
 
 struct WorkPrecisionOptions {
-  std::string out;                                                  // default out/<scene>/work_precision
+  std::string out;                                                  // default out/<scene>-work_precision
   std::vector<double> rtols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
   std::vector<std::string> integrators = {"cvode-dense", "cvode-gmres", "ida"};
   std::vector<std::string> evaluators;  // soe-step, soe, direct; default all three if the scene has history, else none

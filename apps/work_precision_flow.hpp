@@ -11,7 +11,7 @@
 namespace imcol {
 
 struct FlowLadderOptions {
-  std::string out;                                 // default out/<scene>/work_precision
+  std::string out;                                 // default out/<scene>-work_precision
   std::vector<int> cells = {16, 24, 32, 48};       // cells per diameter; the last is the grid ladder's reference
   std::vector<double> cfls = {1.0, 0.5, 0.25};     // flow step dt = cfl h / U; the last is the step ladder's reference
 };
