@@ -1,3 +1,9 @@
+#include <csignal>
+
 #include "apps/commands.hpp"
 
-int main(int argc, char** argv) { return imcol::run_cli(argc, argv); }
+int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) must end a write with EFBIG, reported as an I/O error (exit 1), not kill the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+  return imcol::run_cli(argc, argv);
+}

@@ -348,6 +348,11 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   }
   std::cout << "wrote " << (dir / "sweep.csv").string() << " and " << (dir / "sweep.json").string() << "\n";
   if (opt.plot) run_plot_script("plot_sweep.py", dir, "sweep.png");
+  if (failed) {  // stdout may go to a file or a pipe: the failure is also said where errors go
+    std::cout.flush();
+    std::cerr << "imcol: error: " << failed << " of " << opt.points << " sweep points failed; their reasons are in "
+              << (dir / "sweep.json").string() << " (failures) and " << (dir / "sweep.csv").string() << " (status, message)\n";
+  }
   return failed ? 3 : 0;
 }
 

@@ -1,0 +1,256 @@
+// Every documented scene key and every command-line option, given each of a set of bad values: the value is either
+// legitimately allowed (listed below) or refused with an input error whose one-line message names the key or option.
+// The scene keys come from the scene reference's template (docs/scene-reference.md) and the [flow] table of
+// docs/coupling.md; the options from each subcommand's --help. A key or option added without a case here fails.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "core/errors.hpp"
+#include "core/materials.hpp"
+#include "core/scene.hpp"
+
+namespace fs = std::filesystem;
+using namespace imcol;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+fs::path source_dir() { return fs::path(data_dir()).parent_path(); }
+
+/// The template of docs/scene-reference.md ("## Every key"): a valid scene that sets every key.
+std::string reference_template() {
+  const std::string text = slurp(source_dir() / "docs/scene-reference.md");
+  std::smatch m;
+  const std::string rest = text.substr(text.find("## Every key"));
+  EXPECT_TRUE(std::regex_search(rest, m, std::regex("```toml\\n([\\s\\S]*?)```")));
+  return m[1].str();
+}
+
+/// Dotted keys of every value in a TOML table ([[sphere]] as sphere[0]); arrays of values are leaves.
+void leaf_keys(const toml::table& t, const std::string& prefix, std::vector<std::string>& out) {
+  for (auto&& [k, v] : t) {
+    const std::string key = prefix + std::string(k.str());
+    if (const auto* sub = v.as_table()) leaf_keys(*sub, key + ".", out);
+    else if (const auto* arr = v.as_array(); arr && arr->is_array_of_tables()) leaf_keys(*arr->get(0)->as_table(), key + "[0].", out);
+    else out.push_back(key);
+  }
+}
+
+/// The [flow] table's keys: the backquoted names in the first column of docs/coupling.md's table.
+std::vector<std::string> flow_keys() {
+  const std::string text = slurp(source_dir() / "docs/coupling.md");
+  const auto at = text.find("## The `[flow]` table");
+  EXPECT_NE(at, std::string::npos);
+  std::vector<std::string> keys;
+  std::istringstream lines(text.substr(at));
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line) && line.rfind("## ", 0) != 0) {
+    if (line.rfind("| `", 0) != 0) continue;
+    const std::string first = line.substr(1, line.find('|', 1) - 1);
+    for (std::sregex_iterator it(first.begin(), first.end(), std::regex("`([a-z_]+)`")), end; it != end; ++it)
+      keys.push_back("flow." + (*it)[1].str());
+  }
+  return keys;
+}
+
+const std::vector<std::string> kBadValues = {"nan", "inf", "-inf", "0", "-1", "1e300", "\"some text\"", "{ x = 1 }"};
+
+/// The values a key legitimately takes among kBadValues (everything else must be refused naming the key).
+const std::map<std::string, std::set<std::string>> kAllowed = {
+    {"name", {"\"some text\""}},
+    {"description", {"\"some text\""}},
+    {"gravity", {"0", "-1"}},
+    {"sphere[0].position", {"0", "-1"}},    // the wall is moved to z = 1 m for these cases
+    {"sphere[0].velocity", {"0", "-1"}},    // at rest, moving away
+    {"sphere[0].poisson_ratio", {"0"}},
+    {"wall.position", {"0"}},
+    {"history.modes", {"0"}},               // 0 = automatic
+    {"history.min_lag", {"0"}},
+    {"history.horizon", {"0"}},
+    {"history.direct_step", {"0"}},
+    {"solver.max_step", {"0"}},
+    {"flow.energy_margin", {"0"}},          // no margin: any energy beyond the supply ends the run
+};
+
+/// The keys of the template, the inline material properties its comment lists and `h_c` (asymptotic only), and the
+/// [flow] keys.
+std::vector<std::string> scene_keys() {
+  std::vector<std::string> keys;
+  leaf_keys(toml::parse(reference_template()), "", keys);
+  for (const char* k : {"sphere[0].density", "sphere[0].youngs_modulus", "sphere[0].poisson_ratio", "sphere[0].e_dry", "lubrication.h_c"})
+    keys.push_back(k);
+  for (const auto& k : flow_keys()) keys.push_back(k);
+  return keys;
+}
+
+/// The template, made fit for `key`: a [flow] key gets the flow effect, h_c the asymptotic law, and the impact sphere's
+/// position a wall far enough away that 0 and -1 are positions like any other.
+std::string base_for(const std::string& key, std::vector<Override>& ov) {
+  std::string text = reference_template();
+  if (key.rfind("flow.", 0) == 0)
+    text = std::regex_replace(text, std::regex("effects = \\[\"drag\", \"lubrication\", \"added_mass\", \"history\", \"elastic\"\\]"),
+                              "effects = [\"drag\", \"lubrication\", \"added_mass\", \"history\", \"elastic\", \"flow\"]");
+  if (key == "lubrication.h_c") ov.push_back({"lubrication.model", "\"asymptotic\""});
+  if (key == "sphere[0].position") ov.push_back({"wall.position", "1.0"});
+  return text;
+}
+
+}  // namespace
+
+TEST(BadValues, TheSourcesListTheKeys) {
+  const auto keys = scene_keys();
+  // A sample of what the documents must yield (so that a broken extraction does not pass silently).
+  for (const char* k : {"fluid.viscosity", "sphere[0].velocity", "solver.atol", "solver.krylov_tol", "measure.stall_fraction",
+                        "flow.dt", "flow.krylov_restart", "flow.behind", "output.dt", "history.direct_step"})
+    EXPECT_NE(std::find(keys.begin(), keys.end(), k), keys.end()) << k;
+  EXPECT_GT(keys.size(), 80u);
+  for (const auto& [key, values] : kAllowed) EXPECT_NE(std::find(keys.begin(), keys.end(), key), keys.end()) << key;
+}
+
+TEST(BadValues, EverySceneKeyRefusesEachBadValueNamingTheKey) {
+  int refused = 0, accepted = 0;
+  for (const auto& key : scene_keys()) {
+    std::vector<Override> base_ov;
+    const std::string text = base_for(key, base_ov);
+    ASSERT_NO_THROW(parse_scene(text, "ref.toml", base_ov)) << key;  // the base is valid
+    for (const auto& value : kBadValues) {
+      auto ov = base_ov;
+      ov.push_back({key, value});
+      const auto allowed = kAllowed.find(key);
+      const bool may_accept = allowed != kAllowed.end() && allowed->second.count(value);
+      try {
+        parse_scene(text, "ref.toml", ov);
+        EXPECT_TRUE(may_accept) << key << " = " << value << " was accepted";
+        ++accepted;
+      } catch (const InputError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("'" + key + "'"), std::string::npos) << key << " = " << value << ": " << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        EXPECT_FALSE(may_accept) << key << " = " << value << " is allowed but refused: " << msg;
+        ++refused;
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << key << " = " << value << ": not an InputError: " << e.what();
+      }
+    }
+  }
+  std::printf("%d refused, %d accepted\n", refused, accepted);
+}
+
+// ---- Options, through the binary -------------------------------------------------------------------
+
+namespace {
+
+struct Outcome {
+  int status;
+  std::string err;
+};
+
+Outcome run_binary(const std::vector<std::string>& args) {
+  const fs::path errf = fs::temp_directory_path() / ("imcol_badopt_err_" + std::to_string(::getpid()));
+  std::string cmd = "timeout 20 " + std::string(IMCOL_BINARY);
+  for (const auto& a : args) {
+    std::string q = "'";
+    for (char c : a) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    cmd += " " + q + "'";
+  }
+  cmd += " >/dev/null 2>" + errf.string();
+  const int raw = std::system(cmd.c_str());
+  std::string err = slurp(errf);
+  fs::remove(errf);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, err};
+}
+
+/// The options a subcommand's --help lists (positionals excluded).
+std::vector<std::string> help_options(const std::string& sub) {
+  const fs::path out = fs::temp_directory_path() / ("imcol_badopt_help_" + std::to_string(::getpid()));
+  const std::string cmd = std::string(IMCOL_BINARY) + " " + sub + " --help >" + out.string() + " 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << sub;
+  const std::string text = slurp(out);
+  fs::remove(out);
+  std::vector<std::string> opts;
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::smatch m;
+    if (std::regex_search(line, m, std::regex("^\\s+(?:-[a-zA-Z],)?(--[a-z][a-z-]*)")) && m[1] != "--help") opts.push_back(m[1]);
+  }
+  return opts;
+}
+
+const std::string kNumberBad[] = {"abc", "nan", "inf", "-1", "1e300", "1e-300", "", "1,"};
+
+}  // namespace
+
+TEST(BadValues, EveryOptionRefusesEachBadValueNamingIt) {
+  const std::string scene = (fs::path(data_dir()) / "scenes/default.toml").string();
+  const std::string flow_scene = (fs::path(data_dir()) / "scenes/flow/fixed_sphere_re20.toml").string();
+  ASSERT_TRUE(fs::exists(flow_scene)) << flow_scene;
+  // What each subcommand needs besides the option under test (never reached: the option is refused first).
+  const std::map<std::string, std::vector<std::string>> base = {
+      {"run", {scene}}, {"validate", {"seed"}}, {"bench", {scene}}, {"effects", {scene}}, {"history", {scene}},
+      {"flow", {flow_scene}}, {"work-precision", {scene}},
+      {"sweep", {scene, "--vary", "velocity", "--from", "0.1", "--to", "0.2", "--points", "2"}}};
+  // Bad values per option: numbers, choices, paths and scene overrides; a flag given a value.
+  std::vector<std::string> numbers(std::begin(kNumberBad), std::end(kNumberBad));
+  const std::vector<std::string> choices = {"abc", ""}, flag = {"=abc"};
+  const std::map<std::string, std::vector<std::string>> bad = {
+      {"--rtol", numbers}, {"--atol", numbers}, {"--tolerance", numbers}, {"--rtols", numbers}, {"--repeat", {"abc", "0", "-1", "1.5", "1e300", ""}},
+      {"--cells", {"abc", "0", "3", "1.5", "99999999999999999999"}}, {"--levels", {"abc", "0", "17", "nan"}}, {"--dt", numbers},
+      {"--t-end", numbers}, {"--direct-steps", {"abc", "nan", "1e-15", "1e-6", "1e-300", "1e300", "-1"}}, {"--direct-rtol", numbers},
+      {"--ref-rtol", numbers}, {"--ref-history-tolerance", numbers}, {"--from", numbers}, {"--to", numbers},
+      {"--points", {"abc", "0", "-1", "1.5", "1e300"}}, {"--jobs", {"abc", "-1", "1.5", "1e300"}},
+      {"--integrator", choices}, {"--integrators", choices}, {"--evaluators", choices}, {"--kernels", choices},
+      {"--models", choices}, {"--vary", choices}, {"--spacing", choices},
+      {"--set", {"novalue", "solver.rtol=1e-8\nsolver.bogus=1", "=1"}}, {"--out", {""}},
+      {"--quiet", flag}, {"--no-plot", flag}, {"--flow", flag}, {"--allow-long", flag}, {"--add-history", flag}, {"--no-progress", flag}};
+  int cases = 0;
+  for (const auto& [sub, args] : base) {
+    const auto opts = help_options(sub);
+    EXPECT_GT(opts.size(), 1u) << sub;
+    for (const auto& opt : opts) {
+      const auto it = bad.find(opt);
+      if (it == bad.end()) {
+        ADD_FAILURE() << "imcol " << sub << " " << opt << ": no bad values listed for this option";
+        continue;
+      }
+      for (const auto& value : it->second) {
+        std::vector<std::string> a = {sub};
+        // The option under test replaces a required option's value in the base arguments.
+        for (std::size_t i = 0; i < args.size(); ++i) {
+          if (args[i] == opt) {
+            ++i;
+            continue;
+          }
+          a.push_back(args[i]);
+        }
+        if (value.rfind("=", 0) == 0) a.push_back(opt + value);
+        else a.insert(a.end(), {opt, value});
+        const Outcome r = run_binary(a);
+        ++cases;
+        const std::string label = "imcol " + sub + " " + opt + " '" + value + "'";
+        EXPECT_EQ(r.status, 2) << label << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("imcol: error: ", 0), 0u) << label << ": " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << label << ": " << r.err;
+        EXPECT_NE(r.err.find(opt), std::string::npos) << label << ": " << r.err;
+      }
+    }
+  }
+  std::printf("%d option cases\n", cases);
+}
