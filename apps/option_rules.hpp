@@ -40,8 +40,8 @@ inline CLI::Validator number_rule(const std::string& option, Interval in) {
         if (text.empty() || end == s || *end != '\0' || std::isspace(static_cast<unsigned char>(text[0])))
           bad_option(option, "must be a number (got '" + text + "')");
         if (!std::isfinite(v)) bad_option(option, "must be a finite number (got " + text + ")");
-        if (v != 0 && std::abs(v) < 1e-30) bad_option(option, "must be 0 or of magnitude at least 1e-30 (got " + text + ")");
         if (!in.contains(v)) bad_option(option, "must lie in " + in.text() + " (got " + text + ")");
+        if (v != 0 && std::abs(v) < 1e-30) bad_option(option, "must be 0 or of magnitude at least 1e-30 (got " + text + ")");
         return {};
       },
       "in " + in.text());
