@@ -40,7 +40,7 @@ inline CLI::Validator number_rule(const std::string& option, Interval in) {
         if (text.empty() || end == s || *end != '\0' || std::isspace(static_cast<unsigned char>(text[0])))
           bad_option(option, "must be a number (got '" + text + "')");
         if (!std::isfinite(v)) bad_option(option, "must be a finite number (got " + text + ")");
-        if (!in.contains(v)) bad_option(option, "must lie in " + in.text() + " (got " + text + ")");
+        if (!in.contains(v)) bad_option(option, "must be in " + in.text() + " (got " + text + ")");
         if (v != 0 && std::abs(v) < 1e-30) bad_option(option, "must be 0 or of magnitude at least 1e-30 (got " + text + ")");
         return {};
       },
@@ -58,7 +58,7 @@ inline CLI::Validator integer_rule(const std::string& option, long lo, long hi) 
         const long v = std::strtol(s, &end, 10);
         if (text.empty() || end == s || *end != '\0' || std::isspace(static_cast<unsigned char>(text[0])))
           bad_option(option, "must be an integer (got '" + text + "')");
-        if (errno == ERANGE || v < lo || v > hi) bad_option(option, "must be an integer in " + range + " (got " + text + ")");
+        if (errno == ERANGE || v < lo || v > hi) bad_option(option, "must be in " + range + " (got " + text + ")");
         return {};
       },
       "in " + range);

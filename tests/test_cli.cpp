@@ -65,7 +65,7 @@ TEST(Cli, BadInputGivesExitStatusTwoAndNamesTheKey) {
   expect_input_error("overlap", imcol::test::edit(kScene, "position = -0.02", "position = -0.005"), "wall.position");
   expect_input_error("material", imcol::test::edit(kScene, "\"steel\"", "\"kryptonite\""), "sphere[0].material");
   expect_input_error("rtol", kScene + "[solver]\nrtol = 0\n", "solver.rtol");
-  expect_input_error("rtolcli", kScene, "solver.rtol", "--rtol -1e-8");
+  expect_input_error("rtolcli", kScene, "key '--rtol'", "--rtol -1e-8");
   const Result r = run_imcol("run /nonexistent/scene.toml");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/nonexistent/scene.toml"), std::string::npos);
@@ -437,6 +437,14 @@ TEST(Cli, BadScenesAreNamedByTheKeyAtFault) {
   const Result far = run_imcol("run " + coupled + " --set flow.dt=1e4 --set solver.t_end=1e4 --set output.dt=1 --set measure.max_samples=1e9" + out);
   expect_refused(far, "far start-up", {"key 'flow.dt'", "689 m"});
   EXPECT_EQ(far.err.find("nr must be even"), std::string::npos) << far.err;
+  // A flow scene's grid of more than 1e6 cells along an axis (it used to overflow to a grid that "missed" the sphere).
+  std::ifstream fin(imcol::data_dir() + "/scenes/flow/fixed_sphere_re20.toml");
+  std::string flow_text((std::istreambuf_iterator<char>(fin)), std::istreambuf_iterator<char>());
+  const auto at = flow_text.find("\nr_max = ");
+  ASSERT_NE(at, std::string::npos);
+  flow_text.replace(at, flow_text.find('\n', at + 1) - at, "\nr_max = 1e10");
+  const fs::path big = write_scene("flow_big_grid", flow_text);
+  expect_refused(run_imcol("flow " + big.string() + " --no-plot --out " + (fs::temp_directory_path() / "imcol_cli_flow_big").string()), "flow r_max", {"grid.r_max", "1e6"});
   // One --set sets one key: a line break would smuggle in more.
   expect_refused(run_imcol("run " + scene + " --set \"$(printf 'solver.rtol=1e-8\\nsolver.bogus=1')\"" + out), "newline", {"--set", "line break"});
 }
