@@ -21,6 +21,7 @@
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"
+#include "flow/flow_scene.hpp"
 
 namespace fs = std::filesystem;
 using namespace imcol;
@@ -156,6 +157,98 @@ TEST(BadValues, EverySceneKeyRefusesEachBadValueNamingTheKey) {
     }
   }
   std::printf("%d refused, %d accepted\n", refused, accepted);
+}
+
+// ---- Flow scenes (imcol flow): the template of docs/flow-kernel.md ------------------------------------
+
+namespace {
+
+/// The flow-scene template's keys ([stream] and [wall] exclude each other there, so it is a list, not a scene).
+std::vector<std::string> flow_scene_keys() {
+  const std::string text = slurp(source_dir() / "docs/flow-kernel.md");
+  std::smatch m;
+  const std::string rest = text.substr(text.find("### Flow scenes"));
+  EXPECT_TRUE(std::regex_search(rest, m, std::regex("```toml\\n([\\s\\S]*?)```")));
+  std::vector<std::string> keys;
+  leaf_keys(toml::parse(m[1].str()), "", keys);
+  return keys;
+}
+
+/// `text` with `key` (dotted, sphere[0] for the first [[sphere]]) set to the TOML value `value`.
+std::string with_value(const std::string& text, const std::string& key, const std::string& value) {
+  toml::table root = toml::parse(text);
+  toml::table* at = &root;
+  std::string rest = key;
+  for (auto dot = rest.find('.'); dot != std::string::npos; dot = rest.find('.')) {
+    const std::string part = rest.substr(0, dot);
+    rest = rest.substr(dot + 1);
+    if (part == "sphere[0]") at = root["sphere"].as_array()->get(0)->as_table();
+    else {
+      if (!at->contains(part)) at->insert(part, toml::table{});
+      at = (*at)[part].as_table();
+    }
+  }
+  toml::table v = toml::parse("v = " + value);
+  v["v"].node()->visit([&](auto&& node) { at->insert_or_assign(rest, node); });
+  std::ostringstream os;
+  os << root;
+  return os.str();
+}
+
+/// The values a flow-scene key legitimately takes among kBadValues.
+const std::map<std::string, std::set<std::string>> kFlowAllowed = {
+    {"name", {"\"some text\""}},
+    {"description", {"\"some text\""}},
+    {"wall.position", {"0"}},                // the sphere starts at z = 4 D
+    {"sphere[0].position", {"0", "-1"}},     // in a stream, inside the grid
+    {"sphere[0].velocity", {"0"}},           // fixed in the stream
+    {"sphere[0].amplitude", {"0"}},          // no oscillation
+    {"sphere[0].frequency", {"0"}},
+    {"stream.velocity", {"-1"}},             // the stream may run along -z
+    {"grid.z_min", {"-1"}},                  // the sphere at z = 0 still 3 cells inside
+    {"output.snapshots", {"0"}},             // none
+    {"output.min_gap", {"0"}},               // never stop
+};
+
+/// Keys whose bad values may be refused as a relation with the sphere ("sphere outside the finest grid ..., grid z in
+/// [z_min, z_max], r < r_max"): the message names the sphere's table and quotes the grid.
+const std::set<std::string> kFlowGridKeys = {"grid.z_min", "grid.z_max", "grid.r_max"};
+
+}  // namespace
+
+TEST(BadValues, EveryFlowSceneKeyRefusesEachBadValueNamingTheKey) {
+  const std::string stream = slurp(fs::path(data_dir()) / "scenes/flow/fixed_sphere_re20.toml");
+  const std::string wall = slurp(fs::path(data_dir()) / "scenes/flow/sphere_wall_approach_re0.1.toml");
+  const fs::path file = fs::temp_directory_path() / ("imcol_badvalues_flow_" + std::to_string(::getpid()) + ".toml");
+  const auto keys = flow_scene_keys();
+  EXPECT_GT(keys.size(), 25u);
+  for (const auto& [key, values] : kFlowAllowed) EXPECT_NE(std::find(keys.begin(), keys.end(), key), keys.end()) << key;
+  int refused = 0;
+  for (const auto& key : keys) {
+    const std::string& base = key.rfind("wall.", 0) == 0 ? wall : stream;
+    for (const auto& value : kBadValues) {
+      std::ofstream(file) << with_value(base, key, value);
+      const auto allowed = kFlowAllowed.find(key);
+      const bool may_accept = allowed != kFlowAllowed.end() && allowed->second.count(value);
+      try {
+        flow::load_flow_scene(file.string());
+        EXPECT_TRUE(may_accept) << key << " = " << value << " was accepted";
+      } catch (const InputError& e) {
+        const std::string msg = e.what();
+        // A sphere's problem names its [[sphere]] table; every other the key.
+        const std::string named = key.rfind("sphere[0].", 0) == 0 ? "sphere" : "'" + key + "'";
+        const bool grid_relation = kFlowGridKeys.count(key) && msg.find("key 'sphere[0]': sphere outside the finest grid") != std::string::npos;
+        EXPECT_TRUE(msg.find(named) != std::string::npos || grid_relation) << key << " = " << value << ": " << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        EXPECT_FALSE(may_accept) << key << " = " << value << " is allowed but refused: " << msg;
+        ++refused;
+      } catch (const std::exception& e) {
+        ADD_FAILURE() << key << " = " << value << ": not an InputError: " << e.what();
+      }
+    }
+  }
+  fs::remove(file);
+  std::printf("%d refused\n", refused);
 }
 
 // ---- Options, through the binary -------------------------------------------------------------------
