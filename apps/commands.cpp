@@ -14,6 +14,7 @@
 
 #include "apps/compare_history.hpp"
 #include "apps/format.hpp"
+#include "apps/option_rules.hpp"
 #include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
 #include "core/toml_reader.hpp"
@@ -45,11 +46,22 @@ struct CommonOptions {
   }
 };
 
+// The intervals of the scene keys the options stand for (core/scene.cpp).
+const Interval kRtol{1e-14, 1, false, true};
+const Interval kAtol{0, 1, true, true};
+const Interval kPositive{0, 1e30, true, false};
+
 void add_common(CLI::App* cmd, CommonOptions& c) {
-  cmd->add_option("--rtol", c.rtol, "relative tolerance (same as --set solver.rtol=R)");
-  cmd->add_option("--atol", c.atol, "dimensionless absolute tolerance (same as --set solver.atol=A)");
-  cmd->add_option("--integrator", c.integrator, "cvode | ida (same as --set solver.integrator=NAME)");
+  cmd->add_option("--rtol", c.rtol, "relative tolerance (same as --set solver.rtol=R)")->type_name("FLOAT")->check(number_rule("--rtol", kRtol));
+  cmd->add_option("--atol", c.atol, "dimensionless absolute tolerance (same as --set solver.atol=A)")->type_name("FLOAT")->check(number_rule("--atol", kAtol));
+  cmd->add_option("--integrator", c.integrator, "cvode | ida (same as --set solver.integrator=NAME)")
+      ->check(choice_rule("--integrator", choice_names<IntegratorMethod>()));
   cmd->add_option("--set", c.sets, "override a scene key: dotted.key=value (TOML value syntax)");
+}
+
+/// An option the command sets itself (bench and work-precision vary rtol along their own ladder): refused if given.
+void refuse_option(const CLI::App* cmd, const std::string& option, const std::string& why) {
+  if (cmd->get_option(option)->count()) throw InputError("command line", option, why);
 }
 
 int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet, bool plot) {
@@ -169,7 +181,7 @@ int run_cli(int argc, char** argv) {
   bool quiet = false, run_no_plot = false;
   auto* run = app.add_subcommand("run", "simulate one scene; writes DIR/trajectory.csv and DIR/summary.json");
   run->add_option("scene", scene, "scene file (TOML)")->required();
-  run->add_option("--out", out, "output directory (default out/<scene name>)");
+  run->add_option("--out", out, "output directory (default out/<scene name>)")->check(path_rule("--out"));
   run->add_flag("--quiet", quiet, "print nothing on success (no progress line)");
   run->add_flag("--no-plot", run_no_plot, "skip DIR/trajectory.png");
   add_common(run, run_opt);
@@ -179,10 +191,12 @@ int run_cli(int argc, char** argv) {
   bool val_no_plot = false;
   auto* val = app.add_subcommand("validate", "run a validation set and compare with its reference ('seed': Table 6.1)");
   val->add_option("set", what, "validation set: seed")->required();
-  val->add_option("--out", vopt.out, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)");
+  val->add_option("--out", vopt.out, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)")->check(path_rule("--out"));
   val->add_flag("--flow", vopt.flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
-  val->add_option("--models", vopt.models, "seed (the seed's gap law), asymptotic (Jeffrey & Onishi's leading terms, exact as h -> 0); default both")->delimiter(',');
-  val->add_option("--tolerance", vopt.tolerance, "|e - e_seed| counted as agreement in the closing lines (default 0.05)");
+  val->add_option("--models", vopt.models, "seed (the seed's gap law), asymptotic (Jeffrey & Onishi's leading terms, exact as h -> 0); default both")
+      ->delimiter(',')->check(CLI::Validator([](std::string& name) { validate_models({name}); return std::string(); }, "seed | asymptotic"));
+  val->add_option("--tolerance", vopt.tolerance, "|e - e_seed| counted as agreement in the closing lines (default 0.05)")
+      ->check(number_rule("--tolerance", {0, 1, true, false}));
   val->add_flag("--no-plot", val_no_plot, "skip DIR/validate_seed.png");
   add_common(val, val_opt);
 
@@ -191,8 +205,8 @@ int run_cli(int argc, char** argv) {
   int repeat = 5;
   auto* bench = app.add_subcommand("bench", "what accuracy costs: e and median wall time at several rtol");
   bench->add_option("scene", bscene, "scene file (TOML)")->required();
-  bench->add_option("--rtols", rtols, "relative tolerances to compare")->delimiter(',');
-  bench->add_option("--repeat", repeat, "runs per tolerance (median reported)");
+  bench->add_option("--rtols", rtols, "relative tolerances to compare")->delimiter(',')->check(number_rule("--rtols", kRtol));
+  bench->add_option("--repeat", repeat, "runs per tolerance (median reported)")->check(integer_rule("--repeat", 1, 1000));
   add_common(bench, bench_opt);
 
   std::string escene;
@@ -207,9 +221,11 @@ int run_cli(int argc, char** argv) {
   bool no_plot = false;
   auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history)");
   history->add_option("scene", hscene, "scene file (TOML)")->required();
-  history->add_option("--out", hopt.out, "output directory (default out/<scene name>-history)");
-  history->add_option("--kernels", hopt.kernels, "kernels to run (default all)")->delimiter(',');
-  history->add_option("--evaluators", hopt.evaluators, "soe-step, soe, direct (default all three)")->delimiter(',');
+  history->add_option("--out", hopt.out, "output directory (default out/<scene name>-history)")->check(path_rule("--out"));
+  history->add_option("--kernels", hopt.kernels, "kernels to run (default all)")->delimiter(',')
+      ->check(choice_rule("--kernels", choice_names<KernelKind>()));
+  history->add_option("--evaluators", hopt.evaluators, "soe-step, soe, direct (default all three)")->delimiter(',')
+      ->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
   history->add_flag("--no-plot", no_plot, "skip the PNG plot");
   add_common(history, hist_opt);
 
@@ -218,13 +234,14 @@ int run_cli(int argc, char** argv) {
   bool f_no_plot = false;
   auto* flowc = app.add_subcommand("flow", "immersed-boundary flow around spheres on the axis: force history, C_D, snapshots");
   flowc->add_option("scene", fscene, "flow scene file (TOML, data/scenes/flow/)")->required();
-  flowc->add_option("--out", fopt.out, "output directory (default out/<scene name>)");
+  flowc->add_option("--out", fopt.out, "output directory (default out/<scene name>)")->check(path_rule("--out"));
   long f_cells = 0, f_levels = 0;
   double f_dt = 0, f_t_end = 0;
-  auto* o_cells = flowc->add_option("--cells", f_cells, "override grid.cells_per_diameter");
-  auto* o_levels = flowc->add_option("--levels", f_levels, "override grid.levels");
-  auto* o_dt = flowc->add_option("--dt", f_dt, "override time.dt");
-  auto* o_t_end = flowc->add_option("--t-end", f_t_end, "override time.t_end");
+  // The flow scene's ranges (flow/flow_scene.cpp): grid.cells_per_diameter 4-4096, grid.levels 1-16.
+  auto* o_cells = flowc->add_option("--cells", f_cells, "override grid.cells_per_diameter")->check(integer_rule("--cells", 4, 4096));
+  auto* o_levels = flowc->add_option("--levels", f_levels, "override grid.levels")->check(integer_rule("--levels", 1, 16));
+  auto* o_dt = flowc->add_option("--dt", f_dt, "override time.dt")->check(number_rule("--dt", kPositive));
+  auto* o_t_end = flowc->add_option("--t-end", f_t_end, "override time.t_end")->check(number_rule("--t-end", kPositive));
   flowc->add_flag("--allow-long", fopt.allow_long, "run even if the estimated wall time exceeds an hour");
   flowc->add_flag("--no-plot", f_no_plot, "skip the PNG plots");
 
@@ -234,15 +251,19 @@ int run_cli(int argc, char** argv) {
   bool wp_no_plot = false;
   auto* wp = app.add_subcommand("work-precision", "what accuracy costs: a tolerance ladder per integrator and history evaluator against a tight reference");
   wp->add_option("scene", wscene, "scene file (TOML)")->required();
-  wp->add_option("--out", wopt.out, "output directory (default out/<scene name>-work_precision)");
-  wp->add_option("--rtols", wopt.rtols, "the rtol ladder (atol = rtol)")->delimiter(',');
-  wp->add_option("--integrators", wopt.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',');
-  wp->add_option("--evaluators", wopt.evaluators, "history evaluators soe-step, soe, direct (default all three if the scene has history)")->delimiter(',');
-  wp->add_option("--direct-steps", wopt.direct_steps, "direct evaluator: multiples of its default step")->delimiter(',');
-  wp->add_option("--direct-rtol", wopt.direct_rtol, "direct evaluator: rtol while its step varies");
-  wp->add_option("--ref-rtol", wopt.ref_rtol, "reference run: rtol = atol");
-  wp->add_option("--ref-history-tolerance", wopt.ref_history_tol, "reference run: soe fit tolerance");
-  wp->add_option("--repeat", wopt.repeat, "runs per setting (median wall time reported)");
+  wp->add_option("--out", wopt.out, "output directory (default out/<scene name>-work_precision)")->check(path_rule("--out"));
+  wp->add_option("--rtols", wopt.rtols, "the rtol ladder (atol = rtol)")->delimiter(',')->check(number_rule("--rtols", kRtol));
+  wp->add_option("--integrators", wopt.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',')
+      ->check(choice_rule("--integrators", {"cvode-dense", "cvode-gmres", "ida"}));
+  wp->add_option("--evaluators", wopt.evaluators, "history evaluators soe-step, soe, direct (default all three if the scene has history)")
+      ->delimiter(',')->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
+  wp->add_option("--direct-steps", wopt.direct_steps, "direct evaluator: multiples of its default step")->delimiter(',')
+      ->check(number_rule("--direct-steps", {kDirectStepMin, kDirectStepMax}));
+  wp->add_option("--direct-rtol", wopt.direct_rtol, "direct evaluator: rtol while its step varies")->check(number_rule("--direct-rtol", kRtol));
+  wp->add_option("--ref-rtol", wopt.ref_rtol, "reference run: rtol = atol")->check(number_rule("--ref-rtol", kRtol));
+  wp->add_option("--ref-history-tolerance", wopt.ref_history_tol, "reference run: soe fit tolerance")
+      ->check(number_rule("--ref-history-tolerance", {1e-13, 0.1, false, true}));
+  wp->add_option("--repeat", wopt.repeat, "runs per setting (median wall time reported)")->check(integer_rule("--repeat", 1, 1000));
   wp->add_flag("--add-history", wopt.add_history, "add the history effect (Basset) to a scene without it");
   wp->add_flag("--no-plot", wp_no_plot, "skip the PNG plot");
   add_common(wp, wp_opt);
@@ -254,21 +275,21 @@ int run_cli(int argc, char** argv) {
   auto* sw = app.add_subcommand("sweep", "e against St over a range of one quantity, the points in parallel");
   sw->add_option("scene", sscene, "scene file (TOML)")->required();
   sw->add_option("--vary", sopt.vary, "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
-      ->required()->check(CLI::IsMember({"velocity", "viscosity", "diameter", "density"}));
-  sw->add_option("--from", sopt.from, "first value (SI units)")->required();
-  sw->add_option("--to", sopt.to, "last value (SI units)")->required();
-  sw->add_option("--points", sopt.points, "number of points")->required();
-  sw->add_option("--spacing", sopt.spacing, "log (default) | linear")->check(CLI::IsMember({"log", "linear"}));
-  sw->add_option("--jobs", sopt.jobs, "parallel runs (default: all cores)");
-  sw->add_option("--out", sopt.out, "output directory (default out/<scene name>-sweep_<quantity>)");
+      ->required()->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
+  sw->add_option("--from", sopt.from, "first value (SI units)")->required()->check(number_rule("--from", kPositive));
+  sw->add_option("--to", sopt.to, "last value (SI units)")->required()->check(number_rule("--to", kPositive));
+  sw->add_option("--points", sopt.points, "number of points")->required()->check(integer_rule("--points", 1, 100000));
+  sw->add_option("--spacing", sopt.spacing, "log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
+  sw->add_option("--jobs", sopt.jobs, "parallel runs (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
+  sw->add_option("--out", sopt.out, "output directory (default out/<scene name>-sweep_<quantity>)")->check(path_rule("--out"));
   sw->add_flag("--no-progress", sw_no_progress, "no progress line on the terminal");
   sw->add_flag("--no-plot", sw_no_plot, "skip the PNG plot");
   add_common(sw, sw_opt);
 
   // An unknown subcommand is named as such (CLI11 would only say that a subcommand is required).
+  bool found = false;
   if (argc >= 2 && argv[1][0] != '-') {
     std::string known;
-    bool found = false;
     for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
       found = found || sub->get_name() == argv[1];
       known += (known.empty() ? "" : ", ") + sub->get_name();
@@ -281,12 +302,23 @@ int run_cli(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+    // Options the command sets itself along its own ladder.
+    if (*bench) refuse_option(bench, "--rtol", "bench runs every rtol of --rtols: give the tolerances there");
+    if (*wp)
+      for (const char* o : {"--rtol", "--atol", "--integrator"})
+        if (wp->get_option(o)->count()) wopt.ladder_options.push_back(o);
   } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    // CLI11's own messages (a missing argument, an unknown option), on one line like every other error.
+    std::cerr << "imcol: error: " << InputError("command line", "", e.what()).what() << " (see imcol " << (found ? std::string(argv[1]) + " " : "") << "--help)\n";
+    return 2;
+  } catch (const InputError& e) {  // an option's value (apps/option_rules.hpp)
+    std::cerr << "imcol: error: " << e.what() << "\n";
     return 2;
   }
 

@@ -3,6 +3,7 @@
 #include "apps/commands.hpp"
 
 int main(int argc, char** argv) {
-  std::signal(SIGXFSZ, SIG_IGN);  // a file-size limit then fails the write (EFBIG), reported like any write error
+  // A file-size limit (ulimit -f) must end a write with EFBIG, reported as an I/O error (exit 1), not kill the process.
+  std::signal(SIGXFSZ, SIG_IGN);
   return imcol::run_cli(argc, argv);
 }

@@ -351,6 +351,11 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   if (opt.plot) run_plot_script("plot_sweep.py", unit, "sweep.png");
   unit.commit();
   std::cout << "wrote " << (unit.target() / "sweep.csv").string() << " and " << (unit.target() / "sweep.json").string() << "\n";
+  if (failed) {  // stdout may go to a file or a pipe: the failure is also said where errors go
+    std::cout.flush();
+    std::cerr << "imcol: error: " << failed << " of " << opt.points << " sweep points failed; their reasons are in "
+              << (unit.target() / "sweep.json").string() << " (failures) and " << (unit.target() / "sweep.csv").string() << " (status, message)\n";
+  }
   return failed ? 3 : 0;
 }
 

@@ -97,13 +97,6 @@ std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>&
 }  // namespace
 
 int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
-  Scene base = load_scene(scene_path, overrides);
-  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-work_precision"), base.path);
-  if (base.has(Effect::flow)) {  // a coupled scene: the ladder is the grid and the flow step
-    FlowLadderOptions fo;
-    fo.out = opt.out;
-    return work_precision_flow(base, overrides, fo, unit);
-  }
   if (opt.repeat < 1) throw InputError("--repeat", "repeat", "must be >= 1");
   if (opt.rtols.empty()) throw InputError("--rtols", "rtols", "give at least one tolerance");
   for (double r : opt.rtols)
@@ -113,7 +106,19 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   if (!(opt.ref_history_tol >= 1e-13 && opt.ref_history_tol < 0.1))
     throw InputError("--ref-history-tolerance", "ref_history_tolerance", "must lie in [1e-13, 0.1)");
   for (double h : opt.direct_steps)
-    if (!(h > 0 && std::isfinite(h))) throw InputError("--direct-steps", "direct_steps", "each multiple must be positive");
+    if (!(h >= kDirectStepMin && h <= kDirectStepMax))
+      throw InputError("command line", "--direct-steps", "each multiple must lie in [" + fmt_number(kDirectStepMin) + ", " +
+                                                            fmt_number(kDirectStepMax) + "] (got " + fmt_number(h) + ")");
+  Scene base = load_scene(scene_path, overrides);
+  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-work_precision"), base.path);
+  if (base.has(Effect::flow)) {  // a coupled scene: the ladder is the grid and the flow step
+    FlowLadderOptions fo;
+    fo.out = opt.out;
+    return work_precision_flow(base, overrides, fo, unit);
+  }
+  if (!opt.ladder_options.empty())
+    throw InputError("command line", opt.ladder_options.front(),
+                     "work-precision sets rtol = atol along --rtols and the integrator along --integrators: give them there");
   if (opt.add_history) {
     if (!base.fluid) throw InputError(scene_path, "fluid", "--add-history needs a [fluid] table");
     base.effects.insert(Effect::history);

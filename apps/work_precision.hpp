@@ -8,6 +8,10 @@
 
 namespace imcol {
 
+/// The direct evaluator's step multiples (--direct-steps): below 0.1 its cost, quadratic in the number of steps, exceeds
+/// a hundred times the default's; above 100 the step is longer than any contact.
+inline constexpr double kDirectStepMin = 0.1, kDirectStepMax = 100;
+
 struct WorkPrecisionOptions {
   std::string out;                                                  // default out/<scene>-work_precision
   std::vector<double> rtols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
@@ -20,6 +24,7 @@ struct WorkPrecisionOptions {
   int repeat = 3;                       // runs per setting; the median wall time is reported
   bool add_history = false;             // add the history effect (Basset) to a scene without it
   bool plot = true;
+  std::vector<std::string> ladder_options;  // --rtol, --atol, --integrator as given: the ladder sets them (refused but for a coupled scene)
 };
 
 /// Prints the table, the observed orders and the cheapest settings; writes DIR/work_precision.csv,

@@ -167,14 +167,22 @@ void CollisionModel::setup_history() {
     t_fast = std::min(t_fast, (mp_[m] + 0.5 * mf_[m]) / (6 * pi * mu_ * a_[m]));
   }
   if (has_target()) t_fast = std::min(t_fast, delta_ss_m_ / u_ref_);
-  if (has_target() && has(Effect::elastic) && u_rel0_ > 0)
-    t_fast = std::min(t_fast, hertz_contact_time(m_star_, u_rel0_, E_star_, a_star_));
+  if (has_target() && has(Effect::elastic) && u_rel0_ > 0) {
+    // t_c ∝ U^(-1/5) through U² in the indentation: a speed whose square underflows gives t_c = 0 (the reader's
+    // bound |U| >= 1e-30 keeps it positive).
+    const double t_c = hertz_contact_time(m_star_, u_rel0_, E_star_, a_star_);
+    if (!(t_c > 0))
+      throw InputError(scene_.path, "sphere[0].velocity",
+                       "an approach speed of " + fmt_number(u_rel0_) + " m/s is too small for the Hertz contact time to be computed (got " +
+                           fmt_number(t_c) + " s)");
+    t_fast = std::min(t_fast, t_c);
+  }
   o.horizon = h.horizon > 0 ? h.horizon : scene_.solver.t_end;
   o.min_lag = h.min_lag > 0 ? h.min_lag : 1e-3 * t_fast;
   if (o.horizon < 10 * o.min_lag)
     throw InputError(scene_.path, h.horizon > 0 ? "history.horizon" : "history.min_lag",
-                     "the memory horizon " + std::to_string(o.horizon) + " s must be at least 10 × min_lag (" +
-                         std::to_string(o.min_lag) + " s)");
+                     "the memory horizon " + fmt_number(o.horizon) + " s must be at least 10 × min_lag (" +
+                         fmt_number(o.min_lag) + " s)");
   // Direct evaluator: 10 steps per fastest time scale, but at most 50000 steps up to t_end.
   o.direct_step = h.direct_step > 0 ? h.direct_step : std::max(0.1 * t_fast, scene_.solver.t_end / 50000);
   std::size_t offset = core_size();

@@ -38,6 +38,8 @@ namespace {
 
 using Reader = TableReader;
 
+constexpr double kMaxViscosity = 1e12;  // Pa s
+
 /// Material properties: either `material = "name"` or inline values; inline values override the material.
 void read_solid(Reader& r, Solid& s, bool need_density) {
   if (auto name = r.string("material")) {
@@ -114,6 +116,9 @@ void apply_override(toml::table& root, const Override& ov) {
 Override parse_override(const std::string& text) {
   auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0) throw InputError("--set", text, "expected key=value");
+  // TOML would end the value at a line break and read what follows as further keys: one --set sets one key.
+  if (text.find_first_of("\n\r") != std::string::npos)
+    throw InputError("--set", text.substr(0, eq), "the value holds a line break (one --set sets one key; give each key its own --set)");
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
@@ -150,6 +155,11 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     FluidSpec fl;
     fl.density = r.required_positive("density");
     fl.viscosity = r.required_positive("viscosity");
+    // Above 1e12 Pa s (glass at its transition) a "liquid" is a solid on any laboratory time scale; the drag and
+    // history forces would also dwarf every other force by more than double precision resolves.
+    if (fl.viscosity > kMaxViscosity)
+      r.fail("viscosity", "must be at most " + fmt_number(kMaxViscosity) + " Pa s (glass at its transition; got " +
+                              fmt_number(fl.viscosity) + "): a stiffer material is a solid, not a liquid");
     r.finish();
     sc.fluid = fl;
   }
@@ -346,6 +356,9 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     Reader r(*t, "flow", path);
     if (!sc.has(Effect::flow)) top.fail("flow", "a [flow] table needs the 'flow' effect in `effects`");
     read_flow_spec(r, sc.flow);
+    if (sc.flow.dt > sc.solver.t_end)
+      r.fail("dt", "a flow step of " + fmt_number(sc.flow.dt) + " s is longer than the run (solver.t_end = " +
+                       fmt_number(sc.solver.t_end) + " s)");
     if (!sc.flow.added_mass_estimate && sc.has(Effect::added_mass))
       r.fail("added_mass_estimate", "false needs a scene without the 'added_mass' effect (its added mass is implicit anyway)");
   }

@@ -73,6 +73,8 @@ class TableReader {
       // An integer beyond 2^53 is still a number: round it (toml++'s value<double>() refuses it).
       const double v = n->is_integer() ? static_cast<double>(*n->value<int64_t>()) : *n->value<double>();
       if (!std::isfinite(v) || std::abs(v) > 1e30) fail(key, "must be a finite number of magnitude at most 1e30");
+      // A nonzero magnitude below 1e-30 is no physical quantity of a scene, and squares or products of it underflow.
+      if (v != 0 && std::abs(v) < 1e-30) fail(key, "must be 0 or of magnitude at least 1e-30 (got " + fmt_number(v) + ")");
       return v;
     }
     fail(key, "must be a number");

@@ -176,8 +176,24 @@ void FlowCoupling::start_up() {
   s.h = h;
   // r_max is in units of sphere 1's D; a larger target gets the same room relative to its own size.
   const double r_finest = std::max(fs.r_max * D_, fs.r_max * 2 * a_max);
-  s.nr = 2 * static_cast<int>(std::ceil(r_finest / h / 2));
-  s.nz = 4 * static_cast<int>(std::ceil((z_hi - z_lo) / h / 4));
+  // Cell counts in double first: a start-up that carries the spheres far (a flow step or a developed start of
+  // very long duration) is refused naming its key, not converted to an int that overflows.
+  auto cells = [&](double extent, int multiple) {
+    const double n = multiple * std::ceil(extent / h / multiple);
+    if (!(n <= 1e6)) {
+      double u_max = 0;
+      for (std::size_t m = 0; m < n_; ++m) u_max = std::max(u_max, std::abs(sc_.spheres[m].velocity));
+      const char* key = n_pre >= 2 ? (fs.developed_time > 0 ? "flow.developed_time" : "flow.developed_distance")
+                                   : (fs.dt > 0 ? "flow.dt" : "flow.cfl");
+      throw InputError(sc_.path, key,
+                       "the finest flow level would need " + fmt_number(n) + " cells along one axis (more than 1e6): the spheres travel up to " +
+                           fmt_number(u_max * t_pre) + " m in the start-up of " + fmt_number(t_pre) + " s before t = 0 (" +
+                           fmt_number(static_cast<double>(n_pre)) + " flow step" + (n_pre == 1 ? "" : "s") + " of " + fmt_number(dt) + " s)");
+    }
+    return static_cast<int>(n);
+  };
+  s.nr = cells(r_finest, 2);
+  s.nz = cells(z_hi - z_lo, 4);
   s.levels = fs.levels;
   s.z_center = 0.5 * (z_lo + z_hi);
   s.u_inf = -u_mid;
@@ -212,7 +228,7 @@ void FlowCoupling::start_up() {
     const double z_start = std::min(sc_.spheres[0].position, sc_.spheres[0].position - sc_.spheres[0].velocity * t_pre);
     const double lo = z_start - a - fs.behind * D_, hi = sc_.wall->position + fs.ahead * D_;
     s.z_center = 0.5 * (lo + hi);
-    s.nz = 4 * static_cast<int>(std::ceil((hi - lo) / h / 4));
+    s.nz = cells(hi - lo, 4);
     s.u_inf = 0;
     s.wall_z = sc_.wall->position;
   }

@@ -35,8 +35,16 @@ Settings FlowScene::settings() const {
   s.dt = dt;
   s.theta = theta;
   s.h = D() / cells_per_diameter;
-  s.nr = round_up(r_max * cells_per_diameter, 2);
-  s.nz = round_up((z_max - z_min) * cells_per_diameter, 4);
+  // Cell counts in double first: a grid beyond 1e6 cells along an axis is refused naming its key, not converted to an
+  // int that overflows.
+  auto cells = [&](double n, const char* key) {
+    if (!(n <= 1e6))
+      throw InputError(path, key, "the finest level would need " + fmt_number(n) + " cells along one axis (more than 1e6): " +
+                                      "r_max and z_max - z_min are in diameters, at " + std::to_string(cells_per_diameter) + " cells each");
+    return n;
+  };
+  s.nr = round_up(cells(r_max * cells_per_diameter, "grid.r_max"), 2);
+  s.nz = round_up(cells((z_max - z_min) * cells_per_diameter, "grid.z_max"), 4);
   s.levels = levels;
   s.z_center = (z_min * D() + 0.5 * s.nz * s.h);
   s.u_inf = stream;

@@ -517,8 +517,8 @@ std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
     if (it >= s_.krylov_max_iter) {
       std::ostringstream os;
       os << std::scientific << std::setprecision(3) << "flow: GMRES did not converge in " << it
-         << " iterations: true relative residual " << rel << " > solver.krylov_tol = " << s_.krylov_tol
-         << " (raise solver.krylov_max_iter or krylov_restart, or loosen krylov_tol)";
+         << " iterations: true relative residual " << rel << " > flow.krylov_tol = " << s_.krylov_tol
+         << " (raise flow.krylov_max_iter or flow.krylov_restart, or loosen flow.krylov_tol)";
       throw SolverError(os.str());
     }
     H_.setZero();
@@ -554,7 +554,8 @@ std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
     }
     if (k == 0) {
       std::ostringstream os;
-      os << std::scientific << std::setprecision(3) << "flow: GMRES broke down at relative residual " << rel;
+      os << std::scientific << std::setprecision(3) << "flow: GMRES broke down at relative residual " << rel
+         << " (check flow.krylov_tol and flow.krylov_restart)";
       throw SolverError(os.str());
     }
     y_.head(k) = e_.head(k);

@@ -66,7 +66,7 @@ TEST(Cli, BadInputGivesExitStatusTwoAndNamesTheKey) {
   expect_input_error("overlap", imcol::test::edit(kScene, "position = -0.02", "position = -0.005"), "wall.position");
   expect_input_error("material", imcol::test::edit(kScene, "\"steel\"", "\"kryptonite\""), "sphere[0].material");
   expect_input_error("rtol", kScene + "[solver]\nrtol = 0\n", "solver.rtol");
-  expect_input_error("rtolcli", kScene, "solver.rtol", "--rtol -1e-8");
+  expect_input_error("rtolcli", kScene, "key '--rtol'", "--rtol -1e-8");
   const Result r = run_imcol("run /nonexistent/scene.toml");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/nonexistent/scene.toml"), std::string::npos);
@@ -223,6 +223,10 @@ TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
   const Result f = run_imcol("sweep " + scene + " --vary viscosity --from 0.001 --to 0.1 --points 2 --no-plot --out " + out.string() +
                              " --set solver.max_steps=70 --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
   EXPECT_EQ(f.status, 3) << f.err;
+  // Said on stderr too (stdout may be a file): one line with the count and where the reasons are.
+  EXPECT_EQ(f.err.rfind("imcol: error: 1 of 2 sweep points failed", 0), 0u) << f.err;
+  EXPECT_NE(f.err.find("sweep.json"), std::string::npos) << f.err;
+  EXPECT_EQ(std::count(f.err.begin(), f.err.end(), '\n'), 1) << f.err;
   rows = read_csv(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].at("status"), "failed");
@@ -309,7 +313,7 @@ TEST(Cli, ValidateRejectsBadInput) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   };
   const std::string base = "validate seed --no-plot --out " + out.string() + " ";
-  expect_exit2(run_imcol(base + "--tolerance -0.1"), {"--tolerance", "positive"});
+  expect_exit2(run_imcol(base + "--tolerance -0.1"), {"--tolerance", "(0, 1]"});
   expect_exit2(run_imcol(base + "--tolerance 0"), {"--tolerance"});
   EXPECT_EQ(run_imcol(base + "--tolerance abc").status, 2);
   // The gap law is what the models differ in: --set cannot override it, --models chooses.
@@ -377,4 +381,91 @@ TEST(Cli, ValidatePlotsBothLayoutsAndLeavesNoStalePicture) {
   EXPECT_TRUE(fs::exists(flow / "validate_seed.png"));
   fs::remove_all(out);
   fs::remove_all(flow);
+}
+
+namespace {
+/// Exit status 2 and one line `imcol: error: ...` holding every fragment.
+void expect_refused(const Result& r, const std::string& label, std::initializer_list<std::string> fragments) {
+  EXPECT_EQ(r.status, 2) << label << ": " << r.err;
+  EXPECT_EQ(r.err.rfind("imcol: error: ", 0), 0u) << label << ": " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << label << ": " << r.err;
+  for (const auto& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << label << ": '" << f << "' missing in: " << r.err;
+}
+}  // namespace
+
+TEST(Cli, NumericOptionsAreCheckedBeforeAnythingRuns) {
+  const std::string scene = imcol::data_dir() + "/scenes/default.toml";
+  const std::string out = " --out " + (fs::temp_directory_path() / "imcol_cli_opts").string();
+  for (const char* v : {"abc", "nan", "-1", "2", "1e300"}) {
+    expect_refused(run_imcol("bench " + scene + " --rtols " + v), std::string("--rtols ") + v, {"--rtols"});
+    expect_refused(run_imcol("run " + scene + " --rtol " + v + out), std::string("--rtol ") + v, {"command line: key '--rtol'"});
+  }
+  // bench varies rtol itself: --rtol would be ignored, so it is refused even when valid.
+  expect_refused(run_imcol("bench " + scene + " --rtol 1e-6"), "bench --rtol", {"--rtol", "--rtols"});
+  expect_refused(run_imcol("run " + scene + " --atol 1e-300" + out), "--atol 1e-300", {"--atol", "1e-30"});
+  expect_refused(run_imcol("sweep " + scene + " --vary velocity --from 0.1 --to 0.2 --points 2.5" + out), "--points 2.5", {"--points"});
+  expect_refused(run_imcol("bench " + scene + " --repeat 1e3"), "--repeat 1e3", {"--repeat"});
+  // The direct evaluator's step multiples: [0.1, 100] (a finer step costs quadratically more; 1e-15 missed grid points).
+  for (const char* v : {"1e-15", "1e-6", "1e-300", "0.05", "1000"})
+    expect_refused(run_imcol("work-precision " + scene + " --direct-steps 1," + std::string(v) + out), std::string("--direct-steps ") + v,
+                   {"--direct-steps", "[0.1, 100]"});
+}
+
+TEST(Cli, ParseErrorsAreOneLineWithThePrefix) {
+  const std::string scene = imcol::data_dir() + "/scenes/default.toml";
+  expect_refused(run_imcol("run " + scene + " --frobnicate"), "unknown option", {"--frobnicate", "--help"});
+  expect_refused(run_imcol("sweep " + scene + " --from 1"), "missing option", {"--vary"});
+  expect_refused(run_imcol("run"), "missing scene", {"scene"});
+  const Result help = run_imcol("run --help");
+  EXPECT_EQ(help.status, 0) << help.err;
+  EXPECT_EQ(run_imcol("--help").status, 0);
+}
+
+TEST(Cli, BadScenesAreNamedByTheKeyAtFault) {
+  const std::string scene = imcol::data_dir() + "/scenes/default.toml";
+  const std::string out = " --quiet --no-plot --out " + (fs::temp_directory_path() / "imcol_cli_keys").string();
+  // A tiny nonzero speed (its square underflows in the Hertz contact time): the velocity, not the history, is named.
+  expect_refused(run_imcol("run " + scene + " --set 'sphere[0].velocity=1e-300'" + out), "velocity 1e-300",
+                 {"sphere[0].velocity", "1e-30"});
+  // Tolerances below 1e-30 (the NaN weights they would give) and a stall fraction of that size.
+  expect_refused(run_imcol("run " + scene + " --set solver.atol=1e-300" + out), "atol", {"solver.atol"});
+  expect_refused(run_imcol("run " + scene + " --set solver.krylov_tol=1e-31" + out), "krylov_tol", {"solver.krylov_tol"});
+  expect_refused(run_imcol("run " + scene + " --set measure.stall_fraction=1e-40" + out), "stall_fraction", {"measure.stall_fraction"});
+  // A viscosity no liquid has, refused when the scene is read (it used to fail at t = 0 with exit status 3).
+  expect_refused(run_imcol("run " + scene + " --set fluid.viscosity=1e29" + out), "viscosity", {"fluid.viscosity", "1e+12"});
+  // A flow step longer than the run (it used to overflow the grid's cell count: "nr must be even").
+  const std::string coupled = imcol::data_dir() + "/scenes/coupled/group_b.toml";
+  expect_refused(run_imcol("run " + coupled + " --set flow.dt=1e29" + out), "flow.dt", {"flow.dt", "solver.t_end"});
+  // With a long run such a step is allowed, and the start-up's travel (689 m in one step) is refused before the grid's
+  // cell count is converted to an int.
+  const Result far = run_imcol("run " + coupled + " --set flow.dt=1e4 --set solver.t_end=1e4 --set output.dt=1 --set measure.max_samples=1e9" + out);
+  expect_refused(far, "far start-up", {"key 'flow.dt'", "689 m"});
+  EXPECT_EQ(far.err.find("nr must be even"), std::string::npos) << far.err;
+  // A flow scene's grid of more than 1e6 cells along an axis (it used to overflow to a grid that "missed" the sphere).
+  std::ifstream fin(imcol::data_dir() + "/scenes/flow/fixed_sphere_re20.toml");
+  std::string flow_text((std::istreambuf_iterator<char>(fin)), std::istreambuf_iterator<char>());
+  const auto at = flow_text.find("\nr_max = ");
+  ASSERT_NE(at, std::string::npos);
+  flow_text.replace(at, flow_text.find('\n', at + 1) - at, "\nr_max = 1e10");
+  const fs::path big = write_scene("flow_big_grid", flow_text);
+  expect_refused(run_imcol("flow " + big.string() + " --no-plot --out " + (fs::temp_directory_path() / "imcol_cli_flow_big").string()), "flow r_max", {"grid.r_max", "1e6"});
+  // One --set sets one key: a line break would smuggle in more.
+  expect_refused(run_imcol("run " + scene + " --set \"$(printf 'solver.rtol=1e-8\\nsolver.bogus=1')\"" + out), "newline", {"--set", "line break"});
+}
+
+TEST(Cli, AFileSizeLimitIsAnIoErrorNotASignal) {
+  const fs::path dir = fs::temp_directory_path() / ("imcol_cli_fsize_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const fs::path errf = dir.string() + ".err";
+  const std::string cmd = "bash -c 'ulimit -f 1; exec " + std::string(IMCOL_BINARY) + " run " + imcol::data_dir() +
+                          "/scenes/default.toml --quiet --no-plot --out " + dir.string() + "' >/dev/null 2>" + errf.string();
+  const int raw = std::system(cmd.c_str());
+  std::ifstream in(errf);
+  const std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  fs::remove(errf);
+  fs::remove_all(dir);
+  ASSERT_TRUE(WIFEXITED(raw)) << "ended by a signal: " << err;
+  EXPECT_EQ(WEXITSTATUS(raw), 1) << err;
+  EXPECT_EQ(err.rfind("imcol: error: ", 0), 0u) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }

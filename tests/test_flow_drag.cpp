@@ -283,6 +283,10 @@ TEST(FlowDrag, KrylovSolveMeetsItsToleranceOnTheTrueResidual) {
     EXPECT_NE(msg.find("did not converge in 2 iterations"), std::string::npos) << msg;
     EXPECT_NE(msg.find("true relative residual"), std::string::npos) << msg;
     EXPECT_NE(msg.find("e-"), std::string::npos) << msg;  // numbers in scientific notation, not 0.000000
+    // The keys named are the [flow] table's (collision and flow scenes alike), not [solver]'s.
+    EXPECT_NE(msg.find("flow.krylov_max_iter"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("flow.krylov_tol"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("solver."), std::string::npos) << msg;
   }
 }
 

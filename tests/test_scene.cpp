@@ -51,6 +51,30 @@ TEST(Scene, OverridesFromTheCommandLine) {
   EXPECT_THROW(parse_override("novalue"), InputError);
   expect_error(kWall, {"--set", "sphere[3]"}, {parse_override("sphere[3].velocity=1")});
   expect_error(kWall, {"--set", "solver.bogus", "unknown key"}, {parse_override("solver.bogus=1")});
+  // One --set sets one key: a value with a line break (which TOML would read as further keys) is refused.
+  try {
+    parse_override("solver.rtol=1e-8\nsolver.bogus=1");
+    ADD_FAILURE() << "a line break was accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("key 'solver.rtol'"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("line break"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
+TEST(Scene, NonzeroMagnitudesBelow1eMinus30AndImpossibleValuesAreRefused) {
+  // Every number: 0 or of magnitude in [1e-30, 1e30] (tolerances, fractions and signed keys alike).
+  for (const char* kv : {"solver.atol=1e-300", "solver.krylov_tol=1e-31", "measure.stall_fraction=1e-40", "sphere[0].velocity=1e-300",
+                         "sphere[0].velocity=-1e-300", "gravity=1e-31", "measure.disagreement=1e-35"}) {
+    const Override o = parse_override(kv);
+    expect_error(kWall, {o.key.c_str(), "1e-30"}, {o});
+  }
+  EXPECT_NO_THROW(parse_scene(kWall, "wall.toml", {parse_override("solver.atol=1e-30")}));
+  EXPECT_NO_THROW(parse_scene(kWall, "wall.toml", {parse_override("sphere[0].velocity=1e-30")}));
+  // A viscosity beyond any liquid's (glass at its transition, 1e12 Pa s).
+  expect_error(kWall, {"fluid.viscosity", "1e+12"}, {parse_override("fluid.viscosity=1e29")});
+  EXPECT_NO_THROW(parse_scene(kWall, "wall.toml", {parse_override("fluid.viscosity=1e12")}));
 }
 
 TEST(Scene, InlineMaterialAndExplicitEffects) {
