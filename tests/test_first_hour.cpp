@@ -225,16 +225,42 @@ TEST(FirstHour, BadNamesAreRefusedBeforeRunning) {
   fs::remove_all(cwd);
 }
 
-TEST(FirstHour, NoApproachIsNotATooShortRun) {
-  for (const char* v : {"0", "-0.1"}) {
-    const fs::path dir = tmp("away");
+// A scene that can never collide is refused at t = 0 (one line naming the velocity, no output folder) instead of
+// integrating to t_end; where a collision stays possible the run goes on.
+TEST(FirstHour, ASceneThatCanNeverCollideIsRefusedAtOnce) {
+  const fs::path dir = tmp("away");
+  fs::remove_all(dir);
+  for (const char* v : {"0", "-0.1"}) {  // sphere-wall, no gravity: at rest, or moving away
     const Outcome r = run_imcol("run data/scenes/default.toml --no-plot --quiet --out " + dir.string() + " --set 'sphere[0].velocity=" + v + "'");
-    ASSERT_EQ(r.status, 0) << r.err;
-    const auto s = summary(dir);
-    EXPECT_TRUE(s["e"].is_null());
-    EXPECT_FALSE(s["t_end_too_short"].get<bool>()) << "velocity " << v;
-    fs::remove_all(dir);
+    expect_input_error(r, "sphere[0].velocity", "never approaching");
+    EXPECT_FALSE(fs::exists(dir)) << "velocity " << v;
   }
+  // Identical spheres moving apart, no gravity; a buoyant sphere rising away from the wall below it.
+  const Outcome apart = run_imcol("run data/scenes/group_a.toml --no-plot --quiet --out " + dir.string() + " --set 'sphere[0].velocity=-0.01'");
+  expect_input_error(apart, "sphere[0].velocity", "the spheres move apart");
+  const Outcome rising = run_imcol("run data/scenes/coupled/bouncing_steel.toml --no-plot --quiet --out " + dir.string() +
+                                   " --set 'sphere[0].density=500'");
+  expect_input_error(rising, "sphere[0].velocity", "net weight points away from the wall");
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(FirstHour, AnApproachThatStaysPossibleIsIntegrated) {
+  // Moving away from the wall, but the weight points to it: it falls back and collides.
+  const fs::path dir = tmp("back");
+  Outcome r = run_imcol("run data/scenes/bouncing_steel.toml --no-plot --quiet --out " + dir.string() +
+                        " --set 'sphere[0].velocity=-0.2' --set measure.bounces=first");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(summary(dir)["e"].is_number());
+  fs::remove_all(dir);
+  // Spheres moving the same way, the leader faster: drag could let the trailing one catch up, so no refusal; no
+  // collision follows here, and a longer t_end would not change that verdict's reason.
+  r = run_imcol("run data/scenes/group_a.toml --no-plot --quiet --out " + dir.string() + " --set 'sphere[1].velocity=0.1'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto s = summary(dir);
+  EXPECT_TRUE(s["e"].is_null());
+  EXPECT_FALSE(s["t_end_too_short"].get<bool>());
+  EXPECT_NE(s["e_missing"].get<std::string>().find("not approaching"), std::string::npos) << s["e_missing"];
+  fs::remove_all(dir);
 }
 
 // A coupled run whose estimated cost is far beyond the usual is refused before anything is allocated, and a
