@@ -364,6 +364,12 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
 
   top.finish();
 
+  // A coupled flow step longer than the run: the kernel would take one step beyond t_end (as `imcol flow` refuses).
+  if (sc.has(Effect::flow) && sc.flow.dt > sc.solver.t_end)
+    throw InputError(path, "flow.dt",
+                     "flow.dt = " + fmt_number(sc.flow.dt) + " s exceeds solver.t_end = " + fmt_number(sc.solver.t_end) +
+                         " s (no flow step would end inside the run): lower flow.dt, or give flow.cfl instead");
+
   // Geometry: the target must be ahead of the impact sphere and not touching it.
   const auto& s1 = sc.spheres[0];
   const double D = s1.diameter;

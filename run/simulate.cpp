@@ -55,6 +55,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   try {
     if (sc.has(Effect::flow)) {
       coupled = std::make_unique<coupling::FlowCoupling>(model, sc);
+      if (progress) coupled->set_progress([&rec](const std::string& text) { rec.show_status(text); });
       stats = coupled->run(st, rec);
     } else {
       stats = integrate(model, st, rec);

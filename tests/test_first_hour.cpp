@@ -289,3 +289,42 @@ TEST(FirstHour, AnEUndefinedByAShortRunIsExplained) {
   EXPECT_TRUE(explained) << s["warnings"].dump();
   fs::remove_all(dir);
 }
+
+// A coupled flow step longer than the run is refused like `imcol flow` refuses it (it ran one 1000 s step).
+TEST(FirstHour, ACoupledFlowStepBeyondTEndIsRefused) {
+  const Outcome r = run_imcol("run data/scenes/coupled/group_b.toml --no-plot --set flow.dt=1000");
+  expect_input_error(r, "flow.dt", "exceeds solver.t_end");
+}
+
+// The cost estimate covers the start-up before t = 0: a long developed start alone is refused, naming it.
+TEST(FirstHour, TheCostEstimateCoversTheStartUp) {
+  const Outcome r = run_imcol("run data/scenes/coupled/group_b.toml --no-plot --set flow.developed_time=16 --set flow.max_wall_hours=0.001");
+  expect_input_error(r, "flow.max_wall_hours", "start-up");
+  // The estimate and its parts are in summary.json.
+  const fs::path dir = tmp("estimate");
+  const Outcome ok = run_imcol("run data/scenes/coupled/group_b.toml --no-plot --quiet --set flow.cells_per_diameter=16 --set flow.levels=2"
+                               " --set solver.t_end=0.01 --out " + dir.string());
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  const auto est = summary(dir)["flow"]["estimate"];
+  EXPECT_GT(est["start_up_s"].get<double>(), 0);
+  EXPECT_GT(est["force_system_blocks_s"].get<double>(), 0);
+  EXPECT_GT(est["steps_to_t_end_s"].get<double>(), 0);
+  EXPECT_NEAR(est["total_s"].get<double>(),
+              est["start_up_s"].get<double>() + est["force_system_blocks_s"].get<double>() + est["steps_to_t_end_s"].get<double>(), 1e-9);
+  fs::remove_all(dir);
+}
+
+// A pair approaching at 8.7 µm/s, coarse grid, one level: it stopped with "Root found at and very near t" in the
+// event handling (a root function exactly zero at an event); it must run with both integrators.
+TEST(FirstHour, AVerySlowCoupledApproachRunsWithBothIntegrators) {
+  for (const char* integ : {"cvode", "ida"}) {
+    const fs::path dir = tmp(std::string("slow_") + integ);
+    const Outcome r = run_imcol("run data/scenes/coupled/group_b.toml --no-plot --quiet --set 'sphere[0].velocity=8.7e-6' --set flow.levels=1"
+                                " --set flow.cells_per_diameter=16 --set flow.developed_time=0.2 --set solver.integrator=" + std::string(integ) +
+                                " --out " + dir.string());
+    ASSERT_EQ(r.status, 0) << integ << ": " << r.err;
+    const auto s = summary(dir);
+    EXPECT_NE(s["events"].dump().find("approach stopped"), std::string::npos) << integ;
+    fs::remove_all(dir);
+  }
+}
