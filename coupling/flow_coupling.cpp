@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "core/timing.hpp"
 #include "coupling/divergence_watch.hpp"
+#include "coupling/run_cost.hpp"
 #include "coupling/step_rule.hpp"
 #include "flow/cost.hpp"
 #include "flow/snapshot.hpp"
@@ -233,7 +234,15 @@ void FlowCoupling::start_up() {
     s.wall_z = sc_.wall->position;
   }
   stats_.nz = s.nz;
-  check_cost(s, dt, n_pre);
+  // Each sphere's travel relative to the grid over the start-up (the grid follows the midpoint, or is the lab).
+  std::array<double, 2> travel{};
+  for (std::size_t m = 0; m < n_; ++m) {
+    const double u_grid = sc_.wall ? 0.0 : u_mid;
+    travel[m] = std::abs(sc_.spheres[m].velocity - u_grid) * t_pre;
+  }
+  check_cost(s, dt, n_pre, travel);
+  start_up_began_ = t0;
+  report_start_up(0, n_pre, "allocating the grid");
   try {
     kernel_ = std::make_unique<flow::Solver>(s, frame_spheres(prescribed(-t_pre), frame_z_, frame_u_));
   } catch (const std::exception& e) {
@@ -243,9 +252,17 @@ void FlowCoupling::start_up() {
   // The kernel's fluid starts at rest; the first prescribed step sets the spheres moving (its force is discarded).
   for (std::size_t m = 0; m < n_; ++m) kernel_u_[m] = 0.0;
   std::array<double, 2> f{};
+  long step_now = 0;
+  if (progress_)
+    kernel_->set_block_progress([&](long col, long n) {
+      report_start_up(step_now, n_pre, "force system block " + std::to_string(col) + "/" + std::to_string(n));
+    });
   for (long k = 1; k <= n_pre; ++k) {
+    step_now = k;
+    report_start_up(k, n_pre, "");
     f = step_kernel(prescribed(-t_pre + static_cast<double>(k) * dt), dt);
   }
+  kernel_->set_block_progress(nullptr);
   // After a developed start the last prescribed step is a steady one: its force is f_rest at t = 0.
   have_f_rest_ = n_pre >= 2;
   f_rest_ = f;
@@ -261,20 +278,46 @@ void FlowCoupling::start_up() {
   stats_.frame_travel = 0;
 }
 
-void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre) const {
-  std::vector<double> diameters;
-  for (std::size_t m = 0; m < n_; ++m) diameters.push_back(2 * radius_[m]);
-  const flow::CostEstimate c = flow::estimate_cost(s, diameters, true);
-  if (const std::string why = flow::memory_refusal(c); !why.empty())
+void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel) {
+  CoupledCostInput in;
+  in.settings = s;
+  for (std::size_t m = 0; m < n_; ++m) {
+    in.diameters.push_back(2 * radius_[m]);
+    in.start_up_travel.push_back(travel[m]);
+    in.moves_after.push_back(n_ == 2 || sc_.wall.has_value());  // a free sphere stays at the grid's centre
+  }
+  in.start_up_steps = n_pre;
+  in.steps = std::ceil(sc_.solver.t_end / dt * (1 - 1e-12));
+  const CoupledCost c = coupled_cost(in);
+  stats_.est_start_up_s = c.start_up_s;
+  stats_.est_blocks_s = c.blocks_s;
+  stats_.est_steps_s = c.steps_s;
+  stats_.est_bytes = c.grid.bytes;
+  est_before_t0_s_ = c.before_t0_s();
+  if (const std::string why = flow::memory_refusal(c.grid); !why.empty())
     throw InputError(sc_.path, "flow.cells_per_diameter", "the flow grid " + why + ": use fewer cells per diameter or levels");
-  const double steps = double(n_pre) + std::ceil(sc_.solver.t_end / dt);
-  const double hours = steps * c.seconds_per_step / 3600;
-  if (hours > sc_.flow.max_wall_hours)
-    throw InputError(sc_.path, "flow.max_wall_hours",
-                     "the coupled run may take an estimated " + fmt_number(hours) + " hours (up to " + fmt_number(steps) +
-                         " flow steps of " + fmt_number(dt) + " s on " + fmt_number(c.vertices) + " vertices), more than flow.max_wall_hours = " +
-                         fmt_number(sc_.flow.max_wall_hours) + ": raise flow.dt or flow.cfl, lower flow.cells_per_diameter or solver.t_end, "
-                         "or raise flow.max_wall_hours");
+  const double hours = c.total_s() / 3600;
+  if (hours > sc_.flow.max_wall_hours) {
+    std::ostringstream os;
+    os << std::setprecision(3) << "the coupled run may take an estimated " << hours << " hours (start-up " << c.start_up_s / 3600
+       << " h: " << n_pre << " flow steps before t = 0; force system blocks " << c.blocks_s / 3600 << " h; up to " << in.steps
+       << " flow steps " << c.steps_s / 3600 << " h; steps of " << dt << " s on " << c.grid.vertices
+       << " vertices), more than flow.max_wall_hours = " << sc_.flow.max_wall_hours
+       << ": raise flow.dt or flow.cfl, lower flow.cells_per_diameter, flow.levels, the start-up (flow.developed_distance, "
+          "flow.developed_time) or solver.t_end, or raise flow.max_wall_hours";
+    throw InputError(sc_.path, "flow.max_wall_hours", os.str());
+  }
+}
+
+void FlowCoupling::report_start_up(long step, long n_pre, const std::string& doing) {
+  if (!progress_) return;
+  const double run = seconds_since(start_up_began_);
+  // Time left: the estimate until two steps are done, then the measured rate (which includes the blocks built).
+  const double left = step >= 2 ? run / double(step - 1) * double(n_pre - step + 1) : std::max(0.0, est_before_t0_s_ - run);
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << "flow start-up: step " << step << "/" << n_pre << ", " << (doing.empty() ? "" : doing + ", ")
+     << run << " s, ~" << left << " s left (whole run est. " << stats_.est_total_s() << " s)";
+  progress_(os.str());
 }
 
 flow::SnapshotFrame FlowCoupling::lab_frame() const { return {frame_z_, frame_u_, -t_pre_}; }

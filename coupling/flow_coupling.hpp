@@ -20,11 +20,13 @@
 // stated distance or time before t = 0). Near contact the gap seen by the kernel is kept at flow.min_gap_cells·h
 // or more (its rings would overlap): there H ≈ 1 and f_SIM's weight is small (documented in docs/coupling.md).
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "contact/collision_model.hpp"
+#include "core/timing.hpp"
 #include "core/scene.hpp"
 #include "coupling/step_rule.hpp"
 #include "flow/snapshot.hpp"
@@ -49,6 +51,10 @@ struct FlowRunStats {
   long min_gap_clamped_steps = 0;  // steps where the kernel's gap was held at min_gap_cells·h
   double frame_travel = 0;         // m, how far the grid moved with the spheres
   std::size_t bytes = 0;
+  // Estimated before the grid was allocated (coupling/run_cost.hpp), s and B: the start-up's steps, the force
+  // system's blocks, the coupled steps up to t_end, and the solver's memory.
+  double est_start_up_s = 0, est_blocks_s = 0, est_steps_s = 0, est_bytes = 0;
+  double est_total_s() const { return est_start_up_s + est_blocks_s + est_steps_s; }
 };
 
 /// A flow-field picture moment: its label and the kernel's fields as CSV (flow/snapshot.hpp).
@@ -64,6 +70,8 @@ class FlowCoupling {
   /// (the kernel diverged or GMRES failed, the ODE failed) naming the time and the quantity.
   SolverStats run(const IntegratorSettings& st, Observer& observer);
   const FlowRunStats& stats() const { return stats_; }
+  /// Receives a progress text during the start-up (before t = 0: the flow developing, the force system's blocks).
+  void set_progress(std::function<void(const std::string&)> f) { progress_ = std::move(f); }
   const std::vector<FlowSnapshot>& snapshots() const { return snaps_; }
 
  private:
@@ -76,8 +84,10 @@ class FlowCoupling {
   std::vector<flow::SphereState> frame_spheres(const Predicted& p, double frame_z, double frame_u);
   std::array<double, 2> step_kernel(const Predicted& p, double dt);
   void start_up();
-  /// Refuses (InputError) a grid beyond half the memory or a run beyond flow.max_wall_hours, before allocating.
-  void check_cost(const flow::Settings& s, double dt, long n_pre) const;
+  /// Estimates the run's cost (stats_.est_*) and refuses (InputError) a grid beyond half the memory or a run beyond
+  /// flow.max_wall_hours, before allocating. `travel`: each sphere's travel relative to the grid over the start-up, m.
+  void check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel);
+  void report_start_up(long step, long n_pre, const std::string& doing);
   void maybe_snapshot(double t, double gap);
   std::array<double, 2> acting(const std::array<double, 2>& f_rest, std::span<const double> y) const;  // (1 − H) f_rest
   flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
@@ -97,6 +107,9 @@ class FlowCoupling {
   bool have_f_rest_ = false;
   FlowRunStats stats_;
   std::vector<FlowSnapshot> snaps_;
+  std::function<void(const std::string&)> progress_;
+  WallClock::time_point start_up_began_{};
+  double est_before_t0_s_ = 0;  // estimated start-up and its blocks, s
   bool snap_gap_ = false, snap_contact_ = false, snap_after_ = false;
 };
 

@@ -329,6 +329,7 @@ Eigen::MatrixXd Solver::diagonal_block_of_Q(Eigen::Index o, Eigen::Index n) {
     apply_Q_into(e, q);
     blk.col(c) = q.segment(o, n);
     e[o + c] = 0.0;
+    if (block_progress_) block_progress_(static_cast<long>(c + 1), static_cast<long>(n));
   }
   return blk;
 }

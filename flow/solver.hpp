@@ -43,6 +43,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -117,6 +118,9 @@ class Solver {
   double time() const { return t_; }
   long steps() const { return n_; }
   long preconditioner_blocks_built() const { return prec_builds_; }  // GMRES preconditioner blocks factorised so far
+  /// Called after each column of a force-system block built (an LU of Q or a preconditioner block: each column one
+  /// application of Q) with the columns done and the block's size: a progress display for long builds.
+  void set_block_progress(std::function<void(long, long)> f) { block_progress_ = std::move(f); }
   const Settings& settings() const { return s_; }
   const std::vector<Level>& levels() const { return lv_; }
   const std::vector<SphereState>& spheres() const { return sph_; }
@@ -185,6 +189,7 @@ class Solver {
   std::vector<BodyPoints> wall_pts_;  // per level
   std::vector<PointRows> Bw_;         // per level: velocity at its wall points
   std::size_t wall_count_ = 0;        // wall points over all levels
+  std::function<void(long, long)> block_progress_;
   std::shared_ptr<BlockLU> wall_lu_;  // the wall's own block of Q (GMRES preconditioner), built once
   std::vector<double> fixed_z_;  // sphere positions of the factorised Q
   std::unique_ptr<Eigen::PartialPivLU<Eigen::MatrixXd>> lu_;

@@ -494,6 +494,7 @@ struct Integrator::Impl {
   long quiet_steps = 0;   // internal steps since the last output sample, event or stop (solver.max_steps bounds them)
   double max_step = 0;    // the value last passed to the solver (it persists across re-initialisations); 0: none yet
   long steps_taken = 0;   // accepted internal steps of this run (for the observer's progress display)
+  std::vector<double> g;  // root values (root_exactly_zero)
   bool done = false;
 
   /// Samples the output times k·dt in (t, t_upto) (strict) or (t, t_upto] from the solver's interpolant,
@@ -515,6 +516,15 @@ struct Integrator::Impl {
         return true;
       }
     }
+  }
+
+  /// Whether an armed root function is exactly zero at the current (t, y).
+  bool root_exactly_zero() {
+    const std::size_t n = sys.roots().size();
+    if (n == 0) return false;
+    g.assign(n, 1.0);
+    sys.root_values(t, view(y.get()), g);
+    return std::any_of(g.begin(), g.end(), [](double v) { return v == 0.0; });
   }
 
   /// An exception from the model: input and solver errors pass through, anything else becomes a
@@ -669,7 +679,10 @@ double Integrator::advance(double t_target) {
         m.done = true;
         break;
       }
-      if (action == EventAction::reinit) reinit();
+      // A root function exactly zero here (a gap or speed that moves so slowly that its change over the solver's
+      // smallest step is below rounding) would be found again at t + ε on the next step, which CVODE and IDA refuse
+      // ("Root found at and very near t", *_ILL_INPUT). A restart here lets them hold it inactive until it leaves 0.
+      if (action == EventAction::reinit || m.root_exactly_zero()) reinit();
       continue;
     }
     sys.at_step(t, view(m.y.get()), false);  // the step to t is accepted (its samples are taken)

@@ -109,6 +109,10 @@ Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progres
 }
 
 void Recorder::sample(double t, std::span<const double> y, bool at_event) {
+  if (!sampled_) {
+    sampled_ = true;
+    t0_ = WallClock::now();
+  }
   // A row: an event, the first sample, each output time k·output.dt, or a sample off the sampling grid (the last).
   bool row = at_event || rows_.empty();
   const double eps = 1e-6 * sample_dt_;
@@ -170,7 +174,16 @@ void Recorder::add_to_track(double t, const Evaluation& ev) {
 }
 
 void Recorder::finish_progress() {
-  if (shown_) std::cerr << "\r" << std::string(120, ' ') << "\r" << std::flush;
+  if (shown_) std::cerr << "\r" << std::string(160, ' ') << "\r" << std::flush;
+}
+
+void Recorder::show_status(const std::string& text) {
+  if (!progress_ || seconds_since(start_) < 2.0 || seconds_since(last_) < 0.5) return;
+  last_ = WallClock::now();
+  shown_ = true;
+  std::string line = "\r  " + text;
+  if (line.size() < 120) line.resize(120, ' ');
+  std::cerr << line << std::flush;
 }
 
 void Recorder::show_progress(double t) {
@@ -179,7 +192,9 @@ void Recorder::show_progress(double t) {
   last_ = WallClock::now();
   shown_ = true;
   const double t_end = sc_.solver.t_end;
-  const double left = t > 0 ? run * (t_end - t) / t : 0.0;  // at most: the run may stop once e is measured
+  // At most: the run may stop once e is measured. Projected from the time since t = 0 (not the start-up before it).
+  const double since_t0 = seconds_since(t0_);
+  const double left = t > 0 ? since_t0 * (t_end - t) / t : 0.0;
   std::cerr << "\r  t = " << std::setprecision(4) << t << " s of t_end " << t_end << " s (" << std::fixed << std::setprecision(1)
             << 100 * t / t_end << " %), " << steps_ << " steps, " << run << " s elapsed, at most " << left << " s left   " << std::defaultfloat
             << std::flush;

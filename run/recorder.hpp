@@ -31,6 +31,9 @@ class Recorder : public Observer {
   void stepped(long steps) override { steps_ = steps; }
   /// Clears the progress line, if one was shown.
   void finish_progress();
+  /// Shows `text` as the progress line (the same terminal and pacing rules): work before t = 0, such as a coupled
+  /// run's flow start-up.
+  void show_status(const std::string& text);
 
   const std::vector<std::string>& columns() const { return columns_; }
   std::vector<std::vector<double>>& rows() { return rows_; }
@@ -57,6 +60,8 @@ class Recorder : public Observer {
   long steps_ = 0;
   bool forces_ = true, progress_ = false, shown_ = false;
   WallClock::time_point start_ = WallClock::now(), last_ = start_;
+  WallClock::time_point t0_ = start_;  // when t = 0 was sampled: the projection counts from there
+  bool sampled_ = false;
 };
 
 }  // namespace imcol::run

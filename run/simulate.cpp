@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <memory>
 
+#include "contact/approach.hpp"
 #include "contact/collision_model.hpp"
+#include "core/errors.hpp"
 #include "core/number_text.hpp"
 #include "core/report.hpp"
 #include "core/timing.hpp"
@@ -35,6 +37,9 @@ IntegratorSettings integrator_settings(const Scene& sc) {
 }  // namespace
 
 RunResult simulate(const Scene& sc, bool progress, Recording recording) {
+  // A scene that can never collide is refused before anything is integrated: its trajectory would be the whole
+  // run to t_end with nothing to measure.
+  if (const auto why = contact::never_approaching(sc)) throw InputError(sc.path, "sphere[0].velocity", *why);
   const auto setup_start = WallClock::now();
   CollisionModel model(sc);
   const double setup = seconds_since(setup_start);
@@ -50,6 +55,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   try {
     if (sc.has(Effect::flow)) {
       coupled = std::make_unique<coupling::FlowCoupling>(model, sc);
+      if (progress) coupled->set_progress([&rec](const std::string& text) { rec.show_status(text); });
       stats = coupled->run(st, rec);
     } else {
       stats = integrate(model, st, rec);

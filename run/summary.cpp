@@ -96,7 +96,9 @@ nlohmann::ordered_json flow_block(const coupling::FlowRunStats& fs, const Scene&
           {"max_slip_m_s", fs.max_slip}, {"min_gap_clamped_steps", fs.min_gap_clamped_steps},
           {"frame_travel_m", fs.frame_travel}, {"start_up_time_s", fs.pre_seconds},
           {"flow_time_s", fs.flow_seconds}, {"ode_time_s", fs.ode_seconds},
-          {"flow_share", wall > 0 ? fs.flow_seconds / wall : 0.0}, {"ode_share", wall > 0 ? fs.ode_seconds / wall : 0.0}};
+          {"flow_share", wall > 0 ? fs.flow_seconds / wall : 0.0}, {"ode_share", wall > 0 ? fs.ode_seconds / wall : 0.0},
+          {"estimate", {{"start_up_s", fs.est_start_up_s}, {"force_system_blocks_s", fs.est_blocks_s}, {"steps_to_t_end_s", fs.est_steps_s},
+                        {"total_s", fs.est_total_s()}, {"memory_MB", fs.est_bytes / 1e6}}}};
 }
 
 std::string human_summary(const nlohmann::ordered_json& s) {

@@ -257,16 +257,42 @@ TEST(FirstHour, BadNamesAreRefusedBeforeRunning) {
   fs::remove_all(cwd);
 }
 
-TEST(FirstHour, NoApproachIsNotATooShortRun) {
-  for (const char* v : {"0", "-0.1"}) {
-    const fs::path dir = tmp("away");
+// A scene that can never collide is refused at t = 0 (one line naming the velocity, no output folder) instead of
+// integrating to t_end; where a collision stays possible the run goes on.
+TEST(FirstHour, ASceneThatCanNeverCollideIsRefusedAtOnce) {
+  const fs::path dir = tmp("away");
+  fs::remove_all(dir);
+  for (const char* v : {"0", "-0.1"}) {  // sphere-wall, no gravity: at rest, or moving away
     const Outcome r = run_imcol("run data/scenes/default.toml --no-plot --quiet --out " + dir.string() + " --set 'sphere[0].velocity=" + v + "'");
-    ASSERT_EQ(r.status, 0) << r.err;
-    const auto s = summary(dir);
-    EXPECT_TRUE(s["e"].is_null());
-    EXPECT_FALSE(s["t_end_too_short"].get<bool>()) << "velocity " << v;
-    fs::remove_all(dir);
+    expect_input_error(r, "sphere[0].velocity", "never approaching");
+    EXPECT_FALSE(fs::exists(dir)) << "velocity " << v;
   }
+  // Identical spheres moving apart, no gravity; a buoyant sphere rising away from the wall below it.
+  const Outcome apart = run_imcol("run data/scenes/group_a.toml --no-plot --quiet --out " + dir.string() + " --set 'sphere[0].velocity=-0.01'");
+  expect_input_error(apart, "sphere[0].velocity", "the spheres move apart");
+  const Outcome rising = run_imcol("run data/scenes/coupled/bouncing_steel.toml --no-plot --quiet --out " + dir.string() +
+                                   " --set 'sphere[0].density=500'");
+  expect_input_error(rising, "sphere[0].velocity", "net weight points away from the wall");
+  EXPECT_FALSE(fs::exists(dir));
+}
+
+TEST(FirstHour, AnApproachThatStaysPossibleIsIntegrated) {
+  // Moving away from the wall, but the weight points to it: it falls back and collides.
+  const fs::path dir = tmp("back");
+  Outcome r = run_imcol("run data/scenes/bouncing_steel.toml --no-plot --quiet --out " + dir.string() +
+                        " --set 'sphere[0].velocity=-0.2' --set measure.bounces=first");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(summary(dir)["e"].is_number());
+  fs::remove_all(dir);
+  // Spheres moving the same way, the leader faster: drag could let the trailing one catch up, so no refusal; no
+  // collision follows here, and a longer t_end would not change that verdict's reason.
+  r = run_imcol("run data/scenes/group_a.toml --no-plot --quiet --out " + dir.string() + " --set 'sphere[1].velocity=0.1'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto s = summary(dir);
+  EXPECT_TRUE(s["e"].is_null());
+  EXPECT_FALSE(s["t_end_too_short"].get<bool>());
+  EXPECT_NE(s["e_missing"].get<std::string>().find("not approaching"), std::string::npos) << s["e_missing"];
+  fs::remove_all(dir);
 }
 
 // A coupled run whose estimated cost is far beyond the usual is refused before anything is allocated, and a
@@ -294,4 +320,43 @@ TEST(FirstHour, AnEUndefinedByAShortRunIsExplained) {
   for (const auto& w : s["warnings"]) explained = explained || w.get<std::string>().find("e is undefined (raise solver.t_end)") != std::string::npos;
   EXPECT_TRUE(explained) << s["warnings"].dump();
   fs::remove_all(dir);
+}
+
+// A coupled flow step longer than the run is refused like `imcol flow` refuses it (it ran one 1000 s step).
+TEST(FirstHour, ACoupledFlowStepBeyondTEndIsRefused) {
+  const Outcome r = run_imcol("run data/scenes/coupled/group_b.toml --no-plot --set flow.dt=1000");
+  expect_input_error(r, "flow.dt", "longer than the run");
+}
+
+// The cost estimate covers the start-up before t = 0: a long developed start alone is refused, naming it.
+TEST(FirstHour, TheCostEstimateCoversTheStartUp) {
+  const Outcome r = run_imcol("run data/scenes/coupled/group_b.toml --no-plot --set flow.developed_time=16 --set flow.max_wall_hours=0.001");
+  expect_input_error(r, "flow.max_wall_hours", "start-up");
+  // The estimate and its parts are in summary.json.
+  const fs::path dir = tmp("estimate");
+  const Outcome ok = run_imcol("run data/scenes/coupled/group_b.toml --no-plot --quiet --set flow.cells_per_diameter=16 --set flow.levels=2"
+                               " --set solver.t_end=0.01 --out " + dir.string());
+  ASSERT_EQ(ok.status, 0) << ok.err;
+  const auto est = summary(dir)["flow"]["estimate"];
+  EXPECT_GT(est["start_up_s"].get<double>(), 0);
+  EXPECT_GT(est["force_system_blocks_s"].get<double>(), 0);
+  EXPECT_GT(est["steps_to_t_end_s"].get<double>(), 0);
+  EXPECT_NEAR(est["total_s"].get<double>(),
+              est["start_up_s"].get<double>() + est["force_system_blocks_s"].get<double>() + est["steps_to_t_end_s"].get<double>(), 1e-9);
+  fs::remove_all(dir);
+}
+
+// A pair approaching at 8.7 µm/s, coarse grid, one level: it stopped with "Root found at and very near t" in the
+// event handling (a root function exactly zero at an event); it must run with both integrators.
+TEST(FirstHour, AVerySlowCoupledApproachRunsWithBothIntegrators) {
+  for (const char* integ : {"cvode", "ida"}) {
+    const fs::path dir = tmp(std::string("slow_") + integ);
+    const Outcome r = run_imcol("run data/scenes/coupled/group_b.toml --no-plot --quiet --set 'sphere[0].velocity=8.7e-6' --set flow.levels=1"
+                                " --set flow.cells_per_diameter=16 --set flow.developed_time=0.2 --set solver.integrator=" + std::string(integ) +
+                                " --out " + dir.string());
+    ASSERT_EQ(r.status, 0) << integ << ": " << r.err;
+    const auto s = summary(dir);
+    EXPECT_NE(s["events"].dump().find("approach stopped"), std::string::npos) << integ;
+    fs::remove_all(dir);
+  }
 }

@@ -1,0 +1,49 @@
+#include "coupling/run_cost.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace imcol::coupling {
+
+CoupledCost coupled_cost(const CoupledCostInput& in) {
+  const flow::Settings& s = in.settings;
+  CoupledCost c;
+  bool start_moving = false, run_moving = false;
+  for (double d : in.start_up_travel) start_moving = start_moving || d > 0;
+  for (bool m : in.moves_after) run_moving = run_moving || m;
+  c.grid = flow::estimate_cost(s, in.diameters, start_moving || run_moving);
+  const double bins = std::max(1, s.preconditioner_bins);
+  double built_before = 0, built_after = 0;
+  bool wall_block = false;
+  auto wall = [&](double& into) {
+    if (c.grid.wall_points > 0 && !wall_block) into += flow::block_seconds(c.grid, 2 * c.grid.wall_points);
+    wall_block = true;
+  };
+  // Start-up: one LU of the whole system while the bodies are still, else the blocks of the bins visited.
+  if (!start_moving) {
+    built_before += flow::block_seconds(c.grid, 2 * c.grid.body_points);
+  } else {
+    for (std::size_t m = 0; m < in.diameters.size(); ++m) {
+      if (!(in.start_up_travel[m] > 0)) continue;
+      const double visited = std::min(bins, 1 + std::floor(bins * in.start_up_travel[m] / s.h));
+      built_before += visited * flow::block_seconds(c.grid, 2 * flow::ring_points(s, in.diameters[m]));
+    }
+    wall(built_before);
+  }
+  // The coupled steps: a sphere that moves relative to the grid visits every bin (the rest of them).
+  if (run_moving) {
+    for (std::size_t m = 0; m < in.diameters.size(); ++m) {
+      if (!in.moves_after[m]) continue;
+      const double before = in.start_up_travel[m] > 0 ? std::min(bins, 1 + std::floor(bins * in.start_up_travel[m] / s.h)) : 0;
+      built_after += (bins - before) * flow::block_seconds(c.grid, 2 * flow::ring_points(s, in.diameters[m]));
+    }
+    wall(built_after);
+  }
+  c.start_up_s = double(in.start_up_steps) * flow::step_seconds(c.grid, start_moving, flow::kStartUpGmresIterations);
+  c.steps_s = in.steps * (flow::step_seconds(c.grid, run_moving, flow::kTypicalGmresIterations) + kOdeSecondsPerStep);
+  c.start_up_blocks_s = built_before;
+  c.blocks_s = built_before + built_after;
+  return c;
+}
+
+}  // namespace imcol::coupling
