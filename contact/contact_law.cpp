@@ -1,5 +1,6 @@
 #include "contact/contact_law.hpp"
 
+#include "contact/hertz_law.hpp"
 #include "contact/ramp_law.hpp"
 
 namespace imcol::contact {
@@ -7,7 +8,7 @@ namespace imcol::contact {
 std::unique_ptr<ContactLaw> make_contact_law(ContactLawKind kind, const ContactPair& pair) {
   switch (kind) {
     case ContactLawKind::ramp: return std::make_unique<RampLaw>(pair);
-    case ContactLawKind::hertz: break;  // not yet a law
+    case ContactLawKind::hertz: return std::make_unique<HertzLaw>(pair);
   }
   return nullptr;
 }
