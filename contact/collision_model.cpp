@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <iomanip>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -68,7 +67,7 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   arm_gap_ = initial_gap();
   delta_sl_m_ = sc.contact.delta_sl * D_;
   // A start inside the contact zone (the reader admits it only while approaching): the zone is
-  // shortened to the initial gap, so that the ramp stores no energy at t = 0 and the contact begins.
+  // shortened to the initial gap, so that the contact law stores no energy at t = 0 and the contact begins.
   const bool start_inside = has_target() && has(Effect::elastic) && initial_gap() <= delta_ss_m_;
   if (start_inside) delta_ss_m_ = initial_gap();
   instant_gap_m_ = sc.measure.instant_gap * D_;
@@ -117,16 +116,11 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   }
   if (has(Effect::lubrication) && lub_model_ != LubricationModel::asymptotic) brenner_lambda(1.0);
   if (has(Effect::history)) setup_history();
+  if (has(Effect::elastic))
+    law_ = make_contact_law(sc.contact.law, {m_star_, E_star_, a_star_, e_dry_, delta_ss_m_, D_, sc.contact.delta_ss, sc.contact.beta, sc.path});
   if (start_inside) {
-    // The contact begins at t = 0 with W_o and β frozen at the initial speed.
-    const double eps_max = hertz_max_indentation(m_star_, u_rel0_, E_star_, a_star_);
-    if (sc.contact.beta <= 0 && eps_max >= 1.25 * delta_ss_m_) {
-      std::ostringstream os;
-      os << "the sphere starts inside the contact zone, " << delta_ss_m_ << " m from contact, where the ramp cannot store the impact:"
-         << " the Hertz indentation at U = " << u_rel0_ << " m/s is " << eps_max << " m; start at a gap above " << 0.8 * eps_max
-         << " m or approach more slowly";
-      throw InputError(sc.path, "sphere[0].position", os.str());
-    }
+    // The contact begins at t = 0 with the law's state frozen at the initial speed.
+    if (auto why = law_->start_inside_refusal(u_rel0_)) throw InputError(sc.path, "sphere[0].position", *why);
     std::vector<double> y0(size());
     initial_state(y0);
     freeze_contact(0.0, u_rel0_);
@@ -343,14 +337,12 @@ double CollisionModel::max_step(double, std::span<const double> y) const {
     if (!automatic || !(ev.u_rel > 0)) return max_step_;
     return std::max(max_step_, 0.25 * (ev.gap - delta_ss_m_) / ev.u_rel);
   }
-  const double above = ev.gap - ramp_on_gap_;
-  if (!(above > 0)) return std::min(max_step_, contact_max_step_);
-  return std::min(max_step_, std::max(contact_max_step_, 0.25 * above / std::abs(ev.u_rel)));
+  return std::min(max_step_, law_->max_step(ev.gap, ev.u_rel));
 }
 
-double CollisionModel::contact_force(double gap) const {
-  if (phase_ == Phase::approach || W_now_ == 0) return 0.0;
-  return factor_ * W_now_ * ramp_F(gap / delta_ss_m_, beta_now_);
+double CollisionModel::contact_force(double gap, double u_rel) const {
+  if (phase_ == Phase::approach || !law_) return 0.0;
+  return law_->force(gap, u_rel);
 }
 
 void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev) const {
@@ -412,7 +404,7 @@ void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev)
     if (pair) ev.f[1].lubrication = six_pi_mu * R.on2 * ev.u_rel;
   }
   if (has(Effect::elastic)) {
-    const double f = contact_force(ev.gap);
+    const double f = contact_force(ev.gap, ev.u_rel);
     ev.f[0].contact = -f;
     if (pair) ev.f[1].contact = f;
   }
@@ -665,27 +657,8 @@ void CollisionModel::record(double t, EventKind kind, const std::string& name, s
 }
 
 void CollisionModel::freeze_contact(double t, double u_rel) {
-  // W_o and β frozen at the relative speed U_c of the δ_SS crossing (MODEL.md §2.4).
-  const double eps_max = hertz_max_indentation(m_star_, u_rel, E_star_, a_star_);
-  W_now_ = hertz_force(E_star_, a_star_, eps_max);
-  if (scene_.contact.beta > 0) {
-    beta_now_ = scene_.contact.beta;
-  } else if (eps_max < 1.25 * delta_ss_m_) {
-    beta_now_ = energy_consistent_beta(delta_ss_m_, eps_max);
-  } else {
-    std::ostringstream os;
-    os << "at t = " << t << " s the Hertz indentation " << eps_max << " m for U_c = " << u_rel
-       << " m/s cannot be stored by the ramp over delta_ss*D = " << delta_ss_m_ << " m: set delta_ss (units of D) above "
-       << std::setprecision(3) << 0.8 * eps_max / D_ << " in the scene's [contact] table (now " << scene_.contact.delta_ss
-       << "), or lower the impact speed";
-    throw InputError(scene_.path, "contact.delta_ss", os.str());
-  }
-  factor_ = 1.0;
-  contact_max_step_ = std::min(contact_max_step_, hertz_contact_time(m_star_, std::abs(u_rel), E_star_, a_star_) / kContactSteps);
-  ramp_on_gap_ = delta_ss_m_ * std::min(1.0, kRampTail / beta_now_);
+  law_->begin_contact(t, u_rel);  // the law freezes its state at the relative speed U_c of the δ_SS crossing
   if (contacts_ == 0) {
-    W_o_ = W_now_;
-    beta_ = beta_now_;
     U_c_ = u_rel;
     t_contact_ = t;
   }
@@ -711,10 +684,11 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
       }
       break;
     case RootKind::unload:
-      factor_ = e_dry_ * e_dry_;
+      law_->unload();
       phase_ = Phase::unloading;
       break;
     case RootKind::contact_out:
+      law_->end_contact();
       phase_ = Phase::separated;
       apex_seen_ = false;
       if (!t_separation_) {
@@ -840,10 +814,11 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
     c.push_back({"added_mass.model", to_string(sc.added_mass.model)});
     c.push_back({"added_mass.dw_floor", num(dw_floor_)});
   }
+  if (law_) {
+    c.push_back({"contact.law", to_string(law_->kind())});
+    for (auto& kv : law_->choices()) c.push_back(std::move(kv));
+  }
   if (has(Effect::elastic)) {
-    c.push_back({"contact.ramp", "F(x) = (exp(beta(1-x))-1)/(exp(beta)-1)"});
-    c.push_back({"contact.beta", sc.contact.beta > 0 ? num(sc.contact.beta) : "energy-consistent"});
-    c.push_back({"contact.dissipation", "e_dry^2 on unloading"});
     c.push_back({"contact.e_dry", num(e_dry_)});
     c.push_back({"contact.delta_ss_m", num(delta_ss_m_)});
   }

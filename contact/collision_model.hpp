@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/contact_law.hpp"
 #include "contact/formulas.hpp"
 #include "contact/history_force.hpp"
 #include "core/scene.hpp"
@@ -103,17 +104,10 @@ class CollisionModel : public DynamicalSystem {
   EventAction on_roots(std::span<const std::size_t> found, double t, std::span<double> y) override;
   double stop_time() const override { return stop_time_; }
   /// Outside contact: max_step_ (the contact zone cannot be crossed in one step); while approaching with the automatic
-  /// cap, up to a quarter of the time to reach the contact zone at the current relative speed. In contact (loading, unloading):
-  /// also at most 1/kContactSteps of the Hertz contact time at the impact speed, so that a loose rtol cannot step
-  /// over the ramp's peak and give a wrong e; that cap holds only below ramp_on_gap_, where the ramp force is felt.
-  /// Above it the cap is a quarter of the time to reach it at the current relative speed (a quarter, since the
-  /// value limits the step after next).
+  /// cap, up to a quarter of the time to reach the contact zone at the current relative speed. In contact (loading,
+  /// unloading): also the contact law's step hint (ContactLaw::max_step).
   double max_step(double t, std::span<const double> y) const override;
   double max_step_outside_contact() const { return max_step_; }
-  // Chosen: at rtol = atol = 1e-3 without history e is then within 1.3 % (default), 3.3 % (gg3462) and 7 % (gg3462 at
-  // 0.02 m/s) of a tight run; without a contact cap 9 % and 58 % off (tests/test_hard_cases.cpp, StepCap).
-  static constexpr double kContactSteps = 5;
-  static constexpr double kRampTail = 36;     // ramp F(x) < e^(-kRampTail) above x = kRampTail/β (e^-36 ≈ 2e-16)
   double next_breakpoint(double t) const override;
   void at_breakpoint(double t, std::span<const double> y) override;
   void at_step(double t, std::span<const double> y, bool restart) override;  // history evaluator soe-step
@@ -180,12 +174,12 @@ class CollisionModel : public DynamicalSystem {
   std::optional<double> t_closest() const { return t_closest_; }       // approach stopped without contact
   std::optional<double> u_rel_instant_in() const { return u_in_; }
   std::optional<double> u_rel_instant_out() const { return u_out_; }
-  double W_o() const { return W_o_; }             // first contact's frozen peak force, N
   double impact_speed() const { return U_c_; }    // U_rel at the first δ_SS crossing, m/s
   double initial_u_rel() const { return u_rel0_; }  // U1 − U2 at t = 0, m/s
   double initial_gap() const;                        // m; infinite without a target
   bool started_in_contact() const { return t_contact_ && *t_contact_ == 0.0; }
-  double beta() const { return beta_; }
+  /// The solid contact law (null without the elastic effect or a target).
+  const ContactLaw* contact_law() const { return law_.get(); }
   double max_contact_force() const { return max_contact_force_; }
   /// Model choices that ran, name → value.
   std::vector<std::pair<std::string, std::string>> choices() const;
@@ -207,7 +201,7 @@ class CollisionModel : public DynamicalSystem {
   double history_K_H(double gap) const;
   std::span<const double> history_z(std::span<const double> y, std::size_t m) const;
   void setup_history();
-  double contact_force(double gap) const;  // magnitude, pushes the pair apart
+  double contact_force(double gap, double u_rel) const;  // magnitude, pushes the pair apart
   void freeze_contact(double t, double u_rel);
   void handle(RootKind kind, const std::string& name, double t, std::span<const double> y);
   void record(double t, EventKind kind, const std::string& name, std::span<const double> y);
@@ -243,15 +237,15 @@ class CollisionModel : public DynamicalSystem {
   bool kh_added_mass_ = false;
 
   Phase phase_ = Phase::approach;
-  double W_o_ = 0, beta_ = 0, U_c_ = 0, W_now_ = 0, beta_now_ = 0, factor_ = 1;
+  std::unique_ptr<ContactLaw> law_;  // f_SS (MODEL.md §2.4), from contact.law
+  double U_c_ = 0;
   double max_contact_force_ = 0;
   int contacts_ = 0;
   std::optional<double> t_contact_, t_separation_, t_closest_, u_in_, u_out_;
   std::vector<RootSpec> armed_;
   std::vector<RootKind> armed_kind_;
   std::vector<EventRecord> events_;
-  double stop_time_ = 0, max_step_ = 0, contact_max_step_ = std::numeric_limits<double>::infinity();
-  double ramp_on_gap_ = 0;  // m: the ramp force is below e^(-kRampTail) W_o above this gap (set with β)
+  double stop_time_ = 0, max_step_ = 0;
   std::optional<double> quiet_since_;  // observe(): start of the current quiet stretch
   bool at_rest_ = false;
   // measure.bounces (docs/bounces.md)

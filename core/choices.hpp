@@ -17,6 +17,7 @@ enum class HistoryEvaluator { soe, soe_step, direct };            // sum of expo
 enum class HistoryStart { steady, impulsive };                    // moving at U(0) for ever | from rest at t = 0
 enum class HistoryReynolds { instantaneous, initial };            // Re of a finite-Re kernel: |U| | |U(0)|
 enum class WallCorrection { none, added_mass };                   // K_H = 1 | 1 + 3W(δ**)
+enum class ContactLawKind { ramp, hertz };                       // contact.law: the seed's ramp | Hertz with Tsuji damping (MODEL.md §2.4)
 enum class IntegratorMethod { cvode, ida };
 enum class LinearSolverChoice { automatic, dense, schur, gmres };
 enum class BouncesMode { first, all };                            // measure.bounces
@@ -50,6 +51,7 @@ IMCOL_CHOICE_NAMES(HistoryEvaluator, {HistoryEvaluator::soe, "soe"}, {HistoryEva
 IMCOL_CHOICE_NAMES(HistoryStart, {HistoryStart::steady, "steady"}, {HistoryStart::impulsive, "impulsive"})
 IMCOL_CHOICE_NAMES(HistoryReynolds, {HistoryReynolds::instantaneous, "instantaneous"}, {HistoryReynolds::initial, "initial"})
 IMCOL_CHOICE_NAMES(WallCorrection, {WallCorrection::none, "none"}, {WallCorrection::added_mass, "added-mass"})
+IMCOL_CHOICE_NAMES(ContactLawKind, {ContactLawKind::ramp, "ramp"}, {ContactLawKind::hertz, "hertz"})
 IMCOL_CHOICE_NAMES(IntegratorMethod, {IntegratorMethod::cvode, "cvode"}, {IntegratorMethod::ida, "ida"})
 IMCOL_CHOICE_NAMES(LinearSolverChoice, {LinearSolverChoice::automatic, "auto"}, {LinearSolverChoice::dense, "dense"},
                    {LinearSolverChoice::schur, "schur"}, {LinearSolverChoice::gmres, "gmres"})

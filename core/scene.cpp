@@ -266,6 +266,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     if (r.has("e_dry")) r.in_range("e_dry", sc.contact.e_dry, 0.0, 1.0, false, false);
     sc.contact.beta = r.number("beta", 0.0);
     if (r.has("beta")) r.positive("beta", sc.contact.beta);
+    r.choice("law", sc.contact.law);
+    if (r.has("beta") && sc.contact.law != ContactLawKind::ramp) r.fail("beta", "applies only to law = 'ramp'");
     r.finish();
   }
 

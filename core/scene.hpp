@@ -98,6 +98,7 @@ struct Scene {
     double delta_sl = 0.1;    // units of D
     double e_dry = -1;        // <0: from the materials
     double beta = 0;          // F(x) steepness; 0 = energy-consistent (MODEL.md §2.4)
+    ContactLawKind law = ContactLawKind::ramp;  // f_SS (contact/contact_law.hpp)
   } contact;
   struct History {
     KernelKind kernel = KernelKind::basset;  // basset | mei-adrian | kim | dorgan-loth (MODEL.md §2.3)

@@ -65,13 +65,15 @@ void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, co
 }
 
 nlohmann::ordered_json contact_block(const CollisionModel& model) {
-  return {{"t_contact_s", or_null(model.t_contact())},
-          {"t_separation_s", or_null(model.t_separation())},
-          {"impact_speed_m_s", model.t_contact() ? nlohmann::ordered_json(model.impact_speed()) : nullptr},
-          {"W_o_N", model.t_contact() ? nlohmann::ordered_json(model.W_o()) : nullptr},
-          {"beta", model.t_contact() ? nlohmann::ordered_json(model.beta()) : nullptr},
-          {"e_dry", model.e_dry()},
-          {"delta_ss_m", model.delta_ss_m()}};
+  const contact::ContactLaw& law = *model.contact_law();
+  nlohmann::ordered_json c = {{"law", to_string(law.kind())},
+                              {"t_contact_s", or_null(model.t_contact())},
+                              {"t_separation_s", or_null(model.t_separation())},
+                              {"impact_speed_m_s", model.t_contact() ? nlohmann::ordered_json(model.impact_speed()) : nullptr}};
+  for (const auto& v : law.summary()) c[v.name] = or_null(v.value);  // the law's own numbers
+  c["e_dry"] = model.e_dry();
+  c["delta_ss_m"] = model.delta_ss_m();
+  return c;
 }
 
 nlohmann::ordered_json solver_block(const CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats, double t_final) {

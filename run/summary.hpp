@@ -17,7 +17,7 @@ void put_measurements(nlohmann::ordered_json& s, const contact::CollisionModel& 
                       const nlohmann::ordered_json& bounces, const Recorder& rec,
                       const std::vector<std::vector<double>>& rows);
 
-/// The `contact` block: times, impact speed, W_o, β, e_dry, δ_SS.
+/// The `contact` block: the law, times, impact speed, the law's numbers (ramp: W_o, β), e_dry, δ_SS.
 nlohmann::ordered_json contact_block(const contact::CollisionModel& model);
 
 /// The `solver` block: settings, tolerances, state names and statistics.
