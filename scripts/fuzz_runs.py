@@ -467,6 +467,7 @@ def read_output(out):
     if len(rows) < 2 or not rows[0] or rows[0][0] != "t":
         raise Failure("trajectory.csv does not parse", f"{len(rows)} lines, header {rows[0][:3] if rows else None}")
     width = len(rows[0])
+    t_prev = -math.inf
     for i, r in enumerate(rows[1:], 2):
         if len(r) != width:
             raise Failure("trajectory.csv does not parse", f"line {i} has {len(r)} fields, the header {width}")
@@ -477,6 +478,9 @@ def read_output(out):
                 raise Failure("trajectory.csv does not parse", f"line {i} {h} = {cell!r}")
             if not math.isfinite(v):
                 raise Failure("non-finite number", f"trajectory.csv line {i} {h} = {cell}")
+        if float(r[0]) < t_prev:
+            raise Failure("trajectory.csv goes back in time", f"line {i} t = {r[0]} after {t_prev}")
+        t_prev = float(r[0])
     return summary, rows[0], rows[1]
 
 
@@ -491,6 +495,10 @@ def check_matches(summary, header, row, scene, scene_path, expect_name):
     if os.path.abspath(summary.get("scene_file", "")) != os.path.abspath(scene_path):
         raise Failure("mixed folder", f"summary.json scene_file {summary.get('scene_file')!r}")
     first = dict(zip(header, map(float, row)))
+    t_end = scene.get("solver", {}).get("t_end", 1.0) if isinstance(scene.get("solver"), dict) else 1.0
+    t_final = (summary.get("solver") or {}).get("t_final_s")
+    if is_number(t_end) and is_number(t_final) and t_final > t_end * (1 + 1e-9):
+        raise Failure("ran past t_end", f"solver.t_final_s = {t_final}, t_end = {t_end}")
     s0 = spheres(scene)[0]
     want = {"t": 0.0, "z1": float(s0["position"]), "u1": float(s0.get("velocity", 0.0))}
     history = scene.get("history") if isinstance(scene.get("history"), dict) else {}
