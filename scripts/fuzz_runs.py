@@ -1,26 +1,27 @@
 #!/usr/bin/python3
-"""Seeded mutation fuzzer of whole runs: `imcol run` on mutated copies of the shipped scenes.
+"""Seeded mutation fuzzer of whole runs: `imcol run` on mutated copies of the shipped scenes (docs/testing.md).
 
 Each case n takes one scene of data/scenes/ (not data/scenes/flow/, which are `imcol flow` scenes), applies one to
 three mutations drawn from a generator seeded by (--seed, n) alone -- numbers scaled, negated, zeroed, made nan, inf,
 huge or tiny; effects dropped or added; materials swapped; spheres moved, added or removed; solver, measure, output
-and model keys changed -- and runs `imcol run SCENE --out DIR --quiet --no-plot` with a timeout. Coupled scenes
-(the `flow` effect) are kept on coarse grids and short t_end. Some cases write into a folder that already holds a
-complete earlier run. Each case must:
+and model keys changed -- and runs `imcol run SCENE --out DIR --quiet --no-plot` with a CPU-time limit. Coupled
+scenes (the `flow` effect) are kept on coarse grids and short t_end. Some cases write into the folder of a complete
+earlier run (the default scene with its picture, or a coupled scene with its flow fields). Each case must:
 
   * end by itself (no signal, no timeout) with exit status 0, 2 or 3; exit 2 and 3 print exactly one line on stderr,
-    `imcol: error: ...` (exit 3: `imcol: solver failure: ...` is also accepted);
+    `imcol: error: ...` (exit 3: `imcol: solver failure: ...` is also accepted); with exit 0 nothing is printed;
   * with exit 0: summary.json and trajectory.csv exist and parse, hold no NaN or infinity (null where not measured),
-    e is null only with `e_missing` and a warning, e <= e_dry unless a warning says energy was created;
+    the rows are in time order and the run ends by t_end, e is null only with `e_missing` and a warning, and
+    e <= e_dry unless a warning says so;
   * leave a folder that is not mixed: summary.json names this scene and file, trajectory.csv starts at t = 0 with
-    sphere 0 at the scene's position and velocity (after a failure: nothing, or the earlier run whole), and no
-    `*.tmp.*` file is left in or beside it.
+    sphere 0 at the scene's position and velocity, no file of an earlier run is left beside them (after a failure:
+    nothing, or the earlier run whole), and no `*.tmp.*` file is left in or beside the folder.
 
 Prints one line per failing case (its number, the check, the mutations and the command that reproduces it), then
 the count of cases by outcome; the exit status is 1 if any case failed.
 
-    /usr/bin/python3 scripts/fuzz_runs.py [--runs 300] [--seed 1] [--jobs 2] [--imcol build/bin/imcol]
-        [--timeout 20] [--only N[,N...]] [--keep DIR] [--verbose]
+    /usr/bin/python3 scripts/fuzz_runs.py [--runs 600] [--seed 1] [--jobs 2] [--imcol build/bin/imcol]
+        [--timeout 10] [--only N[,N...]] [--keep DIR] [--verbose]
 
 `--only N --keep DIR` reruns case N alone and keeps its scene (DIR/case_N/scene.toml) and output folder.
 """
@@ -362,6 +363,8 @@ def m_pointwise(rng, scene):
     sph = spheres(scene)
     opts = [("fluid", "viscosity"), ("fluid", "density")] if isinstance(scene.get("fluid"), dict) else []
     opts += [("sphere", i, k) for i in range(len(sph)) for k in ("velocity", "diameter")]
+    if rng.random() < 0.3:  # any number of the scene: tolerances, windows, contact and flow settings
+        opts = [p for p in numeric_leaves(scene) if p[0] != "sphere" or p[-1] != "position"] or opts
     if not opts:
         return None
     path = rng.choice(opts)
@@ -422,7 +425,7 @@ def make_case(seed, n, bases, mats):
             muts.append(d)
     if "flow" in toml_effects(scene):
         coarse_flow(rng, scene)
-    reuse = rng.random() < 0.15
+    reuse = rng.choice([0, 1]) if rng.random() < 0.15 else None  # which earlier run's folder, if any
     return os.path.relpath(path, ROOT), scene, muts, reuse
 
 
@@ -535,7 +538,7 @@ def stray_tmp(dirs):
     return sorted(set(out))
 
 
-def run_case(a, n, bases, mats, work, template):
+def run_case(a, n, bases, mats, work, templates):
     base, scene, muts, reuse = make_case(a.seed, n, bases, mats)
     cdir = os.path.join(work, f"case_{n}")
     shutil.rmtree(cdir, ignore_errors=True)
@@ -544,20 +547,21 @@ def run_case(a, n, bases, mats, work, template):
     with open(spath, "w") as f:
         f.write(toml_text(scene))
     out = os.path.join(cdir, "out")
-    if reuse:
-        shutil.copytree(template["dir"], out)
+    template = templates[reuse] if reuse is not None else None
+    if template:
+        shutil.copytree(template["dir"], out)  # copy2: the earlier run's files keep their times
     # The time limit is on CPU time (ulimit -t: SIGXCPU), so that a loaded machine does not fail cases; the wall
     # clock limit is a backstop for a run that waits without computing.
     cmd = ["/bin/sh", "-c", f'ulimit -t {max(1, math.ceil(a.timeout))} && exec "$0" "$@"',
            a.imcol, "run", spath, "--out", out, "--quiet", "--no-plot"]
-    t0 = time.monotonic()
+    t0, started_ns = time.monotonic(), time.time_ns()
     try:
         p = subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=max(120, 10 * a.timeout))
         rc, err, sout = p.returncode, p.stderr, p.stdout
     except subprocess.TimeoutExpired:
         rc, err, sout = None, "", ""
     wall = time.monotonic() - t0
-    desc = f"{base}: " + ("; ".join(muts) or "unchanged") + (" [into an earlier run's folder]" if reuse else "")
+    desc = f"{base}: " + ("; ".join(muts) or "unchanged") + (f" [into the folder of an earlier run of {template['label']}]" if template else "")
     try:
         if rc is None:
             raise Failure("timeout", f"more than {max(120, 10 * a.timeout):g} s of wall time")
@@ -584,10 +588,14 @@ def run_case(a, n, bases, mats, work, template):
             name = scene.get("name") if isinstance(scene.get("name"), str) else "scene"
             check_matches(summary, header, row, scene, spath, name)
             check_exit0(summary)
+            if template:  # nothing may be left of the earlier run
+                stale = sorted(f for f in os.listdir(out) if os.stat(os.path.join(out, f)).st_mtime_ns < started_ns)
+                if stale:
+                    raise Failure("mixed folder", f"left from the earlier run: {', '.join(stale)}")
             outcome = "exit 0, e null" if summary.get("e") is None else "exit 0"
         else:
             present = [f for f in ("summary.json", "trajectory.csv") if os.path.exists(os.path.join(out, f))]
-            if reuse:  # the earlier run whole, or nothing
+            if template:  # the earlier run whole, or nothing
                 if present:
                     s, h, r = read_output(out)
                     check_matches(s, h, r, template["scene"], template["path"], template["name"])
@@ -607,7 +615,7 @@ def run_case(a, n, bases, mats, work, template):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--runs", type=int, default=300, help="cases 0 .. runs-1")
+    ap.add_argument("--runs", type=int, default=600, help="cases 0 .. runs-1")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--only", default=None, help="comma-separated case numbers (reproduce a failure)")
     ap.add_argument("--jobs", type=int, default=1, help="cases run at once")
@@ -625,19 +633,25 @@ def main():
             bases.append((p, tomllib.load(f)))
     work = os.path.abspath(a.keep) if a.keep else tempfile.mkdtemp(prefix="imcol_fuzz_runs_")
     os.makedirs(work, exist_ok=True)
-    # The earlier run that some cases write over: the default scene, unchanged.
-    tpath = os.path.join(a.scenes, "default.toml")
-    with open(tpath, "rb") as f:
-        tscene = tomllib.load(f)
-    template = {"dir": os.path.join(work, "earlier_run"), "path": tpath, "scene": tscene,
-                "name": tscene.get("name", "default")}
-    shutil.rmtree(template["dir"], ignore_errors=True)
-    subprocess.run([a.imcol, "run", tpath, "--out", template["dir"], "--quiet", "--no-plot"], check=True)
+    # The earlier runs that some cases write over: the default scene with its picture, and a coupled scene on a
+    # coarse grid with its flow fields.
+    templates = []
+    for i, (rel, extra) in enumerate([("default.toml", []),
+                                      ("coupled/gg3462.toml", ["--no-plot", "--set", "flow.cells_per_diameter=8",
+                                                               "--set", "flow.levels=2"])]):
+        tpath = os.path.join(a.scenes, rel)
+        with open(tpath, "rb") as f:
+            tscene = tomllib.load(f)
+        t = {"dir": os.path.join(work, f"earlier_run_{i}"), "path": tpath, "scene": tscene, "label": rel,
+             "name": tscene.get("name", os.path.splitext(os.path.basename(rel))[0])}
+        shutil.rmtree(t["dir"], ignore_errors=True)
+        subprocess.run([a.imcol, "run", tpath, "--out", t["dir"], "--quiet"] + extra, check=True)
+        templates.append(t)
     cases = [int(x) for x in a.only.split(",")] if a.only else range(a.runs)
     t0 = time.monotonic()
     counts, failures = collections.Counter(), 0
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
-        futs = [pool.submit(run_case, a, n, bases, mats, work, template) for n in cases]
+        futs = [pool.submit(run_case, a, n, bases, mats, work, templates) for n in cases]
         for fut in futs:
             n, outcome, problem, desc, wall, err = fut.result()
             counts[outcome] += 1
