@@ -552,7 +552,7 @@ def run_case(a, n, bases, mats, work, templates):
         shutil.copytree(template["dir"], out)  # copy2: the earlier run's files keep their times
     # The time limit is on CPU time (ulimit -t: SIGXCPU), so that a loaded machine does not fail cases; the wall
     # clock limit is a backstop for a run that waits without computing.
-    cmd = ["/bin/sh", "-c", f'ulimit -t {max(1, math.ceil(a.timeout))} && exec "$0" "$@"',
+    cmd = ["/bin/sh", "-c", f'ulimit -S -t {max(1, math.ceil(a.timeout))} && exec "$0" "$@"',
            a.imcol, "run", spath, "--out", out, "--quiet", "--no-plot"]
     t0, started_ns = time.monotonic(), time.time_ns()
     try:
