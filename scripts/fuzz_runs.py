@@ -9,7 +9,8 @@ scenes (the `flow` effect) are kept on coarse grids and short t_end. Some cases 
 earlier run (the default scene with its picture, or a coupled scene with its flow fields). Each case must:
 
   * end by itself (no signal, no timeout) with exit status 0, 2 or 3; exit 2 and 3 print exactly one line on stderr,
-    `imcol: error: ...` (exit 3: `imcol: solver failure: ...` is also accepted); with exit 0 nothing is printed;
+    `imcol: error: ...` (exit 2: `imcol: error: SCENE[:LINE]: key 'K': ...`; exit 3: `imcol: solver failure: ...`
+    is also accepted); with exit 0 nothing is printed;
   * with exit 0: summary.json and trajectory.csv exist and parse, hold no NaN or infinity (null where not measured),
     the rows are in time order and the run ends by t_end, e is null only with `e_missing` and a warning, and
     e <= e_dry unless a warning says so;
@@ -26,7 +27,7 @@ the count of cases by outcome; the exit status is 1 if any case failed.
 `--only N --keep DIR` reruns case N alone and keeps its scene (DIR/case_N/scene.toml) and output folder.
 """
 import argparse, collections, concurrent.futures, copy, csv, json, math, os, random, shutil, subprocess, sys, tempfile
-import signal, time, tomllib
+import re, signal, time, tomllib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -576,6 +577,9 @@ def run_case(a, n, bases, mats, work, templates):
             ok = ("imcol: error: ",) + (("imcol: solver failure: ",) if rc == 3 else ())
             if len(lines) != 1 or not lines[0].startswith(ok):
                 raise Failure(f"exit {rc} message", f"{len(lines)} stderr lines: {err.strip()[:200]!r}")
+            # Bad input is in the scene (the only input): the message names the file, maybe a line, and a key.
+            if rc == 2 and not re.match(r"imcol: error: " + re.escape(spath) + r"(:\d+)?: key '[^']*': \S", lines[0]):
+                raise Failure("exit 2 message does not name the scene and a key", lines[0][:200])
         elif err.strip():
             raise Failure("stderr with --quiet", err.strip()[:200])
         if rc == 0 and sout.strip():
