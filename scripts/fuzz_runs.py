@@ -27,7 +27,7 @@ the count of cases by outcome; the exit status is 1 if any case failed.
 `--only N --keep DIR` reruns case N alone and keeps its scene (DIR/case_N/scene.toml) and output folder.
 """
 import argparse, collections, concurrent.futures, copy, csv, json, math, os, random, shutil, subprocess, sys, tempfile
-import re, signal, time, tomllib
+import re, signal, threading, time, tomllib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -539,6 +539,21 @@ def stray_tmp(dirs):
     return sorted(set(out))
 
 
+def run_timed(cmd, prefix, wall_limit):
+    """(exit code or None if killed at the wall-clock limit, stderr, stdout, CPU seconds of the run itself)."""
+    with open(prefix + ".out", "w+") as fo, open(prefix + ".err", "w+") as fe:
+        p = subprocess.Popen(cmd, stdout=fo, stderr=fe)
+        timer = threading.Timer(wall_limit, p.kill)
+        timer.start()
+        _, status, usage = os.wait4(p.pid, 0)  # the rusage of this child alone (sh execs imcol: the same process)
+        p.returncode = rc = os.waitstatus_to_exitcode(status)
+        killed = not timer.is_alive()
+        timer.cancel()
+        fo.seek(0)
+        fe.seek(0)
+        return (None if killed else rc), fe.read(), fo.read(), usage.ru_utime + usage.ru_stime
+
+
 def run_case(a, n, bases, mats, work, templates):
     base, scene, muts, reuse = make_case(a.seed, n, bases, mats)
     cdir = os.path.join(work, f"case_{n}")
@@ -556,11 +571,7 @@ def run_case(a, n, bases, mats, work, templates):
     cmd = ["/bin/sh", "-c", f'ulimit -S -t {max(1, math.ceil(a.timeout))} && exec "$0" "$@"',
            a.imcol, "run", spath, "--out", out, "--quiet", "--no-plot"]
     t0, started_ns = time.monotonic(), time.time_ns()
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=max(120, 10 * a.timeout))
-        rc, err, sout = p.returncode, p.stderr, p.stdout
-    except subprocess.TimeoutExpired:
-        rc, err, sout = None, "", ""
+    rc, err, sout, cpu = run_timed(cmd, os.path.join(cdir, "std"), max(120, 10 * a.timeout))
     wall = time.monotonic() - t0
     desc = f"{base}: " + ("; ".join(muts) or "unchanged") + (f" [into the folder of an earlier run of {template['label']}]" if template else "")
     try:
@@ -607,11 +618,11 @@ def run_case(a, n, bases, mats, work, templates):
                 raise Failure("output of a failed run", f"{', '.join(present)} written")
             # Not a failure, but worth a look: a scene the reader accepted that the solver cannot even start.
             outcome = f"exit {rc}" + (" at t = 0" if rc == 3 and "at t = 0 s" in err else "")
-        return n, outcome, None, desc, wall, err.strip()
+        return n, outcome, None, desc, (wall, cpu), err.strip()
     except Failure as f:
-        return n, "FAIL " + f.check, str(f), desc, wall, err.strip()
+        return n, "FAIL " + f.check, str(f), desc, (wall, cpu), err.strip()
     except Exception as e:  # a case the checks did not foresee (e.g. exit 0 for a scene without sphere 0)
-        return n, "FAIL unforeseen", f"unforeseen: {type(e).__name__}: {e}", desc, wall, err.strip()
+        return n, "FAIL unforeseen", f"unforeseen: {type(e).__name__}: {e}", desc, (wall, cpu), err.strip()
     finally:
         if not a.keep:
             shutil.rmtree(cdir, ignore_errors=True)
@@ -653,22 +664,25 @@ def main():
         templates.append(t)
     cases = [int(x) for x in a.only.split(",")] if a.only else range(a.runs)
     t0 = time.monotonic()
-    counts, failures = collections.Counter(), 0
+    counts, failures, cpu_total, slowest = collections.Counter(), 0, 0.0, (0.0, None)
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, a.jobs)) as pool:
         futs = [pool.submit(run_case, a, n, bases, mats, work, templates) for n in cases]
         for fut in futs:
-            n, outcome, problem, desc, wall, err = fut.result()
+            n, outcome, problem, desc, (wall, cpu), err = fut.result()
+            cpu_total += cpu
+            slowest = max(slowest, (cpu, n))
             counts[outcome] += 1
             if problem:
                 failures += 1
-                print(f"FAIL case {n}: {problem} | {desc} | {wall:.2f} s | "
+                print(f"FAIL case {n}: {problem} | {desc} | {wall:.2f} s, {cpu:.2f} s CPU | "
                       f"repeat: scripts/fuzz_runs.py --seed {a.seed} --only {n} --keep DIR", flush=True)
             elif a.verbose:
-                print(f"case {n}: {outcome} ({wall:.2f} s) | {desc}" + (f" | {err[:160]}" if err else ""), flush=True)
+                print(f"case {n}: {outcome} ({wall:.2f} s, {cpu:.2f} s CPU) | {desc}" + (f" | {err[:160]}" if err else ""), flush=True)
     if not a.keep:
         shutil.rmtree(work, ignore_errors=True)
     total = sum(counts.values())
-    print(f"{total} cases (seed {a.seed}) in {time.monotonic() - t0:.1f} s: " +
+    print(f"{total} cases (seed {a.seed}) in {time.monotonic() - t0:.1f} s ({cpu_total:.1f} s CPU in imcol, the most "
+          f"{slowest[0]:.2f} s in case {slowest[1]}): " +
           ", ".join(f"{k}: {v}" for k, v in sorted(counts.items())))
     return 1 if failures else 0
 
