@@ -384,6 +384,9 @@ MUTATIONS = [(m_number, 6), (m_pointwise, 5), (m_add_number, 3), (m_choice, 4), 
              (m_geometry, 3), (m_drop, 1), (m_unknown, 1), (m_name, 1)]
 
 
+GENTLE = [(m_pointwise, 4), (m_choice, 1), (m_material, 1)]
+
+
 def coarse_flow(rng, scene):
     """A coupled scene on a coarse grid and a short t_end (about 2 s at most); invalid values are left alone."""
     flow = scene.setdefault("flow", {})
@@ -415,11 +418,14 @@ def make_case(seed, n, bases, mats):
     rng = random.Random(f"imcol-fuzz/{seed}/{n}")
     coupled = [b for b in bases if "flow" in toml_effects(b[1])]
     plain = [b for b in bases if b not in coupled]
-    path, base = rng.choice(coupled) if rng.random() < 0.12 else rng.choice(plain)
+    is_coupled = rng.random() < 0.12
+    path, base = rng.choice(coupled) if is_coupled else rng.choice(plain)
     scene = copy.deepcopy(base)
     muts = []
+    # Half the coupled cases change physics only, so that enough of them run to the end.
+    mutations = GENTLE if is_coupled and rng.random() < 0.5 else MUTATIONS
     for _ in range(rng.choice([1, 1, 2, 2, 2, 3])):
-        fns, weights = zip(*MUTATIONS)
+        fns, weights = zip(*mutations)
         fn = rng.choices(fns, weights)[0]
         d = fn(rng, scene, mats) if fn is m_material else fn(rng, scene)
         if d:
