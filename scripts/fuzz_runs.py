@@ -10,7 +10,7 @@ earlier run (the default scene with its picture, or a coupled scene with its flo
 
   * end by itself (no signal, no timeout) with exit status 0, 2 or 3; exit 2 and 3 print exactly one line on stderr,
     `imcol: error: ...` (exit 2: `imcol: error: SCENE[:LINE]: key 'K': ...`; exit 3: `imcol: solver failure: ...`
-    is also accepted); with exit 0 nothing is printed;
+    is also accepted, but not SUNDIALS' ILL_INPUT, which is imcol's own error); with exit 0 nothing is printed;
   * with exit 0: summary.json and trajectory.csv exist and parse, hold no NaN or infinity (null where not measured),
     the rows are in time order and the run ends by t_end, e is null only with `e_missing` and a warning, and
     e <= e_dry unless a warning says so;
@@ -602,6 +602,9 @@ def run_case(a, n, bases, mats, work, templates):
             ok = ("imcol: error: ",) + (("imcol: solver failure: ",) if rc == 3 else ())
             if len(lines) != 1 or not lines[0].startswith(ok):
                 raise Failure(f"exit {rc} message", f"{len(lines)} stderr lines: {err.strip()[:200]!r}")
+            # ILL_INPUT is SUNDIALS refusing what imcol gave it: a defect of the program, not a failure of the solver.
+            if rc == 3 and "ILL_INPUT" in lines[0]:
+                raise Failure("integrator refused its input", lines[0][:200])
             # Bad input is in the scene (the only input): the message names the file, maybe a line, and a key.
             if rc == 2 and not re.match(r"imcol: error: " + re.escape(spath) + r"(:\d+)?: key '[^']*': \S", lines[0]):
                 raise Failure("exit 2 message does not name the scene and a key", lines[0][:200])
