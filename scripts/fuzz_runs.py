@@ -226,7 +226,9 @@ def m_choice(rng, scene):
 
 def m_effects(rng, scene):
     eff = scene.get("effects")
-    eff = list(eff) if isinstance(eff, list) else ["drag", "lubrication", "added_mass", "history", "elastic"]
+    if not isinstance(eff, list):  # the default list (docs/scene-reference.md)
+        eff = ["drag", "lubrication", "added_mass", "history", "elastic"] + (["gravity"] if "gravity" in scene else [])
+    eff = list(eff)
     kind = rng.choice(["drop", "drop", "add", "add", "omit", "empty", "bogus", "duplicate"])
     if kind == "drop" and eff:
         e = rng.choice(eff)
