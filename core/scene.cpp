@@ -169,12 +169,20 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   const toml::array* arr = sph->as_array();
   if (!arr || !arr->is_array_of_tables()) top.fail("sphere", "must be an array of tables ([[sphere]])");
   if (arr->empty() || arr->size() > 2) top.fail("sphere", "give one or two spheres (got " + std::to_string(arr->size()) + ")");
+  // Positions are held to 16 digits and the gap is their difference: beyond 1e6 D from z = 0 (D the impact
+  // sphere's diameter) it could no longer resolve a contact (indentations of ~1e-5 D) to better than 1e-5 of it.
+  auto position_near_origin = [&](Reader& r, double z, double D) {
+    if (std::abs(z) > 1e6 * D)
+      r.fail("position", "must lie within 1e6 impact-sphere diameters (" + fmt_number(1e6 * D) + " m) of z = 0 (got " +
+                             fmt_number(z) + "): farther out the gap loses its digits");
+  };
   for (std::size_t i = 0; i < arr->size(); ++i) {
     Reader r(*arr->get(i)->as_table(), "sphere[" + std::to_string(i) + "]", path);
     SphereSpec s;
     read_solid(r, s, true);
     s.diameter = r.required_positive("diameter");
     s.position = r.required_number("position");
+    position_near_origin(r, s.position, sc.spheres.empty() ? s.diameter : sc.spheres[0].diameter);
     s.velocity = r.number("velocity", 0.0);
     const double mass = s.density * std::pow(s.diameter, 3) * 3.141592653589793 / 6;
     if (!(mass > 0) || !std::isfinite(mass)) r.fail("diameter", "gives a sphere mass that double precision cannot hold");
@@ -188,6 +196,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     WallSpec wall;
     read_solid(r, wall, false);
     wall.position = r.required_number("position");
+    position_near_origin(r, wall.position, sc.spheres[0].diameter);
     r.finish();
     sc.wall = wall;
   }
@@ -303,6 +312,11 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     const auto ls = sc.solver.linear_solver;
     if ((ls == LinearSolverChoice::gmres || ls == LinearSolverChoice::schur) && sc.solver.integrator != IntegratorMethod::cvode)
       r.fail("linear_solver", std::string("'") + to_string(ls) + "' is implemented for the cvode integrator only");
+    // Their preconditioner works on the memory modes, which are integrator states only with the soe evaluator.
+    if ((ls == LinearSolverChoice::gmres || ls == LinearSolverChoice::schur) &&
+        !(sc.has(Effect::history) && sc.history.evaluator == HistoryEvaluator::soe))
+      r.fail("linear_solver", std::string("'") + to_string(ls) +
+                                  "' needs memory modes in the integrator's state: the history effect with history.evaluator = \"soe\" (auto picks it where it applies)");
     sc.solver.krylov_tol = r.number("krylov_tol", sc.solver.krylov_tol);
     r.in_range("krylov_tol", sc.solver.krylov_tol, 0.0, 1.0, true, false);
     sc.solver.rtol = r.number("rtol", sc.solver.rtol);

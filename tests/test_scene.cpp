@@ -94,6 +94,9 @@ TEST(Scene, RejectsBadInput) {
   expect_error(test::edit(kWall, "diameter = 0.0127\n", ""), {"sphere[0].diameter", "missing"});
   expect_error(test::edit(kWall, "\"steel\"", "\"unobtainium\""), {"sphere[0].material", "unknown material", "steel"});
   expect_error(test::edit(kWall, "position = -0.02", "position = -0.001"), {"wall.position", "overlap"});
+  // Positions far from z = 0 would leave the gap without the digits of a contact.
+  expect_error(test::edit(kWall, "position = -0.02", "position = -2e4"), {"bad.toml:", "sphere[0].position", "within 1e6"});
+  expect_error(test::edit(kWall, "position = 0.0\n", "position = 1e29\n"), {"bad.toml:", "wall.position", "within 1e6"});
   expect_error(kWall + "[solver]\nrtol = 0.0\n", {"solver.rtol", "bad.toml:13"});
   expect_error(kWall + "[solver]\nrtol = -1e-6\n", {"solver.rtol"});
   expect_error(kWall + "[solver]\nrtol = 1e-20\n", {"solver.rtol"});
@@ -151,6 +154,10 @@ TEST(Scene, HistorySettingsAreReadAndChecked) {
   expect_error(fx + "[history]\nmemory = 3\n", {"history.memory", "unknown key"});
   expect_error("effects = [\"drag\", \"elastic\"]\n" + kWall + "[history]\nkernel = \"basset\"\n", {"history.kernel", "needs the 'history' effect"});
   expect_error(kWall + "[solver]\nintegrator = \"ida\"\nlinear_solver = \"gmres\"\n", {"solver.linear_solver", "cvode integrator only"});
+  // gmres and schur precondition the history modes: without them in the state the scene is refused, not the run.
+  expect_error(kWall + "[solver]\nlinear_solver = \"schur\"\n", {"bad.toml:", "solver.linear_solver", "history.evaluator = \"soe\""});
+  expect_error(kWall + "[history]\nevaluator = \"soe-step\"\n[solver]\nlinear_solver = \"gmres\"\n", {"solver.linear_solver", "memory modes"});
+  EXPECT_NO_THROW(parse_scene(kWall + "[history]\nevaluator = \"soe\"\n[solver]\nlinear_solver = \"gmres\"\n", "ok.toml"));
 }
 
 // Found by tests/test_scene_fuzz.cpp: escaped newlines in string values and quoted keys used to
