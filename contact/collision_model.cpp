@@ -645,6 +645,8 @@ void CollisionModel::root_values(double, std::span<const double> y, std::span<do
       case RootKind::instant_in:
       case RootKind::instant_out: g[i] = gap - instant_gap_m_; break;
       case RootKind::lub_edge: g[i] = regularised_gap(gap, h_min_) - h_c_; break;
+      case RootKind::start_in_contact:
+      case RootKind::at_rest: g[i] = 1; break;  // declared states, never armed as roots
     }
   }
 }
@@ -726,6 +728,8 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
     case RootKind::lub_edge:
     case RootKind::blend_edge:
     case RootKind::blend_end:
+    case RootKind::start_in_contact:  // declared states, never armed as roots
+    case RootKind::at_rest:
       break;
   }
 }
