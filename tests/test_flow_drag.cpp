@@ -474,7 +474,8 @@ TEST(FlowReferences, PairSceneBuiltInCodeIsItsToml) {
   const imcol::AnalyticPairForce built(fs);
   for (double gap : {2e-3, 5e-4, 1e-4, 3e-5, 1e-6}) {
     const std::vector<SphereState> s = {{0.001, -gap - 0.0025, 0.3}, {0.0015, 0.0, -0.1}};
-    const std::array<double, 4> y = {gap, s[0].u, s[1].z, s[1].u};
+    const double h = s[1].z - s[0].z - s[0].radius - s[1].radius;  // the surface gap, as the states give it
+    const std::array<double, 4> y = {h, s[0].u, s[1].z, s[1].u};
     const auto f = parsed.analytic_fluid_force(0.0, y, {0.0, 0.0});
     const auto [f1, f2] = built.at(s);
     EXPECT_EQ(f1, f[0]) << "gap " << gap;
