@@ -6,8 +6,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -168,6 +170,198 @@ int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
   return 0;
 }
 
+/// A subcommand and what it does once the command line is parsed (its options live as long as `run`).
+struct Subcommand {
+  const CLI::App* cmd;
+  std::function<int()> run;
+};
+
+Subcommand add_run(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string scene, out; bool quiet = false, no_plot = false; };
+  auto o = std::make_shared<Opt>();
+  auto* run = app.add_subcommand("run", "simulate one scene; writes DIR/trajectory.csv and DIR/summary.json");
+  run->add_option("scene", o->scene, "scene file (TOML)")->required();
+  run->add_option("--out", o->out, "output directory (default out/<scene name>)")->check(path_rule("--out"));
+  run->add_flag("--quiet", o->quiet, "print nothing on success (no progress line)");
+  run->add_flag("--no-plot", o->no_plot, "skip DIR/trajectory.png");
+  add_common(run, o->c);
+  return {run, [o] { return cmd_run(o->scene, o->out, o->c, o->quiet, !o->no_plot); }};
+}
+
+Subcommand add_validate(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string what; ValidateOptions v; bool no_plot = false; };
+  auto o = std::make_shared<Opt>();
+  auto* val = app.add_subcommand("validate", "run a validation set and compare with its reference ('seed': Table 6.1)");
+  val->add_option("set", o->what, "validation set: seed")->required();
+  val->add_option("--out", o->v.out, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)")->check(path_rule("--out"));
+  val->add_flag("--flow", o->v.flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
+  val->add_option("--models", o->v.models, "seed (the seed's gap law), asymptotic (Jeffrey & Onishi's leading terms, exact as h -> 0); default both")
+      ->delimiter(',')->check(CLI::Validator([](std::string& name) { validate_models({name}); return std::string(); }, "seed | asymptotic"));
+  val->add_option("--tolerance", o->v.tolerance, "|e - e_seed| counted as agreement in the closing lines (default 0.05)")
+      ->check(number_rule("--tolerance", {0, 1, true, false}));
+  val->add_flag("--no-plot", o->no_plot, "skip DIR/validate_seed.png");
+  add_common(val, o->c);
+  return {val, [o] {
+    o->v.plot = !o->no_plot;
+    return cmd_validate(o->what, o->v, o->c.overrides());
+  }};
+}
+
+Subcommand add_bench(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string scene; std::vector<double> rtols = {1e-6, 1e-8, 1e-10}; int repeat = 5; };
+  auto o = std::make_shared<Opt>();
+  auto* bench = app.add_subcommand("bench", "what accuracy costs: e and median wall time at several rtol");
+  bench->add_option("scene", o->scene, "scene file (TOML)")->required();
+  bench->add_option("--rtols", o->rtols, "relative tolerances to compare")->delimiter(',')->check(number_rule("--rtols", kRtol));
+  bench->add_option("--repeat", o->repeat, "runs per tolerance (median reported)")->check(integer_rule("--repeat", 1, 1000));
+  add_common(bench, o->c);
+  return {bench, [o, bench] {
+    // An option the command sets itself along its own ladder.
+    refuse_option(bench, "--rtol", "bench runs every rtol of --rtols: give the tolerances there");
+    return cmd_bench(o->scene, o->rtols, o->repeat, o->c);
+  }};
+}
+
+Subcommand add_effects(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string scene; };
+  auto o = std::make_shared<Opt>();
+  auto* effects = app.add_subcommand("effects", "which effect does what: rerun the scene without each of its effects");
+  effects->add_option("scene", o->scene, "scene file (TOML)")->required();
+  add_common(effects, o->c);
+  return {effects, [o] { return cmd_effects(o->scene, o->c); }};
+}
+
+Subcommand add_history(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string scene; HistoryCompareOptions h; bool no_plot = false; };
+  auto o = std::make_shared<Opt>();
+  auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history)");
+  history->add_option("scene", o->scene, "scene file (TOML)")->required();
+  history->add_option("--out", o->h.out, "output directory (default out/<scene name>-history)")->check(path_rule("--out"));
+  history->add_option("--kernels", o->h.kernels, "kernels to run (default all)")->delimiter(',')
+      ->check(choice_rule("--kernels", choice_names<KernelKind>()));
+  history->add_option("--evaluators", o->h.evaluators, "soe-step, soe, direct (default all three)")->delimiter(',')
+      ->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
+  history->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
+  add_common(history, o->c);
+  return {history, [o] {
+    o->h.plot = !o->no_plot;
+    return compare_history(o->scene, o->c.overrides(), o->h);
+  }};
+}
+
+Subcommand add_flow(CLI::App& app) {
+  struct Opt { std::string scene; FlowCommandOptions f; bool no_plot = false; long cells = 0, levels = 0; double dt = 0, t_end = 0; };
+  auto o = std::make_shared<Opt>();
+  auto* flowc = app.add_subcommand("flow", "immersed-boundary flow around spheres on the axis: force history, C_D, snapshots");
+  flowc->add_option("scene", o->scene, "flow scene file (TOML, data/scenes/flow/)")->required();
+  flowc->add_option("--out", o->f.out, "output directory (default out/<scene name>)")->check(path_rule("--out"));
+  // The flow scene's ranges (flow/flow_scene.cpp): grid.cells_per_diameter 4-4096, grid.levels 1-16.
+  auto* o_cells = flowc->add_option("--cells", o->cells, "override grid.cells_per_diameter")->check(integer_rule("--cells", 4, 4096));
+  auto* o_levels = flowc->add_option("--levels", o->levels, "override grid.levels")->check(integer_rule("--levels", 1, 16));
+  auto* o_dt = flowc->add_option("--dt", o->dt, "override time.dt")->check(number_rule("--dt", kPositive));
+  auto* o_t_end = flowc->add_option("--t-end", o->t_end, "override time.t_end")->check(number_rule("--t-end", kPositive));
+  flowc->add_flag("--allow-long", o->f.allow_long, "run even if the estimated wall time exceeds an hour");
+  flowc->add_flag("--no-plot", o->no_plot, "skip the PNG plots");
+  return {flowc, [o, o_cells, o_levels, o_dt, o_t_end] {
+    auto& f = o->f;
+    f.plot = !o->no_plot;
+    if (o_cells->count()) f.cells_per_diameter = o->cells;
+    if (o_levels->count()) f.levels = o->levels;
+    if (o_dt->count()) f.dt = o->dt;
+    if (o_t_end->count()) f.t_end = o->t_end;
+    return cmd_flow(o->scene, f);
+  }};
+}
+
+Subcommand add_work_precision(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string scene; WorkPrecisionOptions w; bool no_plot = false; };
+  auto o = std::make_shared<Opt>();
+  auto& w = o->w;
+  auto* wp = app.add_subcommand("work-precision", "what accuracy costs: a tolerance ladder per integrator and history evaluator against a tight reference");
+  wp->add_option("scene", o->scene, "scene file (TOML)")->required();
+  wp->add_option("--out", w.out, "output directory (default out/<scene name>-work_precision)")->check(path_rule("--out"));
+  wp->add_option("--rtols", w.rtols, "the rtol ladder (atol = rtol)")->delimiter(',')->check(number_rule("--rtols", kRtol));
+  wp->add_option("--integrators", w.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',')
+      ->check(choice_rule("--integrators", {"cvode-dense", "cvode-gmres", "ida"}));
+  wp->add_option("--evaluators", w.evaluators, "history evaluators soe-step, soe, direct (default all three if the scene has history)")
+      ->delimiter(',')->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
+  wp->add_option("--direct-steps", w.direct_steps, "direct evaluator: multiples of its default step")->delimiter(',')
+      ->check(number_rule("--direct-steps", {kDirectStepMin, kDirectStepMax}));
+  wp->add_option("--direct-rtol", w.direct_rtol, "direct evaluator: rtol while its step varies")->check(number_rule("--direct-rtol", kRtol));
+  wp->add_option("--ref-rtol", w.ref_rtol, "reference run: rtol = atol")->check(number_rule("--ref-rtol", kRtol));
+  wp->add_option("--ref-history-tolerance", w.ref_history_tol, "reference run: soe fit tolerance")
+      ->check(number_rule("--ref-history-tolerance", {1e-13, 0.1, false, true}));
+  wp->add_option("--repeat", w.repeat, "runs per setting (median wall time reported)")->check(integer_rule("--repeat", 1, 1000));
+  wp->add_flag("--add-history", w.add_history, "add the history effect (Basset) to a scene without it");
+  wp->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
+  add_common(wp, o->c);
+  return {wp, [o, wp] {
+    // Options the command sets itself along its own ladder.
+    for (const char* opt : {"--rtol", "--atol", "--integrator"})
+      if (wp->get_option(opt)->count()) o->w.ladder_options.push_back(opt);
+    o->w.plot = !o->no_plot;
+    return work_precision(o->scene, o->c.overrides(), o->w);
+  }};
+}
+
+Subcommand add_sweep(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string scene; SweepOptions s; bool no_plot = false, no_progress = false; };
+  auto o = std::make_shared<Opt>();
+  auto& s = o->s;
+  auto* sw = app.add_subcommand("sweep", "e against St over a range of one quantity, the points in parallel");
+  sw->add_option("scene", o->scene, "scene file (TOML)")->required();
+  sw->add_option("--vary", s.vary, "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
+      ->required()->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
+  sw->add_option("--from", s.from, "first value (SI units)")->required()->check(number_rule("--from", kPositive));
+  sw->add_option("--to", s.to, "last value (SI units)")->required()->check(number_rule("--to", kPositive));
+  sw->add_option("--points", s.points, "number of points")->required()->check(integer_rule("--points", 1, 100000));
+  sw->add_option("--spacing", s.spacing, "log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
+  sw->add_option("--jobs", s.jobs, "parallel runs (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
+  sw->add_option("--out", s.out, "output directory (default out/<scene name>-sweep_<quantity>)")->check(path_rule("--out"));
+  sw->add_flag("--no-progress", o->no_progress, "no progress line on the terminal");
+  sw->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
+  add_common(sw, o->c);
+  return {sw, [o] {
+    o->s.plot = !o->no_plot;
+    o->s.progress = !o->no_progress;
+    return sweep(o->scene, o->c.overrides(), o->s);
+  }};
+}
+
+/// An unknown subcommand is named as such (CLI11 would only say that a subcommand is required): prints the error
+/// and returns false. `found`: argv[1] names a subcommand.
+bool known_subcommand(CLI::App& app, int argc, char** argv, bool& found) {
+  found = false;
+  if (argc < 2 || argv[1][0] == '-') return true;
+  std::string known;
+  for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    found = found || sub->get_name() == argv[1];
+    known += (known.empty() ? "" : ", ") + sub->get_name();
+  }
+  if (!found)
+    std::cerr << "imcol: error: " << InputError("command line", "", std::string("unknown subcommand '") + argv[1] + "' (expected " + known + ")").what() << "\n";
+  return found;
+}
+
+/// The parsed command's action, with the exit status of each kind of failure.
+int run_action(const std::function<int()>& action) {
+  try {
+    return action();
+  } catch (const InputError& e) {
+    std::cerr << "imcol: error: " << e.what() << "\n";
+    return 2;
+  } catch (const SolverError& e) {
+    std::cerr << "imcol: solver failure: " << e.what() << "\n";
+    return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "imcol: error: out of memory\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "imcol: error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -175,138 +369,13 @@ int run_cli(int argc, char** argv) {
   CLI::App app{"imcol: head-on collisions of spheres immersed in a viscous liquid"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("imcol ") + IMCOL_VERSION);
-
-  CommonOptions run_opt, val_opt, bench_opt;
-  std::string scene, out;
-  bool quiet = false, run_no_plot = false;
-  auto* run = app.add_subcommand("run", "simulate one scene; writes DIR/trajectory.csv and DIR/summary.json");
-  run->add_option("scene", scene, "scene file (TOML)")->required();
-  run->add_option("--out", out, "output directory (default out/<scene name>)")->check(path_rule("--out"));
-  run->add_flag("--quiet", quiet, "print nothing on success (no progress line)");
-  run->add_flag("--no-plot", run_no_plot, "skip DIR/trajectory.png");
-  add_common(run, run_opt);
-
-  std::string what;
-  ValidateOptions vopt;
-  bool val_no_plot = false;
-  auto* val = app.add_subcommand("validate", "run a validation set and compare with its reference ('seed': Table 6.1)");
-  val->add_option("set", what, "validation set: seed")->required();
-  val->add_option("--out", vopt.out, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)")->check(path_rule("--out"));
-  val->add_flag("--flow", vopt.flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
-  val->add_option("--models", vopt.models, "seed (the seed's gap law), asymptotic (Jeffrey & Onishi's leading terms, exact as h -> 0); default both")
-      ->delimiter(',')->check(CLI::Validator([](std::string& name) { validate_models({name}); return std::string(); }, "seed | asymptotic"));
-  val->add_option("--tolerance", vopt.tolerance, "|e - e_seed| counted as agreement in the closing lines (default 0.05)")
-      ->check(number_rule("--tolerance", {0, 1, true, false}));
-  val->add_flag("--no-plot", val_no_plot, "skip DIR/validate_seed.png");
-  add_common(val, val_opt);
-
-  std::string bscene;
-  std::vector<double> rtols = {1e-6, 1e-8, 1e-10};
-  int repeat = 5;
-  auto* bench = app.add_subcommand("bench", "what accuracy costs: e and median wall time at several rtol");
-  bench->add_option("scene", bscene, "scene file (TOML)")->required();
-  bench->add_option("--rtols", rtols, "relative tolerances to compare")->delimiter(',')->check(number_rule("--rtols", kRtol));
-  bench->add_option("--repeat", repeat, "runs per tolerance (median reported)")->check(integer_rule("--repeat", 1, 1000));
-  add_common(bench, bench_opt);
-
-  std::string escene;
-  CommonOptions eff_opt;
-  auto* effects = app.add_subcommand("effects", "which effect does what: rerun the scene without each of its effects");
-  effects->add_option("scene", escene, "scene file (TOML)")->required();
-  add_common(effects, eff_opt);
-
-  std::string hscene;
-  CommonOptions hist_opt;
-  HistoryCompareOptions hopt;
-  bool no_plot = false;
-  auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history)");
-  history->add_option("scene", hscene, "scene file (TOML)")->required();
-  history->add_option("--out", hopt.out, "output directory (default out/<scene name>-history)")->check(path_rule("--out"));
-  history->add_option("--kernels", hopt.kernels, "kernels to run (default all)")->delimiter(',')
-      ->check(choice_rule("--kernels", choice_names<KernelKind>()));
-  history->add_option("--evaluators", hopt.evaluators, "soe-step, soe, direct (default all three)")->delimiter(',')
-      ->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
-  history->add_flag("--no-plot", no_plot, "skip the PNG plot");
-  add_common(history, hist_opt);
-
-  std::string fscene;
-  FlowCommandOptions fopt;
-  bool f_no_plot = false;
-  auto* flowc = app.add_subcommand("flow", "immersed-boundary flow around spheres on the axis: force history, C_D, snapshots");
-  flowc->add_option("scene", fscene, "flow scene file (TOML, data/scenes/flow/)")->required();
-  flowc->add_option("--out", fopt.out, "output directory (default out/<scene name>)")->check(path_rule("--out"));
-  long f_cells = 0, f_levels = 0;
-  double f_dt = 0, f_t_end = 0;
-  // The flow scene's ranges (flow/flow_scene.cpp): grid.cells_per_diameter 4-4096, grid.levels 1-16.
-  auto* o_cells = flowc->add_option("--cells", f_cells, "override grid.cells_per_diameter")->check(integer_rule("--cells", 4, 4096));
-  auto* o_levels = flowc->add_option("--levels", f_levels, "override grid.levels")->check(integer_rule("--levels", 1, 16));
-  auto* o_dt = flowc->add_option("--dt", f_dt, "override time.dt")->check(number_rule("--dt", kPositive));
-  auto* o_t_end = flowc->add_option("--t-end", f_t_end, "override time.t_end")->check(number_rule("--t-end", kPositive));
-  flowc->add_flag("--allow-long", fopt.allow_long, "run even if the estimated wall time exceeds an hour");
-  flowc->add_flag("--no-plot", f_no_plot, "skip the PNG plots");
-
-  std::string wscene;
-  CommonOptions wp_opt;
-  WorkPrecisionOptions wopt;
-  bool wp_no_plot = false;
-  auto* wp = app.add_subcommand("work-precision", "what accuracy costs: a tolerance ladder per integrator and history evaluator against a tight reference");
-  wp->add_option("scene", wscene, "scene file (TOML)")->required();
-  wp->add_option("--out", wopt.out, "output directory (default out/<scene name>-work_precision)")->check(path_rule("--out"));
-  wp->add_option("--rtols", wopt.rtols, "the rtol ladder (atol = rtol)")->delimiter(',')->check(number_rule("--rtols", kRtol));
-  wp->add_option("--integrators", wopt.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',')
-      ->check(choice_rule("--integrators", {"cvode-dense", "cvode-gmres", "ida"}));
-  wp->add_option("--evaluators", wopt.evaluators, "history evaluators soe-step, soe, direct (default all three if the scene has history)")
-      ->delimiter(',')->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
-  wp->add_option("--direct-steps", wopt.direct_steps, "direct evaluator: multiples of its default step")->delimiter(',')
-      ->check(number_rule("--direct-steps", {kDirectStepMin, kDirectStepMax}));
-  wp->add_option("--direct-rtol", wopt.direct_rtol, "direct evaluator: rtol while its step varies")->check(number_rule("--direct-rtol", kRtol));
-  wp->add_option("--ref-rtol", wopt.ref_rtol, "reference run: rtol = atol")->check(number_rule("--ref-rtol", kRtol));
-  wp->add_option("--ref-history-tolerance", wopt.ref_history_tol, "reference run: soe fit tolerance")
-      ->check(number_rule("--ref-history-tolerance", {1e-13, 0.1, false, true}));
-  wp->add_option("--repeat", wopt.repeat, "runs per setting (median wall time reported)")->check(integer_rule("--repeat", 1, 1000));
-  wp->add_flag("--add-history", wopt.add_history, "add the history effect (Basset) to a scene without it");
-  wp->add_flag("--no-plot", wp_no_plot, "skip the PNG plot");
-  add_common(wp, wp_opt);
-
-  std::string sscene;
-  CommonOptions sw_opt;
-  SweepOptions sopt;
-  bool sw_no_plot = false, sw_no_progress = false;
-  auto* sw = app.add_subcommand("sweep", "e against St over a range of one quantity, the points in parallel");
-  sw->add_option("scene", sscene, "scene file (TOML)")->required();
-  sw->add_option("--vary", sopt.vary, "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
-      ->required()->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
-  sw->add_option("--from", sopt.from, "first value (SI units)")->required()->check(number_rule("--from", kPositive));
-  sw->add_option("--to", sopt.to, "last value (SI units)")->required()->check(number_rule("--to", kPositive));
-  sw->add_option("--points", sopt.points, "number of points")->required()->check(integer_rule("--points", 1, 100000));
-  sw->add_option("--spacing", sopt.spacing, "log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
-  sw->add_option("--jobs", sopt.jobs, "parallel runs (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
-  sw->add_option("--out", sopt.out, "output directory (default out/<scene name>-sweep_<quantity>)")->check(path_rule("--out"));
-  sw->add_flag("--no-progress", sw_no_progress, "no progress line on the terminal");
-  sw->add_flag("--no-plot", sw_no_plot, "skip the PNG plot");
-  add_common(sw, sw_opt);
-
-  // An unknown subcommand is named as such (CLI11 would only say that a subcommand is required).
+  const std::vector<Subcommand> subcommands = {add_run(app),     add_validate(app), add_bench(app),          add_effects(app),
+                                               add_history(app), add_flow(app),     add_work_precision(app), add_sweep(app)};
   bool found = false;
-  if (argc >= 2 && argv[1][0] != '-') {
-    std::string known;
-    for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-      found = found || sub->get_name() == argv[1];
-      known += (known.empty() ? "" : ", ") + sub->get_name();
-    }
-    if (!found) {
-      std::cerr << "imcol: error: " << InputError("command line", "", std::string("unknown subcommand '") + argv[1] + "' (expected " + known + ")").what() << "\n";
-      return 2;
-    }
-  }
+  if (!known_subcommand(app, argc, argv, found)) return 2;
 
   try {
     app.parse(argc, argv);
-    // Options the command sets itself along its own ladder.
-    if (*bench) refuse_option(bench, "--rtol", "bench runs every rtol of --rtols: give the tolerances there");
-    if (*wp)
-      for (const char* o : {"--rtol", "--atol", "--integrator"})
-        if (wp->get_option(o)->count()) wopt.ladder_options.push_back(o);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
@@ -321,49 +390,8 @@ int run_cli(int argc, char** argv) {
     std::cerr << "imcol: error: " << e.what() << "\n";
     return 2;
   }
-
-  try {
-    if (*run) return cmd_run(scene, out, run_opt, quiet, !run_no_plot);
-    if (*val) {
-      vopt.plot = !val_no_plot;
-      return cmd_validate(what, vopt, val_opt.overrides());
-    }
-    if (*bench) return cmd_bench(bscene, rtols, repeat, bench_opt);
-    if (*effects) return cmd_effects(escene, eff_opt);
-    if (*flowc) {
-      fopt.plot = !f_no_plot;
-      if (o_cells->count()) fopt.cells_per_diameter = f_cells;
-      if (o_levels->count()) fopt.levels = f_levels;
-      if (o_dt->count()) fopt.dt = f_dt;
-      if (o_t_end->count()) fopt.t_end = f_t_end;
-      return cmd_flow(fscene, fopt);
-    }
-    if (*sw) {
-      sopt.plot = !sw_no_plot;
-      sopt.progress = !sw_no_progress;
-      return sweep(sscene, sw_opt.overrides(), sopt);
-    }
-    if (*wp) {
-      wopt.plot = !wp_no_plot;
-      return work_precision(wscene, wp_opt.overrides(), wopt);
-    }
-    if (*history) {
-      hopt.plot = !no_plot;
-      return compare_history(hscene, hist_opt.overrides(), hopt);
-    }
-  } catch (const InputError& e) {
-    std::cerr << "imcol: error: " << e.what() << "\n";
-    return 2;
-  } catch (const SolverError& e) {
-    std::cerr << "imcol: solver failure: " << e.what() << "\n";
-    return 3;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "imcol: error: out of memory\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "imcol: error: " << e.what() << "\n";
-    return 1;
-  }
+  for (const auto& sub : subcommands)
+    if (*sub.cmd) return run_action(sub.run);
   return 1;
 }
 

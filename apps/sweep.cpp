@@ -165,23 +165,22 @@ std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary
   return ov;
 }
 
-int sweep(const std::string& scene_path, const std::vector<Override>& overrides, const SweepOptions& opt) {
-  const Quantity* q = quantity(opt.vary);
-  if (!q) throw InputError("--vary", opt.vary, "unknown quantity (expected velocity, viscosity, diameter, density)");
+namespace {
+
+void check_options(const SweepOptions& opt) {
   if (!(opt.from > 0 && std::isfinite(opt.from))) throw InputError("--from", "from", "must be a positive number");
   if (!(opt.to > 0 && std::isfinite(opt.to))) throw InputError("--to", "to", "must be a positive number");
   if (opt.points < 1 || opt.points > 100000) throw InputError("--points", "points", "must lie in [1, 100000]");
   if (opt.points > 1 && opt.from == opt.to) throw InputError("--to", "to", "equals --from: a sweep of several points needs a range");
   if (opt.spacing != "log" && opt.spacing != "linear") throw InputError("--spacing", opt.spacing, "expected log or linear");
   if (opt.jobs < 0) throw InputError("--jobs", "jobs", "must be >= 0 (0 = all cores)");
+}
 
-  const Scene base = load_scene(scene_path, overrides);
-  if (opt.vary == "viscosity" && !base.fluid) throw InputError(scene_path, "fluid", "a viscosity sweep needs a [fluid] table");
-  const bool pair = base.two_spheres();
-
-  // Every point's scene is built and validated before anything runs: bad input stops the sweep at once.
+/// Every point's scene, built and validated before anything runs: bad input stops the sweep at once. Sets each
+/// point's value.
+std::vector<Scene> point_scenes(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
+                                const SweepOptions& opt, std::vector<PointResult>& pts) {
   std::vector<Scene> scenes;
-  std::vector<PointResult> pts(opt.points);
   for (int i = 0; i < opt.points; ++i) {
     const double f = opt.points == 1 ? 0.0 : static_cast<double>(i) / (opt.points - 1);
     const double v = opt.spacing == "log" ? opt.from * std::pow(opt.to / opt.from, f) : opt.from + f * (opt.to - opt.from);
@@ -196,22 +195,26 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
       throw InputError(e.where(), e.key(), os.str() + ": " + e.what());
     }
   }
+  return scenes;
+}
 
-  // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
-  // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
-  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-sweep_" + opt.vary), base.path);
-  const fs::path& dir = unit.dir();
-  write_file_atomic(dir / "sweep.partial",
-                    "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
-                        "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = std::min(opt.points, opt.jobs > 0 ? opt.jobs : static_cast<int>(hw));
+struct Tally {
+  int finished = 0, failed = 0;
+  double wall = 0;
+  std::string write_error;  // the first failed write of sweep.csv: the sweep stops taking points and reports it
+};
+
+/// Runs the points on `jobs` threads, rewriting dir/sweep.csv as they finish.
+Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts, const SweepOptions& opt, const Quantity& q,
+                 const fs::path& dir, int jobs) {
   const bool tty = opt.progress && isatty(STDERR_FILENO);
   std::mutex mu;
   std::atomic<int> next{0};
-  int finished = 0, failed = 0;
+  Tally tally;
+  int& finished = tally.finished;
+  int& failed = tally.failed;
+  std::string& write_error = tally.write_error;
   double last_write = -1;
-  std::string write_error;  // the first failed write of sweep.csv: the sweep stops taking points and reports it
   const auto start = WallClock::now();
   auto elapsed = [&] { return seconds_since(start); };
 
@@ -241,7 +244,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
       // Finished points survive what follows: the file is rewritten at most every 0.25 s, and at the end.
       if (write_error.empty() && (finished == opt.points || elapsed() - last_write >= 0.25)) {
         try {
-          write_file_atomic(dir / "sweep.csv", sweep_csv(pts, *q));
+          write_file_atomic(dir / "sweep.csv", sweep_csv(pts, q));
         } catch (const std::exception& e) {  // a full disk, a vanished folder: not a crash of the worker thread
           write_error = e.what();
           next = opt.points;
@@ -259,26 +262,19 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   std::vector<std::thread> threads;
   for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
   for (auto& t : threads) t.join();
-  const double wall = elapsed();
+  tally.wall = elapsed();
   if (tty) std::cerr << "\n";
-  if (!write_error.empty()) {
-    std::string kept = "sweep.partial marks what is there as incomplete";
-    try {
-      unit.commit();
-    } catch (const std::exception& e) {
-      kept = "the points finished so far could not be kept either (" + std::string(e.what()) + ")";
-    }
-    throw std::runtime_error("sweep stopped after " + std::to_string(finished) + " of " + std::to_string(opt.points) +
-                             " points: writing " + (unit.target() / "sweep.csv").string() + " failed (" + write_error + "); " + kept);
-  }
+  return tally;
+}
 
-  // Table, failures, throughput.
-  std::cout << "scene " << base.name << ": sweep of " << opt.vary << " from " << opt.from << " to " << opt.to << " (" << opt.points
+/// The table of points on stdout; the failures (for sweep.json) and the integration time of the points that ran.
+nlohmann::ordered_json print_points(const std::vector<PointResult>& pts, const SweepOptions& opt, const Quantity& q,
+                                    const std::string& scene_name, int jobs, double& cpu) {
+  std::cout << "scene " << scene_name << ": sweep of " << opt.vary << " from " << opt.from << " to " << opt.to << " (" << opt.points
             << " points, " << opt.spacing << " spacing, " << jobs << " jobs)\n";
-  std::cout << std::setw(14) << q->column << std::setw(10) << "St" << std::setw(9) << "Re" << std::setw(9) << "e" << std::setw(9)
+  std::cout << std::setw(14) << q.column << std::setw(10) << "St" << std::setw(9) << "Re" << std::setw(9) << "e" << std::setw(9)
             << "steps" << std::setw(10) << "ms" << "  note\n";
   nlohmann::ordered_json failures = nlohmann::ordered_json::array();
-  double cpu = 0;
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const auto& p = pts[i];
     const auto& s = p.summary;
@@ -292,15 +288,21 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
     if (p.ok) cpu += s["wall_time_s"].get<double>();
     if (!p.ok) failures.push_back({{"point", i}, {"value", p.value}, {"reason", p.message}});
   }
-  const int ok = opt.points - failed;
-  std::cout << ok << " of " << opt.points << " points ran in " << std::fixed << std::setprecision(2) << wall << " s on " << jobs
-            << " jobs: " << std::setprecision(1) << ok / wall << " collisions per second (" << std::setprecision(3)
-            << (ok ? 1e3 * cpu / ok : NAN) << " ms integration per point)\n";
-  for (const auto& f : failures)
-    std::cout << "failed: point " << f["point"] << " (" << opt.vary << " = " << f["value"] << "): " << f["reason"].get<std::string>() << "\n";
-  // Where e is not measured, and where the named measures disagree with it (docs/bounces.md).
-  std::map<std::string, int> disagreeing;
-  int n_disagree = 0, n_missing = 0;
+  return failures;
+}
+
+struct EStatusCounts {
+  int missing = 0, disagree = 0;
+  std::map<std::string, int> disagreeing;  // measure name: points where it disagrees with e
+};
+
+/// Where e is not measured, and where the named measures disagree with it (docs/bounces.md): one closing line
+/// (e_status in sweep.csv; each point's message says why).
+EStatusCounts report_e_status(const std::vector<PointResult>& pts, const Scene& base, int ok) {
+  EStatusCounts c;
+  std::map<std::string, int>& disagreeing = c.disagreeing;
+  int& n_disagree = c.disagree;
+  int& n_missing = c.missing;
   for (const auto& p : pts) {
     if (!p.ok) continue;
     const std::string st = e_status(p.summary);
@@ -309,7 +311,6 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
     ++n_disagree;
     for (const auto& [k, v] : p.summary["measures_disagree"].items()) ++disagreeing[k];
   }
-  // One closing line (e_status in sweep.csv; each point's message says why).
   if (n_missing) std::cout << "e not measured at " << n_missing << " of " << ok << " points (e_status = not_measured)";
   if (n_disagree) {
     std::cout << (n_missing ? "; " : "") << "named measures disagree with e (" << to_string(base.measure.e) << ") by more than measure.disagreement at "
@@ -317,6 +318,58 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
     for (auto it = disagreeing.begin(); it != disagreeing.end(); ++it) std::cout << (it == disagreeing.begin() ? " " : ", ") << it->first << " (" << it->second << ")";
   }
   if (n_missing || n_disagree) std::cout << " (docs/bounces.md)\n";
+  return c;
+}
+
+}  // namespace
+
+int sweep(const std::string& scene_path, const std::vector<Override>& overrides, const SweepOptions& opt) {
+  const Quantity* q = quantity(opt.vary);
+  if (!q) throw InputError("--vary", opt.vary, "unknown quantity (expected velocity, viscosity, diameter, density)");
+  check_options(opt);
+
+  const Scene base = load_scene(scene_path, overrides);
+  if (opt.vary == "viscosity" && !base.fluid) throw InputError(scene_path, "fluid", "a viscosity sweep needs a [fluid] table");
+  const bool pair = base.two_spheres();
+  std::vector<PointResult> pts(opt.points);
+  const std::vector<Scene> scenes = point_scenes(scene_path, overrides, base, opt, pts);
+
+  // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
+  // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
+  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-sweep_" + opt.vary), base.path);
+  const fs::path& dir = unit.dir();
+  write_file_atomic(dir / "sweep.partial",
+                    "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
+                        "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const int jobs = std::min(opt.points, opt.jobs > 0 ? opt.jobs : static_cast<int>(hw));
+  const Tally tally = run_points(scenes, pts, opt, *q, dir, jobs);
+  const int finished = tally.finished, failed = tally.failed;
+  const double wall = tally.wall;
+  const std::string& write_error = tally.write_error;
+  if (!write_error.empty()) {
+    std::string kept = "sweep.partial marks what is there as incomplete";
+    try {
+      unit.commit();
+    } catch (const std::exception& e) {
+      kept = "the points finished so far could not be kept either (" + std::string(e.what()) + ")";
+    }
+    throw std::runtime_error("sweep stopped after " + std::to_string(finished) + " of " + std::to_string(opt.points) +
+                             " points: writing " + (unit.target() / "sweep.csv").string() + " failed (" + write_error + "); " + kept);
+  }
+
+  // Table, failures, throughput.
+  double cpu = 0;
+  const nlohmann::ordered_json failures = print_points(pts, opt, *q, base.name, jobs, cpu);
+  const int ok = opt.points - failed;
+  std::cout << ok << " of " << opt.points << " points ran in " << std::fixed << std::setprecision(2) << wall << " s on " << jobs
+            << " jobs: " << std::setprecision(1) << ok / wall << " collisions per second (" << std::setprecision(3)
+            << (ok ? 1e3 * cpu / ok : NAN) << " ms integration per point)\n";
+  for (const auto& f : failures)
+    std::cout << "failed: point " << f["point"] << " (" << opt.vary << " = " << f["value"] << "): " << f["reason"].get<std::string>() << "\n";
+  const EStatusCounts counts = report_e_status(pts, base, ok);
+  const int n_missing = counts.missing, n_disagree = counts.disagree;
+  const auto& disagreeing = counts.disagreeing;
 
   nlohmann::ordered_json j;
   j["scene"] = base.name;

@@ -94,9 +94,66 @@ std::optional<double> loglog_slope(const std::vector<std::pair<double, double>>&
   return (n * sxy - sx * sy) / d;
 }
 
-}  // namespace
+/// The history evaluators to compare (all three by default where the scene has history; "none" without it); checks
+/// the integrators too.
+std::vector<std::string> evaluators_for(const WorkPrecisionOptions& opt, bool history) {
+  std::vector<std::string> evaluators = opt.evaluators;
+  if (evaluators.empty()) evaluators = history ? std::vector<std::string>{"soe-step", "soe", "direct"} : std::vector<std::string>{"none"};
+  for (const auto& e : evaluators) {
+    if (e != "soe" && e != "soe-step" && e != "direct" && e != "none")
+      throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
+    if (e != "none" && !history)
+      throw InputError("--evaluators", e, "the scene has no history effect (list it in `effects`, or pass --add-history)");
+  }
+  for (const auto& i : opt.integrators)
+    if (i != "cvode-dense" && i != "cvode-gmres" && i != "ida")
+      throw InputError("--integrators", i, "unknown integrator (expected cvode-dense, cvode-gmres, ida)");
+  return evaluators;
+}
 
-int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
+/// Every evaluator with every integrator; a combination the solvers cannot do goes to `skipped` with its reason.
+std::vector<Config> configs_for(const std::vector<std::string>& evaluators, const WorkPrecisionOptions& opt,
+                                std::vector<std::string>& skipped) {
+  std::vector<Config> configs;
+  for (const auto& ev : evaluators)
+    for (const auto& in : opt.integrators) {
+      if (in == "cvode-gmres" && ev != "soe") {
+        skipped.push_back(in + (ev == "none" ? "" : " / " + ev) +
+                          ": gmres needs the memory modes of the soe history evaluator (its preconditioner)");
+        continue;
+      }
+      configs.push_back({in, ev});
+    }
+
+  return configs;
+}
+
+/// The table of every rung against the reference.
+void print_table(const std::string& name, const WorkPrecisionOptions& opt, bool history, const std::string& metric, double e_ref,
+                 double ref_unc, double u_scale, const std::vector<std::string>& skipped, const std::vector<Point>& pts) {
+  std::cout << "scene " << name << ": work-precision, median of " << opt.repeat << " runs per setting (atol = rtol"
+            << (history ? "; soe fit tolerance = rtol within [1e-10, 1e-3]" : "") << ")\n";
+  std::cout << "reference: cvode dense, rtol = atol = " << opt.ref_rtol
+            << (history ? ", soe fit tolerance " + sci(opt.ref_history_tol, 0) : std::string()) << ": " << metric << " = "
+            << std::setprecision(12) << e_ref << "; its uncertainty ~ " << sci(ref_unc) << "\n";
+  std::cout << "trajectory error: max over output times of |d gap|/D and |d u|/" << sci(u_scale, 3) << " m/s\n";
+  for (const auto& s : skipped) std::cout << "skipped " << s << "\n";
+  std::cout << std::left << std::setw(22) << "integrator / history" << std::right << std::setw(9) << "rtol" << std::setw(11)
+            << "direct dt" << std::setw(16) << metric << std::setw(10) << "err " + metric << std::setw(10) << "err traj"
+            << std::setw(11) << "median ms" << std::setw(8) << "steps" << std::setw(8) << "rhs" << "\n";
+  for (const auto& p : pts) {
+    std::cout << std::left << std::setw(22) << p.cfg.label() << std::right << std::setw(9) << sci(p.rtol, 0) << std::setw(11)
+              << sci(p.direct_step, 1);
+    if (p.ok)
+      std::cout << std::setw(16) << std::fixed << std::setprecision(11) << p.e << std::setw(10) << sci(p.err_e, 1) << std::setw(10)
+                << sci(p.err_traj, 1) << std::setw(11) << std::setprecision(3) << p.ms << std::setw(8) << p.steps << std::setw(8)
+                << p.rhs << "\n";
+    else
+      std::cout << "  " << p.message << "\n";
+  }
+}
+
+void check_options(const WorkPrecisionOptions& opt) {
   if (opt.repeat < 1) throw InputError("--repeat", "repeat", "must be >= 1");
   if (opt.rtols.empty()) throw InputError("--rtols", "rtols", "give at least one tolerance");
   for (double r : opt.rtols)
@@ -109,6 +166,80 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
     if (!(h >= kDirectStepMin && h <= kDirectStepMax))
       throw InputError("command line", "--direct-steps", "each multiple must lie in [" + fmt_number(kDirectStepMin) + ", " +
                                                             fmt_number(kDirectStepMax) + "] (got " + fmt_number(h) + ")");
+}
+
+/// Per configuration, the slopes of log error against log rtol (or the direct step) and against log steps, over
+/// errors above `floor`; printed and returned for the JSON file.
+nlohmann::ordered_json observed_orders(const std::vector<Config>& configs, const std::vector<Point>& pts, double floor) {
+  nlohmann::ordered_json orders = nlohmann::ordered_json::object();
+  std::cout << "observed order (fits over errors above " << sci(floor, 0) << "): err ~ rtol^a (tolerance proportionality), err ~ steps^-p\n";
+  for (const auto& c : configs) {
+    std::vector<std::pair<double, double>> by_tol, by_steps;
+    for (const auto& p : pts)
+      if (p.cfg.label() == c.label() && p.ok && p.err_e > floor) {
+        by_tol.push_back({c.evaluator == "direct" ? p.direct_step : p.rtol, p.err_e});
+        by_steps.push_back({static_cast<double>(p.steps), p.err_e});
+      }
+    const auto a = loglog_slope(by_tol), q = loglog_slope(by_steps);
+    const std::string x = c.evaluator == "direct" ? "direct_step" : "rtol";
+    std::cout << "  " << std::left << std::setw(22) << c.label() << std::right << " err ~ " << x << "^"
+              << (a ? fixed(*a, 2) : std::string("n/a")) << "   p = " << (q ? fixed(-*q, 2) : std::string("n/a"))
+              << "   (" << by_tol.size() << " points)\n";
+    orders[c.label()] = {{"vs", x}, {"exponent", a ? nlohmann::ordered_json(*a) : nullptr},
+                         {"order_in_steps", q ? nlohmann::ordered_json(-*q) : nullptr}, {"points", by_tol.size()}};
+  }
+  return orders;
+}
+
+/// For errors 1e-3, 1e-6, 1e-9: the fastest setting that reaches it and keeps it at every tighter rung.
+nlohmann::ordered_json cheapest_settings(const std::vector<Point>& pts, const std::string& metric) {
+  nlohmann::ordered_json cheapest = nlohmann::ordered_json::object();
+  std::cout << "cheapest setting that reaches an error in " << metric << " (and keeps it at every tighter rung):\n";
+  for (double target : {1e-3, 1e-6, 1e-9}) {
+    const Point* best = nullptr;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      bool good = pts[i].ok && pts[i].err_e <= target;
+      for (std::size_t j = i + 1; good && j < pts.size() && pts[j].cfg.label() == pts[i].cfg.label(); ++j)
+        good = pts[j].ok && pts[j].err_e <= target;
+      if (good && (!best || pts[i].ms < best->ms)) best = &pts[i];
+    }
+    std::cout << "  " << sci(target, 0) << ": ";
+    if (best) {
+      std::cout << best->cfg.label() << ", rtol " << sci(best->rtol, 0)
+                << (std::isnan(best->direct_step) ? "" : ", direct_step " + sci(best->direct_step)) << " (" << std::fixed
+                << std::setprecision(3) << best->ms << " ms, error " << sci(best->err_e, 1) << ")\n";
+      cheapest[sci(target, 0)] = {{"config", best->cfg.label()}, {"rtol", best->rtol},
+                                  {"direct_step_s", std::isnan(best->direct_step) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(best->direct_step)},
+                                  {"median_ms", best->ms}, {"error", best->err_e}};
+    } else {
+      std::cout << "not reached\n";
+      cheapest[sci(target, 0)] = nullptr;
+    }
+  }
+
+  return cheapest;
+}
+
+std::string points_csv(const std::vector<Point>& pts, const std::string& metric) {
+  std::ostringstream csv;
+  csv << std::setprecision(12);
+  csv << "integrator,evaluator,rtol,atol,direct_step_s,history_tolerance,status," << metric << ",err_" << metric
+      << ",err_trajectory,median_wall_ms,steps,rhs_evals,lin_iters,message\n";
+  for (const auto& p : pts) {
+    std::string msg = p.message;
+    std::replace(msg.begin(), msg.end(), ',', ';');
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    csv << p.cfg.integrator << "," << p.cfg.evaluator << "," << csv_number(p.rtol) << "," << csv_number(p.rtol) << "," << csv_number(p.direct_step)
+        << "," << csv_number(p.history_tol) << "," << (p.ok ? "ok" : "failed") << "," << csv_number(p.e) << "," << csv_number(p.err_e) << ","
+        << csv_number(p.err_traj) << "," << csv_number(p.ms) << "," << p.steps << "," << p.rhs << "," << p.lin_iters << "," << msg << "\n";
+  }
+  return csv.str();
+}
+
+}  // namespace
+
+int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
+  check_options(opt);
   Scene base = load_scene(scene_path, overrides);
   OutputUnit unit(opt.out, fs::path("out") / (base.name + "-work_precision"), base.path);
   if (base.has(Effect::flow)) {  // a coupled scene: the ladder is the grid and the flow step
@@ -124,32 +255,14 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
     base.effects.insert(Effect::history);
   }
   const bool history = base.has(Effect::history);
-  std::vector<std::string> evaluators = opt.evaluators;
-  if (evaluators.empty()) evaluators = history ? std::vector<std::string>{"soe-step", "soe", "direct"} : std::vector<std::string>{"none"};
-  for (const auto& e : evaluators) {
-    if (e != "soe" && e != "soe-step" && e != "direct" && e != "none")
-      throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
-    if (e != "none" && !history)
-      throw InputError("--evaluators", e, "the scene has no history effect (list it in `effects`, or pass --add-history)");
-  }
-  for (const auto& i : opt.integrators)
-    if (i != "cvode-dense" && i != "cvode-gmres" && i != "ida")
-      throw InputError("--integrators", i, "unknown integrator (expected cvode-dense, cvode-gmres, ida)");
+  const std::vector<std::string> evaluators = evaluators_for(opt, history);
   const bool collision = base.has_target();
   const double D = base.spheres[0].diameter;
 
   // Configurations; a combination the solvers cannot do is skipped with its reason.
-  std::vector<Config> configs;
+  // Configurations; a combination the solvers cannot do is skipped with its reason.
   std::vector<std::string> skipped;
-  for (const auto& ev : evaluators)
-    for (const auto& in : opt.integrators) {
-      if (in == "cvode-gmres" && ev != "soe") {
-        skipped.push_back(in + (ev == "none" ? "" : " / " + ev) +
-                          ": gmres needs the memory modes of the soe history evaluator (its preconditioner)");
-        continue;
-      }
-      configs.push_back({in, ev});
-    }
+  const std::vector<Config> configs = configs_for(evaluators, opt, skipped);
 
   auto scene_for = [&](const Config& c, double rtol, double direct_step, double history_tol) {
     Scene sc = base;
@@ -243,82 +356,13 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
 
   // Table.
   const std::string metric = collision ? "e" : "u_end";
-  std::cout << "scene " << base.name << ": work-precision, median of " << opt.repeat << " runs per setting (atol = rtol"
-            << (history ? "; soe fit tolerance = rtol within [1e-10, 1e-3]" : "") << ")\n";
-  std::cout << "reference: cvode dense, rtol = atol = " << opt.ref_rtol
-            << (history ? ", soe fit tolerance " + sci(opt.ref_history_tol, 0) : std::string()) << ": " << metric << " = "
-            << std::setprecision(12) << e_ref << "; its uncertainty ~ " << sci(ref_unc) << "\n";
-  std::cout << "trajectory error: max over output times of |d gap|/D and |d u|/" << sci(u_scale, 3) << " m/s\n";
-  for (const auto& s : skipped) std::cout << "skipped " << s << "\n";
-  std::cout << std::left << std::setw(22) << "integrator / history" << std::right << std::setw(9) << "rtol" << std::setw(11)
-            << "direct dt" << std::setw(16) << metric << std::setw(10) << "err " + metric << std::setw(10) << "err traj"
-            << std::setw(11) << "median ms" << std::setw(8) << "steps" << std::setw(8) << "rhs" << "\n";
-  for (const auto& p : pts) {
-    std::cout << std::left << std::setw(22) << p.cfg.label() << std::right << std::setw(9) << sci(p.rtol, 0) << std::setw(11)
-              << sci(p.direct_step, 1);
-    if (p.ok)
-      std::cout << std::setw(16) << std::fixed << std::setprecision(11) << p.e << std::setw(10) << sci(p.err_e, 1) << std::setw(10)
-                << sci(p.err_traj, 1) << std::setw(11) << std::setprecision(3) << p.ms << std::setw(8) << p.steps << std::setw(8)
-                << p.rhs << "\n";
-    else
-      std::cout << "  " << p.message << "\n";
-  }
+  print_table(base.name, opt, history, metric, e_ref, ref_unc, u_scale, skipped, pts);
 
   // Observed orders and the cheapest settings.
-  nlohmann::ordered_json orders = nlohmann::ordered_json::object();
-  std::cout << "observed order (fits over errors above " << sci(floor, 0) << "): err ~ rtol^a (tolerance proportionality), err ~ steps^-p\n";
-  for (const auto& c : configs) {
-    std::vector<std::pair<double, double>> by_tol, by_steps;
-    for (const auto& p : pts)
-      if (p.cfg.label() == c.label() && p.ok && p.err_e > floor) {
-        by_tol.push_back({c.evaluator == "direct" ? p.direct_step : p.rtol, p.err_e});
-        by_steps.push_back({static_cast<double>(p.steps), p.err_e});
-      }
-    const auto a = loglog_slope(by_tol), q = loglog_slope(by_steps);
-    const std::string x = c.evaluator == "direct" ? "direct_step" : "rtol";
-    std::cout << "  " << std::left << std::setw(22) << c.label() << std::right << " err ~ " << x << "^"
-              << (a ? fixed(*a, 2) : std::string("n/a")) << "   p = " << (q ? fixed(-*q, 2) : std::string("n/a"))
-              << "   (" << by_tol.size() << " points)\n";
-    orders[c.label()] = {{"vs", x}, {"exponent", a ? nlohmann::ordered_json(*a) : nullptr},
-                         {"order_in_steps", q ? nlohmann::ordered_json(-*q) : nullptr}, {"points", by_tol.size()}};
-  }
-  nlohmann::ordered_json cheapest = nlohmann::ordered_json::object();
-  std::cout << "cheapest setting that reaches an error in " << metric << " (and keeps it at every tighter rung):\n";
-  for (double target : {1e-3, 1e-6, 1e-9}) {
-    const Point* best = nullptr;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      bool good = pts[i].ok && pts[i].err_e <= target;
-      for (std::size_t j = i + 1; good && j < pts.size() && pts[j].cfg.label() == pts[i].cfg.label(); ++j)
-        good = pts[j].ok && pts[j].err_e <= target;
-      if (good && (!best || pts[i].ms < best->ms)) best = &pts[i];
-    }
-    std::cout << "  " << sci(target, 0) << ": ";
-    if (best) {
-      std::cout << best->cfg.label() << ", rtol " << sci(best->rtol, 0)
-                << (std::isnan(best->direct_step) ? "" : ", direct_step " + sci(best->direct_step)) << " (" << std::fixed
-                << std::setprecision(3) << best->ms << " ms, error " << sci(best->err_e, 1) << ")\n";
-      cheapest[sci(target, 0)] = {{"config", best->cfg.label()}, {"rtol", best->rtol},
-                                  {"direct_step_s", std::isnan(best->direct_step) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(best->direct_step)},
-                                  {"median_ms", best->ms}, {"error", best->err_e}};
-    } else {
-      std::cout << "not reached\n";
-      cheapest[sci(target, 0)] = nullptr;
-    }
-  }
+  const nlohmann::ordered_json orders = observed_orders(configs, pts, floor);
+  const nlohmann::ordered_json cheapest = cheapest_settings(pts, metric);
 
   // Files.
-  std::ostringstream csv;
-  csv << std::setprecision(12);
-  csv << "integrator,evaluator,rtol,atol,direct_step_s,history_tolerance,status," << metric << ",err_" << metric
-      << ",err_trajectory,median_wall_ms,steps,rhs_evals,lin_iters,message\n";
-  for (const auto& p : pts) {
-    std::string msg = p.message;
-    std::replace(msg.begin(), msg.end(), ',', ';');
-    std::replace(msg.begin(), msg.end(), '\n', ' ');
-    csv << p.cfg.integrator << "," << p.cfg.evaluator << "," << csv_number(p.rtol) << "," << csv_number(p.rtol) << "," << csv_number(p.direct_step)
-        << "," << csv_number(p.history_tol) << "," << (p.ok ? "ok" : "failed") << "," << csv_number(p.e) << "," << csv_number(p.err_e) << ","
-        << csv_number(p.err_traj) << "," << csv_number(p.ms) << "," << p.steps << "," << p.rhs << "," << p.lin_iters << "," << msg << "\n";
-  }
   nlohmann::ordered_json j;
   j["scene"] = base.name;
   j["metric"] = metric;
@@ -333,7 +377,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   j["cheapest"] = cheapest;
   j["effects"] = ref.summary["effects"];
   j["run"] = unit.run();
-  write_file_atomic(unit.dir() / "work_precision.csv", csv.str());
+  write_file_atomic(unit.dir() / "work_precision.csv", points_csv(pts, metric));
   write_file_atomic(unit.dir() / "work_precision.json", j.dump(2) + "\n");
   if (opt.plot) run_plot_script("plot_work_precision.py", unit, "work_precision.png");
   unit.commit();

@@ -24,11 +24,11 @@
 #include <string>
 #include <vector>
 
-#include "apps/flow_command.hpp"
 #include "contact/formulas.hpp"
 #include "core/timing.hpp"
 #include "flow/flow_scene.hpp"
 #include "flow/solver.hpp"
+#include "run/flow_run.hpp"
 
 using namespace imcol::flow;
 using imcol::seconds_since;
@@ -244,13 +244,11 @@ int main(int argc, char** argv) {
     std::printf("%8s %10s %10s %9s %12s %10s %10s %10s\n", "cells/D", "C_D", "standard", "error %", "wake L/D", "steps", "wall s", "order");
     std::vector<double> cds;
     for (int c : cells) {
-      imcol::FlowCommandOptions o;
-      o.plot = false;
+      imcol::FlowRunOptions o;
       o.quiet = true;
-      o.out = "out/refine_" + sc.name + "_" + std::to_string(c);
       o.cells_per_diameter = c;
       o.dt = sc.dt * sc.cells_per_diameter / c;
-      const auto j = imcol::run_flow_scene(refine, o, o.out);
+      const auto j = imcol::run_flow_scene(sc, o).summary;
       const double cd = j["drag_coefficient"].get<double>();
       cds.push_back(cd);
       std::string order = "-";
@@ -328,12 +326,11 @@ int main(int argc, char** argv) {
     if (n >= 2) std::printf("%d level(s): time per step ~ vertices^%.2f\n", l, (n * sxy - sx * sy) / (n * sxx - sx * sx));
   }
   if (steady) {
-    imcol::FlowCommandOptions o;
-    o.plot = false;
+    imcol::FlowRunOptions o;
     o.quiet = true;
-    o.out = "out/bench_flow_re100";
-    o.cells_per_diameter = steady_cells;
-    const auto j = imcol::run_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml", o, o.out);
+    if (steady_cells > 0) o.cells_per_diameter = steady_cells;
+    const auto j =
+        imcol::run_flow_scene(imcol::flow::load_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml"), o).summary;
     std::printf("Re = 100 cold start, %d cells/D, %d levels: C_D = %.4f (standard %.4f, %+.2f %%); within 3 %% from t = %s after %s s wall; "
                 "whole run %.2f s for %ld steps\n",
                 j["grid"]["cells_per_diameter"].get<int>(), j["grid"]["levels"].get<int>(), j["drag_coefficient"].get<double>(),

@@ -111,6 +111,326 @@ void apply_override(toml::table& root, const Override& ov) {
   parsed["v"].node()->visit([&](auto&& value) { tbl->insert_or_assign(seg.back(), value); });
 }
 
+/// `name` and `description` (top level).
+void read_name(Reader& top, Scene& sc) {
+  if (auto v = top.string("name")) {
+    if (v->empty() || v->find_first_of("/\\") != std::string::npos || *v == "." || *v == "..")
+      top.fail("name", "must be a plain file name (it names the default output directory)");
+    if (v->size() > 200) top.fail("name", "must be at most 200 bytes (it names the default output directory; got " + std::to_string(v->size()) + ")");
+    for (unsigned char c : *v)
+      if (c < 0x20 || c == 0x7f) top.fail("name", "must not contain control characters (it names the default output directory)");
+    sc.name = *v;
+  }
+  if (auto v = top.string("description")) sc.description = *v;
+}
+
+void read_fluid(Reader& top, Scene& sc) {
+  const auto* f = top.table("fluid");
+  if (!f) return;
+  Reader r(*f, "fluid", sc.path);
+  FluidSpec fl;
+  fl.density = r.required_positive("density");
+  fl.viscosity = r.required_positive("viscosity");
+  // Above 1e12 Pa s (glass at its transition) a "liquid" is a solid on any laboratory time scale; the drag and
+  // history forces would also dwarf every other force by more than double precision resolves.
+  if (fl.viscosity > kMaxViscosity)
+    r.fail("viscosity", "must be at most " + fmt_number(kMaxViscosity) + " Pa s (glass at its transition; got " +
+                            fmt_number(fl.viscosity) + "): a stiffer material is a solid, not a liquid");
+  r.finish();
+  sc.fluid = fl;
+}
+
+/// Positions are held to 16 digits and the gap is their difference: beyond 1e6 D from z = 0 (D the impact
+/// sphere's diameter) it could no longer resolve a contact (indentations of ~1e-5 D) to better than 1e-5 of it.
+void position_near_origin(Reader& r, double z, double D) {
+  if (std::abs(z) > 1e6 * D)
+    r.fail("position", "must lie within 1e6 impact-sphere diameters (" + fmt_number(1e6 * D) + " m) of z = 0 (got " +
+                           fmt_number(z) + "): farther out the gap loses its digits");
+}
+
+/// `[[sphere]]`: one or two; the impact sphere first.
+void read_spheres(Reader& top, Scene& sc) {
+  const toml::node* sph = top.node("sphere");
+  if (!sph) throw InputError(sc.path, "sphere", "missing (give one or two [[sphere]] tables)");
+  const toml::array* arr = sph->as_array();
+  if (!arr || !arr->is_array_of_tables()) top.fail("sphere", "must be an array of tables ([[sphere]])");
+  if (arr->empty() || arr->size() > 2) top.fail("sphere", "give one or two spheres (got " + std::to_string(arr->size()) + ")");
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    Reader r(*arr->get(i)->as_table(), "sphere[" + std::to_string(i) + "]", sc.path);
+    SphereSpec s;
+    read_solid(r, s, true);
+    s.diameter = r.required_positive("diameter");
+    s.position = r.required_number("position");
+    position_near_origin(r, s.position, sc.spheres.empty() ? s.diameter : sc.spheres[0].diameter);
+    s.velocity = r.number("velocity", 0.0);
+    const double mass = s.density * std::pow(s.diameter, 3) * 3.141592653589793 / 6;
+    if (!(mass > 0) || !std::isfinite(mass)) r.fail("diameter", "gives a sphere mass that double precision cannot hold");
+    r.finish();
+    sc.spheres.push_back(s);
+  }
+}
+
+void read_wall(Reader& top, Scene& sc) {
+  const auto* w = top.table("wall");
+  if (!w) return;
+  if (sc.two_spheres()) top.fail("wall", "a scene has either a target sphere or a wall, not both");
+  Reader r(*w, "wall", sc.path);
+  WallSpec wall;
+  read_solid(r, wall, false);
+  wall.position = r.required_number("position");
+  position_near_origin(r, wall.position, sc.spheres[0].diameter);
+  r.finish();
+  sc.wall = wall;
+}
+
+/// `effects`: an explicit list, or everything that applies to the scene.
+void read_effects(Reader& top, Scene& sc) {
+  if (const toml::node* n = top.node("effects")) {
+    const toml::array* ea = n->as_array();
+    if (!ea) top.fail("effects", "must be an array of names");
+    for (const auto& item : *ea) {
+      auto name = item.value<std::string>();
+      if (!name) top.fail("effects", "must be an array of strings");
+      auto e = effect_from_string(*name);
+      if (!e) top.fail("effects", "unknown effect '" + *name + "' (expected drag, lubrication, added_mass, elastic, gravity, history, flow)");
+      sc.effects.insert(*e);
+    }
+    return;
+  }
+  // The seed's whole model (f_THR = f_D + f_AM + f_H, lubrication, the contact ramp), gravity where the scene sets it.
+  if (sc.has_target()) sc.effects.insert(Effect::elastic);
+  if (sc.fluid) {
+    sc.effects.insert(Effect::drag);
+    if (sc.has_target()) sc.effects.insert(Effect::lubrication);
+    sc.effects.insert(Effect::added_mass);
+    sc.effects.insert(Effect::history);
+  }
+  if (top.has("gravity")) sc.effects.insert(Effect::gravity);
+}
+
+/// The effects against the fluid and the target.
+void check_effects(Reader& top, const Scene& sc) {
+  for (Effect e : {Effect::drag, Effect::lubrication, Effect::added_mass, Effect::history, Effect::flow})
+    if (sc.has(e) && !sc.fluid)
+      top.fail("effects", std::string("effect '") + to_string(e) + "' needs a [fluid] table");
+  if ((sc.has(Effect::lubrication) || sc.has(Effect::elastic)) && !sc.has_target())
+    top.fail("effects", "lubrication and elastic need a target sphere or a [wall]");
+  if (sc.has_target() && !sc.has(Effect::elastic))
+    top.fail("effects", "a target sphere or wall needs 'elastic' (without it the solids would pass through each other)");
+}
+
+void read_drag(Reader& top, Scene& sc) {
+  const auto* t = top.table("drag");
+  if (!t) return;
+  Reader r(*t, "drag", sc.path);
+  r.choice("law", sc.drag.law);
+  r.finish();
+}
+
+/// Default model: brenner for a wall, asymptotic for a pair.
+void read_lubrication(Reader& top, Scene& sc) {
+  auto& l = sc.lubrication;
+  l.model = sc.wall ? LubricationModel::brenner : LubricationModel::asymptotic;
+  const auto* t = top.table("lubrication");
+  if (!t) return;
+  Reader r(*t, "lubrication", sc.path);
+  r.choice("model", l.model);
+  if (l.model == LubricationModel::brenner && sc.two_spheres())
+    r.fail("model", "'brenner' is the sphere-wall series; use 'asymptotic' or 'seed' for two spheres");
+  l.cutoff = r.number("cutoff", l.cutoff);
+  r.positive("cutoff", l.cutoff);
+  // h_c is the asymptotic law's range; the other laws act at every gap and would ignore it.
+  if (r.has("h_c") && l.model != LubricationModel::asymptotic)
+    r.fail("h_c", std::string("applies only to model = 'asymptotic' (the model is '") + to_string(l.model) + "', which acts at every gap)");
+  l.h_c = r.number("h_c", l.h_c);
+  r.positive("h_c", l.h_c);
+  r.finish();
+}
+
+void read_added_mass(Reader& top, Scene& sc) {
+  const auto* t = top.table("added_mass");
+  if (!t) return;
+  Reader r(*t, "added_mass", sc.path);
+  r.choice("model", sc.added_mass.model);
+  sc.added_mass.dw_floor = r.number("dw_floor", sc.added_mass.dw_floor);
+  if (r.has("dw_floor")) r.positive("dw_floor", sc.added_mass.dw_floor);
+  r.finish();
+}
+
+/// Default delta_ss: 0.017 D for a wall, 0.024 D for a pair.
+void read_contact(Reader& top, Scene& sc) {
+  auto& c = sc.contact;
+  c.delta_ss = sc.wall ? 0.017 : 0.024;
+  const auto* t = top.table("contact");
+  if (!t) return;
+  Reader r(*t, "contact", sc.path);
+  c.delta_ss = r.number("delta_ss", c.delta_ss);
+  r.in_range("delta_ss", c.delta_ss, 0.0, 1.0, true, true);  // units of D
+  c.delta_sl = r.number("delta_sl", c.delta_sl);
+  r.positive("delta_sl", c.delta_sl);
+  c.e_dry = r.number("e_dry", -1.0);
+  if (r.has("e_dry")) r.in_range("e_dry", c.e_dry, 0.0, 1.0, false, false);
+  c.beta = r.number("beta", 0.0);
+  if (r.has("beta")) r.positive("beta", c.beta);
+  r.choice("law", c.law);
+  if (r.has("beta") && c.law != ContactLawKind::ramp) r.fail("beta", "applies only to law = 'ramp'");
+  r.finish();
+}
+
+void read_history(Reader& top, Scene& sc) {
+  const auto* t = top.table("history");
+  if (!t) return;
+  Reader r(*t, "history", sc.path);
+  if (!sc.has(Effect::history)) r.fail("kernel", "a [history] table needs the 'history' effect in `effects`");
+  auto& h = sc.history;
+  r.choice("kernel", h.kernel);
+  r.choice("evaluator", h.evaluator);
+  h.tolerance = r.number("tolerance", h.tolerance);
+  r.in_range("tolerance", h.tolerance, 1e-13, 0.1, false, true);
+  if (auto v = r.integer("modes")) h.modes = *v;
+  if (r.has("modes") && h.modes != 0 && (h.modes < 2 || h.modes > 400))
+    r.fail("modes", "must be 0 (automatic, from tolerance) or in [2, 400] (got " + std::to_string(h.modes) + ")");
+  h.min_lag = r.number("min_lag", 0.0);
+  if (h.min_lag != 0) r.positive("min_lag", h.min_lag);  // 0 = automatic
+  h.horizon = r.number("horizon", 0.0);
+  if (h.horizon != 0) r.positive("horizon", h.horizon);  // 0 = solver.t_end
+  r.choice("start", h.start);
+  r.choice("reynolds", h.reynolds);
+  r.choice("wall_correction", h.wall_correction);
+  h.direct_step = r.number("direct_step", 0.0);
+  if (h.direct_step != 0) r.positive("direct_step", h.direct_step);  // 0 = automatic
+  if (h.min_lag > 0 && h.horizon > 0 && h.horizon < 10 * h.min_lag)
+    r.fail("horizon", "must be at least 10 × min_lag (" + fmt_number(h.min_lag) + " s)");
+  r.finish();
+}
+
+void read_solver(Reader& top, Scene& sc) {
+  const auto* t = top.table("solver");
+  if (!t) return;
+  Reader r(*t, "solver", sc.path);
+  auto& s = sc.solver;
+  r.choice("integrator", s.integrator);
+  r.choice("linear_solver", s.linear_solver);
+  const auto ls = s.linear_solver;
+  if ((ls == LinearSolverChoice::gmres || ls == LinearSolverChoice::schur) && s.integrator != IntegratorMethod::cvode)
+    r.fail("linear_solver", std::string("'") + to_string(ls) + "' is implemented for the cvode integrator only");
+  // Their preconditioner works on the memory modes, which are integrator states only with the soe evaluator.
+  if ((ls == LinearSolverChoice::gmres || ls == LinearSolverChoice::schur) &&
+      !(sc.has(Effect::history) && sc.history.evaluator == HistoryEvaluator::soe))
+    r.fail("linear_solver", std::string("'") + to_string(ls) +
+                                "' needs memory modes in the integrator's state: the history effect with history.evaluator = \"soe\" (auto picks it where it applies)");
+  s.krylov_tol = r.number("krylov_tol", s.krylov_tol);
+  r.in_range("krylov_tol", s.krylov_tol, 0.0, 1.0, true, false);
+  s.rtol = r.number("rtol", s.rtol);
+  s.atol = r.number("atol", s.atol);
+  s.t_end = r.number("t_end", s.t_end);
+  r.positive("t_end", s.t_end);
+  s.max_step = r.number("max_step", s.max_step);
+  if (s.max_step != 0) r.positive("max_step", s.max_step);  // 0 = automatic
+  if (auto v = r.integer("max_steps")) s.max_steps = *v;
+  if (s.max_steps < 1) r.fail("max_steps", "must be >= 1");
+  s.step_budget = r.number("step_budget", s.step_budget);
+  r.positive("step_budget", s.step_budget);
+  // Tolerances: rtol must be positive and above what double precision can deliver.
+  r.in_range("rtol", s.rtol, 1e-14, 1.0, false, true);
+  r.in_range("atol", s.atol, 0.0, 1.0, true, true);
+  r.finish();
+}
+
+/// Default instant_gap: contact.delta_ss.
+void read_measure(Reader& top, Scene& sc) {
+  auto& m = sc.measure;
+  if (const auto* t = top.table("measure")) {
+    Reader r(*t, "measure", sc.path);
+    m.window = r.number("window", m.window);
+    r.positive("window", m.window);
+    m.instant_gap = r.number("instant_gap", -1.0);
+    if (r.has("instant_gap")) r.positive("instant_gap", m.instant_gap);
+    m.stall_fraction = r.number("stall_fraction", m.stall_fraction);
+    r.in_range("stall_fraction", m.stall_fraction, 0.0, 1.0, false, true);
+    r.choice("bounces", m.bounces);
+    m.fit_distance = r.number("fit_distance", m.fit_distance);
+    r.positive("fit_distance", m.fit_distance);
+    m.at_gap = r.number("at_gap", m.at_gap);
+    r.positive("at_gap", m.at_gap);
+    r.choice("e", m.e);
+    m.ends_distance = r.number("ends_distance", m.ends_distance);
+    r.in_range("ends_distance", m.ends_distance, 0.0, 10.0, true, false);
+    m.ends_speed_change = r.number("ends_speed_change", m.ends_speed_change);
+    r.in_range("ends_speed_change", m.ends_speed_change, 0.0, 1.0, true, false);
+    m.ends_tolerance = r.number("ends_tolerance", m.ends_tolerance);
+    r.positive("ends_tolerance", m.ends_tolerance);
+    const long spw = r.integer("samples_per_window", m.samples_per_window);
+    if (spw < 4 || spw > 10000) r.fail("samples_per_window", "must lie in [4, 10000] (got " + std::to_string(spw) + ")");
+    m.samples_per_window = static_cast<int>(spw);
+    m.disagreement = r.number("disagreement", m.disagreement);
+    r.in_range("disagreement", m.disagreement, 0.0, 1.0, true, false);
+    m.max_samples = r.number("max_samples", m.max_samples);
+    r.in_range("max_samples", m.max_samples, 1e3, 1e9, false, false);
+    r.finish();
+  }
+  if (m.instant_gap < 0) m.instant_gap = sc.contact.delta_ss;
+}
+
+void read_flow(Reader& top, Scene& sc) {
+  const auto* t = top.table("flow");
+  if (!t) return;
+  Reader r(*t, "flow", sc.path);
+  if (!sc.has(Effect::flow)) top.fail("flow", "a [flow] table needs the 'flow' effect in `effects`");
+  read_flow_spec(r, sc.flow);
+  if (sc.flow.dt > sc.solver.t_end)
+    r.fail("dt", "a flow step of " + fmt_number(sc.flow.dt) + " s is longer than the run (solver.t_end = " +
+                     fmt_number(sc.solver.t_end) + " s)");
+  if (!sc.flow.added_mass_estimate && sc.has(Effect::added_mass))
+    r.fail("added_mass_estimate", "false needs a scene without the 'added_mass' effect (its added mass is implicit anyway)");
+}
+
+/// Default dt: measure.window / 100.
+void read_output(Reader& top, Scene& sc) {
+  if (const auto* t = top.table("output")) {
+    Reader r(*t, "output", sc.path);
+    sc.output.dt = r.number("dt", 0.0);
+    if (r.has("dt")) r.positive("dt", sc.output.dt);
+    r.finish();
+  }
+  if (sc.output.dt == 0) sc.output.dt = sc.measure.window / 100.0;
+  if (sc.solver.t_end / sc.output.dt > 1e7)
+    throw InputError(sc.path, top.has("output") ? "output.dt" : "measure.window",
+                     "t_end / output.dt = " + fmt_number(sc.solver.t_end / sc.output.dt) +
+                         " samples exceeds 1e7: raise output.dt (default window/100) or lower solver.t_end");
+}
+
+/// The initial gap to the target: positive, and outside the contact zone unless the solids approach.
+void check_start_gap(const Scene& sc, const std::string& key, double gap) {
+  const double D = sc.spheres[0].diameter;
+  const double u_rel0 = sc.spheres[0].velocity - (sc.two_spheres() ? sc.spheres[1].velocity : 0.0);
+  if (gap <= 0) {
+    if (sc.two_spheres())
+      throw InputError(sc.path, key, "spheres overlap or touch (gap " + fmt_number(gap) + " m); the target must lie at larger z");
+    throw InputError(sc.path, key, "sphere overlaps or touches the wall (gap " + fmt_number(gap) + " m); the wall must lie at larger z");
+  }
+  if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
+    throw InputError(sc.path, key, "initial gap " + fmt_number(gap) + " m is inside the contact zone delta_ss*D = " + fmt_number(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
+}
+
+/// Checks across tables, once every table is read: the lubrication cutoff inside the contact zone, the target ahead
+/// of the impact sphere and not touching it, a dry restitution for the contact.
+void check_scene(const Scene& sc) {
+  if (sc.has(Effect::lubrication) && sc.lubrication.cutoff >= sc.contact.delta_ss)
+    throw InputError(sc.path, "lubrication.cutoff", "must be smaller than contact.delta_ss (" + fmt_number(sc.contact.delta_ss) + " D)");
+  const auto& s1 = sc.spheres[0];
+  if (sc.two_spheres()) {
+    const auto& s2 = sc.spheres[1];
+    check_start_gap(sc, "sphere[1].position", s2.position - s1.position - 0.5 * (s1.diameter + s2.diameter));
+  } else if (sc.wall) {
+    check_start_gap(sc, "wall.position", sc.wall->position - s1.position - 0.5 * s1.diameter);
+  }
+  if (sc.has(Effect::elastic)) {
+    bool any = sc.contact.e_dry >= 0 || s1.e_dry || (sc.two_spheres() && sc.spheres[1].e_dry) || (sc.wall && sc.wall->e_dry);
+    if (!any) throw InputError(sc.path, "contact.e_dry", "missing: no material in the scene gives a dry restitution");
+  }
+}
+
 }  // namespace
 
 Override parse_override(const std::string& text) {
@@ -140,281 +460,24 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   sc.path = path;
   sc.name = std::filesystem::path(path).stem().string();
   Reader top(root, "", path);
-  if (auto v = top.string("name")) {
-    if (v->empty() || v->find_first_of("/\\") != std::string::npos || *v == "." || *v == "..")
-      top.fail("name", "must be a plain file name (it names the default output directory)");
-    if (v->size() > 200) top.fail("name", "must be at most 200 bytes (it names the default output directory; got " + std::to_string(v->size()) + ")");
-    for (unsigned char c : *v)
-      if (c < 0x20 || c == 0x7f) top.fail("name", "must not contain control characters (it names the default output directory)");
-    sc.name = *v;
-  }
-  if (auto v = top.string("description")) sc.description = *v;
-
-  if (const auto* f = top.table("fluid")) {
-    Reader r(*f, "fluid", path);
-    FluidSpec fl;
-    fl.density = r.required_positive("density");
-    fl.viscosity = r.required_positive("viscosity");
-    // Above 1e12 Pa s (glass at its transition) a "liquid" is a solid on any laboratory time scale; the drag and
-    // history forces would also dwarf every other force by more than double precision resolves.
-    if (fl.viscosity > kMaxViscosity)
-      r.fail("viscosity", "must be at most " + fmt_number(kMaxViscosity) + " Pa s (glass at its transition; got " +
-                              fmt_number(fl.viscosity) + "): a stiffer material is a solid, not a liquid");
-    r.finish();
-    sc.fluid = fl;
-  }
-
-  const toml::node* sph = top.node("sphere");
-  if (!sph) throw InputError(path, "sphere", "missing (give one or two [[sphere]] tables)");
-  const toml::array* arr = sph->as_array();
-  if (!arr || !arr->is_array_of_tables()) top.fail("sphere", "must be an array of tables ([[sphere]])");
-  if (arr->empty() || arr->size() > 2) top.fail("sphere", "give one or two spheres (got " + std::to_string(arr->size()) + ")");
-  // Positions are held to 16 digits and the gap is their difference: beyond 1e6 D from z = 0 (D the impact
-  // sphere's diameter) it could no longer resolve a contact (indentations of ~1e-5 D) to better than 1e-5 of it.
-  auto position_near_origin = [&](Reader& r, double z, double D) {
-    if (std::abs(z) > 1e6 * D)
-      r.fail("position", "must lie within 1e6 impact-sphere diameters (" + fmt_number(1e6 * D) + " m) of z = 0 (got " +
-                             fmt_number(z) + "): farther out the gap loses its digits");
-  };
-  for (std::size_t i = 0; i < arr->size(); ++i) {
-    Reader r(*arr->get(i)->as_table(), "sphere[" + std::to_string(i) + "]", path);
-    SphereSpec s;
-    read_solid(r, s, true);
-    s.diameter = r.required_positive("diameter");
-    s.position = r.required_number("position");
-    position_near_origin(r, s.position, sc.spheres.empty() ? s.diameter : sc.spheres[0].diameter);
-    s.velocity = r.number("velocity", 0.0);
-    const double mass = s.density * std::pow(s.diameter, 3) * 3.141592653589793 / 6;
-    if (!(mass > 0) || !std::isfinite(mass)) r.fail("diameter", "gives a sphere mass that double precision cannot hold");
-    r.finish();
-    sc.spheres.push_back(s);
-  }
-
-  if (const auto* w = top.table("wall")) {
-    if (sc.two_spheres()) top.fail("wall", "a scene has either a target sphere or a wall, not both");
-    Reader r(*w, "wall", path);
-    WallSpec wall;
-    read_solid(r, wall, false);
-    wall.position = r.required_number("position");
-    position_near_origin(r, wall.position, sc.spheres[0].diameter);
-    r.finish();
-    sc.wall = wall;
-  }
-
+  read_name(top, sc);
+  read_fluid(top, sc);
+  read_spheres(top, sc);
+  read_wall(top, sc);
   if (auto g = top.number("gravity")) sc.gravity = *g;
-
-  // Effects: explicit list, or everything that applies to the scene.
-  if (const toml::node* n = top.node("effects")) {
-    const toml::array* ea = n->as_array();
-    if (!ea) top.fail("effects", "must be an array of names");
-    for (const auto& item : *ea) {
-      auto name = item.value<std::string>();
-      if (!name) top.fail("effects", "must be an array of strings");
-      auto e = effect_from_string(*name);
-      if (!e) top.fail("effects", "unknown effect '" + *name + "' (expected drag, lubrication, added_mass, elastic, gravity, history, flow)");
-      sc.effects.insert(*e);
-    }
-  } else {
-    // The seed's whole model (f_THR = f_D + f_AM + f_H, lubrication, the contact ramp), gravity where the scene sets it.
-    if (sc.has_target()) sc.effects.insert(Effect::elastic);
-    if (sc.fluid) {
-      sc.effects.insert(Effect::drag);
-      if (sc.has_target()) sc.effects.insert(Effect::lubrication);
-      sc.effects.insert(Effect::added_mass);
-      sc.effects.insert(Effect::history);
-    }
-    if (top.has("gravity")) sc.effects.insert(Effect::gravity);
-  }
-  for (Effect e : {Effect::drag, Effect::lubrication, Effect::added_mass, Effect::history, Effect::flow})
-    if (sc.has(e) && !sc.fluid)
-      top.fail("effects", std::string("effect '") + to_string(e) + "' needs a [fluid] table");
-  if ((sc.has(Effect::lubrication) || sc.has(Effect::elastic)) && !sc.has_target())
-    top.fail("effects", "lubrication and elastic need a target sphere or a [wall]");
-  if (sc.has_target() && !sc.has(Effect::elastic))
-    top.fail("effects", "a target sphere or wall needs 'elastic' (without it the solids would pass through each other)");
-
-  if (const auto* t = top.table("drag")) {
-    Reader r(*t, "drag", path);
-    r.choice("law", sc.drag.law);
-    r.finish();
-  }
-
-  sc.lubrication.model = sc.wall ? LubricationModel::brenner : LubricationModel::asymptotic;
-  if (const auto* t = top.table("lubrication")) {
-    Reader r(*t, "lubrication", path);
-    r.choice("model", sc.lubrication.model);
-    if (sc.lubrication.model == LubricationModel::brenner && sc.two_spheres())
-      r.fail("model", "'brenner' is the sphere-wall series; use 'asymptotic' or 'seed' for two spheres");
-    sc.lubrication.cutoff = r.number("cutoff", sc.lubrication.cutoff);
-    r.positive("cutoff", sc.lubrication.cutoff);
-    // h_c is the asymptotic law's range; the other laws act at every gap and would ignore it.
-    if (r.has("h_c") && sc.lubrication.model != LubricationModel::asymptotic)
-      r.fail("h_c", std::string("applies only to model = 'asymptotic' (the model is '") + to_string(sc.lubrication.model) +
-                        "', which acts at every gap)");
-    sc.lubrication.h_c = r.number("h_c", sc.lubrication.h_c);
-    r.positive("h_c", sc.lubrication.h_c);
-    r.finish();
-  }
-
-  if (const auto* t = top.table("added_mass")) {
-    Reader r(*t, "added_mass", path);
-    r.choice("model", sc.added_mass.model);
-    sc.added_mass.dw_floor = r.number("dw_floor", sc.added_mass.dw_floor);
-    if (r.has("dw_floor")) r.positive("dw_floor", sc.added_mass.dw_floor);
-    r.finish();
-  }
-
-  sc.contact.delta_ss = sc.wall ? 0.017 : 0.024;
-  if (const auto* t = top.table("contact")) {
-    Reader r(*t, "contact", path);
-    sc.contact.delta_ss = r.number("delta_ss", sc.contact.delta_ss);
-    r.in_range("delta_ss", sc.contact.delta_ss, 0.0, 1.0, true, true);  // units of D
-    sc.contact.delta_sl = r.number("delta_sl", sc.contact.delta_sl);
-    r.positive("delta_sl", sc.contact.delta_sl);
-    sc.contact.e_dry = r.number("e_dry", -1.0);
-    if (r.has("e_dry")) r.in_range("e_dry", sc.contact.e_dry, 0.0, 1.0, false, false);
-    sc.contact.beta = r.number("beta", 0.0);
-    if (r.has("beta")) r.positive("beta", sc.contact.beta);
-    r.choice("law", sc.contact.law);
-    if (r.has("beta") && sc.contact.law != ContactLawKind::ramp) r.fail("beta", "applies only to law = 'ramp'");
-    r.finish();
-  }
-
-  if (const auto* t = top.table("history")) {
-    Reader r(*t, "history", path);
-    if (!sc.has(Effect::history)) r.fail("kernel", "a [history] table needs the 'history' effect in `effects`");
-    auto& h = sc.history;
-    r.choice("kernel", h.kernel);
-    r.choice("evaluator", h.evaluator);
-    h.tolerance = r.number("tolerance", h.tolerance);
-    r.in_range("tolerance", h.tolerance, 1e-13, 0.1, false, true);
-    if (auto v = r.integer("modes")) h.modes = *v;
-    if (r.has("modes") && h.modes != 0 && (h.modes < 2 || h.modes > 400))
-      r.fail("modes", "must be 0 (automatic, from tolerance) or in [2, 400] (got " + std::to_string(h.modes) + ")");
-    h.min_lag = r.number("min_lag", 0.0);
-    if (h.min_lag != 0) r.positive("min_lag", h.min_lag);  // 0 = automatic
-    h.horizon = r.number("horizon", 0.0);
-    if (h.horizon != 0) r.positive("horizon", h.horizon);  // 0 = solver.t_end
-    r.choice("start", h.start);
-    r.choice("reynolds", h.reynolds);
-    r.choice("wall_correction", h.wall_correction);
-    h.direct_step = r.number("direct_step", 0.0);
-    if (h.direct_step != 0) r.positive("direct_step", h.direct_step);  // 0 = automatic
-    if (h.min_lag > 0 && h.horizon > 0 && h.horizon < 10 * h.min_lag)
-      r.fail("horizon", "must be at least 10 × min_lag (" + fmt_number(h.min_lag) + " s)");
-    r.finish();
-  }
-
-  if (const auto* t = top.table("solver")) {
-    Reader r(*t, "solver", path);
-    r.choice("integrator", sc.solver.integrator);
-    r.choice("linear_solver", sc.solver.linear_solver);
-    const auto ls = sc.solver.linear_solver;
-    if ((ls == LinearSolverChoice::gmres || ls == LinearSolverChoice::schur) && sc.solver.integrator != IntegratorMethod::cvode)
-      r.fail("linear_solver", std::string("'") + to_string(ls) + "' is implemented for the cvode integrator only");
-    // Their preconditioner works on the memory modes, which are integrator states only with the soe evaluator.
-    if ((ls == LinearSolverChoice::gmres || ls == LinearSolverChoice::schur) &&
-        !(sc.has(Effect::history) && sc.history.evaluator == HistoryEvaluator::soe))
-      r.fail("linear_solver", std::string("'") + to_string(ls) +
-                                  "' needs memory modes in the integrator's state: the history effect with history.evaluator = \"soe\" (auto picks it where it applies)");
-    sc.solver.krylov_tol = r.number("krylov_tol", sc.solver.krylov_tol);
-    r.in_range("krylov_tol", sc.solver.krylov_tol, 0.0, 1.0, true, false);
-    sc.solver.rtol = r.number("rtol", sc.solver.rtol);
-    sc.solver.atol = r.number("atol", sc.solver.atol);
-    sc.solver.t_end = r.number("t_end", sc.solver.t_end);
-    r.positive("t_end", sc.solver.t_end);
-    sc.solver.max_step = r.number("max_step", sc.solver.max_step);
-    if (sc.solver.max_step != 0) r.positive("max_step", sc.solver.max_step);  // 0 = automatic
-    if (auto v = r.integer("max_steps")) sc.solver.max_steps = *v;
-    if (sc.solver.max_steps < 1) r.fail("max_steps", "must be >= 1");
-    sc.solver.step_budget = r.number("step_budget", sc.solver.step_budget);
-    r.positive("step_budget", sc.solver.step_budget);
-    // Tolerances: rtol must be positive and above what double precision can deliver.
-    r.in_range("rtol", sc.solver.rtol, 1e-14, 1.0, false, true);
-    r.in_range("atol", sc.solver.atol, 0.0, 1.0, true, true);
-    r.finish();
-  }
-
-  if (const auto* t = top.table("measure")) {
-    Reader r(*t, "measure", path);
-    sc.measure.window = r.number("window", sc.measure.window);
-    r.positive("window", sc.measure.window);
-    sc.measure.instant_gap = r.number("instant_gap", -1.0);
-    if (r.has("instant_gap")) r.positive("instant_gap", sc.measure.instant_gap);
-    sc.measure.stall_fraction = r.number("stall_fraction", sc.measure.stall_fraction);
-    r.in_range("stall_fraction", sc.measure.stall_fraction, 0.0, 1.0, false, true);
-    r.choice("bounces", sc.measure.bounces);
-    sc.measure.fit_distance = r.number("fit_distance", sc.measure.fit_distance);
-    r.positive("fit_distance", sc.measure.fit_distance);
-    sc.measure.at_gap = r.number("at_gap", sc.measure.at_gap);
-    r.positive("at_gap", sc.measure.at_gap);
-    r.choice("e", sc.measure.e);
-    sc.measure.ends_distance = r.number("ends_distance", sc.measure.ends_distance);
-    r.in_range("ends_distance", sc.measure.ends_distance, 0.0, 10.0, true, false);
-    sc.measure.ends_speed_change = r.number("ends_speed_change", sc.measure.ends_speed_change);
-    r.in_range("ends_speed_change", sc.measure.ends_speed_change, 0.0, 1.0, true, false);
-    sc.measure.ends_tolerance = r.number("ends_tolerance", sc.measure.ends_tolerance);
-    r.positive("ends_tolerance", sc.measure.ends_tolerance);
-    const long spw = r.integer("samples_per_window", sc.measure.samples_per_window);
-    if (spw < 4 || spw > 10000) r.fail("samples_per_window", "must lie in [4, 10000] (got " + std::to_string(spw) + ")");
-    sc.measure.samples_per_window = static_cast<int>(spw);
-    sc.measure.disagreement = r.number("disagreement", sc.measure.disagreement);
-    r.in_range("disagreement", sc.measure.disagreement, 0.0, 1.0, true, false);
-    sc.measure.max_samples = r.number("max_samples", sc.measure.max_samples);
-    r.in_range("max_samples", sc.measure.max_samples, 1e3, 1e9, false, false);
-    r.finish();
-  }
-  if (sc.measure.instant_gap < 0) sc.measure.instant_gap = sc.contact.delta_ss;
-  if (sc.has(Effect::lubrication) && sc.lubrication.cutoff >= sc.contact.delta_ss)
-    throw InputError(path, "lubrication.cutoff", "must be smaller than contact.delta_ss (" + fmt_number(sc.contact.delta_ss) + " D)");
-
-  if (const auto* t = top.table("flow")) {
-    Reader r(*t, "flow", path);
-    if (!sc.has(Effect::flow)) top.fail("flow", "a [flow] table needs the 'flow' effect in `effects`");
-    read_flow_spec(r, sc.flow);
-    if (sc.flow.dt > sc.solver.t_end)
-      r.fail("dt", "a flow step of " + fmt_number(sc.flow.dt) + " s is longer than the run (solver.t_end = " +
-                       fmt_number(sc.solver.t_end) + " s)");
-    if (!sc.flow.added_mass_estimate && sc.has(Effect::added_mass))
-      r.fail("added_mass_estimate", "false needs a scene without the 'added_mass' effect (its added mass is implicit anyway)");
-  }
-
-  if (const auto* t = top.table("output")) {
-    Reader r(*t, "output", path);
-    sc.output.dt = r.number("dt", 0.0);
-    if (r.has("dt")) r.positive("dt", sc.output.dt);
-    r.finish();
-  }
-  if (sc.output.dt == 0) sc.output.dt = sc.measure.window / 100.0;
-  if (sc.solver.t_end / sc.output.dt > 1e7)
-    throw InputError(path, top.has("output") ? "output.dt" : "measure.window",
-                     "t_end / output.dt = " + fmt_number(sc.solver.t_end / sc.output.dt) +
-                         " samples exceeds 1e7: raise output.dt (default window/100) or lower solver.t_end");
-
+  read_effects(top, sc);
+  check_effects(top, sc);
+  read_drag(top, sc);
+  read_lubrication(top, sc);
+  read_added_mass(top, sc);
+  read_contact(top, sc);
+  read_history(top, sc);
+  read_solver(top, sc);
+  read_measure(top, sc);
+  read_flow(top, sc);
+  read_output(top, sc);
   top.finish();
-
-  // Geometry: the target must be ahead of the impact sphere and not touching it.
-  const auto& s1 = sc.spheres[0];
-  const double D = s1.diameter;
-  const double u_rel0 = s1.velocity - (sc.two_spheres() ? sc.spheres[1].velocity : 0.0);
-  if (sc.two_spheres()) {
-    const auto& s2 = sc.spheres[1];
-    double gap = s2.position - s1.position - 0.5 * (s1.diameter + s2.diameter);
-    if (gap <= 0)
-      throw InputError(path, "sphere[1].position", "spheres overlap or touch (gap " + fmt_number(gap) + " m); the target must lie at larger z");
-    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
-      throw InputError(path, "sphere[1].position", "initial gap " + fmt_number(gap) + " m is inside the contact zone delta_ss*D = " + fmt_number(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
-  } else if (sc.wall) {
-    double gap = sc.wall->position - s1.position - 0.5 * D;
-    if (gap <= 0)
-      throw InputError(path, "wall.position", "sphere overlaps or touches the wall (gap " + fmt_number(gap) + " m); the wall must lie at larger z");
-    if (sc.has(Effect::elastic) && gap <= sc.contact.delta_ss * D && !(u_rel0 > 0))
-      throw InputError(path, "wall.position", "initial gap " + fmt_number(gap) + " m is inside the contact zone delta_ss*D = " + fmt_number(sc.contact.delta_ss * D) + " m and the solids are not approaching: the contact force is undefined");
-  }
-  if (sc.has(Effect::elastic)) {
-    bool any = sc.contact.e_dry >= 0 || s1.e_dry || (sc.two_spheres() && sc.spheres[1].e_dry) || (sc.wall && sc.wall->e_dry);
-    if (!any) throw InputError(path, "contact.e_dry", "missing: no material in the scene gives a dry restitution");
-  }
+  check_scene(sc);
   return sc;
 }
 

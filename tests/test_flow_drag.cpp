@@ -4,7 +4,10 @@
 // The production resolutions (Re 20/100 C_D, wake length, 64+ cells/D) run through `imcol flow` and bench/.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -16,6 +19,7 @@
 #include "core/errors.hpp"
 #include "flow/flow_scene.hpp"
 #include "flow/solver.hpp"
+#include "run/flow_references.hpp"
 
 using namespace imcol::flow;
 
@@ -450,4 +454,32 @@ t_end = 0.5
   EXPECT_EQ(WEXITSTATUS(raw), 2);
   fs::remove_all(dir);
   fs::remove(scene);
+}
+
+// f_THR's collision scene, built in code, is the scene this TOML text gives: the same forces to the last bit.
+TEST(FlowReferences, PairSceneBuiltInCodeIsItsToml) {
+  FlowScene fs;
+  fs.path = "two.toml";
+  fs.density = 1000;
+  fs.viscosity = 0.01;
+  fs.spheres = {{0.002, -0.004, 0.3}, {0.003, 0.0, -0.1}};
+  std::ostringstream t;
+  t << std::setprecision(17) << "effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n[fluid]\ndensity = " << fs.density
+    << "\nviscosity = " << fs.viscosity << "\n";
+  for (const auto& b : fs.spheres)
+    t << "[[sphere]]\ndensity = " << 2 * fs.density << "\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\ne_dry = 1.0\ndiameter = " << b.diameter
+      << "\nposition = " << b.position << "\nvelocity = " << b.velocity << "\n";
+  t << "[drag]\nlaw = \"schiller-naumann\"\n";
+  const imcol::contact::CollisionModel parsed(imcol::parse_scene(t.str(), "two.toml"));
+  const imcol::AnalyticPairForce built(fs);
+  for (double gap : {2e-3, 5e-4, 1e-4, 3e-5, 1e-6}) {
+    const std::vector<SphereState> s = {{0.001, -gap - 0.0025, 0.3}, {0.0015, 0.0, -0.1}};
+    const double h = s[1].z - s[0].z - s[0].radius - s[1].radius;  // the surface gap, as the states give it
+    const std::array<double, 4> y = {h, s[0].u, s[1].z, s[1].u};
+    const auto f = parsed.analytic_fluid_force(0.0, y, {0.0, 0.0});
+    const auto [f1, f2] = built.at(s);
+    EXPECT_EQ(f1, f[0]) << "gap " << gap;
+    EXPECT_EQ(f2, f[1]) << "gap " << gap;
+    EXPECT_NE(f1, 0.0);
+  }
 }

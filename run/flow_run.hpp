@@ -1,0 +1,37 @@
+#pragma once
+// A flow scene's run (`imcol flow`, data/scenes/flow/): the immersed-boundary kernel stepped along the spheres'
+// prescribed paths, its forces compared with the analytic references (run/flow_references.hpp) and the standard
+// drag curve. Writes no files: the caller writes the force history, the snapshots and the summary.
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "flow/flow_scene.hpp"
+
+namespace imcol {
+
+struct FlowRunOptions {
+  bool quiet = false;  // no progress lines or warnings on stdout/stderr
+  // Command-line overrides, checked like the scene keys they replace (bad values: exit 2 naming the option).
+  std::optional<double> t_end;             // time.t_end
+  std::optional<long> cells_per_diameter;  // grid.cells_per_diameter
+  std::optional<long> levels;              // grid.levels
+  std::optional<double> dt;                // time.dt
+  bool allow_long = false;  // run even if the estimated wall time exceeds an hour
+};
+
+struct FlowRunResult {
+  std::string forces_csv;          // the force history (forces.csv)
+  nlohmann::ordered_json summary;  // summary.json (without the `run` block)
+};
+
+/// Called with each snapshot's index (0, 1, …) and its CSV text (flow/snapshot.hpp), as the run reaches it.
+using SnapshotSink = std::function<void(int index, const std::string& csv)>;
+
+/// Runs the scene with the options' overrides. Throws InputError (overrides, a grid beyond the memory, an estimated
+/// wall time beyond an hour without allow_long) before anything is allocated.
+FlowRunResult run_flow_scene(flow::FlowScene scene, const FlowRunOptions& opt, const SnapshotSink& snapshot = {});
+
+}  // namespace imcol
