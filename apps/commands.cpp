@@ -70,7 +70,7 @@ int cmd_run(const std::string& scene_path, const std::string& out, const CommonO
   Scene sc = load_scene(scene_path, c.overrides());
   OutputUnit unit(out, fs::path("out") / sc.name, sc.path);
   RunResult r = simulate(sc, !quiet);
-  r.summary["run"] = unit.run();
+  r.summary_json["run"] = unit.run();
   write_outputs(r, unit.dir());
   // "wrote" names the files where they are once the unit is committed, a moment later.
   if (!quiet) std::cout << human_summary(r) << "  wrote " << (unit.target() / "trajectory.csv").string() << " and " << (unit.target() / "summary.json").string() << "\n";
@@ -101,12 +101,11 @@ int cmd_bench(const std::string& scene_path, const std::vector<double>& rtols, i
     RunResult r;
     for (int k = 0; k < repeat; ++k) {
       r = simulate(sc);
-      times.push_back(r.summary["wall_time_s"].get<double>());
+      times.push_back(r.summary.wall_time_s);
     }
     std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
     const auto& s = r.summary;
-    rows.push_back({rt, s["e"].is_null() ? NAN : s["e"].get<double>(), 1e3 * times[times.size() / 2],
-                    s["solver"]["steps"].get<long>(), s["solver"]["rhs_evals"].get<long>()});
+    rows.push_back({rt, s.e.value_or(NAN), 1e3 * times[times.size() / 2], s.solver.stats.steps, s.solver.stats.rhs_evals});
   }
   const auto tight = *std::min_element(rows.begin(), rows.end(), [](auto& a, auto& b) { return a.rtol < b.rtol; });
   const double base = rows.front().ms;
@@ -154,7 +153,7 @@ int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
     sc.effects = effects;
     const RunResult r = simulate(sc);
     const auto& s = r.summary;
-    const double e = free ? s.value("u1_final_m_s", NAN) : (s["e"].is_null() ? NAN : s["e"].get<double>());
+    const double e = (free ? s.u1_final_m_s : s.e).value_or(NAN);
     if (first && !free && std::isnan(e))
       throw InputError(full.path, "solver.t_end",
                        "no collision by t_end = " + fmt_number(full.solver.t_end) + " s with all effects: e is undefined (raise solver.t_end)");
@@ -162,10 +161,9 @@ int cmd_effects(const std::string& scene_path, const CommonOptions& c) {
     if (label == "all") e_all = e;
     auto cell = [&](double v) { return std::isnan(v) ? std::string("n/a") : fixed(v, free ? 6 : 4); };
     std::cout << std::left << std::setw(24) << label << std::right << std::setw(10) << cell(e) << std::setw(10)
-              << (label == "all" ? std::string("-") : cell(e - e_all)) << std::setw(10) << json_num(s["St"], 1)
-              << std::setw(13) << (s["min_gap_m"].is_null() ? std::string("n/a") : fixed(1e6 * s["min_gap_m"].get<double>(), 3))
-              << std::setw(13) << fixed(s["max_contact_force_N"].get<double>(), 3) << std::setw(8)
-              << s["solver"]["steps"].get<long>() << "\n";
+              << (label == "all" ? std::string("-") : cell(e - e_all)) << std::setw(10) << fixed_or_na(s.St, 1)
+              << std::setw(13) << (s.min_gap_m ? fixed(1e6 * *s.min_gap_m, 3) : std::string("n/a"))
+              << std::setw(13) << fixed(s.max_contact_force_N.value(), 3) << std::setw(8) << s.solver.stats.steps << "\n";
   }
   return 0;
 }

@@ -66,9 +66,8 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
     }
     Row r{kernel, evaluator, simulate(sc)};
     const auto& s = r.run.summary;
-    if (collision) r.metric = s["e"].is_null() ? NAN : s["e"].get<double>();
-    else r.metric = s.value("u1_final_m_s", NAN);
-    r.peak = s.value("max_history_force_N", 0.0);
+    r.metric = (collision ? s.e : s.u1_final_m_s).value_or(NAN);
+    r.peak = s.max_history_force_N.value_or(0.0);
     std::cerr << "  ran " << kernel << (kernel == "none" ? "" : " / " + evaluator) << "\n";
     return r;
   };
@@ -107,19 +106,18 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
   forces << std::setprecision(10) << "label,t,f_hist1\n";
   for (const auto& r : rows) {
     const auto& s = r.run.summary;
-    const auto& sol = s["solver"];
-    const auto& mod = s["model"];
-    const std::string modes = mod.contains("history.modes") ? mod["history.modes"].get<std::string>() : "-";
-    const double wall = s["wall_time_s"].get<double>(), setup = s["setup_time_s"].get<double>();
+    const SolverStats& sol = s.solver.stats;
+    const std::string modes = s.history_modes ? std::to_string(*s.history_modes) : "-";
+    const double wall = s.wall_time_s, setup = s.setup_time_s;
     std::cout << std::left << std::setw(12) << r.kernel << std::setw(8) << r.evaluator << std::right << std::setw(12)
               << std::fixed << std::setprecision(6) << r.metric << std::setw(10) << sci(r.metric - none_metric, 1)
               << std::setw(12) << sci(r.peak) << std::setw(10) << sci(r.d_metric, 1) << std::setw(11) << sci(r.d_force, 1)
-              << std::setw(7) << modes << std::setw(7) << sol["state_size"].get<long>() << std::setw(8)
-              << sol["steps"].get<long>() << std::setw(9) << sol["rhs_evals"].get<long>() << std::setw(10) << std::fixed
+              << std::setw(7) << modes << std::setw(7) << sol.state_size << std::setw(8)
+              << sol.steps << std::setw(9) << sol.rhs_evals << std::setw(10) << std::fixed
               << std::setprecision(2) << 1e3 * wall << std::setw(10) << 1e3 * setup << "\n";
     csv << r.kernel << "," << r.evaluator << "," << r.metric << "," << r.metric - none_metric << "," << r.peak << ","
-        << r.d_metric << "," << r.d_force << "," << modes << "," << sol["state_size"] << "," << sol["steps"] << ","
-        << sol["rhs_evals"] << "," << sol["linear_solver"].get<std::string>() << "," << wall << "," << setup << "\n";
+        << r.d_metric << "," << r.d_force << "," << modes << "," << sol.state_size << "," << sol.steps << ","
+        << sol.rhs_evals << "," << sol.linear_solver << "," << wall << "," << setup << "\n";
     if (r.kernel != "none")
       for (const auto& [t, f] : force_samples(r.run)) forces << r.kernel << " " << r.evaluator << "," << t << "," << f << "\n";
   }

@@ -2,6 +2,7 @@
 // Number formatting shared by the commands' tables and CSV files.
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -44,5 +45,11 @@ inline std::string csv_cell(const nlohmann::ordered_json& j) {
 
 /// A summary number in fixed notation with p digits; "n/a" for null.
 inline std::string json_num(const nlohmann::ordered_json& j, int p) { return j.is_null() ? "n/a" : fixed(j.get<double>(), p); }
+
+/// A CSV cell from a value that may be missing: empty when it is.
+inline std::string csv_cell(const std::optional<double>& v) { return v ? csv_number(*v) : std::string(); }
+
+/// A value that may be missing in fixed notation with p digits; "n/a" when it is.
+inline std::string fixed_or_na(const std::optional<double>& v, int p) { return v ? fixed(*v, p) : "n/a"; }
 
 }  // namespace imcol

@@ -56,7 +56,7 @@ const Quantity* quantity(const std::string& vary) {
 struct PointResult {
   bool done = false, ok = false;
   double value = NAN;
-  nlohmann::ordered_json summary;
+  RunSummary summary;  // when ok
   std::string message;
   std::string row;  // CSV
 };
@@ -69,29 +69,27 @@ const char* kCsvHeader =
 
 /// What became of e at a point that ran: measured (the named measures agree within measure.disagreement),
 /// measures_disagree (the message names them), or not_measured (the message says why).
-std::string e_status(const nlohmann::ordered_json& s) {
-  if (!s.contains("e") || s["e"].is_null()) return "not_measured";
-  return s.contains("measures_disagree") && s["measures_disagree"].is_object() && !s["measures_disagree"].empty() ? "measures_disagree"
-                                                                                                                    : "measured";
+std::string e_status(const RunSummary& s) {
+  if (!s.e) return "not_measured";
+  return s.measures_disagree.empty() ? "measured" : "measures_disagree";
 }
 
 /// One finished point's CSV row (formatted once: the file is rewritten after every point).
 std::string csv_row(std::size_t i, const PointResult& p) {
   const auto& s = p.summary;
-  auto get = [&](const char* k) { return s.contains(k) ? csv_cell(s[k]) : std::string(); };
+  // A failed point has empty cells.
+  auto get = [&](const std::optional<double>& v) { return p.ok ? csv_cell(v) : std::string(); };
   // The named measures of e (docs/bounces.md); `e` is the one e_is names (measure.e).
-  auto measure = [&](const char* k) {
-    return s.contains("e_measures") && s["e_measures"].is_object() ? csv_cell(s["e_measures"][k]["e"]) : std::string();
-  };
+  auto measure = [&](const char* k) { return get(s.measure_e(k)); };
   std::string msg = p.message;
   for (char& c : msg)
     if (c == ',' || c == '\n') c = ';';
   std::ostringstream csv;
-  csv << i << "," << std::setprecision(12) << p.value << "," << get("St") << "," << get("St_B_table_6_1") << "," << get("St_B_eq_6_2") << "," << get("St_L") << "," << get("St_initial")
-      << "," << get("Re") << "," << get("e") << "," << get("e_instant") << "," << measure("fit_distance") << "," << measure("at_gap") << ","
-      << measure("peak_rebound") << "," << get("separated") << "," << get("min_gap_m") << ","
-      << (p.ok ? csv_cell(s["solver"]["steps"]) : "") << "," << (p.ok ? csv_cell(s["solver"]["rhs_evals"]) : "") << ","
-      << get("wall_time_s") << "," << (p.ok ? "ok" : "failed") << "," << msg << "," << get("e_is") << "," << (p.ok ? e_status(s) : "")
+  csv << i << "," << std::setprecision(12) << p.value << "," << get(s.St) << "," << get(s.St_B_table_6_1) << "," << get(s.St_B_eq_6_2) << "," << get(s.St_L) << "," << get(s.St_initial)
+      << "," << get(s.Re) << "," << get(s.e) << "," << get(s.e_instant) << "," << measure("fit_distance") << "," << measure("at_gap") << ","
+      << measure("peak_rebound") << "," << (p.ok ? (s.separated ? "1" : "0") : "") << "," << get(s.min_gap_m) << ","
+      << get(s.solver.stats.steps) << "," << get(s.solver.stats.rhs_evals) << ","
+      << get(s.wall_time_s) << "," << (p.ok ? "ok" : "failed") << "," << msg << "," << (p.ok ? s.e_is : "") << "," << (p.ok ? e_status(s) : "")
       << "," << measure("fit_time") << "," << measure("yang_hunt_2006") << "," << measure("joseph_2001") << "," << measure("gondret_2002")
       << "\n";
   return csv.str();
@@ -107,23 +105,23 @@ std::string sweep_csv(const std::vector<PointResult>& pts, const Quantity& q) {
 
 /// A point's message: why e is missing (with the hint to raise solver.t_end only where the retries with a longer t_end
 /// showed that it helps: then they were kept), or which named measures disagree with e, or the t_end it took.
-std::string point_message(const nlohmann::ordered_json& s, double t_end_scene, double t_end_run) {
+std::string point_message(const RunSummary& s, double t_end_scene, double t_end_run) {
   std::ostringstream os;
   os << std::setprecision(4);
   const bool extended = t_end_run != t_end_scene;
-  if (s["e"].is_null()) {
-    std::string why = s.contains("e_missing") && s["e_missing"].is_string() ? s["e_missing"].get<std::string>() : "e is undefined";
+  if (!s.e) {
+    std::string why = s.e_missing.value_or("e is undefined");
     const std::string hint = " (raise solver.t_end)";
     if (auto k = why.find(hint); k != std::string::npos) why.erase(k, hint.size());
     os << "e not measured: " << why;
-    if (s.value("t_end_too_short", false) && extended) os << "; still so with solver.t_end raised to " << t_end_run << " s";
+    if (s.t_end_too_short && extended) os << "; still so with solver.t_end raised to " << t_end_run << " s";
     return os.str();
   }
   if (extended) os << "t_end extended to " << t_end_run << " s";
   if (e_status(s) == "measures_disagree") {
-    os << (extended ? "; " : "") << "measures disagree with e (" << s["e_is"].get<std::string>() << ") by more than "
+    os << (extended ? "; " : "") << "measures disagree with e (" << s.e_is << ") by more than "
        << "measure.disagreement:";
-    for (const auto& [k, v] : s["measures_disagree"].items()) os << " " << k << " = " << v.get<double>();
+    for (const auto& [k, v] : s.measures_disagree) os << " " << k << " = " << v;
   }
   return os.str();
 }
@@ -227,7 +225,7 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
         Scene sc = scenes[i];
         for (int attempt = 0;; ++attempt) {
           r.summary = simulate(sc, false, Recording::kinematics).summary;  // e needs no force columns
-          if (attempt == 2 || !r.summary.value("t_end_too_short", false)) break;
+          if (attempt == 2 || !r.summary.t_end_too_short) break;
           sc.solver.t_end *= 2;
         }
         r.ok = true;
@@ -278,14 +276,12 @@ nlohmann::ordered_json print_points(const std::vector<PointResult>& pts, const S
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const auto& p = pts[i];
     const auto& s = p.summary;
-    auto num = [&](const char* k, int prec) {
-      return !p.ok || !s.contains(k) || s[k].is_null() ? std::string("-") : fixed(s[k].get<double>(), prec);
-    };
-    std::cout << std::setw(14) << std::setprecision(5) << std::defaultfloat << p.value << std::setw(10) << num("St", 2) << std::setw(9)
-              << num("Re", 1) << std::setw(9) << num("e", 4) << std::setw(9)
-              << (p.ok ? std::to_string(s["solver"]["steps"].get<long>()) : "-") << std::setw(10)
-              << (p.ok ? fixed(1e3 * s["wall_time_s"].get<double>(), 3) : "-") << "  " << (p.ok ? p.message : "FAILED: " + p.message) << "\n";
-    if (p.ok) cpu += s["wall_time_s"].get<double>();
+    auto num = [&](const std::optional<double>& v, int prec) { return p.ok && v ? fixed(*v, prec) : std::string("-"); };
+    std::cout << std::setw(14) << std::setprecision(5) << std::defaultfloat << p.value << std::setw(10) << num(s.St, 2) << std::setw(9)
+              << num(s.Re, 1) << std::setw(9) << num(s.e, 4) << std::setw(9)
+              << (p.ok ? std::to_string(s.solver.stats.steps) : "-") << std::setw(10)
+              << (p.ok ? fixed(1e3 * s.wall_time_s, 3) : "-") << "  " << (p.ok ? p.message : "FAILED: " + p.message) << "\n";
+    if (p.ok) cpu += s.wall_time_s;
     if (!p.ok) failures.push_back({{"point", i}, {"value", p.value}, {"reason", p.message}});
   }
   return failures;
@@ -309,7 +305,7 @@ EStatusCounts report_e_status(const std::vector<PointResult>& pts, const Scene& 
     if (st == "not_measured") ++n_missing;
     if (st != "measures_disagree") continue;
     ++n_disagree;
-    for (const auto& [k, v] : p.summary["measures_disagree"].items()) ++disagreeing[k];
+    for (const auto& [k, v] : p.summary.measures_disagree) ++disagreeing[k];
   }
   if (n_missing) std::cout << "e not measured at " << n_missing << " of " << ok << " points (e_status = not_measured)";
   if (n_disagree) {
@@ -388,11 +384,11 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   j["wall_time_s"] = wall;
   j["collisions_per_second"] = finite_or_null(ok / wall);
   j["failures"] = failures;
-  j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : pts[0].summary["St_convention"];
+  j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(pts[0].summary.St_convention);
   if (!pts.empty() && pts[0].ok) {
-    j["effects"] = pts[0].summary["effects"];
-    j["e_is"] = pts[0].summary["e_is"];
-    if (pts[0].summary.contains("contact")) j["e_dry"] = pts[0].summary["contact"]["e_dry"];  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
+    j["effects"] = pts[0].summary.effects;
+    j["e_is"] = pts[0].summary.e_is;
+    if (pts[0].summary.contact) j["e_dry"] = pts[0].summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
   }
   j["e_not_measured_points"] = n_missing;
   j["measures_disagree_points"] = n_disagree;

@@ -45,8 +45,6 @@ Scene with_flow(const std::string& path, std::vector<Override> ov) {
 /// The models, by the gap law of the pair (docs/model-notes.md, "Pairs").
 const std::vector<ValidateModel> kValidateModels = {{"seed", LubricationModel::seed}, {"asymptotic", LubricationModel::asymptotic}};
 
-std::optional<double> opt_num(const nlohmann::ordered_json& j) { return j.is_null() ? std::nullopt : std::optional<double>(j.get<double>()); }
-
 /// Agreement of one model with the seed's e: runs within the tolerance, and the largest miss.
 struct Agreement {
   int within = 0, runs = 0;
@@ -169,31 +167,31 @@ int cmd_validate(const std::string& what, const ValidateOptions& opt, const std:
       const RunResult cpl = flow ? simulate(with_flow(path, ov), true) : RunResult{};
       const auto& s = flow ? cpl.summary : red.summary;
       const auto& rs = red.summary;
-      const auto e = opt_num(s["e"]), e_red = opt_num(rs["e"]);
+      const auto e = s.e, e_red = rs.e;
       agree[k].add(sr.run, e, e_seed, opt.tolerance);
       if (flow) agree_reduced[k].add(sr.run, e_red, e_seed, opt.tolerance);
       auto diff = [&](std::optional<double> v) { return v ? std::optional<double>(*v - e_seed) : std::nullopt; };
       auto show = [](std::optional<double> v, int prec) { return v ? fixed(*v, prec) : std::string("n/a"); };
       std::cout << std::left << std::setw(4) << sr.run << std::setw(13) << sr.pair << std::setw(11) << model.name << std::right
-                << std::setw(10) << sr.St_B << std::setw(11) << json_num(s["St_B_table_6_1"], 1) << std::setw(12)
-                << json_num(s["St_B_eq_6_2"], 1) << std::setw(8) << sr.e << std::setw(8) << show(e, 3) << std::setw(8)
+                << std::setw(10) << sr.St_B << std::setw(11) << fixed_or_na(s.St_B_table_6_1, 1) << std::setw(12)
+                << fixed_or_na(s.St_B_eq_6_2, 1) << std::setw(8) << sr.e << std::setw(8) << show(e, 3) << std::setw(8)
                 << show(diff(e), 3);
       if (flow) std::cout << std::setw(10) << show(e_red, 3) << std::setw(8) << show(diff(e_red), 3);
-      std::cout << std::setw(8) << json_num(s["e_instant"], 3) << std::setw(10)
-                << (s["group_velocity_m_s"].is_null() ? std::string("-") : fixed(1e3 * s["group_velocity_m_s"].get<double>(), 2))
-                << std::setw(10) << (flow ? fixed(s["wall_time_s"].get<double>(), 2) : fixed(1e3 * s["wall_time_s"].get<double>(), 1));
-      if (flow) std::cout << std::setw(9) << fixed(s["flow"]["ms_per_step"].get<double>(), 1);
+      std::cout << std::setw(8) << fixed_or_na(s.e_instant, 3) << std::setw(10)
+                << (s.group_velocity_m_s ? fixed(1e3 * *s.group_velocity_m_s, 2) : std::string("-"))
+                << std::setw(10) << (flow ? fixed(s.wall_time_s, 2) : fixed(1e3 * s.wall_time_s, 1));
+      if (flow) std::cout << std::setw(9) << fixed(s.flow.value().ms_per_step, 1);
       std::cout << "\n";
       auto num = [](std::optional<double> v) { return v ? csv_number(*v) : std::string(); };
       csv << sr.run << "," << sr.pair << "," << model.name << "," << to_string(model.lubrication) << "," << sr.St_B << "," << sr.e << ","
-          << sr.Re << "," << csv_cell(s["St"]) << "," << csv_cell(s["St_B_table_6_1"]) << "," << csv_cell(s["St_B_eq_6_2"]) << ","
-          << num(e) << "," << num(diff(e)) << "," << csv_cell(s["e_instant"]) << "," << csv_cell(s["Re"]) << ","
-          << csv_cell(s["group_velocity_m_s"]) << "," << csv_cell(s["solver"]["steps"]) << "," << csv_cell(s["wall_time_s"]);
+          << sr.Re << "," << csv_cell(s.St) << "," << csv_cell(s.St_B_table_6_1) << "," << csv_cell(s.St_B_eq_6_2) << ","
+          << num(e) << "," << num(diff(e)) << "," << csv_cell(s.e_instant) << "," << csv_cell(s.Re) << ","
+          << csv_cell(s.group_velocity_m_s) << "," << csv_number(s.solver.stats.steps) << "," << csv_number(s.wall_time_s);
       if (flow) {
-        const auto& f = s["flow"];
-        csv << "," << num(e_red) << "," << num(diff(e_red)) << "," << csv_cell(rs["St_B_table_6_1"]) << "," << csv_cell(rs["St_B_eq_6_2"])
-            << "," << csv_cell(rs["wall_time_s"]) << "," << csv_cell(f["steps"]) << "," << csv_cell(f["ms_per_step"]) << ","
-            << csv_cell(f["grid"]["cells_per_diameter"]) << "," << csv_cell(f["dt_s"]);
+        const FlowSummary& f = s.flow.value();
+        csv << "," << num(e_red) << "," << num(diff(e_red)) << "," << csv_cell(rs.St_B_table_6_1) << "," << csv_cell(rs.St_B_eq_6_2)
+            << "," << csv_number(rs.wall_time_s) << "," << csv_number(f.stats.steps) << "," << csv_number(f.ms_per_step) << ","
+            << csv_number(f.stats.cells_per_diameter) << "," << csv_number(f.stats.dt);
       }
       csv << "\n";
     }

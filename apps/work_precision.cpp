@@ -75,9 +75,7 @@ double trajectory_error(const Samples& run, const Samples& ref, double u_scale) 
 }
 
 double metric_of(const RunResult& r, bool collision) {
-  const auto& s = r.summary;
-  if (collision) return s["e"].is_null() ? NAN : s["e"].get<double>();
-  return s.value("u1_final_m_s", NAN);
+  return (collision ? r.summary.e : r.summary.u1_final_m_s).value_or(NAN);
 }
 
 
@@ -302,8 +300,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   if (std::count(evaluators.begin(), evaluators.end(), "direct") && !(h_direct > 0)) {
     Scene probe = base;  // the model's automatic step, read off a model that is built but not run
     probe.history.evaluator = HistoryEvaluator::direct;
-    for (const auto& [k, v] : contact::CollisionModel(probe).choices())
-      if (k == "history.direct_step_s") h_direct = std::stod(v);
+    h_direct = contact::CollisionModel(probe).history_options().direct_step;
   }
 
   std::vector<Point> pts;
@@ -326,18 +323,18 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
         RunResult r;
         for (int k = 0; k < opt.repeat; ++k) {
           r = simulate(sc);
-          times.push_back(r.summary["wall_time_s"].get<double>());
+          times.push_back(r.summary.wall_time_s);
         }
         std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-        const auto& sol = r.summary["solver"];
+        const SolverStats& sol = r.summary.solver.stats;
         p.ok = true;
         p.e = metric_of(r, collision);
         p.err_e = std::abs(p.e - e_ref);
         p.err_traj = trajectory_error(samples(r, D), ref_s, u_scale);
         p.ms = 1e3 * times[times.size() / 2];
-        p.steps = sol["steps"].get<long>();
-        p.rhs = sol["rhs_evals"].get<long>();
-        p.lin_iters = sol.value("lin_iters", 0L);
+        p.steps = sol.steps;
+        p.rhs = sol.rhs_evals;
+        p.lin_iters = sol.lin_iters;
         if (std::isnan(p.e)) p.message = collision ? "no e (no collision by t_end)" : "no final velocity";
       } catch (const SolverError& ex) {
         p.message = std::string("solver failure: ") + ex.what();
@@ -368,14 +365,14 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   j["metric"] = metric;
   j["reference"] = {{"integrator", "cvode-dense"}, {"evaluator", ref_cfg.evaluator}, {"rtol", opt.ref_rtol}, {"atol", opt.ref_rtol},
                     {"history_tolerance", history ? nlohmann::ordered_json(opt.ref_history_tol) : nullptr},
-                    {"value", e_ref}, {"uncertainty", ref_unc}, {"wall_time_s", ref.summary["wall_time_s"]},
-                    {"solver", ref.summary["solver"]}};
+                    {"value", e_ref}, {"uncertainty", ref_unc}, {"wall_time_s", ref.summary.wall_time_s},
+                    {"solver", ref.summary_json["solver"]}};  // the reference run's solver block as in its summary.json
   j["trajectory_velocity_scale_m_s"] = u_scale;
   j["repeat"] = opt.repeat;
   j["skipped"] = skipped;
   j["observed_order"] = orders;
   j["cheapest"] = cheapest;
-  j["effects"] = ref.summary["effects"];
+  j["effects"] = ref.summary.effects;
   j["run"] = unit.run();
   write_file_atomic(unit.dir() / "work_precision.csv", points_csv(pts, metric));
   write_file_atomic(unit.dir() / "work_precision.json", j.dump(2) + "\n");

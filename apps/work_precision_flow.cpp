@@ -9,7 +9,9 @@
 #include <sstream>
 
 #include "apps/format.hpp"
+#include "run/json_util.hpp"
 #include "run/simulate.hpp"
+#include "run/summary.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
 #include "coupling/step_rule.hpp"
@@ -24,8 +26,6 @@ struct Rung {
   double cfl;
   RunResult run;
 };
-
-double number_or_nan(const nlohmann::ordered_json& j) { return j.is_null() ? std::nan("") : j.get<double>(); }
 
 }  // namespace
 
@@ -68,24 +68,24 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
     const Rung* ref = nullptr;
     for (const auto& r : rungs)
       if (r.ladder == ladder) ref = &r;
-    const double e_ref = number_or_nan(ref->run.summary["e"]);
+    const double e_ref = ref->run.summary.e.value_or(NAN);
     for (const auto& r : rungs) {
       if (r.ladder != ladder) continue;
       const auto& s = r.run.summary;
-      const auto& f = s["flow"];
-      const double e = number_or_nan(s["e"]), err = std::abs(e - e_ref);
+      const FlowSummary& f = s.flow.value();
+      const double e = s.e.value_or(NAN), err = std::abs(e - e_ref);
       std::cout << std::left << std::setw(6) << ladder << std::right << std::setw(7) << r.cells << std::setw(7) << r.cfl
-                << std::setw(11) << sci(f["dt_s"].get<double>(), 2) << std::setw(9) << fixed(e, 4) << std::setw(11)
-                << (&r == ref ? std::string("ref") : sci(err, 2)) << std::setw(9) << fixed(number_or_nan(s["e_instant"]), 4)
-                << std::setw(9) << fixed(s["wall_time_s"].get<double>(), 2) << std::setw(7) << f["steps"].get<long>()
-                << std::setw(10) << fixed(f["ms_per_step"].get<double>(), 1) << "\n";
-      csv << ladder << "," << r.cells << "," << csv_number(r.cfl) << "," << csv_number(f["dt_s"].get<double>()) << ","
-          << csv_number(e) << "," << csv_number(err) << "," << csv_number(number_or_nan(s["e_instant"])) << ","
-          << csv_number(s["wall_time_s"].get<double>()) << "," << f["steps"].get<long>() << ","
-          << csv_number(f["ms_per_step"].get<double>()) << "," << csv_number(f["krylov_iterations_per_step"].get<double>()) << "\n";
-      js["rungs"].push_back({{"ladder", ladder}, {"cells_per_diameter", r.cells}, {"cfl", r.cfl}, {"dt_s", f["dt_s"]}, {"e", s["e"]},
-                             {"e_error_vs_finest", err}, {"e_instant", s["e_instant"]}, {"wall_time_s", s["wall_time_s"]},
-                             {"flow", f}});
+                << std::setw(11) << sci(f.stats.dt, 2) << std::setw(9) << fixed(e, 4) << std::setw(11)
+                << (&r == ref ? std::string("ref") : sci(err, 2)) << std::setw(9) << fixed(s.e_instant.value_or(NAN), 4)
+                << std::setw(9) << fixed(s.wall_time_s, 2) << std::setw(7) << f.stats.steps
+                << std::setw(10) << fixed(f.ms_per_step, 1) << "\n";
+      csv << ladder << "," << r.cells << "," << csv_number(r.cfl) << "," << csv_number(f.stats.dt) << ","
+          << csv_number(e) << "," << csv_number(err) << "," << csv_number(s.e_instant.value_or(NAN)) << ","
+          << csv_number(s.wall_time_s) << "," << f.stats.steps << ","
+          << csv_number(f.ms_per_step) << "," << csv_number(f.krylov_iterations_per_step) << "\n";
+      js["rungs"].push_back({{"ladder", ladder}, {"cells_per_diameter", r.cells}, {"cfl", r.cfl}, {"dt_s", f.stats.dt}, {"e", run::or_null(s.e)},
+                             {"e_error_vs_finest", err}, {"e_instant", run::or_null(s.e_instant)}, {"wall_time_s", s.wall_time_s},
+                             {"flow", run::flow_block(f)}});
     }
   }
   js["run"] = unit.run();

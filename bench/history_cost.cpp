@@ -53,13 +53,13 @@ Result run(const std::string& path, std::vector<Override> ov, double relax_times
   RunResult r;
   for (int k = 0; k < repeat; ++k) {
     r = simulate(sc);
-    times.push_back(r.summary["wall_time_s"].get<double>() + r.summary["setup_time_s"].get<double>());
+    times.push_back(r.summary.wall_time_s + r.summary.setup_time_s);
   }
   std::sort(times.begin(), times.end());
   double worst = 0;
   for (const auto& row : r.rows)
     if (row[0] > 0) worst = std::max(worst, std::abs(row[2] - f * contact::basset_settling(alpha, gamma, row[0])) / std::abs(f / alpha));
-  return {worst, 1e3 * times[times.size() / 2], r.summary["solver"]["steps"].get<long>()};
+  return {worst, 1e3 * times[times.size() / 2], r.summary.solver.stats.steps};
 }
 
 }  // namespace

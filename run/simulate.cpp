@@ -82,32 +82,48 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   run::choose_e(sc, bounces, first, warnings);
   run::check_plausibility(model, sc, first, warnings);
 
-  // Report.
-  auto& s = res.summary;
-  s["scene"] = sc.name;
-  s["scene_file"] = sc.path;
-  s["configuration"] = !model.has_target() ? "free sphere" : (model.has_wall() ? "sphere-wall" : "sphere-sphere");
-  run::put_measurements(s, model, sc, first, bounces, rec, res.rows);
-  if (model.has_target() && sc.has(Effect::elastic)) s["contact"] = run::contact_block(model);
-  nlohmann::ordered_json eff = nlohmann::ordered_json::array();
-  for (Effect x : sc.effects) eff.push_back(to_string(x));
-  s["effects"] = eff;
+  // Report: the typed summary, and summary.json from the same values.
+  RunSummary& s = res.summary;
+  auto& j = res.summary_json;
+  s.scene = sc.name;
+  s.scene_file = sc.path;
+  s.configuration = !model.has_target() ? Configuration::free_sphere
+                                        : (model.has_wall() ? Configuration::sphere_wall : Configuration::sphere_sphere);
+  run::measure_summary(s, model, sc, first, bounces, rec, res.rows);
+  j["scene"] = s.scene;
+  j["scene_file"] = s.scene_file;
+  j["configuration"] = to_string(s.configuration);
+  run::put_measurements(j, s, sc, bounces);
+  if (model.has_target() && sc.has(Effect::elastic)) {
+    s.contact = run::contact_summary(model);
+    j["contact"] = run::contact_block(*s.contact);
+  }
+  for (Effect x : sc.effects) s.effects.push_back(to_string(x));
+  j["effects"] = s.effects;
+  s.model = model.choices();
   nlohmann::ordered_json mod = nlohmann::ordered_json::object();
-  for (const auto& [k, v] : model.choices()) mod[k] = v;
-  s["model"] = mod;
-  s["solver"] = run::solver_block(model, st, stats, t_final);
-  s["solver"]["measure_interval_s"] = st.output_dt;  // the integrator's sampling, which the measures read
-  s["solver"]["measure_samples"] = rec.track().t.size();
+  for (const auto& [k, v] : s.model) mod[k] = v;
+  j["model"] = mod;
+  if (model.history(0) && model.history_options().evaluator != HistoryEvaluator::direct)
+    s.history_modes = static_cast<long>(model.history(0)->modes());
+  s.solver = {to_string(st.method), st.rtol, st.atol, t_final, st.output_dt, rec.track().t.size(), stats};
+  j["solver"] = run::solver_block(model, st, stats, t_final);
+  j["solver"]["measure_interval_s"] = s.solver.measure_interval_s;  // the integrator's sampling, which the measures read
+  j["solver"]["measure_samples"] = s.solver.measure_samples;
   nlohmann::ordered_json ev = nlohmann::ordered_json::array();
   for (const auto& x : model.events()) ev.push_back({{"t", x.t}, {"event", x.name}, {"gap_m", x.gap}, {"u_rel_m_s", x.u_rel}});
-  s["events"] = ev;
-  s["warnings"] = warnings;
+  j["events"] = ev;
+  s.warnings = warnings;
+  j["warnings"] = s.warnings;
   if (coupled) {
-    s["flow"] = run::flow_block(coupled->stats(), sc, wall);
+    s.flow = run::flow_summary(coupled->stats(), sc, wall);
+    j["flow"] = run::flow_block(*s.flow);
     for (const auto& snap : coupled->snapshots()) res.files.push_back({snap.name + ".csv", snap.csv});
   }
-  s["wall_time_s"] = wall;
-  s["setup_time_s"] = setup;  // model construction, incl. one-off lookup tables
+  s.wall_time_s = wall;
+  s.setup_time_s = setup;  // model construction, incl. one-off lookup tables
+  j["wall_time_s"] = s.wall_time_s;
+  j["setup_time_s"] = s.setup_time_s;
   return res;
 }
 
@@ -125,7 +141,7 @@ void write_outputs(const RunResult& r, const std::filesystem::path& dir) {
   }
   write_file_atomic(dir / "trajectory.csv", csv);
   for (const auto& [name, content] : r.files) write_file_atomic(dir / name, content);
-  write_file_atomic(dir / "summary.json", r.summary.dump(2) + "\n");
+  write_file_atomic(dir / "summary.json", r.summary_json.dump(2) + "\n");
 }
 
 std::string human_summary(const RunResult& r) { return run::human_summary(r.summary); }

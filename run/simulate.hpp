@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/scene.hpp"
+#include "run/run_summary.hpp"
 
 namespace imcol {
 
@@ -14,7 +15,8 @@ struct RunResult {
   Scene scene;
   std::vector<std::string> columns;
   std::vector<std::vector<double>> rows;  // trajectory samples
-  nlohmann::ordered_json summary;
+  RunSummary summary;                   // what the run measured, typed
+  nlohmann::ordered_json summary_json;    // summary.json: the same values (and more) under their names
   std::vector<std::pair<std::string, std::string>> files;  // further files: name in the output directory, content
 };
 

@@ -9,71 +9,149 @@ namespace imcol::run {
 
 using contact::CollisionModel;
 
-void put_measurements(nlohmann::ordered_json& s, const CollisionModel& model, const Scene& sc, const FirstContact& m,
-                      const nlohmann::ordered_json& bounces, const Recorder& rec, const std::vector<std::vector<double>>& rows) {
+namespace {
+
+std::optional<double> number_or_none(const nlohmann::ordered_json& j) {
+  return j.is_number() ? std::optional<double>(j.get<double>()) : std::nullopt;
+}
+
+/// One contact of measure_bounces as a BounceSummary.
+BounceSummary typed_bounce(const nlohmann::ordered_json& b) {
+  BounceSummary x;
+  x.contact = b["contact"].get<int>();
+  x.t_contact_s = b["t_contact_s"].get<double>();
+  x.t_separation_s = number_or_none(b["t_separation_s"]);
+  x.e = number_or_none(b["e"]);
+  x.impact_velocity_m_s = number_or_none(b["impact_velocity_m_s"]);
+  x.rebound_velocity_m_s = number_or_none(b["rebound_velocity_m_s"]);
+  x.e_instant = number_or_none(b["e_instant"]);
+  x.apex_gap_m = number_or_none(b.value("apex_gap_m", nlohmann::ordered_json(nullptr)));
+  x.t_apex_s = number_or_none(b.value("t_apex_s", nlohmann::ordered_json(nullptr)));
+  return x;
+}
+
+nlohmann::ordered_json or_null(const std::optional<std::string>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+void measure_summary(RunSummary& s, const CollisionModel& model, const Scene& sc, const FirstContact& m,
+                     const nlohmann::ordered_json& bounces, const Recorder& rec, const std::vector<std::vector<double>>& rows) {
   const bool pair = model.n_spheres() == 2;
-  s["e"] = or_null(m.e);
-  s["e_is"] = to_string(sc.measure.e);  // the named measure in e_measures (measure.e; docs/bounces.md)
-  if (m.e_fit_raw) s["e_fit_raw"] = *m.e_fit_raw;
-  if (!m.e) s["e_missing"] = m.e_missing ? nlohmann::ordered_json(*m.e_missing) : nlohmann::ordered_json(nullptr);
-  s["e_instant"] = or_null(m.e_instant);
-  s["e_instant_gap_m"] = sc.measure.instant_gap * 2 * model.radius(0);
+  s.e = m.e;
+  s.e_is = to_string(sc.measure.e);  // the named measure in e_measures (measure.e; docs/bounces.md)
+  s.e_fit_raw = m.e_fit_raw;
+  if (!m.e) s.e_missing = m.e_missing;
+  s.e_instant = m.e_instant;
+  s.e_instant_gap_m = sc.measure.instant_gap * 2 * model.radius(0);
   // The named measures of the first contact (each contact's are in `bounces`).
   if (!bounces.empty()) {
-    s["e_measures"] = bounces[0]["e_measures"];
-    s["measures_disagree"] = bounces[0]["measures_disagree"];
-  } else {
-    s["e_measures"] = nullptr;
+    for (const auto& [name, x] : bounces[0]["e_measures"].items()) s.e_measures.push_back({name, number_or_none(x.value("e", nlohmann::ordered_json(nullptr)))});
+    for (const auto& [name, x] : bounces[0]["measures_disagree"].items()) s.measures_disagree.push_back({name, x.get<double>()});
   }
-  s["bounces_mode"] = to_string(sc.measure.bounces);
-  s["bounces"] = bounces;
-  s["St"] = or_null(m.St);
+  s.bounces_mode = to_string(sc.measure.bounces);
+  for (const auto& b : bounces) s.bounces.push_back(typed_bounce(b));
+  s.St = m.St;
   if (pair) {
     // Both conventions, named (docs/model-notes.md): `St` is St_B_table_6_1.
-    s["St_convention"] = "St_B_table_6_1: seed Table 6.1, half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
-    s["St_B_table_6_1"] = or_null(m.St);
-    s["St_B_eq_6_2"] = or_null(m.St_62);
+    s.St_convention = "St_B_table_6_1: seed Table 6.1, half of eq. (6.2); (1/9)(rho_harm/rho_f) Re_rel for equal spheres";
+    s.St_B_table_6_1 = m.St;
+    s.St_B_eq_6_2 = m.St_62;
   } else {
-    s["St_convention"] = "m U / (6 pi mu a^2)";
+    s.St_convention = "m U / (6 pi mu a^2)";
     // Legendre, Zenit, Daniel & Guiraud (2006): the particle's inertia with half the displaced fluid's,
     // St_L = (rho_p + rho_f/2) U d / (9 mu), the variable of their correlation e/e_dry = exp(-35/St_L).
-    if (m.St && sc.fluid && model.has_target())
-      s["St_L"] = *m.St * (1 + 0.5 * model.fluid_mass(0) / model.mass(0));
-    else
-      s["St_L"] = nullptr;
+    if (m.St && sc.fluid && model.has_target()) s.St_L = *m.St * (1 + 0.5 * model.fluid_mass(0) / model.mass(0));
   }
-  s["Re"] = or_null(m.Re);
-  if (sc.fluid && model.has_target()) s["St_initial"] = stokes_numbers(model, sc, model.initial_u_rel()).first;  // nominal, same convention
-  s["separated"] = m.separated;
+  s.Re = m.Re;
+  if (sc.fluid && model.has_target()) s.St_initial = stokes_numbers(model, sc, model.initial_u_rel()).first;  // nominal, same convention
+  s.separated = m.separated;
   // The run ended because the pair came to rest (MODEL.md §3 has no event for it; see CollisionModel::observe).
-  s["at_rest_since_s"] = or_null(model.t_at_rest());
-  s["t_end_too_short"] = m.t_end_too_short;
-  if (model.has_target()) s["final_phase"] = contact::to_string(model.phase());
-  s["contacts"] = model.contacts();
-  s["velocities_m_s"] = {{"U_i1", or_null(m.u_i1)}, {"U_i2", or_null(m.u_i2)}, {"U_r1", or_null(m.u_r1)}, {"U_r2", or_null(m.u_r2)}};
-  s["fit_window_s"] = m.fit_window;
-  s["min_gap_m"] = model.has_target() ? nlohmann::ordered_json(rec.min_gap()) : nlohmann::ordered_json(nullptr);
-  s["max_contact_force_N"] = rec.forces() ? nlohmann::ordered_json(rec.max_contact_force()) : nlohmann::ordered_json(nullptr);
-  s["group_velocity_m_s"] = or_null(m.group_velocity);
-  if (m.group_velocity) s["group_velocity_at_s"] = *m.t_group;
-  if (sc.has(Effect::history))  // at the output samples and events
-    s["max_history_force_N"] = rec.forces() ? nlohmann::ordered_json(rec.max_history_force()) : nlohmann::ordered_json(nullptr);
+  s.at_rest_since_s = model.t_at_rest();
+  s.t_end_too_short = m.t_end_too_short;
+  if (model.has_target()) s.final_phase = contact::to_string(model.phase());
+  s.contacts = model.contacts();
+  s.U_i1 = m.u_i1;
+  s.U_i2 = m.u_i2;
+  s.U_r1 = m.u_r1;
+  s.U_r2 = m.u_r2;
+  s.fit_window_s = m.fit_window;
+  if (model.has_target()) s.min_gap_m = rec.min_gap();
+  if (rec.forces()) s.max_contact_force_N = rec.max_contact_force();
+  s.group_velocity_m_s = m.group_velocity;
+  if (m.group_velocity) s.group_velocity_at_s = m.t_group;
+  if (sc.has(Effect::history) && rec.forces()) s.max_history_force_N = rec.max_history_force();  // at the output samples and events
   if (!rows.empty()) {
-    s["u1_final_m_s"] = rows.back()[2];
-    if (pair) s["u2_final_m_s"] = rows.back()[5];
+    s.u1_final_m_s = rows.back()[2];
+    if (pair) s.u2_final_m_s = rows.back()[5];
   }
 }
 
-nlohmann::ordered_json contact_block(const CollisionModel& model) {
+void put_measurements(nlohmann::ordered_json& j, const RunSummary& s, const Scene& sc, const nlohmann::ordered_json& bounces) {
+  const bool pair = s.configuration == Configuration::sphere_sphere;
+  j["e"] = or_null(s.e);
+  j["e_is"] = s.e_is;
+  if (s.e_fit_raw) j["e_fit_raw"] = *s.e_fit_raw;
+  if (!s.e) j["e_missing"] = or_null(s.e_missing);
+  j["e_instant"] = or_null(s.e_instant);
+  j["e_instant_gap_m"] = s.e_instant_gap_m;
+  if (!bounces.empty()) {
+    j["e_measures"] = bounces[0]["e_measures"];
+    j["measures_disagree"] = bounces[0]["measures_disagree"];
+  } else {
+    j["e_measures"] = nullptr;
+  }
+  j["bounces_mode"] = s.bounces_mode;
+  j["bounces"] = bounces;
+  j["St"] = or_null(s.St);
+  j["St_convention"] = s.St_convention;
+  if (pair) {
+    j["St_B_table_6_1"] = or_null(s.St_B_table_6_1);
+    j["St_B_eq_6_2"] = or_null(s.St_B_eq_6_2);
+  } else {
+    j["St_L"] = or_null(s.St_L);
+  }
+  j["Re"] = or_null(s.Re);
+  if (s.St_initial) j["St_initial"] = *s.St_initial;
+  j["separated"] = s.separated;
+  j["at_rest_since_s"] = or_null(s.at_rest_since_s);
+  j["t_end_too_short"] = s.t_end_too_short;
+  if (s.final_phase) j["final_phase"] = *s.final_phase;
+  j["contacts"] = s.contacts;
+  j["velocities_m_s"] = {{"U_i1", or_null(s.U_i1)}, {"U_i2", or_null(s.U_i2)}, {"U_r1", or_null(s.U_r1)}, {"U_r2", or_null(s.U_r2)}};
+  j["fit_window_s"] = s.fit_window_s;
+  j["min_gap_m"] = or_null(s.min_gap_m);
+  j["max_contact_force_N"] = or_null(s.max_contact_force_N);
+  j["group_velocity_m_s"] = or_null(s.group_velocity_m_s);
+  if (s.group_velocity_at_s) j["group_velocity_at_s"] = *s.group_velocity_at_s;
+  if (sc.has(Effect::history)) j["max_history_force_N"] = or_null(s.max_history_force_N);
+  if (s.u1_final_m_s) j["u1_final_m_s"] = *s.u1_final_m_s;
+  if (s.u2_final_m_s) j["u2_final_m_s"] = *s.u2_final_m_s;
+}
+
+ContactSummary contact_summary(const CollisionModel& model) {
   const contact::ContactLaw& law = *model.contact_law();
-  nlohmann::ordered_json c = {{"law", to_string(law.kind())},
-                              {"t_contact_s", or_null(model.t_contact())},
-                              {"t_separation_s", or_null(model.t_separation())},
-                              {"impact_speed_m_s", model.t_contact() ? nlohmann::ordered_json(model.impact_speed()) : nullptr}};
-  for (const auto& v : law.summary()) c[v.name] = or_null(v.value);  // the law's own numbers
-  c["e_dry"] = model.e_dry();
-  c["delta_ss_m"] = model.delta_ss_m();
+  ContactSummary c;
+  c.law = to_string(law.kind());
+  c.t_contact_s = model.t_contact();
+  c.t_separation_s = model.t_separation();
+  if (model.t_contact()) c.impact_speed_m_s = model.impact_speed();
+  for (const auto& v : law.summary()) c.law_numbers.push_back({v.name, v.value});  // the law's own numbers
+  c.e_dry = model.e_dry();
+  c.delta_ss_m = model.delta_ss_m();
   return c;
+}
+
+nlohmann::ordered_json contact_block(const ContactSummary& c) {
+  nlohmann::ordered_json j = {{"law", c.law},
+                              {"t_contact_s", or_null(c.t_contact_s)},
+                              {"t_separation_s", or_null(c.t_separation_s)},
+                              {"impact_speed_m_s", or_null(c.impact_speed_m_s)}};
+  for (const auto& [name, v] : c.law_numbers) j[name] = or_null(v);
+  j["e_dry"] = c.e_dry;
+  j["delta_ss_m"] = c.delta_ss_m;
+  return j;
 }
 
 nlohmann::ordered_json solver_block(const CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats, double t_final) {
@@ -86,78 +164,84 @@ nlohmann::ordered_json solver_block(const CollisionModel& model, const Integrato
   return sol;
 }
 
-nlohmann::ordered_json flow_block(const coupling::FlowRunStats& fs, const Scene& sc, double wall) {
-  const double ms = fs.steps ? 1e3 * fs.flow_seconds / fs.steps : 0.0;
+FlowSummary flow_summary(const coupling::FlowRunStats& fs, const Scene& sc, double wall) {
+  FlowSummary f;
+  f.stats = fs;
+  f.start = to_string(sc.flow.start);
+  f.force_in_step = to_string(sc.flow.force_in_step);
+  f.ms_per_step = fs.steps ? 1e3 * fs.flow_seconds / fs.steps : 0.0;
+  f.krylov_iterations_per_step = fs.steps ? double(fs.krylov_iterations) / fs.steps : 0.0;
+  f.flow_share = wall > 0 ? fs.flow_seconds / wall : 0.0;
+  f.ode_share = wall > 0 ? fs.ode_seconds / wall : 0.0;
+  return f;
+}
+
+nlohmann::ordered_json flow_block(const FlowSummary& f) {
+  const coupling::FlowRunStats& fs = f.stats;
   return {{"grid", {{"cells_per_diameter", fs.cells_per_diameter}, {"h_m", fs.h}, {"nr", fs.nr}, {"nz", fs.nz},
                     {"levels", fs.levels}, {"memory_MB", fs.bytes / 1e6}}},
-          {"dt_s", fs.dt}, {"cfl", fs.cfl}, {"max_courant", fs.max_courant}, {"max_energy_ratio", fs.max_energy_ratio}, {"start", to_string(sc.flow.start)}, {"start_up_steps", fs.pre_steps},
-          {"force_in_step", to_string(sc.flow.force_in_step)}, {"steps", fs.steps}, {"ms_per_step", ms},
+          {"dt_s", fs.dt}, {"cfl", fs.cfl}, {"max_courant", fs.max_courant}, {"max_energy_ratio", fs.max_energy_ratio}, {"start", f.start}, {"start_up_steps", fs.pre_steps},
+          {"force_in_step", f.force_in_step}, {"steps", fs.steps}, {"ms_per_step", f.ms_per_step},
           {"krylov_iterations", fs.krylov_iterations},
-          {"krylov_iterations_per_step", fs.steps ? double(fs.krylov_iterations) / fs.steps : 0.0},
+          {"krylov_iterations_per_step", f.krylov_iterations_per_step},
           {"max_krylov_iterations", fs.max_krylov_iterations}, {"max_krylov_residual", fs.max_krylov_residual},
           {"max_slip_m_s", fs.max_slip}, {"min_gap_clamped_steps", fs.min_gap_clamped_steps},
           {"frame_travel_m", fs.frame_travel}, {"start_up_time_s", fs.pre_seconds},
           {"flow_time_s", fs.flow_seconds}, {"ode_time_s", fs.ode_seconds},
-          {"flow_share", wall > 0 ? fs.flow_seconds / wall : 0.0}, {"ode_share", wall > 0 ? fs.ode_seconds / wall : 0.0},
+          {"flow_share", f.flow_share}, {"ode_share", f.ode_share},
           {"estimate", {{"start_up_s", fs.est_start_up_s}, {"force_system_blocks_s", fs.est_blocks_s}, {"steps_to_t_end_s", fs.est_steps_s},
                         {"total_s", fs.est_total_s()}, {"memory_MB", fs.est_bytes / 1e6}}}};
 }
 
-std::string human_summary(const nlohmann::ordered_json& s) {
+std::string human_summary(const RunSummary& s) {
   std::ostringstream os;
-  auto num = [](const nlohmann::ordered_json& j, int prec = 4) {
-    if (j.is_null()) return std::string("n/a");
+  auto num = [](const std::optional<double>& v, int prec = 4) {
+    if (!v) return std::string("n/a");
     std::ostringstream o;
-    o << std::setprecision(prec) << j.get<double>();
+    o << std::setprecision(prec) << *v;
     return o.str();
   };
-  os << "scene " << s["scene"].get<std::string>() << " (" << s["configuration"].get<std::string>() << ")\n";
-  os << "  e = " << num(s["e"]) << "   e_instant = " << num(s["e_instant"]) << "   St = " << num(s["St"]);
-  if (s.contains("St_B_eq_6_2")) os << " (St_B, Table 6.1; eq. 6.2: " << num(s["St_B_eq_6_2"]) << ")";
-  os << "   Re = " << num(s["Re"]) << "\n";
-  if (!s["group_velocity_m_s"].is_null())
-    os << "  group velocity = " << num(s["group_velocity_m_s"]) << " m/s (no separation; centre-of-mass velocity at t = "
-       << num(s["group_velocity_at_s"]) << " s, when the relative velocity vanished)\n";
-  if (!s["at_rest_since_s"].is_null())
-    os << "  at rest from t = " << num(s["at_rest_since_s"]) << " s (|U_rel| and |dU_rel/dt| x measure.window below stall_fraction x the"
+  os << "scene " << s.scene << " (" << to_string(s.configuration) << ")\n";
+  os << "  e = " << num(s.e) << "   e_instant = " << num(s.e_instant) << "   St = " << num(s.St);
+  if (s.configuration == Configuration::sphere_sphere) os << " (St_B, Table 6.1; eq. 6.2: " << num(s.St_B_eq_6_2) << ")";
+  os << "   Re = " << num(s.Re) << "\n";
+  if (s.group_velocity_m_s)
+    os << "  group velocity = " << num(s.group_velocity_m_s) << " m/s (no separation; centre-of-mass velocity at t = "
+       << num(s.group_velocity_at_s) << " s, when the relative velocity vanished)\n";
+  if (s.at_rest_since_s)
+    os << "  at rest from t = " << num(s.at_rest_since_s) << " s (|U_rel| and |dU_rel/dt| x measure.window below stall_fraction x the"
        << " impact speed for one window): the run ended there\n";
-  if (!s["min_gap_m"].is_null()) os << "  min gap = " << num(s["min_gap_m"]) << " m, max contact force = " << num(s["max_contact_force_N"]) << " N\n";
+  if (s.min_gap_m) os << "  min gap = " << num(s.min_gap_m) << " m, max contact force = " << num(s.max_contact_force_N) << " N\n";
   std::string eff;
-  for (const auto& x : s["effects"]) eff += (eff.empty() ? "" : ", ") + x.get<std::string>();
+  for (const auto& x : s.effects) eff += (eff.empty() ? "" : ", ") + x;
   os << "  effects: " << eff << "\n";
-  const auto& sol = s["solver"];
-  os << "  " << sol["integrator"].get<std::string>() << " rtol " << sol["rtol"].get<double>() << ": "
-     << sol["steps"].get<long>() << " steps, " << sol["rhs_evals"].get<long>() << " rhs evals, "
-     << sol["root_events"].get<long>() << " events, " << sol["error_test_fails"].get<long>() << " error-test fails; "
-     << std::setprecision(3) << s["wall_time_s"].get<double>() * 1e3 << " ms";
-  if (s.contains("flow")) os << " in all, " << s["flow"]["ode_time_s"].get<double>() * 1e3 << " ms of it in " << sol["integrator"].get<std::string>();
+  const SolverSummary& sol = s.solver;
+  os << "  " << sol.integrator << " rtol " << sol.rtol << ": " << sol.stats.steps << " steps, " << sol.stats.rhs_evals << " rhs evals, "
+     << sol.stats.root_events << " events, " << sol.stats.error_test_fails << " error-test fails; " << std::setprecision(3)
+     << s.wall_time_s * 1e3 << " ms";
+  if (s.flow) os << " in all, " << s.flow->stats.ode_seconds * 1e3 << " ms of it in " << sol.integrator;
   os << "\n";
-  const auto& mod = s["model"];
-  if (mod.contains("history.kernel")) {
-    os << "  history: " << mod["history.kernel"].get<std::string>() << " kernel, " << mod["history.evaluator"].get<std::string>()
-       << " evaluator";
-    if (mod.contains("history.modes")) os << ", " << mod["history.modes"].get<std::string>() << " modes";
-    os << "; peak |f_H| = " << num(s["max_history_force_N"]) << " N; " << sol["linear_solver"].get<std::string>()
-       << " linear solver, state size " << sol["state_size"].get<long>() << "\n";
+  if (const auto kernel = s.model_choice("history.kernel")) {
+    os << "  history: " << *kernel << " kernel, " << s.model_choice("history.evaluator").value_or("") << " evaluator";
+    if (s.history_modes) os << ", " << *s.history_modes << " modes";
+    os << "; peak |f_H| = " << num(s.max_history_force_N) << " N; " << sol.stats.linear_solver << " linear solver, state size "
+       << sol.stats.state_size << "\n";
   }
-  if (s.contains("flow")) {
-    const auto& f = s["flow"];
-    os << "  flow: " << f["grid"]["cells_per_diameter"].get<int>() << " cells/D, " << f["grid"]["levels"].get<int>() << " levels, "
-       << f["steps"].get<long>() << " flow steps of " << std::setprecision(3) << 1e3 * f["dt_s"].get<double>() << " ms, "
-       << f["ms_per_step"].get<double>() << " ms per step, " << f["krylov_iterations_per_step"].get<double>()
-       << " GMRES iterations per step; of the wall time " << std::setprecision(2) << 100 * f["flow_share"].get<double>()
-       << " % in the flow kernel, " << 100 * f["start_up_time_s"].get<double>() / s["wall_time_s"].get<double>()
-       << " % in its start-up (" << f["start_up_steps"].get<long>() << " steps, " << f["start"].get<std::string>() << ")\n";
+  if (s.flow) {
+    const FlowSummary& f = *s.flow;
+    os << "  flow: " << f.stats.cells_per_diameter << " cells/D, " << f.stats.levels << " levels, " << f.stats.steps << " flow steps of "
+       << std::setprecision(3) << 1e3 * f.stats.dt << " ms, " << f.ms_per_step << " ms per step, " << f.krylov_iterations_per_step
+       << " GMRES iterations per step; of the wall time " << std::setprecision(2) << 100 * f.flow_share << " % in the flow kernel, "
+       << 100 * f.stats.pre_seconds / s.wall_time_s << " % in its start-up (" << f.stats.pre_steps << " steps, " << f.start << ")\n";
   }
-  if (s.contains("bounces_mode") && s["bounces_mode"] == "all" && !s["bounces"].empty()) {
+  if (s.bounces_mode == "all" && !s.bounces.empty()) {
     os << "  bounces: contact   t_contact (s)   impact (m/s)   e       apex gap (mm)   t_apex (s)\n";
-    for (const auto& b : s["bounces"])
-      os << "           " << std::setw(7) << b["contact"].get<int>() << "   " << std::setw(13) << num(b["t_contact_s"], 5) << "   "
-         << std::setw(12) << num(b["impact_velocity_m_s"]) << "   " << std::setw(5) << num(b["e"], 3) << "   " << std::setw(13)
-         << (b["apex_gap_m"].is_null() ? "n/a" : num(nlohmann::ordered_json(1e3 * b["apex_gap_m"].get<double>()))) << "   "
-         << num(b["t_apex_s"], 5) << "\n";
+    for (const BounceSummary& b : s.bounces)
+      os << "           " << std::setw(7) << b.contact << "   " << std::setw(13) << num(b.t_contact_s, 5) << "   " << std::setw(12)
+         << num(b.impact_velocity_m_s) << "   " << std::setw(5) << num(b.e, 3) << "   " << std::setw(13)
+         << (b.apex_gap_m ? num(1e3 * *b.apex_gap_m) : "n/a") << "   " << num(b.t_apex_s, 5) << "\n";
   }
-  for (const auto& w : s["warnings"]) os << "  warning: " << w.get<std::string>() << "\n";
+  for (const auto& w : s.warnings) os << "  warning: " << w << "\n";
   return os.str();
 }
 

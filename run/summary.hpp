@@ -9,25 +9,31 @@
 #include "integrators/integrator.hpp"
 #include "run/first_contact.hpp"
 #include "run/recorder.hpp"
+#include "run/run_summary.hpp"
 
 namespace imcol::run {
 
-/// e, e_instant, the named measures, St, Re, velocities, group velocity, contact extremes: the measurements.
-void put_measurements(nlohmann::ordered_json& s, const contact::CollisionModel& model, const Scene& sc, const FirstContact& m,
-                      const nlohmann::ordered_json& bounces, const Recorder& rec,
-                      const std::vector<std::vector<double>>& rows);
+/// e, e_instant, the named measures, St, Re, velocities, group velocity, contact extremes: the measurements, into
+/// `s` (`bounces`: measure_bounces' contacts).
+void measure_summary(RunSummary& s, const contact::CollisionModel& model, const Scene& sc, const FirstContact& m,
+                     const nlohmann::ordered_json& bounces, const Recorder& rec, const std::vector<std::vector<double>>& rows);
 
-/// The `contact` block: the law, times, impact speed, the law's numbers (ramp: W_o, β), e_dry, δ_SS.
-nlohmann::ordered_json contact_block(const contact::CollisionModel& model);
+/// The measurements of `s` (measure_summary) into summary.json's object `j`.
+void put_measurements(nlohmann::ordered_json& j, const RunSummary& s, const Scene& sc, const nlohmann::ordered_json& bounces);
+
+/// The `contact` block's values: the law, times, impact speed, the law's numbers (ramp: W_o, β), e_dry, δ_SS.
+ContactSummary contact_summary(const contact::CollisionModel& model);
+nlohmann::ordered_json contact_block(const ContactSummary& c);
 
 /// The `solver` block: settings, tolerances, state names and statistics.
 nlohmann::ordered_json solver_block(const contact::CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats,
                                     double t_final);
 
 /// The `flow` block of a coupled run: grid, step, Krylov statistics, wall-time shares (`wall`: the run's, s).
-nlohmann::ordered_json flow_block(const coupling::FlowRunStats& fs, const Scene& sc, double wall);
+FlowSummary flow_summary(const coupling::FlowRunStats& fs, const Scene& sc, double wall);
+nlohmann::ordered_json flow_block(const FlowSummary& f);
 
-/// What `imcol run` prints, from summary.json.
-std::string human_summary(const nlohmann::ordered_json& s);
+/// What `imcol run` prints.
+std::string human_summary(const RunSummary& s);
 
 }  // namespace imcol::run

@@ -16,7 +16,7 @@ std::string data_file(const std::string& name) { return data_dir() + "/scenes/" 
 
 TEST(Bounces, ShippedSceneBouncesWithDecreasingApexesUntilAtRest) {
   const RunResult r = simulate(load_scene(data_file("bouncing_steel.toml")));
-  const auto& s = r.summary;
+  const auto& s = r.summary_json;
   const auto& b = s["bounces"];
   ASSERT_GE(b.size(), 4u);
   const double e_dry = s["contact"]["e_dry"].get<double>();
@@ -54,18 +54,18 @@ TEST(Bounces, ShippedSceneBouncesWithDecreasingApexesUntilAtRest) {
 TEST(Bounces, FirstModeStopsAfterTheFirstReboundWithTheSameFirstBounce) {
   const RunResult all = simulate(load_scene(data_file("bouncing_steel.toml")));
   const RunResult first = simulate(load_scene(data_file("bouncing_steel.toml"), {{"measure.bounces", "\"first\""}}));
-  ASSERT_EQ(first.summary["bounces"].size(), 1u);
-  EXPECT_NEAR(first.summary["e"].get<double>(), all.summary["e"].get<double>(), 1e-6);
-  EXPECT_NEAR(first.summary["e_instant"].get<double>(), all.summary["e_instant"].get<double>(), 1e-9);
+  ASSERT_EQ(first.summary_json["bounces"].size(), 1u);
+  EXPECT_NEAR(first.summary_json["e"].get<double>(), all.summary_json["e"].get<double>(), 1e-6);
+  EXPECT_NEAR(first.summary_json["e_instant"].get<double>(), all.summary_json["e_instant"].get<double>(), 1e-9);
   // It stops one window after the separation, before the apex (40 ms later).
-  EXPECT_LT(first.summary["solver"]["t_final_s"].get<double>(), all.summary["bounces"][0]["t_apex_s"].get<double>());
+  EXPECT_LT(first.summary_json["solver"]["t_final_s"].get<double>(), all.summary_json["bounces"][0]["t_apex_s"].get<double>());
 }
 
 TEST(Bounces, EveryMeasureGivesTheDryRestitutionOfADryCollision) {
   // No fluid: constant velocities before and after the contact, so every measure is e_dry.
   const std::string dry = test::sphere("steel", 0.0127, -0.0127, 0.2) + test::wall("zerodur", 0.0) +
                           "[contact]\ne_dry = 0.9\n[solver]\nrtol = 1e-10\n[measure]\nat_gap = 0.2\nfit_distance = 0.3\n";
-  const auto s = simulate(parse_scene(dry, "dry.toml")).summary;
+  const auto s = simulate(parse_scene(dry, "dry.toml")).summary_json;
   const auto& m = s["e_measures"];
   for (const char* k : {"fit_time", "fit_distance", "at_gap", "peak_rebound", "instant"})
     EXPECT_NEAR(m[k]["e"].get<double>(), 0.9, 1e-6) << k;
@@ -76,7 +76,7 @@ TEST(Bounces, EveryMeasureGivesTheDryRestitutionOfADryCollision) {
 TEST(Bounces, ANegativeFitIsClippedAndSaysWhy) {
   // A window longer than the rebound's rise: the fitted rebound moves toward the wall.
   const RunResult r = simulate(load_scene(data_file("bouncing_steel.toml"), {{"measure.window", "0.08"}}));
-  const auto& s = r.summary;
+  const auto& s = r.summary_json;
   bool clipped = false;
   for (const auto& b : s["bounces"]) {
     const auto& ft = b["e_measures"]["fit_time"];

@@ -24,7 +24,7 @@ std::string wall_scene(const std::string& fluid, double u, const std::string& ex
 RunResult run(const std::string& toml, std::vector<Override> ov = {}) {
   return simulate(parse_scene(toml, "test.toml", ov));
 }
-double e_of(const RunResult& r) { return r.summary["e"].get<double>(); }
+double e_of(const RunResult& r) { return r.summary_json["e"].get<double>(); }
 
 using test::fluid;
 
@@ -35,13 +35,13 @@ class DryCollision : public ::testing::TestWithParam<std::string> {};
 TEST_P(DryCollision, WallReturnsDryRestitution) {
   auto r = run(wall_scene("", 0.2, "[solver]\nrtol = 1e-10\n"), {{"solver.integrator", "\"" + GetParam() + "\""}});
   EXPECT_NEAR(e_of(r), 0.9, 1e-6);
-  EXPECT_NEAR(r.summary["e_instant"].get<double>(), 0.9, 1e-6);
-  EXPECT_TRUE(r.summary["separated"].get<bool>());
-  EXPECT_TRUE(r.summary["St"].is_null());
+  EXPECT_NEAR(r.summary_json["e_instant"].get<double>(), 0.9, 1e-6);
+  EXPECT_TRUE(r.summary_json["separated"].get<bool>());
+  EXPECT_TRUE(r.summary_json["St"].is_null());
   // e_instant at a gap outside the contact zone (the rebound must run on until it is reached).
   auto far = run(wall_scene("", 0.2, "[solver]\nrtol = 1e-10\n[measure]\ninstant_gap = 0.3\n"),
                  {{"solver.integrator", "\"" + GetParam() + "\""}});
-  EXPECT_NEAR(far.summary["e_instant"].get<double>(), 0.9, 1e-6);
+  EXPECT_NEAR(far.summary_json["e_instant"].get<double>(), 0.9, 1e-6);
   EXPECT_NEAR(e_of(far), 0.9, 1e-6);
 }
 
@@ -57,7 +57,7 @@ TEST_P(DryCollision, PairReturnsDryRestitutionAndConservesMomentum) {
   for (const auto& row : r.rows) worst = std::max(worst, std::abs(m1 * row[2] + m2 * row[5] - p0) / std::abs(p0));
   EXPECT_LT(worst, 1e-9);
   // The contact force rose to the frozen Hertz peak W_o.
-  EXPECT_NEAR(r.summary["max_contact_force_N"].get<double>() / r.summary["contact"]["W_o_N"].get<double>(), 1.0, 1e-3);
+  EXPECT_NEAR(r.summary_json["max_contact_force_N"].get<double>() / r.summary_json["contact"]["W_o_N"].get<double>(), 1.0, 1e-3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, DryCollision, ::testing::Values("cvode", "ida"));
@@ -68,7 +68,7 @@ TEST(ImmersedCollision, AddedMassForcesAreConservative) {
   for (double gap : {0.017, 0.05, 0.3}) {
     auto r = run("effects = [\"added_mass\", \"elastic\"]\n" + wall_scene(fluid(0.01, 1200), 0.5),
                  {{"solver.rtol", "1e-10"}, {"measure.instant_gap", std::to_string(gap)}});
-    EXPECT_NEAR(r.summary["e_instant"].get<double>(), 0.9, 1e-6) << "gap " << gap;
+    EXPECT_NEAR(r.summary_json["e_instant"].get<double>(), 0.9, 1e-6) << "gap " << gap;
     EXPECT_LE(e_of(r), 0.9 + 1e-9);
   }
 }
@@ -87,7 +87,7 @@ TEST(AddedMassModels, LagrangianPairIsConservative) {
   const std::string scene = "effects = [\"added_mass\", \"elastic\"]\n" + pair_scene(fluid(0.01, 1200), 0.5, 0.0);
   for (double gap : {0.03, 0.1}) {
     auto r = run(scene, {{"added_mass.model", "lagrangian"}, {"solver.rtol", "1e-10"}, {"measure.instant_gap", std::to_string(gap)}});
-    EXPECT_NEAR(r.summary["e_instant"].get<double>(), 0.97, 1e-6) << gap;
+    EXPECT_NEAR(r.summary_json["e_instant"].get<double>(), 0.97, 1e-6) << gap;
     EXPECT_LE(e_of(r), 0.97 + 1e-9);
     const double pi = 3.141592653589793;
     const double v1 = pi / 6 * std::pow(0.0127, 3), v2 = pi / 6 * std::pow(0.010, 3);
@@ -104,7 +104,7 @@ TEST(AddedMassModels, SeedPerSphereFormIsNotConservativeForUnequalPairs) {
   // the relative motion, so an ideal-fluid collision rebounds faster than a dry one (e > e_d).
   const std::string scene = "effects = [\"added_mass\", \"elastic\"]\n" + pair_scene(fluid(0.01, 1200), 0.5, 0.0, "[added_mass]\nmodel = \"seed\"\n");
   auto r = run(scene, {{"solver.rtol", "1e-10"}, {"measure.instant_gap", "0.1"}});
-  EXPECT_GT(r.summary["e_instant"].get<double>(), 0.97 + 1e-3);
+  EXPECT_GT(r.summary_json["e_instant"].get<double>(), 0.97 + 1e-3);
 }
 
 TEST(ImmersedCollision, CvodeAndIdaAgree) {
@@ -113,8 +113,8 @@ TEST(ImmersedCollision, CvodeAndIdaAgree) {
     auto a = run(scene, {{"solver.rtol", "1e-10"}});
     auto b = run(scene, {{"solver.rtol", "1e-10"}, {"solver.integrator", "\"ida\""}});
     EXPECT_NEAR(e_of(a), e_of(b), 1e-6);
-    EXPECT_NEAR(a.summary["min_gap_m"].get<double>(), b.summary["min_gap_m"].get<double>(), 1e-9);
-    EXPECT_NEAR(a.summary["St"].get<double>() / b.summary["St"].get<double>(), 1.0, 1e-7);
+    EXPECT_NEAR(a.summary_json["min_gap_m"].get<double>(), b.summary_json["min_gap_m"].get<double>(), 1e-9);
+    EXPECT_NEAR(a.summary_json["St"].get<double>() / b.summary_json["St"].get<double>(), 1.0, 1e-7);
   }
 }
 
@@ -136,18 +136,18 @@ TEST(ImmersedCollision, RestitutionRisesWithStokesAndStaysBelowDry) {
   for (double mu : {0.5, 0.2, 0.08, 0.03, 0.01, 0.003}) {
     auto r = run(wall_scene(fluid(mu, 1200), 0.3, "[solver]\nt_end = 0.3\n"));
     SCOPED_TRACE("mu " + std::to_string(mu));
-    ASSERT_EQ(r.summary["contacts"].get<int>(), 1);
+    ASSERT_EQ(r.summary_json["contacts"].get<int>(), 1);
     const double e = e_of(r);
-    const double st = r.summary["St"].get<double>();
+    const double st = r.summary_json["St"].get<double>();
     EXPECT_GE(e, 0.0);
     EXPECT_LE(e, 0.9);
     EXPECT_GE(e, prev_e) << "St " << st;
     EXPECT_GT(st, prev_st);
     if (st < 5) {  // stuck after contact: no rebound
       EXPECT_EQ(e, 0.0) << "St " << st;
-      EXPECT_FALSE(r.summary["separated"].get<bool>());
+      EXPECT_FALSE(r.summary_json["separated"].get<bool>());
     } else {
-      EXPECT_TRUE(r.summary["separated"].get<bool>());
+      EXPECT_TRUE(r.summary_json["separated"].get<bool>());
       EXPECT_GT(e, 0.0);
     }
     prev_e = e;
@@ -159,13 +159,13 @@ TEST(ImmersedCollision, RestitutionRisesWithStokesAndStaysBelowDry) {
 TEST(ImmersedCollision, ApproachStoppedByTheFluidGivesZeroRestitution) {
   // Without the history force (with it the approach decays like t^-1/2 and reaches the wall).
   auto r = run("effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n" + wall_scene(fluid(2.0, 1200), 0.3, "[solver]\nt_end = 0.3\n"));
-  EXPECT_EQ(r.summary["contacts"].get<int>(), 0);
+  EXPECT_EQ(r.summary_json["contacts"].get<int>(), 0);
   EXPECT_EQ(e_of(r), 0.0);
-  EXPECT_GT(r.summary["min_gap_m"].get<double>(), 0.017 * 0.0127);
+  EXPECT_GT(r.summary_json["min_gap_m"].get<double>(), 0.017 * 0.0127);
   // Without a stop the run reports no e at all.
   auto cut = run(wall_scene(fluid(0.02), 0.3), {{"solver.t_end", "0.005"}});
-  EXPECT_TRUE(cut.summary["e"].is_null());
-  EXPECT_FALSE(cut.summary["warnings"].empty());
+  EXPECT_TRUE(cut.summary_json["e"].is_null());
+  EXPECT_FALSE(cut.summary_json["warnings"].empty());
 }
 
 TEST(ImmersedCollision, SeedGroupMotionCaseBNeverTouches) {
@@ -173,7 +173,7 @@ TEST(ImmersedCollision, SeedGroupMotionCaseBNeverTouches) {
   // settles near 0.07 D and the pair moves on together.
   auto sc = load_scene(data_dir() + "/scenes/group_b.toml");
   auto r = simulate(sc);
-  const auto& s = r.summary;
+  const auto& s = r.summary_json;
   EXPECT_EQ(s["contacts"].get<int>(), 0);
   const double gap_D = s["min_gap_m"].get<double>() / 0.0127;
   EXPECT_GT(gap_D, 0.05);
@@ -228,8 +228,8 @@ TEST(ImmersedCollision, SeedLubricationActsInTheRatioOfTheRadii) {
   EXPECT_GT(checked, 10);
   EXPECT_GT(approaching, 5);
   EXPECT_GT(separating, 5);
-  EXPECT_EQ(r.summary["model"]["lubrication.model"].get<std::string>(), "seed");
-  EXPECT_NE(r.summary["model"]["lubrication.pair_forces"].get<std::string>().find("differ"), std::string::npos);
+  EXPECT_EQ(r.summary_json["model"]["lubrication.model"].get<std::string>(), "seed");
+  EXPECT_NE(r.summary_json["model"]["lubrication.pair_forces"].get<std::string>().find("differ"), std::string::npos);
   EXPECT_GT(e_of(r), 0.0);
   EXPECT_LT(e_of(r), 0.97);
 }
@@ -239,7 +239,7 @@ TEST(ImmersedCollision, SeedLubricationOnAWallIsBrenner) {
   const std::string scene = "effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n" + wall_scene(fluid(0.05), 0.2);
   const auto b = run(scene, {{"lubrication.model", "\"brenner\""}}), s = run(scene, {{"lubrication.model", "\"seed\""}});
   EXPECT_EQ(e_of(s), e_of(b));
-  EXPECT_EQ(s.summary["solver"]["steps"], b.summary["solver"]["steps"]);
+  EXPECT_EQ(s.summary_json["solver"]["steps"], b.summary_json["solver"]["steps"]);
   EXPECT_GT(e_of(b), 0.0);
   EXPECT_LT(e_of(b), 0.9);
 }
@@ -251,8 +251,8 @@ TEST(ImmersedCollision, OnlyTheListedEffectsRun) {
   EXPECT_TRUE(has("f_drag1"));
   EXPECT_FALSE(has("f_lub1"));
   EXPECT_FALSE(has("f_am1"));
-  EXPECT_EQ(r.summary["effects"].size(), 2u);
-  EXPECT_FALSE(r.summary["model"].contains("lubrication.model"));
+  EXPECT_EQ(r.summary_json["effects"].size(), 2u);
+  EXPECT_FALSE(r.summary_json["model"].contains("lubrication.model"));
   // Without lubrication and added mass, less is dissipated.
   EXPECT_GT(e_of(r), e_of(run(wall_scene(fluid(0.02), 0.3))));
 }
@@ -274,12 +274,12 @@ TEST(HardCases, ExtremeSpeedsAndViscositiesStayStable) {
           ASSERT_NO_THROW(r = run(scene, ov));
           for (const auto& row : r.rows)
             for (double v : row) ASSERT_TRUE(std::isfinite(v));
-          ASSERT_FALSE(r.summary["e"].is_null());
-          const double e = e_of(r), ed = r.summary["contact"]["e_dry"].get<double>();
+          ASSERT_FALSE(r.summary_json["e"].is_null());
+          const double e = e_of(r), ed = r.summary_json["contact"]["e_dry"].get<double>();
           EXPECT_GE(e, 0.0);
           EXPECT_LE(e, ed + 1e-6);
-          if (r.summary["St_initial"].get<double>() > 1000) {
-            EXPECT_TRUE(r.summary["separated"].get<bool>());
+          if (r.summary_json["St_initial"].get<double>() > 1000) {
+            EXPECT_TRUE(r.summary_json["separated"].get<bool>());
             EXPECT_GT(e, 0.9 * ed);
           }
         }
@@ -294,10 +294,10 @@ TEST(Recording, KinematicsOnlyMeasuresTheSameCollision) {
     const Scene sc = load_scene(data_dir() + "/scenes/" + name);
     const RunResult full = simulate(sc), lean = simulate(sc, false, Recording::kinematics);
     for (const char* k : {"e", "e_instant", "e_measures", "bounces", "events", "St", "min_gap_m", "at_rest_since_s", "contacts"})
-      EXPECT_EQ(lean.summary[k], full.summary[k]) << k;
-    EXPECT_EQ(lean.summary["solver"]["steps"], full.summary["solver"]["steps"]);
-    EXPECT_TRUE(lean.summary["max_contact_force_N"].is_null());
-    EXPECT_FALSE(full.summary["max_contact_force_N"].is_null());
+      EXPECT_EQ(lean.summary_json[k], full.summary_json[k]) << k;
+    EXPECT_EQ(lean.summary_json["solver"]["steps"], full.summary_json["solver"]["steps"]);
+    EXPECT_TRUE(lean.summary_json["max_contact_force_N"].is_null());
+    EXPECT_FALSE(full.summary_json["max_contact_force_N"].is_null());
     ASSERT_EQ(lean.rows.size(), full.rows.size());
     ASSERT_EQ(lean.columns.back(), "event");
     ASSERT_LT(lean.columns.size(), full.columns.size());

@@ -38,7 +38,7 @@ std::string dry_pair(const std::string& law, double e_dry, double u) {
 
 // The gap at the U_rel = 0 event (peak compression), m.
 double gap_at_unload(const RunResult& r) {
-  for (const auto& ev : r.summary["events"])
+  for (const auto& ev : r.summary_json["events"])
     if (ev["event"].get<std::string>().rfind("u_rel=0 (loading", 0) == 0) return ev["gap_m"].get<double>();
   ADD_FAILURE() << "no unload event";
   return NAN;
@@ -93,11 +93,11 @@ TEST(ContactLaws, DryCollisionReturnsDryRestitution) {
       const auto w = run(dry_wall(law, e_dry));
       const auto p = run(dry_pair(law, e_dry, 0.1));
       std::printf("dry %s e_dry = %.2f: e(wall) - e_dry = %.2e, e(pair) - e_dry = %.2e\n", law, e_dry,
-                  w.summary["e"].get<double>() - e_dry, p.summary["e"].get<double>() - e_dry);
-      EXPECT_NEAR(w.summary["e"].get<double>(), e_dry, 1e-6) << law;
-      EXPECT_NEAR(p.summary["e"].get<double>(), e_dry, 1e-6) << law;
-      EXPECT_EQ(w.summary["contact"]["law"].get<std::string>(), law);
-      EXPECT_EQ(w.summary["model"]["contact.law"].get<std::string>(), law);
+                  w.summary_json["e"].get<double>() - e_dry, p.summary_json["e"].get<double>() - e_dry);
+      EXPECT_NEAR(w.summary_json["e"].get<double>(), e_dry, 1e-6) << law;
+      EXPECT_NEAR(p.summary_json["e"].get<double>(), e_dry, 1e-6) << law;
+      EXPECT_EQ(w.summary_json["contact"]["law"].get<std::string>(), law);
+      EXPECT_EQ(w.summary_json["model"]["contact.law"].get<std::string>(), law);
     }
   }
 }
@@ -107,7 +107,7 @@ TEST(ContactLaws, HertzContactTimeAndEnergyBalance) {
   // peak compression, (2/5) k ξ_max^{5/2}, equals the relative kinetic energy ½ m* U² at impact.
   for (double u : {0.05, 0.3, 1.0}) {
     const auto r = run(dry_pair("hertz", 1.0, u));
-    const auto& c = r.summary["contact"];
+    const auto& c = r.summary_json["contact"];
     const double U = c["impact_speed_m_s"].get<double>();
     const double m_star = 0.5 * steel_mass(0.0127), a_star = 0.5 * 0.0127 / 2;
     const Material& steel = *MaterialTable::builtin().find("steel");
@@ -119,10 +119,10 @@ TEST(ContactLaws, HertzContactTimeAndEnergyBalance) {
     const double work = 0.4 * (4.0 / 3.0) * E_star * std::sqrt(a_star) * std::pow(xi_max, 2.5);
     const double kinetic = 0.5 * m_star * U * U;
     std::printf("hertz U = %.2f: t_c/t_Hertz - 1 = %.2e, work/kinetic - 1 = %.2e, e - 1 = %.2e\n", u, t_c / t_hertz - 1,
-                work / kinetic - 1, r.summary["e"].get<double>() - 1);
+                work / kinetic - 1, r.summary_json["e"].get<double>() - 1);
     EXPECT_NEAR(t_c / t_hertz, 1.0, 0.01);
     EXPECT_NEAR(work / kinetic, 1.0, 1e-6);
-    EXPECT_NEAR(r.summary["e"].get<double>(), 1.0, 1e-6);  // no kinetic energy lost over the contact
+    EXPECT_NEAR(r.summary_json["e"].get<double>(), 1.0, 1e-6);  // no kinetic energy lost over the contact
     EXPECT_NEAR(c["xi_max_m"].get<double>() / xi_max, 1.0, 1e-6);
   }
 }
@@ -139,10 +139,10 @@ TEST(ContactLaws, StartInsideTheZoneAtOneMetrePerSecond) {
     EXPECT_NE(std::string(e.what()).find("sphere[0].position"), std::string::npos) << e.what();
   }
   const auto r = run(scene, {{"contact.law", "\"hertz\""}});
-  EXPECT_EQ(r.summary["contact"]["law"].get<std::string>(), "hertz");
-  EXPECT_EQ(r.summary["contact"]["t_contact_s"].get<double>(), 0.0);
-  EXPECT_TRUE(r.summary["separated"].get<bool>());
-  const double e = r.summary["e"].get<double>();
+  EXPECT_EQ(r.summary_json["contact"]["law"].get<std::string>(), "hertz");
+  EXPECT_EQ(r.summary_json["contact"]["t_contact_s"].get<double>(), 0.0);
+  EXPECT_TRUE(r.summary_json["separated"].get<bool>());
+  const double e = r.summary_json["e"].get<double>();
   std::printf("start inside at 1 m/s, hertz: e = %.6f\n", e);
   EXPECT_GT(e, 0.0);
   EXPECT_LE(e, 0.97);
@@ -152,12 +152,12 @@ TEST(ContactLaws, ImmersedDefaultSceneWithBothLaws) {
   const std::string path = data_dir() + "/scenes/default.toml";
   const auto ramp = simulate(load_scene(path, {}));
   const auto hertz = simulate(load_scene(path, {{"contact.law", "\"hertz\""}}));
-  const double e_dry = ramp.summary["contact"]["e_dry"].get<double>();
-  const double er = ramp.summary["e"].get<double>(), eh = hertz.summary["e"].get<double>();
+  const double e_dry = ramp.summary_json["contact"]["e_dry"].get<double>();
+  const double er = ramp.summary_json["e"].get<double>(), eh = hertz.summary_json["e"].get<double>();
   std::printf("default.toml: e(ramp) = %.6f, e(hertz) = %.6f, e_dry = %.2f\n", er, eh, e_dry);
   for (double e : {er, eh}) {
     EXPECT_GE(e, 0.0);
     EXPECT_LE(e, e_dry);
   }
-  EXPECT_EQ(hertz.summary["contact"]["law"].get<std::string>(), "hertz");
+  EXPECT_EQ(hertz.summary_json["contact"]["law"].get<std::string>(), "hertz");
 }

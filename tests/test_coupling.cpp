@@ -64,8 +64,8 @@ TEST(Coupling, FreeFallReachesTheStandardDragCurveTerminalSpeed) {
   EXPECT_NEAR(u_end / U, 1.0, 0.03) << "terminal " << u_end << " m/s, standard curve " << U << " m/s";
   // A monotone approach: no oscillation from the explicit part of the coupling.
   for (std::size_t k = 1; k < r.rows.size(); ++k) ASSERT_LE(r.rows[k][iu], r.rows[k - 1][iu] + 1e-9) << "at t = " << r.rows[k][0];
-  EXPECT_EQ(r.summary["flow"]["steps"].get<long>(), 600);
-  EXPECT_GT(r.summary["flow"]["ms_per_step"].get<double>(), 0.0);
+  EXPECT_EQ(r.summary_json["flow"]["steps"].get<long>(), 600);
+  EXPECT_GT(r.summary_json["flow"]["ms_per_step"].get<double>(), 0.0);
 }
 
 TEST(Coupling, LightSphereIsStableOnlyWithTheImplicitAddedMass) {
@@ -131,7 +131,7 @@ TEST(Coupling, PairCollisionMovesTheTargetBeforeContact) {
   const Scene sc = load_scene(scene_path("seed_run4.toml"),
                               {{"effects", R"(["drag","lubrication","added_mass","elastic","flow"])"}, {"flow.cells_per_diameter", "16"}});
   const RunResult r = simulate(sc);
-  const auto& s = r.summary;
+  const auto& s = r.summary_json;
   ASSERT_FALSE(s["e"].is_null());
   EXPECT_GT(s["e"].get<double>(), 0.0);
   EXPECT_LT(s["e"].get<double>(), 0.97);
@@ -214,7 +214,7 @@ TEST(Coupling, DevelopedStartHasItsBoundaryLayerAtTimeZero) {
                                                                {"solver.t_end", "0.01"}});
     const RunResult r = simulate(sc);
     const std::size_t i = column(r, "f_sim1");
-    EXPECT_EQ(r.summary["flow"]["start"].get<std::string>(), start);
+    EXPECT_EQ(r.summary_json["flow"]["start"].get<std::string>(), start);
     return std::make_pair(r.rows[1][i], r.rows.back()[i]);
   };
   const auto [imp0, imp1] = first_and_last("impulsive");
@@ -230,7 +230,7 @@ TEST(Coupling, CvodeAndIdaAgreeInACoupledRun) {
   auto e_of = [](const std::string& integrator) {
     const Scene sc = load_scene(scene_path("coupled/gg3462.toml"),
                                 {{"flow.cells_per_diameter", "16"}, {"flow.fields", "false"}, {"solver.integrator", "\"" + integrator + "\""}});
-    return simulate(sc).summary["e"].get<double>();
+    return simulate(sc).summary_json["e"].get<double>();
   };
   EXPECT_NEAR(e_of("cvode"), e_of("ida"), 1e-6);
 }
@@ -241,7 +241,7 @@ TEST(Coupling, MirroredCollisionGivesTheSameRestitution) {
   auto e_of = [](std::vector<Override> ov) {
     ov.push_back({"flow.cells_per_diameter", "16"});
     ov.push_back({"flow.fields", "false"});
-    return simulate(load_scene(scene_path("coupled/gg3462.toml"), ov)).summary["e"].get<double>();
+    return simulate(load_scene(scene_path("coupled/gg3462.toml"), ov)).summary_json["e"].get<double>();
   };
   const double e = e_of({});
   const double mirrored = e_of({{"sphere[0].velocity", "0.0"}, {"sphere[1].velocity", "-0.110"}});
@@ -255,13 +255,13 @@ TEST(Coupling, SphereWallCollisionWithTheKernelsWall) {
   const RunResult c = simulate(load_scene(scene_path("default.toml"), {{"effects", R"(["drag","lubrication","added_mass","history","elastic","flow"])"},
                                                                       {"flow.cells_per_diameter", "16"}, {"flow.fields", "false"}}));
   const RunResult r = simulate(load_scene(scene_path("default.toml")));
-  const double e = c.summary["e"].get<double>();
+  const double e = c.summary_json["e"].get<double>();
   EXPECT_GT(e, 0.5);
-  EXPECT_LT(e, c.summary["contact"]["e_dry"].get<double>());
-  EXPECT_NEAR(e, r.summary["e"].get<double>(), 0.05);
+  EXPECT_LT(e, c.summary_json["contact"]["e_dry"].get<double>());
+  EXPECT_NEAR(e, r.summary_json["e"].get<double>(), 0.05);
   const std::size_t iH = column(c, "H");
   EXPECT_EQ(c.rows.front()[iH], 0.0);  // the sphere starts 0.5 D from the wall: beyond 2 delta_sl
-  EXPECT_GT(c.summary["flow"]["steps"].get<long>(), 10);
+  EXPECT_GT(c.summary_json["flow"]["steps"].get<long>(), 10);
 }
 
 TEST(Coupling, AFlowDivergenceEndsTheRunNamingTheFlowCoupling) {
@@ -279,7 +279,7 @@ TEST(Coupling, TheDefaultFlowStepIsStableAtReynolds1000) {
   // The same scene with the default step (cfl(Re, N) = 0.5 √(5600/(Re N)) = 0.30 here): a sane first bounce, the
   // spheres' kinetic energy never beyond what the initial motion and gravity supply, the fluid's Courant number < 1.5.
   const RunResult r = simulate(load_scene(scene_path("coupled/gondret_st742.toml"), {{"flow.fields", "false"}, {"measure.bounces", "\"first\""}}));
-  const auto& s = r.summary;
+  const auto& s = r.summary_json;
   const double Re = 920.0 * 1.0467 * 0.005 / 0.005;
   EXPECT_NEAR(s["flow"]["cfl"].get<double>(), 0.5 * std::sqrt(5600 / (Re * 16)), 1e-9);
   const double e = s["e"].get<double>();
@@ -382,7 +382,7 @@ t_end = 0.02
   EXPECT_EQ(st.limit, coupling::StepLimit::relaxation);
   EXPECT_NEAR(st.dt, sc.flow.tau_p_fraction * tau_p, 1e-15);
   const RunResult r = simulate(sc);
-  EXPECT_LE(r.summary["flow"]["max_energy_ratio"].get<double>(), 1.0);
+  EXPECT_LE(r.summary_json["flow"]["max_energy_ratio"].get<double>(), 1.0);
   const std::size_t iu = column(r, "u1");
   int reversals = 0;
   for (std::size_t k = 1; k < r.rows.size(); ++k)

@@ -30,7 +30,7 @@ std::string scene_file(const std::string& name) { return data_dir() + "/scenes/"
 
 /// e of the default measure (the callers override measure.e where a scene picks another).
 double e_default(const Scene& sc) {
-  const auto s = simulate(sc, false, Recording::kinematics).summary;
+  const auto s = simulate(sc, false, Recording::kinematics).summary_json;
   EXPECT_EQ(s["e_is"], "contact_ends");
   return s["e"].is_number() ? s["e"].get<double>() : NAN;
 }
@@ -117,8 +117,8 @@ TEST(EMeasures, EveryNamedMeasureIsIndependentOfOutputDt) {
   // agree at output.dt = 1e-2 (one row per 10 ms) with the default 1e-4 to the integration's accuracy.
   for (const char* name : {"bouncing_steel", "seed_run1", "default"}) {
     SCOPED_TRACE(name);
-    const auto a = simulate(load_scene(scene_file(name)), false, Recording::kinematics).summary;
-    const auto b = simulate(load_scene(scene_file(name), {{"output.dt", "1e-2"}}), false, Recording::kinematics).summary;
+    const auto a = simulate(load_scene(scene_file(name)), false, Recording::kinematics).summary_json;
+    const auto b = simulate(load_scene(scene_file(name), {{"output.dt", "1e-2"}}), false, Recording::kinematics).summary_json;
     ASSERT_EQ(a["bounces"].size(), b["bounces"].size());
     for (std::size_t k = 0; k < a["bounces"].size(); ++k)
       for (const auto& [m, v] : a["bounces"][k]["e_measures"].items()) {
@@ -162,7 +162,7 @@ TEST(EMeasures, TooManyMeasureSamplesAreRefusedNamingTheKey) {
 TEST(EMeasures, AReboundTheFilmBrakesWithinTheWindowIsFittedOverAShorterWindowAndWarned) {
   // Started 1e-4 D from the wall at 0.01 m/s: the 0.02 D window is 25 ms, but the liquid film brakes the rebound to a
   // stop within 0.006 D. The window ends where U_rel has lost a quarter of its speed at the separation (0.57 ms).
-  const auto s = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml"), false, Recording::kinematics).summary;
+  const auto s = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml"), false, Recording::kinematics).summary_json;
   double u_in = NAN, u_out = NAN;
   for (const auto& ev : s["events"]) {
     if (ev["event"] == "start inside the contact zone") u_in = ev["u_rel_m_s"].get<double>();
@@ -184,10 +184,10 @@ TEST(EMeasures, AReboundTheFilmBrakesWithinTheWindowIsFittedOverAShorterWindowAn
   EXPECT_TRUE(warned) << s["warnings"].dump();
   // Not with a tolerance above the mismatch; and e does not move with output.dt.
   const auto loose = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml", {{"measure.ends_tolerance", "0.05"}}),
-                              false, Recording::kinematics).summary;
+                              false, Recording::kinematics).summary_json;
   for (const auto& w : loose["warnings"]) EXPECT_EQ(w.get<std::string>().find("measure.ends_tolerance"), std::string::npos) << w;
   const auto coarse = simulate(load_scene(data_dir() + "/scenes/hard/start_gap_1e-4D.toml", {{"output.dt", "1e-2"}}),
-                               false, Recording::kinematics).summary;
+                               false, Recording::kinematics).summary_json;
   EXPECT_NEAR(coarse["e"].get<double>(), e, 1e-5);
 }
 
@@ -197,7 +197,7 @@ TEST(EMeasures, DefaultIsNotBiasedByGravity) {
   const std::string text = "gravity = 9.81\n" + test::fluid(0.1, 965) + test::sphere("steel", 0.006, -0.123, 0.0) +
                            test::wall("glass", 0.0) + "[drag]\nlaw = \"schiller-naumann\"\n[solver]\nmax_step = 4e-5\n";
   expect_robust([&](std::vector<Override> ov) { return parse_scene(text, "gravity.toml", ov); }, "gravity");
-  const auto s = simulate(parse_scene(text, "gravity.toml")).summary;
+  const auto s = simulate(parse_scene(text, "gravity.toml")).summary_json;
   const double e = s["e"].get<double>();
   EXPECT_NEAR(e, s["e_instant"].get<double>(), 0.01);
   EXPECT_LT(s["e_measures"]["fit_time"]["e"].get<double>(), e - 0.2);
@@ -208,7 +208,7 @@ TEST(EMeasures, DefaultIsNotBiasedByGravity) {
 
 TEST(EMeasures, DryCollisionGivesTheDryRestitutionInEveryFitMeasure) {
   const std::string dry = test::sphere("steel", 0.0127, -0.0127, 0.2) + test::wall("zerodur", 0.0) + "[contact]\ne_dry = 0.9\n";
-  const auto s = simulate(parse_scene(dry, "dry.toml")).summary;
+  const auto s = simulate(parse_scene(dry, "dry.toml")).summary_json;
   EXPECT_EQ(s["e_is"], "contact_ends");
   EXPECT_NEAR(s["e"].get<double>(), 0.9, 1e-6);
   for (const char* k : {"contact_ends", "yang_hunt_2006", "joseph_2001", "gondret_2002"})
@@ -219,8 +219,8 @@ TEST(EMeasures, DryCollisionGivesTheDryRestitutionInEveryFitMeasure) {
 TEST(EMeasures, MeasureEPicksTheReportedMeasureAndDisagreementsAreNamed) {
   // A 2 mm glass bead on steel in 50 wt% glycerol-water at St ~ 18: the 10 ms line and the parabolas differ by ~0.25.
   const std::string bead = test::fluid(0.006, 1126) + test::sphere("glass", 0.002, -0.002, 0.2) + test::wall("steel", 0.0);
-  const auto d = simulate(parse_scene(bead, "bead.toml")).summary;
-  const auto f = simulate(parse_scene(bead, "bead.toml", {{"measure.e", "\"fit_time\""}})).summary;
+  const auto d = simulate(parse_scene(bead, "bead.toml")).summary_json;
+  const auto f = simulate(parse_scene(bead, "bead.toml", {{"measure.e", "\"fit_time\""}})).summary_json;
   EXPECT_EQ(f["e_is"], "fit_time");
   EXPECT_DOUBLE_EQ(f["e"].get<double>(), f["e_measures"]["fit_time"]["e"].get<double>());
   EXPECT_DOUBLE_EQ(d["e"].get<double>(), d["e_measures"]["contact_ends"]["e"].get<double>());
@@ -259,7 +259,7 @@ TEST(EMeasures, MeasureEPicksTheReportedMeasureAndDisagreementsAreNamed) {
 TEST(EMeasures, ARunThatEndedAtRestIsMeasuredAndASweepGivesNoUselessHint) {
   // The bead at 0.097 m/s (St ~ 8) stops on the wall at 16 ms: e = 0, and a longer t_end would change nothing.
   const std::string bead = test::fluid(0.006, 1126) + test::sphere("glass", 0.002, -0.002, 0.097) + test::wall("steel", 0.0);
-  const auto s = simulate(parse_scene(bead, "bead.toml")).summary;
+  const auto s = simulate(parse_scene(bead, "bead.toml")).summary_json;
   ASSERT_TRUE(s["at_rest_since_s"].is_number());
   EXPECT_FALSE(s["t_end_too_short"].get<bool>());
   ASSERT_TRUE(s["e"].is_number());
@@ -286,7 +286,7 @@ TEST(EMeasures, TEndTooShortIsJudgedByTheMeasureThatEIs) {
       if (w.get<std::string>().find("t_end cut") != std::string::npos) return true;
     return false;
   };
-  const auto ce = simulate(load_scene(scene_file("default"), ov), false, Recording::kinematics).summary;
+  const auto ce = simulate(load_scene(scene_file("default"), ov), false, Recording::kinematics).summary_json;
   ASSERT_EQ(ce["e_is"], "contact_ends");
   ASSERT_TRUE(ce["e"].is_number());
   EXPECT_LT(ce["solver"]["t_final_s"].get<double>(), ce["bounces"][0]["t_separation_s"].get<double>() + 0.010);
@@ -295,13 +295,13 @@ TEST(EMeasures, TEndTooShortIsJudgedByTheMeasureThatEIs) {
   EXPECT_FALSE(ce["e_measures"]["contact_ends"]["cut_by_end_of_run"].get<bool>());
   auto ov_ft = ov;
   ov_ft.push_back({"measure.e", "\"fit_time\""});
-  const auto ft = simulate(load_scene(scene_file("default"), ov_ft), false, Recording::kinematics).summary;
+  const auto ft = simulate(load_scene(scene_file("default"), ov_ft), false, Recording::kinematics).summary_json;
   ASSERT_EQ(ft["e_is"], "fit_time");
   EXPECT_TRUE(ft["t_end_too_short"].get<bool>());
   EXPECT_TRUE(cut_warning(ft)) << ft["warnings"].dump();
   // A window cut by t_end, not by the stop after the first rebound: the default t_end gives neither.
   EXPECT_FALSE(simulate(load_scene(scene_file("default"), {{"measure.e", "\"fit_time\""}}), false, Recording::kinematics)
-                   .summary["t_end_too_short"].get<bool>());
+                   .summary_json["t_end_too_short"].get<bool>());
 }
 
 TEST(EMeasures, APointThatNoTEndMeasuresSaysWhyWithoutAdvice) {

@@ -32,7 +32,7 @@ TEST(Gondret, ShippedCasesReachTerminalSpeedBounceAndComeToRestWithERisingWithSt
   for (const std::string st : {"27", "100", "152", "192", "742"}) {
     SCOPED_TRACE("gondret/st" + st);
     const RunResult r = simulate(load_scene(data_dir() + "/scenes/gondret/st" + st + ".toml"));
-    const auto& s = r.summary;
+    const auto& s = r.summary_json;
     const auto& sc = r.scene;
     const double U_t = terminal_speed(sc.spheres[0].density, sc.fluid->density, sc.fluid->viscosity, sc.spheres[0].diameter, sc.gravity);
     // Largest speed before the first contact: within 3 % of the terminal speed (the scenes release the sphere high enough).

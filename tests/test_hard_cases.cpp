@@ -42,7 +42,7 @@ Outcome run(const std::string& name, const std::string& integrator, double rtol)
   r << rtol;
   const Scene sc = load_scene(path_of(name), {{"solver.integrator", "\"" + integrator + "\""}, {"solver.rtol", r.str()}, {"solver.atol", r.str()}});
   Outcome o{simulate(sc)};
-  const auto& s = o.run.summary;
+  const auto& s = o.run.summary_json;
   if (!s["e"].is_null()) o.e = s["e"].get<double>();
   for (const auto& row : o.run.rows)
     for (double v : row) o.finite = o.finite && std::isfinite(v);
@@ -50,7 +50,7 @@ Outcome run(const std::string& name, const std::string& integrator, double rtol)
   return o;
 }
 
-double e_dry(const Outcome& o) { return o.run.summary["contact"]["e_dry"].get<double>(); }
+double e_dry(const Outcome& o) { return o.run.summary_json["contact"]["e_dry"].get<double>(); }
 
 class HardCase : public ::testing::TestWithParam<std::string> {};
 
@@ -68,7 +68,7 @@ TEST_P(HardCase, FiniteBoundedAgreeingAndConverging) {
     const auto& o = cv[k];
     SCOPED_TRACE("cvode rtol " + std::to_string(rtols[k]));
     EXPECT_TRUE(o.finite);
-    ASSERT_TRUE(std::isfinite(o.e)) << o.run.summary["warnings"].dump();
+    ASSERT_TRUE(std::isfinite(o.e)) << o.run.summary_json["warnings"].dump();
     EXPECT_GE(o.e, 0.0);
     EXPECT_LE(o.e, e_dry(o));
     EXPECT_FALSE(o.warned_energy);
@@ -99,17 +99,17 @@ TEST(HardCases, ExpectedPhysics) {
   // St ~ 0.1: the sphere stops in lubrication, never touches, e = 0.
   const Outcome v = run("viscous_st01", "cvode", 1e-8);
   EXPECT_EQ(v.e, 0.0);
-  EXPECT_EQ(v.run.summary["contacts"].get<int>(), 0);
-  EXPECT_GT(v.run.summary["min_gap_m"].get<double>(), 0.0);
-  EXPECT_NEAR(v.run.summary["St_initial"].get<double>(), 0.11, 0.01);
+  EXPECT_EQ(v.run.summary_json["contacts"].get<int>(), 0);
+  EXPECT_GT(v.run.summary_json["min_gap_m"].get<double>(), 0.0);
+  EXPECT_NEAR(v.run.summary_json["St_initial"].get<double>(), 0.11, 0.01);
   // Near-dry: e within 1e-3 of e_dry.
   const Outcome h = run("heavy_sphere", "cvode", 1e-10);
   EXPECT_NEAR(h.e, e_dry(h), 1e-3);
   // A start inside the contact zone says so.
   const Outcome s = run("start_inside_contact_zone", "cvode", 1e-8);
-  EXPECT_NE(s.run.summary["warnings"].dump().find("started inside the contact zone"), std::string::npos);
+  EXPECT_NE(s.run.summary_json["warnings"].dump().find("started inside the contact zone"), std::string::npos);
   // Re ~ 1000 with Schiller-Naumann drag.
-  EXPECT_NEAR(run("re1000_schiller_naumann", "cvode", 1e-8).run.summary["Re"].get<double>(), 1000, 50);
+  EXPECT_NEAR(run("re1000_schiller_naumann", "cvode", 1e-8).run.summary_json["Re"].get<double>(), 1000, 50);
 }
 
 TEST(HardCases, TooFastForTheGapLeftIsAClearInputError) {
@@ -156,7 +156,7 @@ TEST(StepCap, LooseToleranceCannotStepOverTheContact) {
       ov.push_back({"effects", "[\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]"});
       ov.push_back({"solver.rtol", tol});
       ov.push_back({"solver.atol", tol});
-      return simulate(load_scene(dir + name + ".toml", ov)).summary["e"].get<double>();
+      return simulate(load_scene(dir + name + ".toml", ov)).summary_json["e"].get<double>();
     };
     const double loose = with("1e-3"), tight = with("1e-10");
     EXPECT_NEAR(loose / tight, 1.0, 0.08) << name << (base.empty() ? "" : " at " + base[0].value + " m/s");

@@ -255,16 +255,16 @@ TEST(HistoryScene, LightSphereRisingFromRestMatchesClosedForm) {
   const RisingRun run = run_rising_sphere("evaluator = \"soe\"\n");
   ASSERT_EQ(run.r.columns[2], "u1");
   EXPECT_LT(run.worst, 1e-6);
-  EXPECT_GT(run.r.summary["solver"]["state_size"].get<long>(), 2);  // the modes are states
+  EXPECT_GT(run.r.summary_json["solver"]["state_size"].get<long>(), 2);  // the modes are states
   std::printf("  rising sphere, soe: max |u - u_exact| / u_terminal = %.2e over %zu samples\n", run.worst, run.r.rows.size());
-  EXPECT_GT(run.r.summary["max_history_force_N"].get<double>(), 0);
+  EXPECT_GT(run.r.summary_json["max_history_force_N"].get<double>(), 0);
 }
 
 TEST(HistoryScene, StepwiseMemoryMatchesTheRisingSphereClosedForm) {
   // The soe-step evaluator (modes advanced per accepted step, outside the integrator's state) on the same problem.
   const RisingRun run = run_rising_sphere("evaluator = \"soe-step\"\n");
   ASSERT_EQ(run.r.columns[2], "u1");
-  EXPECT_EQ(run.r.summary["solver"]["state_size"].get<long>(), 2);  // no memory states in the integrator
+  EXPECT_EQ(run.r.summary_json["solver"]["state_size"].get<long>(), 2);  // no memory states in the integrator
   EXPECT_LT(run.worst, 1e-6);
   std::printf("  rising sphere, soe-step: max |u - u_exact| / u_terminal = %.2e over %zu samples\n", run.worst, run.r.rows.size());
 }
@@ -285,7 +285,7 @@ TEST(HistoryScene, StepwiseMemoryAgreesWithIntegratedModesOnCollisions) {
     auto run = [&](const char* evaluator) {
       std::vector<Override> ov = {{"solver.rtol", "1e-10"}, {"history.evaluator", std::string("\"") + evaluator + "\""}};
       ov.insert(ov.end(), c.extra.begin(), c.extra.end());
-      return simulate(load_scene(data_dir() + "/scenes/" + c.scene, ov)).summary;
+      return simulate(load_scene(data_dir() + "/scenes/" + c.scene, ov)).summary_json;
     };
     const auto modes = run("soe"), step = run("soe-step");
     EXPECT_NEAR(step["e"].get<double>(), modes["e"].get<double>(), 2e-7);
@@ -304,7 +304,7 @@ TEST(HistoryScene, FiniteReKernelsForgetFasterThanBasset) {
                              "[drag]\nlaw = \"schiller-naumann\"\n[history]\nkernel = \"" + k +
                              "\"\n[solver]\nt_end = 0.3\n[output]\ndt = 0.001\n";
     const RunResult r = simulate(parse_scene(text, "settle.toml"));
-    u[k] = r.summary["u1_final_m_s"].get<double>();
+    u[k] = r.summary_json["u1_final_m_s"].get<double>();
     EXPECT_LT(u[k], 0) << k;  // settling (z up)
   }
   for (const char* k : {"mei-adrian", "kim", "dorgan-loth"}) EXPECT_LT(u[k], u["basset"]) << k << " " << u[k];
@@ -316,9 +316,9 @@ TEST(HistoryScene, EveryKernelGivesAPhysicalRestitution) {
                              test::fluid(0.005, 1000.0) + test::sphere("steel", 0.005, -0.01, 0.05) +
                              test::wall("glass", 0.0) + "[history]\nkernel = \"" + k + "\"\n[solver]\nt_end = 0.5\n";
     const RunResult r = simulate(parse_scene(text, "finite_re.toml"));
-    ASSERT_FALSE(r.summary["e"].is_null()) << k;
-    const double e = r.summary["e"].get<double>();
-    EXPECT_TRUE(e >= 0 && e <= r.summary["contact"]["e_dry"].get<double>()) << k << " e " << e;
+    ASSERT_FALSE(r.summary_json["e"].is_null()) << k;
+    const double e = r.summary_json["e"].get<double>();
+    EXPECT_TRUE(e >= 0 && e <= r.summary_json["contact"]["e_dry"].get<double>()) << k << " e " << e;
   }
 }
 
@@ -332,10 +332,10 @@ TEST(HistoryScene, SumOfExponentialsAgreesWithDirectOnAWallCollision) {
   };
   const RunResult soe = simulate(parse_scene(text("soe"), "w.toml"));
   const RunResult dir = simulate(parse_scene(text("direct"), "w.toml"));
-  const double es = soe.summary["e"].get<double>(), ed = dir.summary["e"].get<double>();
+  const double es = soe.summary_json["e"].get<double>(), ed = dir.summary_json["e"].get<double>();
   EXPECT_NEAR(es, ed, 2e-3);
   const RunResult none = simulate(parse_scene(text(""), "w.toml"));
-  EXPECT_LT(es, none.summary["e"].get<double>());  // the history force dissipates
+  EXPECT_LT(es, none.summary_json["e"].get<double>());  // the history force dissipates
 }
 
 }  // namespace

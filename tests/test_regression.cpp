@@ -41,7 +41,7 @@ TEST(Regression, ShippedScenesReproduceStoredResults) {
   for (const auto& row : rows) {
     SCOPED_TRACE(row.scene);
     const Scene sc = load_scene(data_dir() + "/scenes/" + row.scene + ".toml", {{"solver.rtol", "1e-10"}});
-    const auto s = simulate(sc).summary;
+    const auto s = simulate(sc).summary_json;
     ASSERT_EQ(s["e"].is_null(), !row.e.has_value());
     if (row.e) {
       EXPECT_NEAR(s["e"].get<double>(), *row.e, 1e-6);

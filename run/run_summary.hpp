@@ -1,0 +1,103 @@
+#pragma once
+// The results of a collision run as typed values: what the commands and benchmarks read. summary.json carries the
+// same numbers under the same names (run/summary.hpp writes it); absent and null there are std::nullopt here.
+// Units: SI (m, s, m/s, N).
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coupling/flow_coupling.hpp"
+#include "integrators/integrator.hpp"
+
+namespace imcol {
+
+enum class Configuration { free_sphere, sphere_wall, sphere_sphere };
+/// "free sphere", "sphere-wall", "sphere-sphere" (summary.json `configuration`).
+const char* to_string(Configuration c);
+
+/// One contact (summary.json `bounces`): times, and e and velocities by the measure measure.e names.
+struct BounceSummary {
+  int contact = 0;  // 1, 2, …
+  double t_contact_s = 0;
+  std::optional<double> t_separation_s, e, impact_velocity_m_s, rebound_velocity_m_s, e_instant;
+  std::optional<double> apex_gap_m, t_apex_s;  // the apex after the rebound
+};
+
+/// The `contact` block: the law and the first contact's times and impact speed; the law's own numbers by name.
+struct ContactSummary {
+  std::string law;
+  std::optional<double> t_contact_s, t_separation_s, impact_speed_m_s;
+  std::vector<std::pair<std::string, std::optional<double>>> law_numbers;
+  double e_dry = 1, delta_ss_m = 0;
+};
+
+/// The `flow` block of a coupled run: the kernel's statistics and what is derived from them.
+struct FlowSummary {
+  coupling::FlowRunStats stats;
+  std::string start;                      // flow.start
+  std::string force_in_step;              // flow.force_in_step
+  double ms_per_step = 0;                 // kernel wall time per coupled step
+  double krylov_iterations_per_step = 0;
+  double flow_share = 0, ode_share = 0;   // of the run's wall time
+};
+
+/// The `solver` block's settings and statistics.
+struct SolverSummary {
+  std::string integrator;
+  double rtol = 0, atol = 0;
+  double t_final_s = 0;
+  double measure_interval_s = 0;  // the integrator's sampling, which the measures read
+  std::size_t measure_samples = 0;
+  SolverStats stats;
+};
+
+struct RunSummary {
+  std::string scene, scene_file;
+  Configuration configuration = Configuration::free_sphere;
+
+  // e and its measures (docs/bounces.md)
+  std::optional<double> e;
+  std::string e_is;                        // the named measure e is (measure.e)
+  std::optional<std::string> e_missing;    // why e is undefined (only without e; may be unknown)
+  std::optional<double> e_fit_raw, e_instant;
+  double e_instant_gap_m = 0;
+  /// The first contact's named measures, name → e (empty without a contact), in summary.json's order.
+  std::vector<std::pair<std::string, std::optional<double>>> e_measures;
+  /// The distinct measures whose e differs from e by more than measure.disagreement, label → e.
+  std::vector<std::pair<std::string, double>> measures_disagree;
+  std::string bounces_mode;                // measure.bounces
+  std::vector<BounceSummary> bounces;
+
+  // Dimensionless numbers at impact (the conventions: summary.json St_convention, docs/model-notes.md)
+  std::optional<double> St, St_B_table_6_1, St_B_eq_6_2, St_L, St_initial, Re;
+  std::string St_convention;
+
+  // How the run went
+  bool separated = false, t_end_too_short = false;
+  std::optional<double> at_rest_since_s;
+  std::optional<std::string> final_phase;
+  int contacts = 0;
+  std::optional<double> U_i1, U_i2, U_r1, U_r2;  // fitted impact and rebound velocities, m/s
+  double fit_window_s = 0;
+  std::optional<double> min_gap_m, max_contact_force_N, max_history_force_N;
+  std::optional<double> group_velocity_m_s, group_velocity_at_s;
+  std::optional<double> u1_final_m_s, u2_final_m_s;
+  std::optional<ContactSummary> contact;  // a target and the elastic effect
+
+  std::vector<std::string> effects;
+  std::vector<std::pair<std::string, std::string>> model;  // the model's choices, for display
+  std::optional<long> history_modes;                       // the history kernel's exponentials (soe evaluators)
+  SolverSummary solver;
+  std::optional<FlowSummary> flow;  // coupled runs
+  std::vector<std::string> warnings;
+  double wall_time_s = 0;   // integration and measures
+  double setup_time_s = 0;  // model construction, incl. one-off lookup tables
+
+  /// e of named measure `name` at the first contact; nullopt when not measured or without a contact.
+  std::optional<double> measure_e(const std::string& name) const;
+  /// A model choice's display value (summary.json `model`), nullopt when the model has none of that name.
+  std::optional<std::string> model_choice(const std::string& name) const;
+};
+
+}  // namespace imcol
