@@ -61,7 +61,7 @@ void add_common(CLI::App* cmd, CommonOptions& c) {
   cmd->add_option("--set", c.sets, "override a scene key: dotted.key=value (TOML value syntax)");
 }
 
-/// An option the command sets itself (bench and work-precision vary rtol along their own ladder): refused if given.
+/// An option the command sets itself (bench takes its tolerances from --rtols): refused if given.
 void refuse_option(const CLI::App* cmd, const std::string& option, const std::string& why) {
   if (cmd->get_option(option)->count()) throw InputError("command line", option, why);
 }
@@ -83,7 +83,7 @@ int cmd_run(const std::string& scene_path, const std::string& out, const CommonO
   return 0;
 }
 
-/// What accuracy costs: e and wall time (median of repeats) at each rtol, against the tightest.
+/// What accuracy costs: e and wall time (median of repeats) at each rtol; e against the tightest, time against the first.
 int cmd_bench(const std::string& scene_path, const std::vector<double>& rtols, int repeat, const CommonOptions& c) {
   if (repeat < 1) throw InputError("--repeat", "repeat", "must be >= 1");
   if (rtols.empty()) throw InputError("--rtols", "rtols", "give at least one tolerance");

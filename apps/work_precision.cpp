@@ -27,7 +27,7 @@ namespace {
 /// One integrator × evaluator combination and its ladder.
 struct Config {
   std::string integrator;  // cvode-dense | cvode-gmres | ida
-  std::string evaluator;   // none | soe | direct
+  std::string evaluator;   // none | soe-step | soe | direct
   std::string label() const { return evaluator == "none" ? integrator : integrator + " / " + evaluator; }
 };
 

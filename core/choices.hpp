@@ -1,7 +1,7 @@
 #pragma once
 // The model choices a scene makes, as enums: the scene reader turns each key's string into one of these
 // (an unknown string is an input error there), so nothing below the reader compares strings.
-// Each enum's names (the scene's spellings, also written to summary.json) are listed once, in choice_names().
+// Each enum's names (the scene's spellings, also written to summary.json) are listed once, in ChoiceNames<E>::list below.
 #include <array>
 #include <optional>
 #include <string_view>

@@ -125,8 +125,9 @@ struct Scene {
     double step_budget = 1e7;  // a run whose step cap forces more than this many steps up to t_end is refused
   } solver;
   struct Measure {
-    double window = 0.010;    // s, least-squares windows before and after contact
-    double instant_gap = -1;  // units of D, gap at which e_instant is taken; <0: delta_ss
+    double window = 0.010;    // s: fit_time's lines before and after contact, St and the impact velocities, and how
+                              // long a `first` run goes on after the separation (not the default e)
+    double instant_gap = -1;  // units of D, gap at which e_instant is taken; <0: delta_ss (set by the reader)
     double stall_fraction = 0.01;  // an approach without contact has stopped when U_rel < this × U_rel(0)
     BouncesMode bounces = BouncesMode::first;  // first (stop after the first rebound is measured) | all (follow every contact)
     double fit_distance = 0.1;  // units of D: e_measures.fit_distance fits z over this distance beyond delta_ss
@@ -139,8 +140,8 @@ struct Scene {
     double disagreement = 0.05;   // warn where a named measure's e differs from `e` by more than this
     double max_samples = 1e7;     // refuse a run whose measures would sample it more often than this up to t_end
   } measure;
-  struct Output { double dt = 0; } output;
-  FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect  // s, trajectory sampling; 0 = window/100
+  struct Output { double dt = 0; } output;  // s, trajectory rows; 0 = measure.window/100 (set by the reader)
+  FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect
 
   bool has(Effect e) const { return effects.contains(e); }
   bool two_spheres() const { return spheres.size() == 2; }

@@ -143,8 +143,8 @@ class Solver {
   static void nonlinear(const Level& L, double u_inf, std::vector<double>& out);
   static void prolong_boundary(const Level& coarse, const std::vector<double>& fc, const Level& fine, std::vector<double>& ff);
   static void restrict_interior(const Level& fine, const std::vector<double>& ff, const Level& coarse, std::vector<double>& fc);
-  /// Q g (see above) for the current body points (m/s).
-  /// The dense Q, column by column (2N applications of apply_Q_into).
+  /// The dense Q (see above) for the current body points, column by column: one application of apply_Q_into per
+  /// unknown (2 per sphere and wall point).
   Eigen::MatrixXd force_matrix();
 
  private:
