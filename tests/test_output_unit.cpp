@@ -224,7 +224,8 @@ TEST(OutputUnit, KilledRunsLeaveEitherTheOldResultOrTheNewOneWhole) {
     }
   }
   // The next run cleans up whatever the killed ones left beside the folder.
-  ASSERT_EQ(run_shell(imcol_cmd("run data/scenes/default.toml --no-plot --quiet --set sphere[0].velocity=0.25 --out " + dir.string())).status, 0);
+  const Outcome last = run_shell(imcol_cmd("run data/scenes/default.toml --no-plot --quiet --set sphere[0].velocity=0.25 --out " + dir.string()));
+  ASSERT_EQ(last.status, 0) << last.err;
   EXPECT_DOUBLE_EQ(check_run_unit(dir), 0.25);
   EXPECT_TRUE(staged_beside(dir).empty());
   std::cout << "kills that left the previous result: " << old_seen << ", the new one: " << new_seen << "\n";
