@@ -111,9 +111,12 @@ OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const s
     fs::create_directory(staging_, ec);
     if (ec) throw InputError(place_, key_, "cannot write beside the output folder '" + shown_.string() + "': " + ec.message());
   } catch (...) {
-    if (lock_fd_ >= 0) ::close(lock_fd_);
-    for (const auto& p : created_)
-      if (!fs::is_directory(p, ec) || !fs::is_empty(p, ec) || !fs::remove(p, ec)) break;
+    // Folders this created go again only if it held the lock: otherwise another writer may be using them.
+    if (lock_fd_ >= 0) {
+      for (const auto& p : created_)
+        if (!fs::is_directory(p, ec) || !fs::is_empty(p, ec) || !fs::remove(p, ec)) break;
+      ::close(lock_fd_);
+    }
     throw;
   }
   run_["id"] = run_id();
@@ -202,7 +205,10 @@ void OutputUnit::commit() {
   if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0) {
     const int err = errno;
     bool moved = false;
-    if (err == EINVAL || err == ENOSYS || err == ENOTSUP) {
+    if (err == ENOENT && ::rename(staging_.c_str(), target_.c_str()) == 0) {
+      moved = true;  // the target folder was removed meanwhile: the staged one takes its place
+      staging_.clear();
+    } else if (err == EINVAL || err == ENOSYS || err == ENOTSUP) {
       // No atomic exchange on this file system: move the old folder aside, then the new one in.
       const fs::path old = sibling("old", ::getpid());
       if (::rename(target_.c_str(), old.c_str()) == 0) {
@@ -221,7 +227,7 @@ void OutputUnit::commit() {
     }
   }
   committed_ = true;
-  fs::remove_all(staging_, ec);  // the previous content
+  if (!staging_.empty()) fs::remove_all(staging_, ec);  // the previous content
   ::close(lock_fd_);
   lock_fd_ = -1;
 }
