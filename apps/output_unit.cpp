@@ -36,25 +36,23 @@ std::string shell_word(const std::string& s) {
   return q + "'";
 }
 
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
+/// The time t in UTC, formatted by strftime's `format`.
+std::string utc(std::time_t t, const char* format) {
   std::tm tm{};
   ::gmtime_r(&t, &tm);
   char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  std::strftime(buf, sizeof buf, format, &tm);
   return buf;
 }
 
-std::string run_id() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  ::gmtime_r(&t, &tm);
-  char stamp[32];
-  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", &tm);
+constexpr const char* kIsoUtc = "%Y-%m-%dT%H:%M:%SZ";
+
+/// A run's id: its start (UTC), the pid and 16 random bits.
+std::string run_id(std::time_t start) {
   std::random_device rd;
   char tail[16];
   std::snprintf(tail, sizeof tail, "%04x", static_cast<unsigned>(rd() & 0xffffu));
-  return std::string(stamp) + "-" + std::to_string(::getpid()) + "-" + tail;
+  return utc(start, "%Y%m%dT%H%M%SZ") + "-" + std::to_string(::getpid()) + "-" + tail;
 }
 
 std::string host_name() {
@@ -119,12 +117,13 @@ OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const s
     }
     throw;
   }
-  run_["id"] = run_id();
+  const std::time_t start = std::time(nullptr);
+  run_["id"] = run_id(start);
   run_["command"] = g_command_line;
   run_["imcol"] = IMCOL_VERSION;
   run_["host"] = host_name();
   run_["pid"] = static_cast<long>(::getpid());
-  run_["started_utc"] = utc_now();
+  run_["started_utc"] = utc(start, kIsoUtc);
 }
 
 fs::path OutputUnit::sibling(const std::string& kind, long pid) const {
@@ -195,7 +194,7 @@ void OutputUnit::remove_leftovers() const {
 void OutputUnit::commit() {
   std::error_code ec;
   nlohmann::ordered_json marker = run_;
-  marker["finished_utc"] = utc_now();
+  marker["finished_utc"] = utc(std::time(nullptr), kIsoUtc);
   std::vector<std::string> files;
   for (const auto& f : fs::directory_iterator(staging_, ec)) files.push_back(f.path().filename().string());
   std::sort(files.begin(), files.end());
