@@ -197,6 +197,15 @@ def m_number(rng, scene):
     return f"{name_of(path)} {how} -> {toml_value(v)}"
 
 
+def set_key(scene, table, key, v):
+    """Sets table.key = v (creating the table); False where `table` is not a table in this scene."""
+    scene.setdefault(table, {})
+    if not isinstance(scene[table], dict):
+        return False
+    scene[table][key] = v
+    return True
+
+
 def m_add_number(rng, scene):
     (table, key), typical = rng.choice(list(NUMBERS.items()))
     if table == "flow" and "flow" not in toml_effects(scene) and rng.random() < 0.8:
@@ -205,10 +214,8 @@ def m_add_number(rng, scene):
         v, how = typical, "typical"
     else:
         v, how = new_number(rng, typical)
-    scene.setdefault(table, {})
-    if not isinstance(scene[table], dict):
+    if not set_key(scene, table, key, v):
         return None
-    scene[table][key] = v
     return f"{table}.{key} set ({how}) -> {toml_value(v)}"
 
 
@@ -217,10 +224,8 @@ def m_choice(rng, scene):
     if table == "flow" and "flow" not in toml_effects(scene) and rng.random() < 0.8:
         return None
     v = rng.choice(names + ["bogus", ""]) if rng.random() < 0.2 else rng.choice(names)
-    scene.setdefault(table, {})
-    if not isinstance(scene[table], dict):
+    if not set_key(scene, table, key, v):
         return None
-    scene[table][key] = v
     return f"{table}.{key} = {toml_value(v)}"
 
 
