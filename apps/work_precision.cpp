@@ -14,7 +14,7 @@
 #include "apps/format.hpp"
 #include "apps/plot.hpp"
 #include "run/simulate.hpp"
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
 
@@ -300,7 +300,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   if (std::count(evaluators.begin(), evaluators.end(), "direct") && !(h_direct > 0)) {
     Scene probe = base;  // the model's automatic step, read off a model that is built but not run
     probe.history.evaluator = HistoryEvaluator::direct;
-    h_direct = contact::CollisionModel(probe).history_options().direct_step;
+    h_direct = model::CollisionModel(probe).history_options().direct_step;
   }
 
   std::vector<Point> pts;

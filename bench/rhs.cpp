@@ -1,4 +1,4 @@
-// Cost of one right-hand-side evaluation of the collision model (contact/collision_model.hpp),
+// Cost of one right-hand-side evaluation of the collision model (model/collision_model.hpp),
 // for a wall and a pair scene, without the history effect and with it at several mode counts.
 // Items/s = right-hand sides per second. Usage: imcol_bench_rhs [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bench/bench_scenes.hpp"
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 
 namespace {
 
@@ -17,7 +17,7 @@ using namespace imcol;
 /// modes: -1 no history, 0 history at its default tolerance, n > 0 that many exponentials per sphere.
 void rhs(benchmark::State& state, const char* file, long modes) {
   const Scene sc = bench::scene(file, modes >= 0, modes);
-  contact::CollisionModel model(sc);
+  model::CollisionModel model(sc);
   std::vector<double> y(model.size()), ydot(model.size());
   model.initial_state(y);
   for (std::size_t i = model.core_size(); i < y.size(); ++i) y[i] = 1e-3;  // a memory that is not empty

@@ -9,12 +9,12 @@
 
 namespace imcol::coupling {
 
-bool is_solid_contact(contact::EventKind k) {
-  using K = contact::EventKind;
+bool is_solid_contact(model::EventKind k) {
+  using K = model::EventKind;
   return k == K::contact_in || k == K::contact_out || k == K::unload || k == K::touch || k == K::start_in_contact;
 }
 
-DivergenceWatch::DivergenceWatch(const contact::CollisionModel& model, const Scene& sc, std::span<const double> y0, FlowStep step)
+DivergenceWatch::DivergenceWatch(const model::CollisionModel& model, const Scene& sc, std::span<const double> y0, FlowStep step)
     : model_(model), sc_(sc), n_(model.n_spheres()), step_(std::move(step)) {
   std::array<double, 2> u{};
   model_.sphere_states(y0, z0_, u);
@@ -79,7 +79,7 @@ void DivergenceWatch::check_kernel_force(double t, double dt, const std::array<d
   const double e = available(y);
   const double gap = n_ == 2 ? z[1] - z[0] - model_.radius(0) - model_.radius(1)
                              : (sc_.wall ? sc_.wall->position - z[0] - model_.radius(0) : 1e300);
-  const contact::AddedMassMatrix M = model_.implicit_added_mass(gap);
+  const model::AddedMassMatrix M = model_.implicit_added_mass(gap);
   for (std::size_t m = 0; m < n_; ++m) {
     const double ma = m == 0 ? M.m11 : M.m22;
     const double du = std::abs(f[m]) * dt / (m_[m] + ma);

@@ -17,7 +17,7 @@
 #include <span>
 #include <string>
 
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "core/scene.hpp"
 #include "coupling/step_rule.hpp"
 
@@ -25,12 +25,12 @@ namespace imcol::coupling {
 
 /// Whether an event is solid contact (the δ_SS crossings, unloading, the gap closing, a start in contact): a flow step
 /// holding one is not judged by the speed jump.
-bool is_solid_contact(contact::EventKind kind);
+bool is_solid_contact(model::EventKind kind);
 
 class DivergenceWatch {
  public:
   /// `step`: the flow step and how it was chosen (its rule and advice go into the message, step_advice()).
-  DivergenceWatch(const contact::CollisionModel& model, const Scene& sc, std::span<const double> y0, FlowStep step);
+  DivergenceWatch(const model::CollisionModel& model, const Scene& sc, std::span<const double> y0, FlowStep step);
   /// Before integrating [t, t + dt]: the force the kernel adds, (1 − H) f_rest on each sphere (N), at the state y.
   void check_kernel_force(double t, double dt, const std::array<double, 2>& f_acting, std::span<const double> y);
   /// After integrating [t0, t1] from y0 to y1 (y0's velocities as u0).
@@ -46,7 +46,7 @@ class DivergenceWatch {
   double available(std::span<const double> y) const;
   double speed_floor(int m, double e_avail, double dt) const;
   [[noreturn]] void fail(double t, const std::string& what) const;
-  const contact::CollisionModel& model_;
+  const model::CollisionModel& model_;
   const Scene& sc_;
   std::size_t n_ = 1;
   std::array<double, 2> z0_{}, m_{}, mf_{};

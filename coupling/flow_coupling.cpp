@@ -20,7 +20,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-FlowCoupling::FlowCoupling(contact::CollisionModel& model, const Scene& sc) : model_(model), sc_(sc) {
+FlowCoupling::FlowCoupling(model::CollisionModel& model, const Scene& sc) : model_(model), sc_(sc) {
   n_ = sc.spheres.size();
   for (std::size_t m = 0; m < n_; ++m) {
     radius_[m] = 0.5 * sc.spheres[m].diameter;
@@ -116,7 +116,7 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   stats_.max_courant = std::max(stats_.max_courant, kernel_->max_courant());
   // Lab force: the frame's buoyancy-like term ρ V a_frame (flow/solver.hpp set_stream); then the model's added mass
   // estimate is removed with the kernel's own acceleration of the sphere over the step.
-  const contact::AddedMassMatrix M = model_.implicit_added_mass(p.gap);
+  const model::AddedMassMatrix M = model_.implicit_added_mass(p.gap);
   std::array<double, 2> a_flow{}, f{};
   for (std::size_t m = 0; m < n_; ++m) {
     const double u_imposed = imposed[m].u + frame_u_;  // lab velocity the kernel gave sphere m
@@ -358,7 +358,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     const Predicted p = predict(t, integ.state(), dt);
     const auto f1 = step_kernel(p, dt);
     watch.check_kernel_force(t, dt, acting(f1, integ.state()), integ.state());
-    contact::SimulatedForce sf;
+    model::SimulatedForce sf;
     sf.t0 = t;
     sf.t1 = t1;
     sf.f1 = f1;

@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "core/timing.hpp"
 #include "core/scene.hpp"
 #include "coupling/step_rule.hpp"
@@ -64,7 +64,7 @@ struct FlowSnapshot {
 
 class FlowCoupling {
  public:
-  FlowCoupling(contact::CollisionModel& model, const Scene& scene);
+  FlowCoupling(model::CollisionModel& model, const Scene& scene);
   ~FlowCoupling();
   /// Runs the coupled integration to the model's stop time; returns the ODE statistics. Throws SolverError
   /// (the kernel diverged or GMRES failed, the ODE failed) naming the time and the quantity.
@@ -92,7 +92,7 @@ class FlowCoupling {
   std::array<double, 2> acting(const std::array<double, 2>& f_rest, std::span<const double> y) const;  // (1 − H) f_rest
   flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
 
-  contact::CollisionModel& model_;
+  model::CollisionModel& model_;
   const Scene& sc_;
   std::size_t n_ = 1;
   std::array<double, 2> radius_{}, volume_{};

@@ -11,7 +11,7 @@
 
 namespace imcol::run {
 
-using contact::CollisionModel;
+using model::CollisionModel;
 
 double Track::cross(std::size_t i, double g) const {
   const double w = (g - gap[i - 1]) / (gap[i] - gap[i - 1]);
@@ -307,13 +307,13 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene&
   std::vector<Contact> cs;
   std::vector<Crossing> inst;
   for (const auto& ev : model.events()) {
-    if (ev.kind == contact::EventKind::contact_in || ev.kind == contact::EventKind::start_in_contact) cs.push_back({ev.t, ev.u_rel, std::nullopt, std::nullopt});
-    else if (ev.kind == contact::EventKind::contact_out && !cs.empty() && !cs.back().t_out) {
+    if (ev.kind == model::EventKind::contact_in || ev.kind == model::EventKind::start_in_contact) cs.push_back({ev.t, ev.u_rel, std::nullopt, std::nullopt});
+    else if (ev.kind == model::EventKind::contact_out && !cs.empty() && !cs.back().t_out) {
       cs.back().t_out = ev.t;
       cs.back().u_out = ev.u_rel;
     }
-    else if (ev.kind == contact::EventKind::instant_in) inst.push_back({ev.t, ev.u_rel, true});
-    else if (ev.kind == contact::EventKind::instant_out) inst.push_back({ev.t, ev.u_rel, false});
+    else if (ev.kind == model::EventKind::instant_in) inst.push_back({ev.t, ev.u_rel, true});
+    else if (ev.kind == model::EventKind::instant_out) inst.push_back({ev.t, ev.u_rel, false});
   }
   if (model.started_in_contact() && !cs.empty()) cs.front().u_in = model.initial_u_rel();
   const double D = 2 * model.radius(0);

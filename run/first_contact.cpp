@@ -10,14 +10,14 @@
 
 namespace imcol::run {
 
-using contact::CollisionModel;
+using model::CollisionModel;
 
 namespace {
 
 /// When the relative velocity of a pair first vanished: the first loading -> unloading switch, or the stopped approach.
 std::optional<double> group_moment(const CollisionModel& model) {
   for (const auto& ev : model.events())
-    if (ev.kind == contact::EventKind::unload || ev.kind == contact::EventKind::apex) return ev.t;
+    if (ev.kind == model::EventKind::unload || ev.kind == model::EventKind::apex) return ev.t;
   return model.t_closest();
 }
 
@@ -66,7 +66,7 @@ FirstContact measure_first_contact(const CollisionModel& model, const Scene& sc,
     if (m.separated) {
       int n_in = 0;
       for (const auto& x : model.events())
-        if (x.kind == contact::EventKind::contact_in && ++n_in == (in_contact ? 1 : 2)) {
+        if (x.kind == model::EventKind::contact_in && ++n_in == (in_contact ? 1 : 2)) {
           Wfit = std::min(Wfit, x.t - *model.t_separation());
           break;
         }

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "core/scene.hpp"
 #include "run/bounces.hpp"
 
@@ -27,10 +27,10 @@ struct FirstContact {
 };
 
 /// St in the reported convention (eq. 6.2 for a wall, half of it for a pair: seed Table 6.1) and St by (6.2).
-std::pair<double, double> stokes_numbers(const contact::CollisionModel& model, const Scene& sc, double u_rel);
+std::pair<double, double> stokes_numbers(const model::CollisionModel& model, const Scene& sc, double u_rel);
 
 /// Measures the first contact on the measures' track (Recorder::track()).
-FirstContact measure_first_contact(const contact::CollisionModel& model, const Scene& sc, const Track& track,
+FirstContact measure_first_contact(const model::CollisionModel& model, const Scene& sc, const Track& track,
                                    std::vector<std::string>& warnings);
 
 /// `e` is the first contact's named measure measure.e (from measure_bounces); without a contact, the approach's e
@@ -38,7 +38,7 @@ FirstContact measure_first_contact(const contact::CollisionModel& model, const S
 void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstContact& m, std::vector<std::string>& warnings);
 
 /// Warnings for an e that cannot be trusted: above e_dry (energy created), or from loose tolerances.
-void check_plausibility(const contact::CollisionModel& model, const Scene& sc, const FirstContact& m,
+void check_plausibility(const model::CollisionModel& model, const Scene& sc, const FirstContact& m,
                         std::vector<std::string>& warnings);
 
 }  // namespace imcol::run

@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "core/scene.hpp"
 #include "flow/flow_scene.hpp"
 
@@ -44,7 +44,7 @@ class AnalyticPairForce {
   std::pair<double, double> at(const std::vector<flow::SphereState>& s) const;
 
  private:
-  contact::CollisionModel model_;
+  model::CollisionModel model_;
 };
 
 }  // namespace imcol

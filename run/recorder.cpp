@@ -11,8 +11,8 @@
 
 namespace imcol::run {
 
-using contact::Evaluation;
-using contact::SphereForces;
+using model::Evaluation;
+using model::SphereForces;
 
 namespace {
 
@@ -39,7 +39,7 @@ double terminal_speed(const Scene& sc, std::size_t m) {
 /// An upper bound of the impact speed (m/s): the initial approach plus a fall over the initial gap at the buoyant
 /// acceleration of the densest contrast (no drag, no added mass), for either sphere; with drag, no sphere is faster than
 /// the larger of its initial and its terminal speed.
-double impact_speed_bound(const contact::CollisionModel& model, const Scene& sc) {
+double impact_speed_bound(const model::CollisionModel& model, const Scene& sc) {
   double u = std::abs(model.initial_u_rel());
   if (!sc.has(Effect::gravity)) return u;
   const double rho_f = sc.fluid ? sc.fluid->density : 0.0;
@@ -54,7 +54,7 @@ double impact_speed_bound(const contact::CollisionModel& model, const Scene& sc)
 
 }  // namespace
 
-double measure_interval(const contact::CollisionModel& model, const Scene& sc) {
+double measure_interval(const model::CollisionModel& model, const Scene& sc) {
   const double dt = sc.output.dt;
   if (!model.has_target()) return dt;
   const double u = impact_speed_bound(model, sc);
@@ -85,7 +85,7 @@ double measure_interval(const contact::CollisionModel& model, const Scene& sc) {
   return interval;
 }
 
-Recorder::Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces, double sample_dt)
+Recorder::Recorder(model::CollisionModel& model, const Scene& sc, bool progress, bool forces, double sample_dt)
     : model_(model), sc_(sc), sample_dt_(sample_dt > 0 ? sample_dt : sc.output.dt), next_row_(sc.output.dt), min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
   const bool pair = model.n_spheres() == 2;
   columns_ = {"t", "z1", "u1"};

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "run/bounces.hpp"
 #include "core/scene.hpp"
 #include "core/system.hpp"
@@ -18,14 +18,14 @@ namespace imcol::run {
 
 /// The interval (s) at which the integrator samples a run: output.dt divided by the smallest whole number that brings it
 /// to at most the contact_ends window at an upper bound of the impact speed over measure.samples_per_window.
-double measure_interval(const contact::CollisionModel& model, const Scene& sc);
+double measure_interval(const model::CollisionModel& model, const Scene& sc);
 
 class Recorder : public Observer {
  public:
   /// `progress`: a run still going after 2 s shows a progress line on stderr (a terminal only). `forces`: the rows
   /// carry the force terms and accelerations; without, only the kinematic columns and the event flag.
   /// `sample_dt`: the integrator's sampling interval (measure_interval); rows are kept every output.dt.
-  Recorder(contact::CollisionModel& model, const Scene& sc, bool progress, bool forces = true, double sample_dt = 0);
+  Recorder(model::CollisionModel& model, const Scene& sc, bool progress, bool forces = true, double sample_dt = 0);
 
   void sample(double t, std::span<const double> y, bool at_event) override;
   void stepped(long steps) override { steps_ = steps; }
@@ -46,12 +46,12 @@ class Recorder : public Observer {
 
  private:
   void show_progress(double t);
-  void add_to_track(double t, const contact::Evaluation& ev);
+  void add_to_track(double t, const model::Evaluation& ev);
 
-  contact::CollisionModel& model_;
+  model::CollisionModel& model_;
   const Scene& sc_;
   std::vector<std::string> columns_;
-  std::vector<double contact::SphereForces::*> fields_;  // the force columns of each sphere, in column order
+  std::vector<double model::SphereForces::*> fields_;  // the force columns of each sphere, in column order
   std::vector<std::vector<double>> rows_;
   Track track_;
   double sample_dt_, next_row_;  // s

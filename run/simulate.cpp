@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <memory>
 
-#include "contact/approach.hpp"
-#include "contact/collision_model.hpp"
+#include "model/approach.hpp"
+#include "model/collision_model.hpp"
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
 #include "core/report.hpp"
@@ -20,7 +20,7 @@ namespace imcol {
 
 namespace {
 
-using contact::CollisionModel;
+using model::CollisionModel;
 
 IntegratorSettings integrator_settings(const Scene& sc) {
   IntegratorSettings st;
@@ -39,7 +39,7 @@ IntegratorSettings integrator_settings(const Scene& sc) {
 RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   // A scene that can never collide is refused before anything is integrated: its trajectory would be the whole
   // run to t_end with nothing to measure.
-  if (const auto why = contact::never_approaching(sc)) throw InputError(sc.path, "sphere[0].velocity", *why);
+  if (const auto why = model::never_approaching(sc)) throw InputError(sc.path, "sphere[0].velocity", *why);
   const auto setup_start = WallClock::now();
   CollisionModel model(sc);
   const double setup = seconds_since(setup_start);

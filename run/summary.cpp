@@ -7,7 +7,7 @@
 
 namespace imcol::run {
 
-using contact::CollisionModel;
+using model::CollisionModel;
 
 namespace {
 
@@ -70,7 +70,7 @@ void measure_summary(RunSummary& s, const CollisionModel& model, const Scene& sc
   // The run ended because the pair came to rest (MODEL.md §3 has no event for it; see CollisionModel::observe).
   s.at_rest_since_s = model.t_at_rest();
   s.t_end_too_short = m.t_end_too_short;
-  if (model.has_target()) s.final_phase = contact::to_string(model.phase());
+  if (model.has_target()) s.final_phase = model::to_string(model.phase());
   s.contacts = model.contacts();
   s.U_i1 = m.u_i1;
   s.U_i2 = m.u_i2;

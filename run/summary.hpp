@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "core/scene.hpp"
 #include "coupling/flow_coupling.hpp"
 #include "integrators/integrator.hpp"
@@ -15,18 +15,18 @@ namespace imcol::run {
 
 /// e, e_instant, the named measures, St, Re, velocities, group velocity, contact extremes: the measurements, into
 /// `s` (`bounces`: measure_bounces' contacts).
-void measure_summary(RunSummary& s, const contact::CollisionModel& model, const Scene& sc, const FirstContact& m,
+void measure_summary(RunSummary& s, const model::CollisionModel& model, const Scene& sc, const FirstContact& m,
                      const nlohmann::ordered_json& bounces, const Recorder& rec, const std::vector<std::vector<double>>& rows);
 
 /// The measurements of `s` (measure_summary) into summary.json's object `j`.
 void put_measurements(nlohmann::ordered_json& j, const RunSummary& s, const Scene& sc, const nlohmann::ordered_json& bounces);
 
 /// The `contact` block's values: the law, times, impact speed, the law's numbers (ramp: W_o, β), e_dry, δ_SS.
-ContactSummary contact_summary(const contact::CollisionModel& model);
+ContactSummary contact_summary(const model::CollisionModel& model);
 nlohmann::ordered_json contact_block(const ContactSummary& c);
 
 /// The `solver` block: settings, tolerances, state names and statistics.
-nlohmann::ordered_json solver_block(const contact::CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats,
+nlohmann::ordered_json solver_block(const model::CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats,
                                     double t_final);
 
 /// The `flow` block of a coupled run: grid, step, Krylov statistics, wall-time shares (`wall`: the run's, s).

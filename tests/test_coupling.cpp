@@ -10,7 +10,7 @@
 #include <string>
 
 #include "run/simulate.hpp"
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "core/errors.hpp"
 #include "coupling/divergence_watch.hpp"
 #include "coupling/step_rule.hpp"
@@ -293,33 +293,33 @@ TEST(Coupling, TheSpeedJumpCheckKnowsSolidContactByTheEventKind) {
   // The first rebound's measurement root "gap=max(at_gap, delta_ss+fit_distance) (out)" names delta_ss but is no
   // contact: the speed-jump check goes by the event's kind, not its name.
   const Scene sc = load_scene(scene_path("default.toml"));
-  contact::CollisionModel model(sc);
+  model::CollisionModel model(sc);
   struct : Observer {
     void sample(double, std::span<const double>, bool) override {}
   } quiet;
   integrate(model, IntegratorSettings{}, quiet);
   int in = 0, out = 0, measure = 0;
   for (const auto& ev : model.events()) {
-    if (ev.kind == contact::EventKind::contact_in) {
+    if (ev.kind == model::EventKind::contact_in) {
       ++in;
       EXPECT_EQ(ev.name, "gap=delta_ss (in)");
     }
-    if (ev.kind == contact::EventKind::contact_out) {
+    if (ev.kind == model::EventKind::contact_out) {
       ++out;
       EXPECT_EQ(ev.name, "gap=delta_ss (out)");
     }
-    if (ev.kind == contact::EventKind::measure_out) {
+    if (ev.kind == model::EventKind::measure_out) {
       ++measure;
       EXPECT_NE(ev.name.find("delta_ss"), std::string::npos) << ev.name;
       EXPECT_FALSE(coupling::is_solid_contact(ev.kind));
     }
-    if (ev.kind == contact::EventKind::contact_in || ev.kind == contact::EventKind::contact_out) EXPECT_TRUE(coupling::is_solid_contact(ev.kind));
+    if (ev.kind == model::EventKind::contact_in || ev.kind == model::EventKind::contact_out) EXPECT_TRUE(coupling::is_solid_contact(ev.kind));
   }
   EXPECT_EQ(in, 1);
   EXPECT_EQ(out, 1);
   EXPECT_EQ(measure, 1);
-  EXPECT_TRUE(coupling::is_solid_contact(contact::EventKind::touch));
-  EXPECT_FALSE(coupling::is_solid_contact(contact::EventKind::blend_edge));
+  EXPECT_TRUE(coupling::is_solid_contact(model::EventKind::touch));
+  EXPECT_FALSE(coupling::is_solid_contact(model::EventKind::blend_edge));
 }
 
 TEST(Coupling, TheStepRuleScalesAStartFromRestByTheSpeedItCanReach) {

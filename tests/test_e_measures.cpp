@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "apps/sweep.hpp"
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/scene.hpp"
@@ -150,12 +150,12 @@ TEST(EMeasures, TooManyMeasureSamplesAreRefusedNamingTheKey) {
   const std::string tall = "gravity = 9.81\n" + test::fluid(0.1, 1000) + test::sphere("steel", 0.002, -2.001, 0.0) +
                            test::wall("glass", 0.0) + "[drag]\nlaw = \"stokes\"\n[solver]\nt_end = 20.0\n[output]\ndt = 1e-2\n";
   const Scene with_drag = parse_scene(tall, "tall.toml");
-  const contact::CollisionModel model(with_drag);
+  const model::CollisionModel model(with_drag);
   const double dt = run::measure_interval(model, with_drag);
   EXPECT_LT(with_drag.solver.t_end / dt, 1e7);
   EXPECT_GT(with_drag.solver.t_end / dt, 1e6);
   const Scene no_drag = parse_scene(tall, "tall.toml", {{"effects", "[\"lubrication\", \"added_mass\", \"elastic\", \"gravity\"]"}});
-  const contact::CollisionModel model2(no_drag);
+  const model::CollisionModel model2(no_drag);
   EXPECT_THROW(run::measure_interval(model2, no_drag), InputError);
 }
 

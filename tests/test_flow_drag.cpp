@@ -470,7 +470,7 @@ TEST(FlowReferences, PairSceneBuiltInCodeIsItsToml) {
     t << "[[sphere]]\ndensity = " << 2 * fs.density << "\nyoungs_modulus = 1e9\npoisson_ratio = 0.3\ne_dry = 1.0\ndiameter = " << b.diameter
       << "\nposition = " << b.position << "\nvelocity = " << b.velocity << "\n";
   t << "[drag]\nlaw = \"schiller-naumann\"\n";
-  const imcol::contact::CollisionModel parsed(imcol::parse_scene(t.str(), "two.toml"));
+  const imcol::model::CollisionModel parsed(imcol::parse_scene(t.str(), "two.toml"));
   const imcol::AnalyticPairForce built(fs);
   for (double gap : {2e-3, 5e-4, 1e-4, 3e-5, 1e-6}) {
     const std::vector<SphereState> s = {{0.001, -gap - 0.0025, 0.3}, {0.0015, 0.0, -0.1}};

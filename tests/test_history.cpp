@@ -7,7 +7,7 @@
 #include <map>
 
 #include "run/simulate.hpp"
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 #include "contact/history_force.hpp"
 #include "contact/history_kernel.hpp"
 #include "core/materials.hpp"

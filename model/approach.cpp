@@ -1,8 +1,8 @@
-#include "contact/approach.hpp"
+#include "model/approach.hpp"
 
 #include "core/errors.hpp"
 
-namespace imcol::contact {
+namespace imcol::model {
 
 std::optional<std::string> never_approaching(const Scene& sc) {
   if (!sc.has_target() || sc.spheres.empty()) return std::nullopt;  // a free sphere: the trajectory is the result
@@ -33,4 +33,4 @@ std::optional<std::string> never_approaching(const Scene& sc) {
   return why;
 }
 
-}  // namespace imcol::contact
+}  // namespace imcol::model

@@ -1,4 +1,4 @@
-#include "contact/collision_model.hpp"
+#include "model/collision_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,9 @@
 
 #include "core/errors.hpp"
 
-namespace imcol::contact {
+namespace imcol::model {
+
+using namespace contact;  // the formulas, laws and history kernels this model assembles
 
 const char* to_string(Phase p) {
   switch (p) {
@@ -852,4 +854,4 @@ std::vector<std::pair<std::string, std::string>> CollisionModel::choices() const
   return c;
 }
 
-}  // namespace imcol::contact
+}  // namespace imcol::model

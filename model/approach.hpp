@@ -15,9 +15,9 @@
 
 #include "core/scene.hpp"
 
-namespace imcol::contact {
+namespace imcol::model {
 
 /// Why the scene can never collide ("never approaching: …"), or nothing if a collision is possible or not excluded.
 std::optional<std::string> never_approaching(const Scene& sc);
 
-}  // namespace imcol::contact
+}  // namespace imcol::model

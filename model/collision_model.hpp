@@ -28,7 +28,12 @@
 #include "core/scene.hpp"
 #include "core/system.hpp"
 
-namespace imcol::contact {
+namespace imcol::model {
+
+using contact::ContactLaw;
+using contact::HistoryOptions;
+using contact::SphereHistory;
+using contact::GapGeometry;
 
 /// Forces acting on one sphere (N along z). With the `flow` effect the fluid terms are the blended ones that act,
 /// H × (analytic term), and `simulated` is (1 − H) f_SIM (MODEL.md (6.10)).
@@ -255,4 +260,4 @@ class CollisionModel : public DynamicalSystem {
   bool measure_out_ = false, rebound_stalled_ = false, apex_seen_ = false;  // since the last separation
 };
 
-}  // namespace imcol::contact
+}  // namespace imcol::model
