@@ -336,9 +336,13 @@ int compare_laws(const std::string& scene_path, const std::vector<Override>& ove
       for (auto& o : sweep_overrides(base, sw.vary, values[i])) ov.push_back(o);
     for (const auto& law : laws) {
       rows.push_back(run_law(scene_path, ov, law));
-      if (sweeping) {
-        rows.back().point = static_cast<int>(i);
-        rows.back().value = values[i];
+      if (sweeping) {  // a point keeps its summary; its trajectory is not written
+        LawRow& r = rows.back();
+        r.point = static_cast<int>(i);
+        r.value = values[i];
+        r.run.rows = {};
+        r.run.summary_json = {};
+        r.run.files = {};
       }
     }
   }

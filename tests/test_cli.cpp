@@ -523,8 +523,9 @@ TEST(Cli, LawsRunsEveryShippedLawAndWritesOneRowEach) {
 TEST(Cli, LawsGiveEDryOnADryCollision) {
   const fs::path out = fs::temp_directory_path() / "imcol_cli_laws_dry";
   fs::remove_all(out);
-  const Result r = run_imcol("laws " + imcol::data_dir() + "/scenes/dry_steel_steel.toml --rtol 1e-8 --no-plot --out " + out.string());
+  const Result r = run_imcol("laws " + imcol::data_dir() + "/scenes/dry_steel_steel.toml --rtol 1e-8 --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "laws.png"));  // U_rel and the gap near contact, per law
   const auto j = read_json(out / "laws.json");
   ASSERT_EQ(j["laws"].size(), 2u);
   const double e_dry = j["e_dry"].get<double>();
