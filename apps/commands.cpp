@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "apps/compare_history.hpp"
+#include "apps/compare_laws.hpp"
 #include "apps/format.hpp"
 #include "apps/option_rules.hpp"
 #include "apps/output_unit.hpp"
@@ -247,6 +248,32 @@ Subcommand add_history(CLI::App& app) {
   }};
 }
 
+Subcommand add_laws(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string scene; LawsCompareOptions l; bool no_plot = false; };
+  auto o = std::make_shared<Opt>();
+  auto* laws = app.add_subcommand("laws", "compare the solid contact laws (contact.law) on one scene: e, contact time, peak force, overlap");
+  laws->add_option("scene", o->scene, "scene file (TOML)")->required();
+  laws->add_option("--laws", o->l.laws, "contact laws to run (default every shipped law)")->delimiter(',')
+      ->check(choice_rule("--laws", choice_names<ContactLawKind>()));
+  laws->add_option("--out", o->l.out, "output directory (default out/<scene name>-laws, a sweep: -laws_<quantity>)")->check(path_rule("--out"));
+  // Optionally at each point of a sweep (imcol sweep's quantities and spacing): e against St per law.
+  auto& s = o->l.sweep;
+  auto* vary = laws->add_option("--vary", s.vary, "sweep: velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
+                   ->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
+  auto* from = laws->add_option("--from", s.from, "sweep: first value (SI units)")->check(number_rule("--from", kPositive));
+  auto* to = laws->add_option("--to", s.to, "sweep: last value (SI units)")->check(number_rule("--to", kPositive));
+  auto* points = laws->add_option("--points", s.points, "sweep: number of points")->check(integer_rule("--points", 1, 100000));
+  auto* spacing = laws->add_option("--spacing", s.spacing, "sweep: log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
+  vary->needs(from)->needs(to)->needs(points);
+  for (auto* opt : {from, to, points, spacing}) opt->needs(vary);
+  laws->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
+  add_common(laws, o->c);
+  return {laws, [o] {
+    o->l.plot = !o->no_plot;
+    return compare_laws(o->scene, o->c.overrides(), o->l);
+  }};
+}
+
 Subcommand add_flow(CLI::App& app) {
   struct Opt { std::string scene; FlowCommandOptions f; bool no_plot = false; long cells = 0, levels = 0; double dt = 0, t_end = 0; };
   auto o = std::make_shared<Opt>();
@@ -368,7 +395,8 @@ int run_cli(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("imcol ") + IMCOL_VERSION);
   const std::vector<Subcommand> subcommands = {add_run(app),     add_validate(app), add_bench(app),          add_effects(app),
-                                               add_history(app), add_flow(app),     add_work_precision(app), add_sweep(app)};
+                                               add_history(app), add_flow(app),     add_work_precision(app), add_sweep(app),
+                                               add_laws(app)};
   bool found = false;
   if (!known_subcommand(app, argc, argv, found)) return 2;
 

@@ -128,6 +128,20 @@ std::string point_message(const RunSummary& s, double t_end_scene, double t_end_
 
 }  // namespace
 
+const char* sweep_column(const std::string& vary) {
+  const Quantity* q = quantity(vary);
+  return q ? q->column : nullptr;
+}
+
+std::vector<double> sweep_values(const SweepOptions& opt) {
+  std::vector<double> v;
+  for (int i = 0; i < opt.points; ++i) {
+    const double f = opt.points == 1 ? 0.0 : static_cast<double>(i) / (opt.points - 1);
+    v.push_back(opt.spacing == "log" ? opt.from * std::pow(opt.to / opt.from, f) : opt.from + f * (opt.to - opt.from));
+  }
+  return v;
+}
+
 std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary, double value) {
   std::vector<Override> ov;
   const std::size_t n = base.spheres.size();
@@ -179,9 +193,9 @@ void check_options(const SweepOptions& opt) {
 std::vector<Scene> point_scenes(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
                                 const SweepOptions& opt, std::vector<PointResult>& pts) {
   std::vector<Scene> scenes;
+  const std::vector<double> values = sweep_values(opt);
   for (int i = 0; i < opt.points; ++i) {
-    const double f = opt.points == 1 ? 0.0 : static_cast<double>(i) / (opt.points - 1);
-    const double v = opt.spacing == "log" ? opt.from * std::pow(opt.to / opt.from, f) : opt.from + f * (opt.to - opt.from);
+    const double v = values[i];
     pts[i].value = v;
     auto ov = overrides;
     for (auto& o : sweep_overrides(base, opt.vary, v)) ov.push_back(o);

@@ -21,6 +21,12 @@ struct SweepOptions {
 /// The scene keys one sweep point sets (exposed for tests): `value` of the varied quantity on `base`.
 std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary, double value);
 
+/// The CSV column of a varied quantity ("velocity" → "velocity_m_s"); nullptr for an unknown one.
+const char* sweep_column(const std::string& vary);
+
+/// The values of the points: opt.points from opt.from to opt.to, log or linear spacing (opt.spacing).
+std::vector<double> sweep_values(const SweepOptions& opt);
+
 /// Runs the sweep; rewrites DIR/sweep.csv as points finish (at most every 0.25 s, and at the end), so
 /// that finished points survive a later failure or an interrupt; then DIR/sweep.json and DIR/sweep.png.
 /// Returns 0, or 3 if any point failed.

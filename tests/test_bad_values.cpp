@@ -305,7 +305,7 @@ TEST(BadValues, EveryOptionRefusesEachBadValueNamingIt) {
   ASSERT_TRUE(fs::exists(flow_scene)) << flow_scene;
   // What each subcommand needs besides the option under test (never reached: the option is refused first).
   const std::map<std::string, std::vector<std::string>> base = {
-      {"run", {scene}}, {"validate", {"seed"}}, {"bench", {scene}}, {"effects", {scene}}, {"history", {scene}},
+      {"run", {scene}}, {"validate", {"seed"}}, {"bench", {scene}}, {"effects", {scene}}, {"history", {scene}}, {"laws", {scene}},
       {"flow", {flow_scene}}, {"work-precision", {scene}},
       {"sweep", {scene, "--vary", "velocity", "--from", "0.1", "--to", "0.2", "--points", "2"}}};
   // Bad values per option: numbers, choices, paths and scene overrides; a flag given a value.
@@ -317,7 +317,7 @@ TEST(BadValues, EveryOptionRefusesEachBadValueNamingIt) {
       {"--t-end", numbers}, {"--direct-steps", {"abc", "nan", "1e-15", "1e-6", "1e-300", "1e300", "-1"}}, {"--direct-rtol", numbers},
       {"--ref-rtol", numbers}, {"--ref-history-tolerance", numbers}, {"--from", numbers}, {"--to", numbers},
       {"--points", {"abc", "0", "-1", "1.5", "1e300"}}, {"--jobs", {"abc", "-1", "1.5", "1e300"}},
-      {"--integrator", choices}, {"--integrators", choices}, {"--evaluators", choices}, {"--kernels", choices},
+      {"--integrator", choices}, {"--integrators", choices}, {"--evaluators", choices}, {"--kernels", choices}, {"--laws", choices},
       {"--models", choices}, {"--vary", choices}, {"--spacing", choices},
       {"--set", {"novalue", "solver.rtol=1e-8\nsolver.bogus=1", "=1"}}, {"--out", {""}},
       {"--quiet", flag}, {"--no-plot", flag}, {"--flow", flag}, {"--allow-long", flag}, {"--add-history", flag}, {"--no-progress", flag}};

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -468,4 +469,138 @@ TEST(Cli, AFileSizeLimitIsAnIoErrorNotASignal) {
   EXPECT_EQ(WEXITSTATUS(raw), 1) << err;
   EXPECT_EQ(err.rfind("imcol: error: ", 0), 0u) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+}
+
+namespace {
+/// laws.json of a finished `imcol laws` run.
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+}  // namespace
+
+TEST(Cli, LawsRunsEveryShippedLawAndWritesOneRowEach) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_laws";
+  fs::remove_all(out);
+  const std::string scene = imcol::data_dir() + "/scenes/default.toml";
+  const Result r = run_imcol("laws " + scene + " --out " + out.string() + " --rtol 1e-6 --no-plot");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = read_csv(out / "laws.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("law"), "ramp");
+  EXPECT_EQ(rows[1].at("law"), "hertz");
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("status"), "ran") << row.at("law") << ": " << row.at("message");
+    const double e = std::stod(row.at("e"));
+    EXPECT_TRUE(std::isfinite(e) && e > 0 && e < 1) << row.at("law") << ": " << e;
+    EXPECT_GT(std::stod(row.at("contact_time_s")), 0) << row.at("law");
+    EXPECT_GT(std::stod(row.at("max_contact_force_N")), 0) << row.at("law");
+    EXPECT_GT(std::stod(row.at("max_overlap_m")), 0) << row.at("law");
+    EXPECT_FALSE(row.at("law_W_o_N").empty()) << row.at("law");  // both laws report the Hertz peak force at impact
+  }
+  EXPECT_FALSE(rows[1].at("law_alpha").empty());  // hertz's own numbers
+  EXPECT_TRUE(rows[0].at("law_alpha").empty());
+  EXPECT_NEAR(std::stod(rows[1].at("e_minus_e_ramp")), std::stod(rows[1].at("e")) - std::stod(rows[0].at("e")), 1e-9);
+  const auto j = read_json(out / "laws.json");
+  ASSERT_EQ(j["laws"].size(), 2u);
+  for (const auto& row : j["laws"]) {
+    EXPECT_TRUE(row["e"].is_number()) << row.dump();
+    EXPECT_TRUE(row["e_measures"].contains("contact_ends")) << row.dump();
+    EXPECT_EQ(row["model"]["contact.law"], row["law"]) << row.dump();
+  }
+  EXPECT_TRUE(j["run"].contains("id")) << j.dump();
+  EXPECT_TRUE(fs::exists(out / "laws_traces.csv"));
+  EXPECT_FALSE(fs::exists(out / "laws.png"));  // --no-plot
+  // --laws chooses (and a law named twice runs once).
+  const Result one = run_imcol("laws " + scene + " --out " + out.string() + " --rtol 1e-6 --no-plot --laws hertz,hertz");
+  ASSERT_EQ(one.status, 0) << one.err;
+  const auto hertz_only = read_csv(out / "laws.csv");
+  ASSERT_EQ(hertz_only.size(), 1u);
+  EXPECT_EQ(hertz_only[0].at("law"), "hertz");
+  EXPECT_TRUE(hertz_only[0].at("e_minus_e_ramp").empty());  // no ramp row to compare with
+}
+
+TEST(Cli, LawsGiveEDryOnADryCollision) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_laws_dry";
+  fs::remove_all(out);
+  const Result r = run_imcol("laws " + imcol::data_dir() + "/scenes/dry_steel_steel.toml --rtol 1e-8 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "laws.png"));  // U_rel and the gap near contact, per law
+  const auto j = read_json(out / "laws.json");
+  ASSERT_EQ(j["laws"].size(), 2u);
+  const double e_dry = j["e_dry"].get<double>();
+  EXPECT_DOUBLE_EQ(e_dry, 0.97);
+  // Both laws are built to return e_dry without a fluid (measured: within 7e-7 at rtol 1e-8).
+  for (const auto& row : j["laws"]) EXPECT_NEAR(row["e"].get<double>(), e_dry, 1e-5) << row["law"];
+}
+
+TEST(Cli, LawsGiveARefusedLawItsReasonAndStillRunTheOthers) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_laws_refused";
+  fs::remove_all(out);
+  const std::string scene = imcol::data_dir() + "/scenes/dry_steel_steel.toml";
+  // Tsuji's damping reaches e_dry down to about 3e-3: hertz refuses e_dry = 1e-3, the ramp runs.
+  const Result r = run_imcol("laws " + scene + " --set contact.e_dry=0.001 --rtol 1e-6 --no-plot --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = read_csv(out / "laws.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].at("status"), "ran");
+  EXPECT_EQ(rows[1].at("status"), "refused");
+  EXPECT_NE(rows[1].at("message").find("contact.e_dry"), std::string::npos) << rows[1].at("message");
+  EXPECT_TRUE(rows[1].at("e").empty());
+  const auto j = read_json(out / "laws.json");
+  EXPECT_EQ(j["laws"][1]["status"], "refused");
+  EXPECT_NE(j["laws"][1]["message"].get<std::string>().find("contact.e_dry"), std::string::npos);
+  // The ramp refuses a start inside its zone that it cannot store (a fast approach 2 um from contact); hertz runs.
+  const Result inside = run_imcol("laws " + imcol::data_dir() + "/scenes/hard/start_inside_contact_zone.toml --no-plot --out " +
+                                  out.string() + " --set sphere[0].position=-0.006352 --set sphere[0].velocity=1.0");
+  ASSERT_EQ(inside.status, 0) << inside.err;
+  const auto rows2 = read_csv(out / "laws.csv");
+  ASSERT_EQ(rows2.size(), 2u);
+  EXPECT_EQ(rows2[0].at("status"), "refused");
+  EXPECT_NE(rows2[0].at("message").find("sphere[0].position"), std::string::npos) << rows2[0].at("message");
+  EXPECT_EQ(rows2[1].at("status"), "ran") << rows2[1].at("message");
+  // No law runs: exit 2, one line with the reason.
+  expect_refused(run_imcol("laws " + scene + " --laws hertz --set contact.e_dry=0.001 --no-plot --out " + out.string()), "every law refused",
+                 {"contact.e_dry", "hertz", "no contact law ran"});
+}
+
+TEST(Cli, LawsAcrossASweepGiveARowPerPointAndLaw) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_laws_sweep";
+  fs::remove_all(out);
+  const Result r = run_imcol("laws " + imcol::data_dir() + "/scenes/gg3462.toml --vary velocity --from 0.05 --to 0.5 --points 2 --rtol 1e-6 --out " +
+                             out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = read_csv(out / "laws.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  const std::vector<std::pair<std::string, std::string>> expected = {{"0", "ramp"}, {"0", "hertz"}, {"1", "ramp"}, {"1", "hertz"}};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].at("point"), expected[i].first);
+    EXPECT_EQ(rows[i].at("law"), expected[i].second);
+    EXPECT_EQ(rows[i].at("status"), "ran") << rows[i].at("message");
+    EXPECT_TRUE(std::isfinite(std::stod(rows[i].at("e"))));
+  }
+  EXPECT_DOUBLE_EQ(std::stod(rows[0].at("velocity_m_s")), 0.05);
+  EXPECT_DOUBLE_EQ(std::stod(rows[3].at("velocity_m_s")), 0.5);
+  // The same St for both laws at a point (the approach is the same until the gap reaches delta_SS), a larger St at the faster one.
+  EXPECT_EQ(rows[0].at("St"), rows[1].at("St"));
+  EXPECT_GT(std::stod(rows[2].at("St")), std::stod(rows[0].at("St")));
+  const auto j = read_json(out / "laws.json");
+  EXPECT_EQ(j["vary"], "velocity");
+  EXPECT_EQ(j["laws"].size(), 4u);
+  EXPECT_TRUE(fs::exists(out / "laws.png"));
+}
+
+TEST(Cli, LawsRefuseBadOptionsWithOneLine) {
+  const std::string scene = imcol::data_dir() + "/scenes/default.toml";
+  const std::string out = " --out " + (fs::temp_directory_path() / "imcol_cli_laws_bad").string();
+  expect_refused(run_imcol("laws " + scene + " --laws ramp,spring" + out), "--laws spring", {"--laws", "spring", "hertz"});
+  expect_refused(run_imcol("laws " + scene + " --rtol 2" + out), "--rtol 2", {"--rtol"});
+  expect_refused(run_imcol("laws " + scene + " --set contact.bogus=1" + out), "--set bogus", {"contact.bogus"});
+  expect_refused(run_imcol("laws" + out), "no scene", {"scene"});
+  // A sweep needs its range, and a range needs --vary.
+  expect_refused(run_imcol("laws " + scene + " --from 0.1" + out), "--from alone", {"--from", "--vary"});
+  expect_refused(run_imcol("laws " + scene + " --vary velocity --from 0.1 --to 0.2" + out), "--vary without --points", {"--vary", "--points"});
+  expect_refused(run_imcol("laws " + scene + " --vary velocity --from 0.1 --to 0.1 --points 3" + out), "empty range", {"--to", "--from"});
+  // A free sphere has no contact to compare.
+  expect_refused(run_imcol("laws " + imcol::data_dir() + "/scenes/rising_sphere.toml" + out), "free sphere", {"no contact law"});
 }
