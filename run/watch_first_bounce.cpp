@@ -25,26 +25,16 @@ void FirstBounceStop::roots(std::vector<WatchedRoot>& out) const {
 std::optional<model::Declared> FirstBounceStop::on_event(const model::EventRecord& e) {
   switch (e.kind) {
     case EventKind::contact_out:
-      if (separated_) break;
+      if (separated_) return std::nullopt;
       separated_ = true;
       if (e.u_rel > -stall_fraction_ * std::abs(model_.impact_speed())) stalled_ = true;
-      check(e.t);
       break;
-    case EventKind::instant_out:
-      instant_out_ = true;
-      check(e.t);
-      break;
-    case EventKind::measure_out:
-      gap_passed_ = true;
-      check(e.t);
-      break;
-    case EventKind::rebound_stalled:
-      stalled_ = true;
-      check(e.t);
-      break;
-    default:
-      break;
+    case EventKind::instant_out: instant_out_ = true; break;
+    case EventKind::measure_out: gap_passed_ = true; break;
+    case EventKind::rebound_stalled: stalled_ = true; break;
+    default: return std::nullopt;
   }
+  check(e.t);
   return std::nullopt;
 }
 
