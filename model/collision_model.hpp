@@ -78,7 +78,8 @@ struct Evaluation {
   std::array<SphereForces, 2> f{};
 };
 
-/// What an event is: the root that fired, or a state the model declared (a start in contact, at rest).
+/// What an event is: the root that fired (the model's own or a watcher's, model/watcher.hpp), or a declared state
+/// (a start inside the contact zone by the model, at rest by a watcher).
 enum class EventKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge, blend_edge, blend_end,
                        apex, rebound_stalled, measure_out, start_in_contact, at_rest };
 
