@@ -43,7 +43,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   if (const auto why = model::never_approaching(sc)) throw InputError(sc.path, "sphere[0].velocity", *why);
   const auto setup_start = WallClock::now();
   CollisionModel model(sc);
-  const run::Watch watch(model, sc);
+  run::Watch watch(model, sc);  // not const: the model updates its watchers
   const double setup = seconds_since(setup_start);
 
   // Integrate: the reduced-order model alone, or coupled to the flow kernel.

@@ -15,7 +15,8 @@ namespace imcol::run {
 
 class Watch {
  public:
-  /// Builds the scene's watchers and adds them to `model`, which must not outlive them.
+  /// Builds the scene's watchers and adds them to `model`, which must not outlive them (nor be integrated after them).
+  /// Not a const object: the model updates the watchers as it runs.
   Watch(model::CollisionModel& model, const Scene& sc);
   Watch(const Watch&) = delete;
   Watch& operator=(const Watch&) = delete;

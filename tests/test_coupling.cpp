@@ -295,7 +295,7 @@ TEST(Coupling, TheSpeedJumpCheckKnowsSolidContactByTheEventKind) {
   // contact: the speed-jump check goes by the event's kind, not its name.
   const Scene sc = load_scene(scene_path("default.toml"));
   model::CollisionModel model(sc);
-  const run::Watch watch(model, sc);  // the first rebound's measurement root is a watcher's
+  run::Watch watch(model, sc);  // the first rebound's measurement root is a watcher's
   struct : Observer {
     void sample(double, std::span<const double>, bool) override {}
   } quiet;

@@ -29,7 +29,7 @@ TEST(Watchers, TheModelAloneArmsOnlyItsContactRootsAndTheWatchersFollowThem) {
   ASSERT_FALSE(alone.empty());
   EXPECT_EQ(alone.front(), "gap=delta_ss (in)");
   for (const auto& n : alone) EXPECT_EQ(n.find("instant"), std::string::npos) << n;
-  const run::Watch watch(model, sc);
+  run::Watch watch(model, sc);
   const auto watched = root_names(model);
   // The model's contact root, then the watchers' (stopped approach, instant gap), then the model's other roots.
   ASSERT_EQ(watched.size(), alone.size() + 2);
