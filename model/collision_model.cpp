@@ -72,10 +72,6 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
   // shortened to the initial gap, so that the contact law stores no energy at t = 0 and the contact begins.
   const bool start_inside = has_target() && has(Effect::elastic) && initial_gap() <= delta_ss_m_;
   if (start_inside) delta_ss_m_ = initial_gap();
-  instant_gap_m_ = sc.measure.instant_gap * D_;
-  all_bounces_ = sc.measure.bounces == BouncesMode::all;
-  instant_inside_ = has_target() && initial_gap() <= instant_gap_m_;
-  measure_gap_m_ = std::max(sc.measure.at_gap * D_, delta_ss_m_ + sc.measure.fit_distance * D_);
   h_min_ = sc.lubrication.cutoff * D_;
   h_c_ = sc.lubrication.h_c * a_star_;
   dw_floor_ = sc.added_mass.dw_floor > 0 ? sc.added_mass.dw_floor : sc.contact.delta_ss * D_ / a_star_;
@@ -110,7 +106,6 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
     throw InputError(sc.path, "solver.t_end", os.str());
   }
   stop_time_ = sc.solver.t_end;
-  stall_speed_ = sc.measure.stall_fraction * std::max(0.0, u_rel0_);
   // Build the lookup tables now, not inside the first right-hand side.
   if (has(Effect::added_mass) && has_target()) {
     w_floor_ = added_mass_W(dw_floor_);
@@ -128,7 +123,6 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc) {
     freeze_contact(0.0, u_rel0_);
     phase_ = Phase::loading;
     record(0.0, EventKind::start_in_contact, "start inside the contact zone", y0);
-    if (initial_gap() <= instant_gap_m_) u_in_ = u_rel0_;
   }
   arm();
 }
@@ -581,27 +575,26 @@ void CollisionModel::residual(double t, std::span<const double> y, std::span<con
 }
 
 // ---------- Events (MODEL.md §3) ----------
+void CollisionModel::watch(EventWatcher& w) {
+  watchers_.push_back(&w);
+  arm();
+}
+
 void CollisionModel::arm() {
   armed_.clear();
   armed_kind_.clear();
+  armed_watched_.clear();
   if (!has_target()) return;
   auto add = [&](RootKind k, const char* name, int dir) {
     armed_.push_back({name, dir});
     armed_kind_.push_back(k);
+    armed_watched_.emplace_back();
   };
   const bool elastic = has(Effect::elastic);
-  const bool before_first_contact = !t_contact_.has_value();
   switch (phase_) {
     case Phase::approach:
     case Phase::separated:
       if (elastic) add(RootKind::contact_in, "gap=delta_ss (in)", -1);
-      if (before_first_contact && !t_closest_) add(RootKind::closest, "u_rel=stall_fraction*U_rel0 (approach stopped)", -1);
-      if (phase_ == Phase::separated && all_bounces_ && !apex_seen_) add(RootKind::apex, "u_rel=0 (apex)", +1);
-      if (phase_ == Phase::separated && !all_bounces_) {
-        // The first rebound runs on until its measurement gaps are passed, or until it stalls (docs/bounces.md).
-        if (!measure_out_) add(RootKind::measure_out, "gap=max(at_gap, delta_ss+fit_distance) (out)", +1);
-        if (!rebound_stalled_) add(RootKind::rebound_stalled, "u_rel=-stall_fraction*U_c (rebound stalled)", +1);
-      }
       break;
     case Phase::loading:
       add(RootKind::unload, "u_rel=0 (loading->unloading)", -1);
@@ -612,12 +605,14 @@ void CollisionModel::arm() {
       add(RootKind::contact_out, "gap=delta_ss (out)", +1);
       break;
   }
-  // e_instant: the first inward crossing of instant_gap, then the next outward one (either side of δ_SS).
-  // All bounces: every crossing, alternately inward and outward.
-  if (all_bounces_) add(instant_inside_ ? RootKind::instant_out : RootKind::instant_in,
-                        instant_inside_ ? "gap=instant_gap (out)" : "gap=instant_gap (in)", instant_inside_ ? +1 : -1);
-  else if (!u_in_) add(RootKind::instant_in, "gap=instant_gap (in)", -1);
-  else if (!u_out_) add(RootKind::instant_out, "gap=instant_gap (out)", +1);
+  // The watchers' roots (measurements and stop rules), in their order.
+  std::vector<WatchedRoot> watched;
+  for (const EventWatcher* w : watchers_) w->roots(watched);
+  for (auto& r : watched) {
+    armed_.push_back({r.name, r.direction});
+    armed_kind_.push_back(r.kind);
+    armed_watched_.push_back(std::move(r));
+  }
   if (has(Effect::lubrication) && lub_model_ == LubricationModel::asymptotic) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
   if (coupled_) {
     // The ends of the blend H (MODEL.md §2.5): diagnostic, the right-hand side stays continuous there. Not armed
@@ -633,22 +628,19 @@ void CollisionModel::root_values(double, std::span<const double> y, std::span<do
   kinematics(y, ev);
   const double gap = ev.gap, u_rel = ev.u_rel;
   for (std::size_t i = 0; i < armed_kind_.size(); ++i) {
+    if (const auto& w = armed_watched_[i]) {
+      g[i] = (w->of == WatchedRoot::Of::gap ? gap : u_rel) - w->level;
+      continue;
+    }
     switch (armed_kind_[i]) {
       case RootKind::contact_in:
       case RootKind::contact_out: g[i] = gap - delta_ss_m_; break;
       case RootKind::touch:
       case RootKind::blend_end: g[i] = gap; break;
       case RootKind::blend_edge: g[i] = gap - 2 * delta_sl_m_; break;
-      case RootKind::unload:
-      case RootKind::apex: g[i] = u_rel; break;
-      case RootKind::rebound_stalled: g[i] = u_rel + scene_.measure.stall_fraction * std::abs(U_c_); break;
-      case RootKind::measure_out: g[i] = gap - measure_gap_m_; break;
-      case RootKind::closest: g[i] = u_rel - stall_speed_; break;
-      case RootKind::instant_in:
-      case RootKind::instant_out: g[i] = gap - instant_gap_m_; break;
+      case RootKind::unload: g[i] = u_rel; break;
       case RootKind::lub_edge: g[i] = regularised_gap(gap, h_min_) - h_c_; break;
-      case RootKind::start_in_contact:
-      case RootKind::at_rest: g[i] = 1; break;  // declared states, never armed as roots
+      default: g[i] = 1; break;  // the watchers' kinds (above) and declared states: never the model's own roots
     }
   }
 }
@@ -673,19 +665,10 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
   record(t, kind, name, y);
   Evaluation ev;
   kinematics(y, ev);
-  const double window = scene_.measure.window;
   switch (kind) {
     case RootKind::contact_in:
       freeze_contact(t, ev.u_rel);
       phase_ = Phase::loading;
-      if (t_closest_ && !t_separation_) stop_time_ = scene_.solver.t_end;  // a contact after all
-      if (all_bounces_ && contacts_ > 1 && ev.u_rel < scene_.measure.stall_fraction * std::abs(U_c_)) {
-        // At rest: a contact slower than stall_fraction × the first impact speed ends a run of all bounces.
-        at_rest_ = true;
-        quiet_since_ = t;
-        stop_time_ = std::min(stop_time_, t);
-        events_.push_back({t, "at rest (impact speed below stall_fraction x the first impact speed)", ev.gap, ev.u_rel, EventKind::at_rest});
-      }
       break;
     case RootKind::unload:
       law_->unload();
@@ -694,58 +677,27 @@ void CollisionModel::handle(RootKind kind, const std::string& name, double t, st
     case RootKind::contact_out:
       law_->end_contact();
       phase_ = Phase::separated;
-      apex_seen_ = false;
-      if (!t_separation_) {
-        t_separation_ = t;
-        // Stop once the rebound window is complete and the measurement gaps have been passed (or at t_end).
-        if (ev.u_rel > -scene_.measure.stall_fraction * std::abs(U_c_)) rebound_stalled_ = true;
-        first_bounce_stop(t);
-      }
+      if (!t_separation_) t_separation_ = t;
       break;
-    case RootKind::closest:
-      t_closest_ = t;
-      stop_time_ = std::min(stop_time_, t + window);
-      break;
-    case RootKind::instant_in:
-      if (!u_in_) u_in_ = ev.u_rel;
-      instant_inside_ = true;
-      break;
-    case RootKind::instant_out:
-      if (!u_out_ && u_in_) u_out_ = ev.u_rel;
-      instant_inside_ = false;
-      first_bounce_stop(t);
-      break;
-    case RootKind::apex:
-      apex_seen_ = true;
-      break;
-    case RootKind::measure_out:
-      measure_out_ = true;
-      first_bounce_stop(t);
-      break;
-    case RootKind::rebound_stalled:
-      rebound_stalled_ = true;
-      first_bounce_stop(t);
-      break;
-    case RootKind::touch:
-    case RootKind::lub_edge:
-    case RootKind::blend_edge:
-    case RootKind::blend_end:
-    case RootKind::start_in_contact:  // declared states, never armed as roots
-    case RootKind::at_rest:
+    default:  // diagnostic (touch, lubrication and blend edges) or a watcher's
       break;
   }
+  tell_watchers(t, ev);
 }
 
-void CollisionModel::first_bounce_stop(double t) {
-  if (all_bounces_ || !t_separation_) return;
-  const bool pending = (u_in_ && !u_out_) || !measure_out_;
-  if (pending && !rebound_stalled_) return;
-  stop_time_ = std::min(scene_.solver.t_end, std::max(t, *t_separation_ + scene_.measure.window));
+void CollisionModel::tell_watchers(double t, const Evaluation& ev) {
+  const EventRecord e = events_.back();
+  for (EventWatcher* w : watchers_) declare(t, ev, w->on_event(e));
+}
+
+void CollisionModel::declare(double t, const Evaluation& ev, const std::optional<Declared>& d) {
+  if (d) events_.push_back({t, d->name, ev.gap, ev.u_rel, d->kind});
+  stop_time_ = scene_.solver.t_end;
+  for (const EventWatcher* w : watchers_) stop_time_ = std::min(stop_time_, w->stop_time());
 }
 
 bool CollisionModel::observes_accelerations() const {
-  const bool watched = phase_ == Phase::unloading || (all_bounces_ && phase_ == Phase::separated);
-  return !at_rest_ && has_target() && watched;
+  return std::any_of(watchers_.begin(), watchers_.end(), [](const EventWatcher* w) { return w->wants_forces(); });
 }
 
 Evaluation CollisionModel::kinematic_state(std::span<const double> y) const {
@@ -755,34 +707,19 @@ Evaluation CollisionModel::kinematic_state(std::span<const double> y) const {
 }
 
 void CollisionModel::observe(double t, const Evaluation& ev) {
-  if (!observes_accelerations()) {
-    if (!at_rest_) quiet_since_.reset();
-    return;
-  }
-  const double s = scene_.measure.stall_fraction * std::max(std::abs(U_c_), std::abs(u_rel0_));
-  const double a_rel = ev.f[0].accel - (n_spheres_ > 1 ? ev.f[1].accel : 0.0);
-  const double window = scene_.measure.window;
-  if (!(std::abs(ev.u_rel) < s && std::abs(a_rel) * window < s)) {
-    quiet_since_.reset();
-    return;
-  }
-  if (!quiet_since_) quiet_since_ = t;
-  if (t - *quiet_since_ >= window * (1 - 1e-9)) {
-    at_rest_ = true;
-    stop_time_ = std::min(stop_time_, t);
-    events_.push_back({t, "at rest (|U_rel| and |dU_rel/dt| window below stall_fraction x impact speed for one window)", ev.gap, ev.u_rel, EventKind::at_rest});
-  }
+  for (EventWatcher* w : watchers_) declare(t, ev, w->on_sample(t, ev));
 }
 
 EventAction CollisionModel::on_roots(std::span<const std::size_t> found, double t, std::span<double> y) {
   // Handle in a fixed order so that coincident roots (e.g. instant_gap == delta_ss) are deterministic.
   const auto kinds = armed_kind_;
   const auto specs = armed_;
+  const auto watched = armed_watched_;
   bool changed = false;
   for (std::size_t i : found) {
     handle(kinds.at(i), specs.at(i).name, t, y);
-    const bool diagnostic = kinds[i] == RootKind::touch || kinds[i] == RootKind::blend_edge || kinds[i] == RootKind::blend_end ||
-                            kinds[i] == RootKind::apex || kinds[i] == RootKind::measure_out || kinds[i] == RootKind::rebound_stalled;
+    const bool diagnostic = watched[i] ? !watched[i]->restarts
+                                       : kinds[i] == RootKind::touch || kinds[i] == RootKind::blend_edge || kinds[i] == RootKind::blend_end;
     changed = changed || !diagnostic;
   }
   if (t >= stop_time_) return EventAction::stop;

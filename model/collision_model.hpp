@@ -27,6 +27,7 @@
 #include "contact/history_force.hpp"
 #include "core/scene.hpp"
 #include "core/system.hpp"
+#include "model/watcher.hpp"
 
 namespace imcol::model {
 
@@ -77,7 +78,8 @@ struct Evaluation {
   std::array<SphereForces, 2> f{};
 };
 
-/// What an event is: the root that fired, or a state the model declared (a start in contact, at rest).
+/// What an event is: the root that fired (the model's own or a watcher's, model/watcher.hpp), or a declared state
+/// (a start inside the contact zone by the model, at rest by a watcher).
 enum class EventKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge, blend_edge, blend_end,
                        apex, rebound_stalled, measure_out, start_in_contact, at_rest };
 
@@ -138,19 +140,16 @@ class CollisionModel : public DynamicalSystem {
 
   // ---- Physics, for reporting ----
   Evaluation evaluate(double t, std::span<const double> y) const;
-  bool all_bounces() const { return all_bounces_; }
-  /// Called with each output sample. After the first U_rel = 0 in contact (unloading, not separated; with
-  /// measure.bounces = "all" also in flight after a contact), a pair with
-  /// |U_rel| < s and |dU_rel/dt|·window < s, s = measure.stall_fraction × the impact speed, throughout one
-  /// measure.window is at rest on the wall or moving with its partner: the run ends there (a longer run cannot
-  /// change e = 0, and a stiff contact would otherwise be integrated to t_end at minute steps).
+  /// Adds a rule that measures the run or ends it (model/watcher.hpp; run/ adds them before integrating) and re-arms
+  /// the roots. The watcher must outlive the integration.
+  void watch(EventWatcher& w);
+  /// Called with each output sample (run/recorder.cpp): tells the watchers, records what they declare and takes their stop times.
   void observe(double t, const Evaluation& ev);
-  /// Whether observe() reads the accelerations of its sample now (watching for rest); otherwise a kinematic
-  /// sample (kinematic_state) is enough.
+  /// Whether a watcher reads the forces and accelerations of the sample now; otherwise a kinematic sample
+  /// (kinematic_state) is enough.
   bool observes_accelerations() const;
   /// The positions, velocities and gap at y, without forces.
   Evaluation kinematic_state(std::span<const double> y) const;
-  std::optional<double> t_at_rest() const { return at_rest_ ? quiet_since_ : std::nullopt; }  // start of that window
   std::size_t n_spheres() const { return n_spheres_; }
   bool has_target() const { return target_ != Target::none; }
   bool has_wall() const { return target_ == Target::wall; }
@@ -176,9 +175,6 @@ class CollisionModel : public DynamicalSystem {
   int contacts() const { return contacts_; }
   std::optional<double> t_contact() const { return t_contact_; }       // first δ_SS crossing inward
   std::optional<double> t_separation() const { return t_separation_; } // first δ_SS crossing outward after contact
-  std::optional<double> t_closest() const { return t_closest_; }       // approach stopped without contact
-  std::optional<double> u_rel_instant_in() const { return u_in_; }
-  std::optional<double> u_rel_instant_out() const { return u_out_; }
   double impact_speed() const { return U_c_; }    // U_rel at the first δ_SS crossing, m/s
   double initial_u_rel() const { return u_rel0_; }  // U1 − U2 at t = 0, m/s
   double initial_gap() const;                        // m; infinite without a target
@@ -210,8 +206,9 @@ class CollisionModel : public DynamicalSystem {
   void freeze_contact(double t, double u_rel);
   void handle(RootKind kind, const std::string& name, double t, std::span<const double> y);
   void record(double t, EventKind kind, const std::string& name, std::span<const double> y);
-  /// bounces = "first": the stop time once the rebound's measurements are complete (or can no longer be).
-  void first_bounce_stop(double t);
+  /// Tells the watchers of the event just recorded, records what they declare and takes their stop times.
+  void tell_watchers(double t, const Evaluation& ev);
+  void declare(double t, const Evaluation& ev, const std::optional<Declared>& d);
 
   bool has(Effect e) const { return scene_.has(e); }
 
@@ -225,10 +222,9 @@ class CollisionModel : public DynamicalSystem {
   std::array<double, 2> a_{}, mp_{}, mf_{};
   double D_ = 0, a_star_ = 0, m_star_ = 0, E_star_ = 0, e_dry_ = 1, c_log_ = 0;
   double mu_ = 0, rho_f_ = 0;
-  double delta_ss_m_ = 0, instant_gap_m_ = 0, h_min_ = 0, h_c_ = 0, dw_floor_ = 0, u_ref_ = 0, gap_scale_ = 0;
+  double delta_ss_m_ = 0, h_min_ = 0, h_c_ = 0, dw_floor_ = 0, u_ref_ = 0, gap_scale_ = 0;
   double w_floor_ = 0, dw_slope_ = 0;  // W and dW/dδ at dw_floor
   double u_rel0_ = 0;       // initial U1 − U2, m/s (> 0: approaching)
-  double stall_speed_ = 0;  // U_rel below which an approach without contact counts as stopped
   DragLaw drag_law_ = DragLaw::stokes;
   LubricationModel lub_model_ = LubricationModel::asymptotic;
   GapGeometry gap_geo_;  // the gap law's radii, a*, c_log, h_c
@@ -246,18 +242,13 @@ class CollisionModel : public DynamicalSystem {
   double U_c_ = 0;
   double max_contact_force_ = 0;
   int contacts_ = 0;
-  std::optional<double> t_contact_, t_separation_, t_closest_, u_in_, u_out_;
+  std::optional<double> t_contact_, t_separation_;
   std::vector<RootSpec> armed_;
   std::vector<RootKind> armed_kind_;
+  std::vector<std::optional<WatchedRoot>> armed_watched_;  // per armed root: the watcher's, or none for the model's own
+  std::vector<EventWatcher*> watchers_;
   std::vector<EventRecord> events_;
   double stop_time_ = 0, max_step_ = 0;
-  std::optional<double> quiet_since_;  // observe(): start of the current quiet stretch
-  bool at_rest_ = false;
-  // measure.bounces (docs/bounces.md)
-  bool all_bounces_ = false;
-  bool instant_inside_ = false;  // all bounces: inside instant_gap (the next instant root is outward)
-  double measure_gap_m_ = 0;     // first bounce: the rebound must pass this gap for at_gap and fit_distance, m
-  bool measure_out_ = false, rebound_stalled_ = false, apex_seen_ = false;  // since the last separation
 };
 
 }  // namespace imcol::model

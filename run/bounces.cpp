@@ -64,11 +64,7 @@ void put_e(nlohmann::ordered_json& j, std::optional<double> u_in, std::optional<
   }
 }
 
-/// One contact and the flights around it: the approach [t_from, t_in] and the rebound [t_sep, t_next].
-struct Contact {
-  double t_in, u_in;
-  std::optional<double> t_out, u_out;  // the separation (outward δ_SS crossing) and U_rel there
-};
+/// One contact (ContactLog) and the flights around it: the approach [t_from, t_in] and the rebound [t_sep, t_next].
 struct Flights {
   const Contact& c;
   double t_from, t_next, t_sep;
@@ -203,11 +199,6 @@ nlohmann::ordered_json contact_ends_measure(const Track& tr, const std::vector<d
   return ce;
 }
 
-struct Crossing {
-  double t, u;
-  bool in;
-};
-
 /// e_instant: the U_rel at the inward crossing of instant_gap and at the next outward one.
 nlohmann::ordered_json instant_e(const std::vector<Crossing>& inst, const Flights& f) {
   std::optional<double> ii, io;
@@ -303,19 +294,10 @@ std::string measure_label(const Scene& sc, const std::string& name) {
   return name;
 }
 
-nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Scene& sc, const Track& tr, std::vector<std::string>& warnings) {
-  std::vector<Contact> cs;
-  std::vector<Crossing> inst;
-  for (const auto& ev : model.events()) {
-    if (ev.kind == model::EventKind::contact_in || ev.kind == model::EventKind::start_in_contact) cs.push_back({ev.t, ev.u_rel, std::nullopt, std::nullopt});
-    else if (ev.kind == model::EventKind::contact_out && !cs.empty() && !cs.back().t_out) {
-      cs.back().t_out = ev.t;
-      cs.back().u_out = ev.u_rel;
-    }
-    else if (ev.kind == model::EventKind::instant_in) inst.push_back({ev.t, ev.u_rel, true});
-    else if (ev.kind == model::EventKind::instant_out) inst.push_back({ev.t, ev.u_rel, false});
-  }
-  if (model.started_in_contact() && !cs.empty()) cs.front().u_in = model.initial_u_rel();
+nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch& watch, const Scene& sc, const Track& tr,
+                                       std::vector<std::string>& warnings) {
+  const std::vector<Contact>& cs = watch.contacts.contacts();
+  const std::vector<Crossing>& inst = watch.instant.crossings();
   const double D = 2 * model.radius(0);
   const double d_fit = sc.measure.fit_distance * D, g_at = sc.measure.at_gap * D, g_fd = model.delta_ss_m() + d_fit;
   const double t_final = tr.t.empty() ? 0.0 : tr.t.back();

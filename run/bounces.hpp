@@ -8,6 +8,7 @@
 
 #include "model/collision_model.hpp"
 #include "core/scene.hpp"
+#include "run/watch.hpp"
 
 namespace imcol::run {
 
@@ -32,7 +33,7 @@ std::string measure_label(const Scene& sc, const std::string& name);
 /// `e_measures` and `measures_disagree` (the distinct measures, by measure_label, whose e differs from e by more than
 /// measure.disagreement).
 /// Appends a warning when a fit e was clipped to 0.
-nlohmann::ordered_json measure_bounces(const model::CollisionModel& model, const Scene& sc, const Track& tr,
+nlohmann::ordered_json measure_bounces(const model::CollisionModel& model, const Watch& watch, const Scene& sc, const Track& tr,
                                        std::vector<std::string>& warnings);
 
 }  // namespace imcol::run

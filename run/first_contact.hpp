@@ -11,6 +11,7 @@
 #include "model/collision_model.hpp"
 #include "core/scene.hpp"
 #include "run/bounces.hpp"
+#include "run/watch.hpp"
 
 namespace imcol::run {
 
@@ -29,8 +30,8 @@ struct FirstContact {
 /// St in the reported convention (eq. 6.2 for a wall, half of it for a pair: seed Table 6.1) and St by (6.2).
 std::pair<double, double> stokes_numbers(const model::CollisionModel& model, const Scene& sc, double u_rel);
 
-/// Measures the first contact on the measures' track (Recorder::track()).
-FirstContact measure_first_contact(const model::CollisionModel& model, const Scene& sc, const Track& track,
+/// Measures the first contact on the measures' track (Recorder::track()), with what the run's watchers saw.
+FirstContact measure_first_contact(const model::CollisionModel& model, const Watch& watch, const Scene& sc, const Track& track,
                                    std::vector<std::string>& warnings);
 
 /// `e` is the first contact's named measure measure.e (from measure_bounces); without a contact, the approach's e

@@ -153,7 +153,7 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
   if (forces_ && sc_.has(Effect::flow)) r.push_back(ev.H);
   r.push_back(at_event ? 1.0 : 0.0);
   rows_.push_back(std::move(r));
-  model_.observe(t, ev);  // may end the run: at rest on the wall, or moving with its partner
+  model_.observe(t, ev);  // its watchers may end the run: at rest on the wall, or moving with its partner
   if (progress_) show_progress(t);
   if (model_.has_target()) {
     min_gap_ = std::min(min_gap_, ev.gap);

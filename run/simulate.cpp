@@ -15,6 +15,7 @@
 #include "run/first_contact.hpp"
 #include "run/recorder.hpp"
 #include "run/summary.hpp"
+#include "run/watch.hpp"
 
 namespace imcol {
 
@@ -42,6 +43,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   if (const auto why = model::never_approaching(sc)) throw InputError(sc.path, "sphere[0].velocity", *why);
   const auto setup_start = WallClock::now();
   CollisionModel model(sc);
+  run::Watch watch(model, sc);  // not const: the model updates its watchers
   const double setup = seconds_since(setup_start);
 
   // Integrate: the reduced-order model alone, or coupled to the flow kernel.
@@ -75,10 +77,10 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
 
   // Measure: the first contact as the seed does, then every contact with each named measure.
   std::vector<std::string> warnings;
-  run::FirstContact first = run::measure_first_contact(model, sc, rec.track(), warnings);
+  run::FirstContact first = run::measure_first_contact(model, watch, sc, rec.track(), warnings);
   nlohmann::ordered_json bounces = nlohmann::ordered_json::array();
   if (model.has_target() && sc.has(Effect::elastic) && !rec.track().t.empty())
-    bounces = run::measure_bounces(model, sc, rec.track(), warnings);
+    bounces = run::measure_bounces(model, watch, sc, rec.track(), warnings);
   run::choose_e(sc, bounces, first, warnings);
   run::check_plausibility(model, sc, first, warnings);
 
@@ -89,7 +91,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   s.scene_file = sc.path;
   s.configuration = !model.has_target() ? Configuration::free_sphere
                                         : (model.has_wall() ? Configuration::sphere_wall : Configuration::sphere_sphere);
-  run::measure_summary(s, model, sc, first, bounces, rec, res.rows);
+  run::measure_summary(s, model, watch, sc, first, bounces, rec, res.rows);
   j["scene"] = s.scene;
   j["scene_file"] = s.scene_file;
   j["configuration"] = to_string(s.configuration);

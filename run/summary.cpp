@@ -36,7 +36,7 @@ nlohmann::ordered_json or_null(const std::optional<std::string>& v) {
 
 }  // namespace
 
-void measure_summary(RunSummary& s, const CollisionModel& model, const Scene& sc, const FirstContact& m,
+void measure_summary(RunSummary& s, const CollisionModel& model, const Watch& watch, const Scene& sc, const FirstContact& m,
                      const nlohmann::ordered_json& bounces, const Recorder& rec, const std::vector<std::vector<double>>& rows) {
   const bool pair = model.n_spheres() == 2;
   s.e = m.e;
@@ -67,8 +67,8 @@ void measure_summary(RunSummary& s, const CollisionModel& model, const Scene& sc
   s.Re = m.Re;
   if (sc.fluid && model.has_target()) s.St_initial = stokes_numbers(model, sc, model.initial_u_rel()).first;  // nominal, same convention
   s.separated = m.separated;
-  // The run ended because the pair came to rest (MODEL.md §3 has no event for it; see CollisionModel::observe).
-  s.at_rest_since_s = model.t_at_rest();
+  // The run ended because the pair came to rest (MODEL.md §3 has no event for it; see run/watch_rest.hpp).
+  s.at_rest_since_s = watch.rest.since();
   s.t_end_too_short = m.t_end_too_short;
   if (model.has_target()) s.final_phase = model::to_string(model.phase());
   s.contacts = model.contacts();

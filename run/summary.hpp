@@ -10,12 +10,13 @@
 #include "run/first_contact.hpp"
 #include "run/recorder.hpp"
 #include "run/run_summary.hpp"
+#include "run/watch.hpp"
 
 namespace imcol::run {
 
 /// e, e_instant, the named measures, St, Re, velocities, group velocity, contact extremes: the measurements, into
 /// `s` (`bounces`: measure_bounces' contacts).
-void measure_summary(RunSummary& s, const model::CollisionModel& model, const Scene& sc, const FirstContact& m,
+void measure_summary(RunSummary& s, const model::CollisionModel& model, const Watch& watch, const Scene& sc, const FirstContact& m,
                      const nlohmann::ordered_json& bounces, const Recorder& rec, const std::vector<std::vector<double>>& rows);
 
 /// The measurements of `s` (measure_summary) into summary.json's object `j`.

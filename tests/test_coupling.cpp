@@ -10,6 +10,7 @@
 #include <string>
 
 #include "run/simulate.hpp"
+#include "run/watch.hpp"
 #include "model/collision_model.hpp"
 #include "core/errors.hpp"
 #include "coupling/divergence_watch.hpp"
@@ -294,6 +295,7 @@ TEST(Coupling, TheSpeedJumpCheckKnowsSolidContactByTheEventKind) {
   // contact: the speed-jump check goes by the event's kind, not its name.
   const Scene sc = load_scene(scene_path("default.toml"));
   model::CollisionModel model(sc);
+  run::Watch watch(model, sc);  // the first rebound's measurement root is a watcher's
   struct : Observer {
     void sample(double, std::span<const double>, bool) override {}
   } quiet;

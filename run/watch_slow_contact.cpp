@@ -1,0 +1,14 @@
+#include "run/watch_slow_contact.hpp"
+
+#include <cmath>
+
+namespace imcol::run {
+
+std::optional<model::Declared> SlowContactRest::on_event(const model::EventRecord& e) {
+  if (e.kind != model::EventKind::contact_in || model_.contacts() <= 1) return std::nullopt;
+  if (!(e.u_rel < stall_fraction_ * std::abs(model_.impact_speed()))) return std::nullopt;
+  rest_.declare(e.t);
+  return model::Declared{model::EventKind::at_rest, "at rest (impact speed below stall_fraction x the first impact speed)"};
+}
+
+}  // namespace imcol::run
