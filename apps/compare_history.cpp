@@ -41,43 +41,26 @@ std::map<double, double> force_samples(const RunResult& r) {
 }
 
 
-}  // namespace
+/// The scene with one kernel and evaluator ("none": without the history force), run; its metric and peak force.
+Row run_one(const Scene& base, bool collision, const std::string& kernel, const std::string& evaluator) {
+  Scene sc = base;
+  if (kernel == "none") {
+    sc.effects.erase(Effect::history);
+  } else {
+    sc.effects.insert(Effect::history);
+    sc.history.kernel = *choice_from_string<KernelKind>(kernel);
+    sc.history.evaluator = *choice_from_string<HistoryEvaluator>(evaluator);
+  }
+  Row r{kernel, evaluator, simulate(sc)};
+  const auto& s = r.run.summary;
+  r.metric = (collision ? s.e : s.u1_final_m_s).value_or(NAN);
+  r.peak = s.max_history_force_N.value_or(0.0);
+  std::cerr << "  ran " << kernel << (kernel == "none" ? "" : " / " + evaluator) << "\n";
+  return r;
+}
 
-int compare_history(const std::string& scene_path, const std::vector<Override>& overrides, const HistoryCompareOptions& opt) {
-  Scene base = load_scene(scene_path, overrides);
-  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-history"), base.path);
-  if (!base.fluid) throw InputError(scene_path, "fluid", "the history force needs a [fluid] table");
-  for (const auto& k : opt.kernels)
-    if (!choice_from_string<KernelKind>(k))
-      throw InputError("--kernels", k, "unknown kernel (expected basset, mei-adrian, kim, dorgan-loth)");
-  for (const auto& e : opt.evaluators)
-    if (!choice_from_string<HistoryEvaluator>(e)) throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
-  const bool collision = base.has_target();
-  const std::string metric_name = collision ? "e" : "u_end m/s";
-
-  auto run_one = [&](const std::string& kernel, const std::string& evaluator) {
-    Scene sc = base;
-    if (kernel == "none") {
-      sc.effects.erase(Effect::history);
-    } else {
-      sc.effects.insert(Effect::history);
-      sc.history.kernel = *choice_from_string<KernelKind>(kernel);
-      sc.history.evaluator = *choice_from_string<HistoryEvaluator>(evaluator);
-    }
-    Row r{kernel, evaluator, simulate(sc)};
-    const auto& s = r.run.summary;
-    r.metric = (collision ? s.e : s.u1_final_m_s).value_or(NAN);
-    r.peak = s.max_history_force_N.value_or(0.0);
-    std::cerr << "  ran " << kernel << (kernel == "none" ? "" : " / " + evaluator) << "\n";
-    return r;
-  };
-
-  std::vector<Row> rows;
-  rows.push_back(run_one("none", "-"));
-  for (const auto& k : opt.kernels)
-    for (const auto& e : opt.evaluators) rows.push_back(run_one(k, e));
-
-  // Reference of each kernel: its direct evaluation (when it ran).
+/// Each row against its kernel's direct evaluation (when it ran): d_metric and d_force.
+void compare_with_direct(std::vector<Row>& rows) {
   for (auto& r : rows) {
     if (r.kernel == "none") continue;
     for (const auto& ref : rows) {
@@ -90,8 +73,17 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
       r.d_force = ref.peak > 0 ? worst / ref.peak : NAN;
     }
   }
+}
 
-  std::cout << "scene " << base.name << ": history-force kernels and evaluators (reference: the direct evaluator of the same kernel)\n";
+/// history.csv and history_forces.csv.
+struct HistoryFiles {
+  std::string table, forces;
+};
+
+/// The table on stdout; the same rows for history.csv, and each run's f_hist1 samples for history_forces.csv.
+HistoryFiles report_rows(const std::vector<Row>& rows, bool collision, const std::string& scene_name) {
+  const std::string metric_name = collision ? "e" : "u_end m/s";
+  std::cout << "scene " << scene_name << ": history-force kernels and evaluators (reference: the direct evaluator of the same kernel)\n";
   std::cout << std::left << std::setw(12) << "kernel" << std::setw(8) << "eval" << std::right << std::setw(12) << metric_name
             << std::setw(10) << "d(none)" << std::setw(12) << "peak f_H N" << std::setw(10) << "d vs ref" << std::setw(11)
             << "dF/F_peak" << std::setw(7) << "modes" << std::setw(7) << "state" << std::setw(8) << "steps" << std::setw(9)
@@ -121,8 +113,31 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
     if (r.kernel != "none")
       for (const auto& [t, f] : force_samples(r.run)) forces << r.kernel << " " << r.evaluator << "," << t << "," << f << "\n";
   }
-  write_file_atomic(unit.dir() / "history.csv", csv.str());
-  write_file_atomic(unit.dir() / "history_forces.csv", forces.str());
+  return {csv.str(), forces.str()};
+}
+
+}  // namespace
+
+int compare_history(const std::string& scene_path, const std::vector<Override>& overrides, const HistoryCompareOptions& opt) {
+  Scene base = load_scene(scene_path, overrides);
+  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-history"), base.path);
+  if (!base.fluid) throw InputError(scene_path, "fluid", "the history force needs a [fluid] table");
+  for (const auto& k : opt.kernels)
+    if (!choice_from_string<KernelKind>(k))
+      throw InputError("--kernels", k, "unknown kernel (expected basset, mei-adrian, kim, dorgan-loth)");
+  for (const auto& e : opt.evaluators)
+    if (!choice_from_string<HistoryEvaluator>(e)) throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
+  const bool collision = base.has_target();
+
+  std::vector<Row> rows;
+  rows.push_back(run_one(base, collision, "none", "-"));
+  for (const auto& k : opt.kernels)
+    for (const auto& e : opt.evaluators) rows.push_back(run_one(base, collision, k, e));
+  compare_with_direct(rows);  // reference of each kernel: its direct evaluation
+
+  const HistoryFiles files = report_rows(rows, collision, base.name);
+  write_file_atomic(unit.dir() / "history.csv", files.table);
+  write_file_atomic(unit.dir() / "history_forces.csv", files.forces);
   if (opt.plot) run_plot_script("plot_history.py", unit, "history.png");
   unit.commit();
   std::cout << "wrote " << (unit.target() / "history.csv").string() << " and " << (unit.target() / "history_forces.csv").string() << "\n";

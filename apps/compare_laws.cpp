@@ -307,28 +307,20 @@ Json law_json(const LawRow& r, const std::vector<LawRow>& rows) {
   return j;
 }
 
-}  // namespace
-
-int compare_laws(const std::string& scene_path, const std::vector<Override>& overrides, const LawsCompareOptions& opt) {
-  const Scene base = load_scene(scene_path, overrides);
-  if (!base.has_target())
-    throw InputError(base.path, "wall", "a free sphere has no contact, so no contact law to compare (add a [wall] or a second [[sphere]])");
+/// The laws to compare: --laws (unknown names refused, repeats dropped), or every shipped law.
+std::vector<std::string> laws_to_compare(const LawsCompareOptions& opt) {
   std::vector<std::string> laws;
   for (const auto& l : opt.laws.empty() ? choice_names<ContactLawKind>() : opt.laws) {
     if (!choice_from_string<ContactLawKind>(l)) throw InputError("command line", "--laws", "unknown law '" + l + "'");
     if (std::find(laws.begin(), laws.end(), l) == laws.end()) laws.push_back(l);
   }
-  const SweepOptions& sw = opt.sweep;
-  const bool sweeping = !sw.vary.empty();
-  const char* column = sweeping ? sweep_column(sw.vary) : "";
-  if (!column) throw InputError("command line", "--vary", "unknown quantity '" + sw.vary + "' (expected velocity, viscosity, diameter, density)");
-  if (sweeping && sw.points > 1 && sw.from == sw.to)
-    throw InputError("command line", "--to", "equals --from: a sweep of several points needs a range");
-  if (sweeping && sw.vary == "viscosity" && !base.fluid) throw InputError(base.path, "fluid", "a viscosity sweep needs a [fluid] table");
-  OutputUnit unit(opt.out, fs::path("out") / (base.name + (sweeping ? "-laws_" + sw.vary : "-laws")), base.path);
+  return laws;
+}
 
-  // Point by point, law by law.
-  const std::vector<double> values = sweeping ? sweep_values(sw) : std::vector<double>{NAN};
+/// Point by point (one point, NaN, without --vary), law by law; a sweep's point keeps its summary only.
+std::vector<LawRow> run_laws(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
+                             const std::vector<std::string>& laws, const SweepOptions& sw, const std::vector<double>& values) {
+  const bool sweeping = !sw.vary.empty();
   std::vector<LawRow> rows;
   for (std::size_t i = 0; i < values.size(); ++i) {
     auto ov = overrides;
@@ -336,7 +328,7 @@ int compare_laws(const std::string& scene_path, const std::vector<Override>& ove
       for (auto& o : sweep_overrides(base, sw.vary, values[i])) ov.push_back(o);
     for (const auto& law : laws) {
       rows.push_back(run_law(scene_path, ov, law));
-      if (sweeping) {  // a point keeps its summary; its trajectory is not written
+      if (sweeping) {  // its trajectory is not written
         LawRow& r = rows.back();
         r.point = static_cast<int>(i);
         r.value = values[i];
@@ -346,21 +338,19 @@ int compare_laws(const std::string& scene_path, const std::vector<Override>& ove
       }
     }
   }
+  return rows;
+}
+
+/// What the first law that ran says of the scene: e's definition and the contact's e_dry and δ_SS.
+struct LawsContext {
   const LawRow* first_ran = nullptr;
-  for (const auto& r : rows)
-    if (r.ran() && !first_ran) first_ran = &r;
-  const std::string e_is = first_ran ? first_ran->run.summary.e_is : to_string(base.measure.e);
-  const std::optional<ContactSummary> contact = first_ran ? first_ran->run.summary.contact : std::nullopt;
+  std::string e_is;
+  std::optional<ContactSummary> contact;
+};
 
-  std::cout << "scene " << base.name << ": contact laws";
-  if (sweeping)
-    std::cout << " at " << sw.points << " points of " << sw.vary << " from " << sw.from << " to " << sw.to << " (" << sw.spacing << " spacing)";
-  std::cout << "; e = " << e_is;
-  if (contact) std::cout << ", e_dry = " << short_number(contact->e_dry) << "; the laws act below delta_SS = " << fixed(1e6 * contact->delta_ss_m, 1) << " um";
-  std::cout << "\n";
-  if (sweeping) print_sweep_table(rows, laws, values, column);
-  else print_scene_table(rows, e_is);
-
+/// laws.json, all but its `run` block.
+Json laws_json(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base, const SweepOptions& sw,
+               const char* column, const LawsContext& cx, const std::vector<LawRow>& rows) {
   Json j;
   j["scene"] = base.name;
   j["scene_file"] = scene_path;
@@ -368,13 +358,13 @@ int compare_laws(const std::string& scene_path, const std::vector<Override>& ove
   for (const auto& o : overrides) ov[o.key] = o.value;
   j["overrides"] = ov;
   j["configuration"] = base.two_spheres() ? "sphere-sphere" : "sphere-wall";
-  j["e_is"] = e_is;
-  if (contact) {
-    j["e_dry"] = contact->e_dry;
-    j["delta_ss_m"] = contact->delta_ss_m;
+  j["e_is"] = cx.e_is;
+  if (cx.contact) {
+    j["e_dry"] = cx.contact->e_dry;
+    j["delta_ss_m"] = cx.contact->delta_ss_m;
   }
-  if (first_ran) j["effects"] = first_ran->run.summary.effects;
-  if (sweeping) {
+  if (cx.first_ran) j["effects"] = cx.first_ran->run.summary.effects;
+  if (!sw.vary.empty()) {
     j["vary"] = sw.vary;
     j["column"] = column;
     j["from"] = sw.from;
@@ -385,19 +375,12 @@ int compare_laws(const std::string& scene_path, const std::vector<Override>& ove
   Json jrows = Json::array();
   for (const auto& r : rows) jrows.push_back(law_json(r, rows));
   j["laws"] = jrows;
-  j["run"] = unit.run();
-  write_file_atomic(unit.dir() / "laws.csv", laws_csv(rows, column));
-  write_file_atomic(unit.dir() / "laws.json", j.dump(2) + "\n");
-  if (!sweeping) write_file_atomic(unit.dir() / "laws_traces.csv", traces_csv(rows));
-  if (opt.plot && first_ran) {
-    std::cout.flush();
-    run_plot_script("plot_laws.py", unit, "laws.png");
-  }
-  unit.commit();
-  std::cout << "wrote " << (unit.target() / "laws.csv").string() << " and " << (unit.target() / "laws.json").string() << "\n";
-  if (first_ran) return 0;
-  // No law ran: a solver failure (exit 3) or the first law's refusal (exit 2), on one line; the table and laws.csv
-  // hold every law's reason.
+  return j;
+}
+
+/// No law ran: a solver failure (exit 3) or the first law's refusal (exit 2), on one line; the table and laws.csv
+/// hold every law's reason.
+[[noreturn]] void throw_no_law_ran(const std::vector<LawRow>& rows, const OutputUnit& unit) {
   std::cout.flush();
   const std::string all = " (no contact law ran; every law's reason is in " + (unit.target() / "laws.csv").string() + ")";
   for (const auto& r : rows)
@@ -407,6 +390,56 @@ int compare_laws(const std::string& scene_path, const std::vector<Override>& ove
   const std::string prefix = first.where() + (first.key().empty() ? "" : ": key '" + first.key() + "'") + ": ";
   if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
   throw InputError(first.where(), first.key(), rows.front().law + ": " + problem + all);
+}
+
+}  // namespace
+
+int compare_laws(const std::string& scene_path, const std::vector<Override>& overrides, const LawsCompareOptions& opt) {
+  const Scene base = load_scene(scene_path, overrides);
+  if (!base.has_target())
+    throw InputError(base.path, "wall", "a free sphere has no contact, so no contact law to compare (add a [wall] or a second [[sphere]])");
+  const std::vector<std::string> laws = laws_to_compare(opt);
+  const SweepOptions& sw = opt.sweep;
+  const bool sweeping = !sw.vary.empty();
+  const char* column = sweeping ? sweep_column(sw.vary) : "";
+  if (!column) throw InputError("command line", "--vary", "unknown quantity '" + sw.vary + "' (expected velocity, viscosity, diameter, density)");
+  if (sweeping && sw.points > 1 && sw.from == sw.to)
+    throw InputError("command line", "--to", "equals --from: a sweep of several points needs a range");
+  if (sweeping && sw.vary == "viscosity" && !base.fluid) throw InputError(base.path, "fluid", "a viscosity sweep needs a [fluid] table");
+  OutputUnit unit(opt.out, fs::path("out") / (base.name + (sweeping ? "-laws_" + sw.vary : "-laws")), base.path);
+
+  const std::vector<double> values = sweeping ? sweep_values(sw) : std::vector<double>{NAN};
+  const std::vector<LawRow> rows = run_laws(scene_path, overrides, base, laws, sw, values);
+  LawsContext cx;
+  for (const auto& r : rows)
+    if (r.ran() && !cx.first_ran) cx.first_ran = &r;
+  cx.e_is = cx.first_ran ? cx.first_ran->run.summary.e_is : to_string(base.measure.e);
+  cx.contact = cx.first_ran ? cx.first_ran->run.summary.contact : std::nullopt;
+  const std::string& e_is = cx.e_is;
+  const std::optional<ContactSummary>& contact = cx.contact;
+
+  std::cout << "scene " << base.name << ": contact laws";
+  if (sweeping)
+    std::cout << " at " << sw.points << " points of " << sw.vary << " from " << sw.from << " to " << sw.to << " (" << sw.spacing << " spacing)";
+  std::cout << "; e = " << e_is;
+  if (contact) std::cout << ", e_dry = " << short_number(contact->e_dry) << "; the laws act below delta_SS = " << fixed(1e6 * contact->delta_ss_m, 1) << " um";
+  std::cout << "\n";
+  if (sweeping) print_sweep_table(rows, laws, values, column);
+  else print_scene_table(rows, e_is);
+
+  Json j = laws_json(scene_path, overrides, base, sw, column, cx, rows);
+  j["run"] = unit.run();
+  write_file_atomic(unit.dir() / "laws.csv", laws_csv(rows, column));
+  write_file_atomic(unit.dir() / "laws.json", j.dump(2) + "\n");
+  if (!sweeping) write_file_atomic(unit.dir() / "laws_traces.csv", traces_csv(rows));
+  if (opt.plot && cx.first_ran) {
+    std::cout.flush();
+    run_plot_script("plot_laws.py", unit, "laws.png");
+  }
+  unit.commit();
+  std::cout << "wrote " << (unit.target() / "laws.csv").string() << " and " << (unit.target() / "laws.json").string() << "\n";
+  if (cx.first_ran) return 0;
+  throw_no_law_ran(rows, unit);
 }
 
 }  // namespace imcol

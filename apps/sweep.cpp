@@ -331,6 +331,79 @@ EStatusCounts report_e_status(const std::vector<PointResult>& pts, const Scene& 
   return c;
 }
 
+/// A sweep stopped by a failed write of sweep.csv: keeps what finished (marked by sweep.partial) and throws.
+[[noreturn]] void stop_on_write_error(OutputUnit& unit, const Tally& tally, const SweepOptions& opt) {
+  std::string kept = "sweep.partial marks what is there as incomplete";
+  try {
+    unit.commit();
+  } catch (const std::exception& e) {
+    kept = "the points finished so far could not be kept either (" + std::string(e.what()) + ")";
+  }
+  throw std::runtime_error("sweep stopped after " + std::to_string(tally.finished) + " of " + std::to_string(opt.points) +
+                           " points: writing " + (unit.target() / "sweep.csv").string() + " failed (" + tally.write_error + "); " + kept);
+}
+
+/// What the finished sweep found, for its closing lines and sweep.json.
+struct Outcome {
+  int jobs = 0, ok = 0;
+  Tally tally;
+  nlohmann::ordered_json failures;
+  EStatusCounts counts;
+};
+
+/// The table, the throughput and the failures on stdout, and the e_status line.
+Outcome report_points(const std::vector<PointResult>& pts, const SweepOptions& opt, const Quantity& q, const Scene& base, int jobs,
+                      const Tally& tally) {
+  Outcome out;
+  out.jobs = jobs;
+  out.tally = tally;
+  const double wall = tally.wall;
+  double cpu = 0;
+  out.failures = print_points(pts, opt, q, base.name, jobs, cpu);
+  const int ok = opt.points - tally.failed;
+  out.ok = ok;
+  std::cout << ok << " of " << opt.points << " points ran in " << std::fixed << std::setprecision(2) << wall << " s on " << jobs
+            << " jobs: " << std::setprecision(1) << ok / wall << " collisions per second (" << std::setprecision(3)
+            << (ok ? 1e3 * cpu / ok : NAN) << " ms integration per point)\n";
+  for (const auto& f : out.failures)
+    std::cout << "failed: point " << f["point"] << " (" << opt.vary << " = " << f["value"] << "): " << f["reason"].get<std::string>() << "\n";
+  out.counts = report_e_status(pts, base, ok);
+  return out;
+}
+
+/// sweep.json, all but its `run` block.
+nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
+                                  const SweepOptions& opt, const Quantity& q, const std::vector<PointResult>& pts, const Outcome& out) {
+  nlohmann::ordered_json j;
+  j["scene"] = base.name;
+  j["scene_file"] = scene_path;
+  nlohmann::ordered_json ov = nlohmann::ordered_json::object();  // --set/--rtol/... as given, before the varied quantity's
+  for (const auto& o : overrides) ov[o.key] = o.value;
+  j["overrides"] = ov;
+  j["configuration"] = base.two_spheres() ? "sphere-sphere" : (base.wall ? "sphere-wall" : "free sphere");
+  j["vary"] = opt.vary;
+  j["column"] = q.column;
+  j["from"] = opt.from;
+  j["to"] = opt.to;
+  j["points"] = opt.points;
+  j["spacing"] = opt.spacing;
+  j["jobs"] = out.jobs;
+  j["wall_time_s"] = out.tally.wall;
+  j["collisions_per_second"] = finite_or_null(out.ok / out.tally.wall);
+  j["failures"] = out.failures;
+  j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(pts[0].summary.St_convention);
+  if (!pts.empty() && pts[0].ok) {
+    j["effects"] = pts[0].summary.effects;
+    j["e_is"] = pts[0].summary.e_is;
+    if (pts[0].summary.contact) j["e_dry"] = pts[0].summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
+  }
+  j["e_not_measured_points"] = out.counts.missing;
+  j["measures_disagree_points"] = out.counts.disagree;
+  j["measures_disagree_counts"] = out.counts.disagreeing;
+  j["complete"] = true;  // every point ran (or failed with its reason)
+  return j;
+}
+
 }  // namespace
 
 int sweep(const std::string& scene_path, const std::vector<Override>& overrides, const SweepOptions& opt) {
@@ -340,7 +413,6 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
 
   const Scene base = load_scene(scene_path, overrides);
   if (opt.vary == "viscosity" && !base.fluid) throw InputError(scene_path, "fluid", "a viscosity sweep needs a [fluid] table");
-  const bool pair = base.two_spheres();
   std::vector<PointResult> pts(opt.points);
   const std::vector<Scene> scenes = point_scenes(scene_path, overrides, base, opt, pts);
 
@@ -354,60 +426,12 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const int jobs = std::min(opt.points, opt.jobs > 0 ? opt.jobs : static_cast<int>(hw));
   const Tally tally = run_points(scenes, pts, opt, *q, dir, jobs);
-  const int finished = tally.finished, failed = tally.failed;
-  const double wall = tally.wall;
-  const std::string& write_error = tally.write_error;
-  if (!write_error.empty()) {
-    std::string kept = "sweep.partial marks what is there as incomplete";
-    try {
-      unit.commit();
-    } catch (const std::exception& e) {
-      kept = "the points finished so far could not be kept either (" + std::string(e.what()) + ")";
-    }
-    throw std::runtime_error("sweep stopped after " + std::to_string(finished) + " of " + std::to_string(opt.points) +
-                             " points: writing " + (unit.target() / "sweep.csv").string() + " failed (" + write_error + "); " + kept);
-  }
+  if (!tally.write_error.empty()) stop_on_write_error(unit, tally, opt);
+  const int failed = tally.failed;
 
-  // Table, failures, throughput.
-  double cpu = 0;
-  const nlohmann::ordered_json failures = print_points(pts, opt, *q, base.name, jobs, cpu);
-  const int ok = opt.points - failed;
-  std::cout << ok << " of " << opt.points << " points ran in " << std::fixed << std::setprecision(2) << wall << " s on " << jobs
-            << " jobs: " << std::setprecision(1) << ok / wall << " collisions per second (" << std::setprecision(3)
-            << (ok ? 1e3 * cpu / ok : NAN) << " ms integration per point)\n";
-  for (const auto& f : failures)
-    std::cout << "failed: point " << f["point"] << " (" << opt.vary << " = " << f["value"] << "): " << f["reason"].get<std::string>() << "\n";
-  const EStatusCounts counts = report_e_status(pts, base, ok);
-  const int n_missing = counts.missing, n_disagree = counts.disagree;
-  const auto& disagreeing = counts.disagreeing;
-
-  nlohmann::ordered_json j;
-  j["scene"] = base.name;
-  j["scene_file"] = scene_path;
-  nlohmann::ordered_json ov = nlohmann::ordered_json::object();  // --set/--rtol/... as given, before the varied quantity's
-  for (const auto& o : overrides) ov[o.key] = o.value;
-  j["overrides"] = ov;
-  j["configuration"] = pair ? "sphere-sphere" : (base.wall ? "sphere-wall" : "free sphere");
-  j["vary"] = opt.vary;
-  j["column"] = q->column;
-  j["from"] = opt.from;
-  j["to"] = opt.to;
-  j["points"] = opt.points;
-  j["spacing"] = opt.spacing;
-  j["jobs"] = jobs;
-  j["wall_time_s"] = wall;
-  j["collisions_per_second"] = finite_or_null(ok / wall);
-  j["failures"] = failures;
-  j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(pts[0].summary.St_convention);
-  if (!pts.empty() && pts[0].ok) {
-    j["effects"] = pts[0].summary.effects;
-    j["e_is"] = pts[0].summary.e_is;
-    if (pts[0].summary.contact) j["e_dry"] = pts[0].summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
-  }
-  j["e_not_measured_points"] = n_missing;
-  j["measures_disagree_points"] = n_disagree;
-  j["measures_disagree_counts"] = disagreeing;
-  j["complete"] = true;  // every point ran (or failed with its reason)
+  // Table, failures, throughput; sweep.json.
+  const Outcome outcome = report_points(pts, opt, *q, base, jobs, tally);
+  nlohmann::ordered_json j = sweep_json(scene_path, overrides, base, opt, *q, pts, outcome);
   j["run"] = unit.run();
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
   fs::remove(dir / "sweep.partial");

@@ -118,23 +118,21 @@ std::vector<ValidateModel> validate_models(const std::vector<std::string>& names
   return out;
 }
 
-/// The seed's Table 6.1: each run with the seed's gap law (lubrication.model = "seed", our reading of its (6.7)) and with
-/// the asymptotic one (exact as h -> 0), reduced-order, and with --flow also coupled (MODEL.md (6.10)); both St_B
-/// conventions. Only the gap law differs between the models: the rest of the pair model is the scenes' (lagrangian
-/// added mass, K_H = 1, λ without the gap Reynolds number).
-int cmd_validate(const std::string& what, const ValidateOptions& opt, const std::vector<Override>& overrides) {
+namespace {
+
+/// The validation set's name, --tolerance, and no gap law by --set (the models differ in it: chosen with --models).
+void check_validate_options(const std::string& what, const ValidateOptions& opt, const std::vector<Override>& overrides) {
   if (what != "seed") throw InputError("validate", what, "unknown validation set (expected 'seed')");
   if (!(std::isfinite(opt.tolerance) && opt.tolerance > 0))
     throw InputError("command line", "--tolerance", "must be a positive number (got " + fmt_number(opt.tolerance) + ")");
-  // The gap law is what the models differ in: it is chosen with --models, never by --set.
   for (const auto& o : overrides)
     if (o.key == "lubrication.model" || (o.key == "lubrication" && o.value.find("model") != std::string::npos))
       throw InputError("command line", "lubrication.model",
                        "imcol validate sets the gap law of each model; choose the models with --models seed,asymptotic instead of --set");
-  const auto models = validate_models(opt.models);
-  const auto runs = read_table_6_1();
-  OutputUnit unit(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
-  const bool flow = opt.flow;
+}
+
+/// The table's title, the models' legend and its column heads on stdout.
+void print_validate_header(bool flow) {
   std::cout << "Seed Table 6.1 (Li 2010) against imcol, " << (flow ? "coupled (f_SIM from the flow kernel, blended by H) and reduced-order"
                                                                   : "reduced-order (no f_SIM)") << "\n"
             << "  models (only the gap law differs; the scenes keep lagrangian added mass, K_H = 1, lambda without Re_h):\n"
@@ -148,52 +146,88 @@ int cmd_validate(const std::string& what, const ValidateOptions& opt, const std:
   std::cout << std::setw(8) << "e_inst" << std::setw(10) << "U_G mm/s" << std::setw(10) << (flow ? "wall s" : "wall ms");
   if (flow) std::cout << std::setw(9) << "ms/step";
   std::cout << "\n";
-  std::ostringstream csv;
-  csv << "run,pair,model,lubrication_model,St_B_seed,e_seed,Re_seed,St_B,St_B_table_6_1,St_B_eq_6_2,e,e_minus_e_seed,e_instant,Re,"
-         "group_velocity_m_s,steps,wall_time_s";
+}
+
+std::string validate_csv_header(bool flow) {
+  std::string h = "run,pair,model,lubrication_model,St_B_seed,e_seed,Re_seed,St_B,St_B_table_6_1,St_B_eq_6_2,e,e_minus_e_seed,e_instant,Re,"
+                  "group_velocity_m_s,steps,wall_time_s";
   if (flow)
-    csv << ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_table_6_1_reduced_order,St_B_eq_6_2_reduced_order,wall_time_reduced_order_s,"
-           "flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s";
+    h += ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_table_6_1_reduced_order,St_B_eq_6_2_reduced_order,wall_time_reduced_order_s,"
+         "flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s";
+  return h + "\n";
+}
+
+/// One run with one model: `s` the reported run (coupled with --flow), `rs` the reduced-order one.
+struct ValidateRow {
+  const SeedRun& sr;
+  const ValidateModel& model;
+  const RunSummary& s;
+  const RunSummary& rs;
+  bool flow;
+  std::optional<double> diff(std::optional<double> v) const { return v ? std::optional<double>(*v - sr.e_value) : std::nullopt; }
+};
+
+void print_validate_row(const ValidateRow& r) {
+  const auto& s = r.s;
+  auto show = [](std::optional<double> v, int prec) { return v ? fixed(*v, prec) : std::string("n/a"); };
+  std::cout << std::left << std::setw(4) << r.sr.run << std::setw(13) << r.sr.pair << std::setw(11) << r.model.name << std::right
+            << std::setw(10) << r.sr.St_B << std::setw(11) << fixed_or_na(s.St_B_table_6_1, 1) << std::setw(12)
+            << fixed_or_na(s.St_B_eq_6_2, 1) << std::setw(8) << r.sr.e << std::setw(8) << show(s.e, 3) << std::setw(8)
+            << show(r.diff(s.e), 3);
+  if (r.flow) std::cout << std::setw(10) << show(r.rs.e, 3) << std::setw(8) << show(r.diff(r.rs.e), 3);
+  std::cout << std::setw(8) << fixed_or_na(s.e_instant, 3) << std::setw(10)
+            << (s.group_velocity_m_s ? fixed(1e3 * *s.group_velocity_m_s, 2) : std::string("-"))
+            << std::setw(10) << (r.flow ? fixed(s.wall_time_s, 2) : fixed(1e3 * s.wall_time_s, 1));
+  if (r.flow) std::cout << std::setw(9) << fixed(s.flow.value().ms_per_step, 1);
+  std::cout << "\n";
+}
+
+void write_validate_row(std::ostream& csv, const ValidateRow& r) {
+  const auto& s = r.s;
+  const auto& rs = r.rs;
+  auto num = [](std::optional<double> v) { return v ? csv_number(*v) : std::string(); };
+  csv << r.sr.run << "," << r.sr.pair << "," << r.model.name << "," << to_string(r.model.lubrication) << "," << r.sr.St_B << "," << r.sr.e << ","
+      << r.sr.Re << "," << csv_cell(s.St) << "," << csv_cell(s.St_B_table_6_1) << "," << csv_cell(s.St_B_eq_6_2) << ","
+      << num(s.e) << "," << num(r.diff(s.e)) << "," << csv_cell(s.e_instant) << "," << csv_cell(s.Re) << ","
+      << csv_cell(s.group_velocity_m_s) << "," << csv_number(s.solver.stats.steps) << "," << csv_number(s.wall_time_s);
+  if (r.flow) {
+    const FlowSummary& f = s.flow.value();
+    csv << "," << num(rs.e) << "," << num(r.diff(rs.e)) << "," << csv_cell(rs.St_B_table_6_1) << "," << csv_cell(rs.St_B_eq_6_2)
+        << "," << csv_number(rs.wall_time_s) << "," << csv_number(f.stats.steps) << "," << csv_number(f.ms_per_step) << ","
+        << csv_number(f.stats.cells_per_diameter) << "," << csv_number(f.stats.dt);
+  }
   csv << "\n";
+}
+
+}  // namespace
+
+/// The seed's Table 6.1: each run with the seed's gap law (lubrication.model = "seed", our reading of its (6.7)) and with
+/// the asymptotic one (exact as h -> 0), reduced-order, and with --flow also coupled (MODEL.md (6.10)); both St_B
+/// conventions. Only the gap law differs between the models: the rest of the pair model is the scenes' (lagrangian
+/// added mass, K_H = 1, λ without the gap Reynolds number).
+int cmd_validate(const std::string& what, const ValidateOptions& opt, const std::vector<Override>& overrides) {
+  check_validate_options(what, opt, overrides);
+  const auto models = validate_models(opt.models);
+  const auto runs = read_table_6_1();
+  OutputUnit unit(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
+  const bool flow = opt.flow;
+  print_validate_header(flow);
+  std::ostringstream csv;
+  csv << validate_csv_header(flow);
   std::vector<Agreement> agree(models.size()), agree_reduced(models.size());
   for (const auto& sr : runs) {
     const std::string path = data_dir() + "/scenes/seed_run" + sr.run + ".toml";
-    const double e_seed = sr.e_value;
     for (std::size_t k = 0; k < models.size(); ++k) {
       const auto& model = models[k];
       auto ov = overrides;
       ov.push_back({"lubrication.model", std::string("\"") + to_string(model.lubrication) + "\""});  // the model's law
       const RunResult red = simulate(load_scene(path, without_flow_keys(ov)));
       const RunResult cpl = flow ? simulate(with_flow(path, ov), true) : RunResult{};
-      const auto& s = flow ? cpl.summary : red.summary;
-      const auto& rs = red.summary;
-      const auto e = s.e, e_red = rs.e;
-      agree[k].add(sr.run, e, e_seed, opt.tolerance);
-      if (flow) agree_reduced[k].add(sr.run, e_red, e_seed, opt.tolerance);
-      auto diff = [&](std::optional<double> v) { return v ? std::optional<double>(*v - e_seed) : std::nullopt; };
-      auto show = [](std::optional<double> v, int prec) { return v ? fixed(*v, prec) : std::string("n/a"); };
-      std::cout << std::left << std::setw(4) << sr.run << std::setw(13) << sr.pair << std::setw(11) << model.name << std::right
-                << std::setw(10) << sr.St_B << std::setw(11) << fixed_or_na(s.St_B_table_6_1, 1) << std::setw(12)
-                << fixed_or_na(s.St_B_eq_6_2, 1) << std::setw(8) << sr.e << std::setw(8) << show(e, 3) << std::setw(8)
-                << show(diff(e), 3);
-      if (flow) std::cout << std::setw(10) << show(e_red, 3) << std::setw(8) << show(diff(e_red), 3);
-      std::cout << std::setw(8) << fixed_or_na(s.e_instant, 3) << std::setw(10)
-                << (s.group_velocity_m_s ? fixed(1e3 * *s.group_velocity_m_s, 2) : std::string("-"))
-                << std::setw(10) << (flow ? fixed(s.wall_time_s, 2) : fixed(1e3 * s.wall_time_s, 1));
-      if (flow) std::cout << std::setw(9) << fixed(s.flow.value().ms_per_step, 1);
-      std::cout << "\n";
-      auto num = [](std::optional<double> v) { return v ? csv_number(*v) : std::string(); };
-      csv << sr.run << "," << sr.pair << "," << model.name << "," << to_string(model.lubrication) << "," << sr.St_B << "," << sr.e << ","
-          << sr.Re << "," << csv_cell(s.St) << "," << csv_cell(s.St_B_table_6_1) << "," << csv_cell(s.St_B_eq_6_2) << ","
-          << num(e) << "," << num(diff(e)) << "," << csv_cell(s.e_instant) << "," << csv_cell(s.Re) << ","
-          << csv_cell(s.group_velocity_m_s) << "," << csv_number(s.solver.stats.steps) << "," << csv_number(s.wall_time_s);
-      if (flow) {
-        const FlowSummary& f = s.flow.value();
-        csv << "," << num(e_red) << "," << num(diff(e_red)) << "," << csv_cell(rs.St_B_table_6_1) << "," << csv_cell(rs.St_B_eq_6_2)
-            << "," << csv_number(rs.wall_time_s) << "," << csv_number(f.stats.steps) << "," << csv_number(f.ms_per_step) << ","
-            << csv_number(f.stats.cells_per_diameter) << "," << csv_number(f.stats.dt);
-      }
-      csv << "\n";
+      const ValidateRow row{sr, model, flow ? cpl.summary : red.summary, red.summary, flow};
+      agree[k].add(sr.run, row.s.e, sr.e_value, opt.tolerance);
+      if (flow) agree_reduced[k].add(sr.run, row.rs.e, sr.e_value, opt.tolerance);
+      print_validate_row(row);
+      write_validate_row(csv, row);
     }
   }
   for (std::size_t k = 0; k < models.size(); ++k) {

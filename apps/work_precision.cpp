@@ -234,6 +234,123 @@ std::string points_csv(const std::vector<Point>& pts, const std::string& metric)
   return csv.str();
 }
 
+/// The base scene with one configuration's solver and history settings; atol = rtol.
+Scene scene_for(const Scene& base, const Config& c, double rtol, double direct_step, double history_tol) {
+  Scene sc = base;
+  sc.solver.rtol = rtol;
+  sc.solver.atol = rtol;
+  sc.solver.integrator = c.integrator == "ida" ? IntegratorMethod::ida : IntegratorMethod::cvode;
+  sc.solver.linear_solver = c.integrator == "cvode-gmres" ? LinearSolverChoice::gmres : LinearSolverChoice::dense;
+  if (c.evaluator != "none") {
+    sc.history.evaluator = *choice_from_string<HistoryEvaluator>(c.evaluator);
+    if (c.evaluator == "soe" || c.evaluator == "soe-step") {
+      sc.history.modes = 0;
+      sc.history.tolerance = history_tol;
+    } else {
+      sc.history.direct_step = direct_step;
+    }
+  }
+  return sc;
+}
+
+/// The soe fit tolerance follows rtol (within what the fit supports), so that one knob sets the accuracy.
+double history_tol_for(double rtol) { return std::clamp(rtol, 1e-10, 1e-3); }
+
+/// The reference run (the tightest settings), its metric, its samples and the velocity scale of trajectory errors.
+struct Reference {
+  Config cfg;
+  RunResult run;
+  double value = NAN;
+  Samples samples;
+  double u_scale = 0;
+};
+
+Reference run_reference(const Scene& base, const WorkPrecisionOptions& opt, bool history, bool collision, double D) {
+  Reference ref;
+  ref.cfg = {"cvode-dense", history ? "soe" : "none"};
+  std::cerr << "reference run (cvode dense, rtol = atol = " << opt.ref_rtol << ")\n";
+  ref.run = simulate(scene_for(base, ref.cfg, opt.ref_rtol, NAN, opt.ref_history_tol));
+  ref.value = metric_of(ref.run, collision);
+  if (std::isnan(ref.value))
+    throw SolverError("the reference run has no " + std::string(collision ? "e (no collision by t_end?)" : "final velocity"));
+  ref.samples = samples(ref.run, D);
+  for (const auto& [t, v] : ref.samples)
+    for (std::size_t k = 1; k < v.size(); ++k) ref.u_scale = std::max(ref.u_scale, std::abs(v[k]));
+  if (!(ref.u_scale > 0)) ref.u_scale = 1;
+  return ref;
+}
+
+/// The direct evaluator's base step: the scene's, or the model's automatic step (read off a model built, not run).
+double direct_base_step(const Scene& base, const std::vector<std::string>& evaluators) {
+  double h_direct = base.history.direct_step;
+  if (std::count(evaluators.begin(), evaluators.end(), "direct") && !(h_direct > 0)) {
+    Scene probe = base;
+    probe.history.evaluator = HistoryEvaluator::direct;
+    h_direct = model::CollisionModel(probe).history_options().direct_step;
+  }
+  return h_direct;
+}
+
+/// One rung: `repeat` runs of a setting, their median wall time and the errors against the reference.
+Point measure_rung(const Scene& base, const WorkPrecisionOptions& opt, const Reference& ref, bool collision, double D,
+                   const Config& c, double rtol, double h) {
+  Point p;
+  p.cfg = c;
+  p.rtol = rtol;
+  p.direct_step = h;
+  p.history_tol = c.evaluator == "soe" || c.evaluator == "soe-step" ? history_tol_for(rtol) : NAN;
+  std::cerr << "  " << c.label() << "  rtol " << sci(rtol, 0) << (std::isnan(h) ? "" : "  direct_step " + sci(h)) << "\n";
+  try {
+    const Scene sc = scene_for(base, c, rtol, h, p.history_tol);
+    std::vector<double> times;
+    RunResult r;
+    for (int k = 0; k < opt.repeat; ++k) {
+      r = simulate(sc);
+      times.push_back(r.summary.wall_time_s);
+    }
+    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+    const SolverStats& sol = r.summary.solver.stats;
+    p.ok = true;
+    p.e = metric_of(r, collision);
+    p.err_e = std::abs(p.e - ref.value);
+    p.err_traj = trajectory_error(samples(r, D), ref.samples, ref.u_scale);
+    p.ms = 1e3 * times[times.size() / 2];
+    p.steps = sol.steps;
+    p.rhs = sol.rhs_evals;
+    p.lin_iters = sol.lin_iters;
+    if (std::isnan(p.e)) p.message = collision ? "no e (no collision by t_end)" : "no final velocity";
+  } catch (const SolverError& ex) {
+    p.message = std::string("solver failure: ") + ex.what();
+  }
+  return p;
+}
+
+/// Every configuration's ladder: rtol along --rtols, or for the direct evaluator its step at --direct-rtol.
+std::vector<Point> run_ladders(const Scene& base, const WorkPrecisionOptions& opt, const Reference& ref, bool collision,
+                               const std::vector<Config>& configs, double h_direct) {
+  const double D = base.spheres[0].diameter;
+  std::vector<Point> pts;
+  for (const auto& c : configs) {
+    std::vector<std::pair<double, double>> ladder;  // (rtol, direct step)
+    if (c.evaluator == "direct")
+      for (double m : opt.direct_steps) ladder.push_back({opt.direct_rtol, m * h_direct});
+    else
+      for (double r : opt.rtols) ladder.push_back({r, NAN});
+    for (auto [rtol, h] : ladder) pts.push_back(measure_rung(base, opt, ref, collision, D, c, rtol, h));
+  }
+  return pts;
+}
+
+/// The reference's own uncertainty, estimated as the error of the same settings one decade looser than the
+/// reference (the tightest cvode-dense rung).
+double reference_uncertainty(const std::vector<Point>& pts, const WorkPrecisionOptions& opt, const Reference& ref) {
+  double ref_unc = 0;
+  for (const auto& p : pts)
+    if (p.ok && p.cfg.integrator == "cvode-dense" && p.cfg.evaluator == ref.cfg.evaluator && p.rtol == *std::min_element(opt.rtols.begin(), opt.rtols.end()))
+      ref_unc = p.err_e;
+  return ref_unc;
+}
+
 }  // namespace
 
 int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
@@ -258,98 +375,16 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   const double D = base.spheres[0].diameter;
 
   // Configurations; a combination the solvers cannot do is skipped with its reason.
-  // Configurations; a combination the solvers cannot do is skipped with its reason.
   std::vector<std::string> skipped;
   const std::vector<Config> configs = configs_for(evaluators, opt, skipped);
-
-  auto scene_for = [&](const Config& c, double rtol, double direct_step, double history_tol) {
-    Scene sc = base;
-    sc.solver.rtol = rtol;
-    sc.solver.atol = rtol;
-    sc.solver.integrator = c.integrator == "ida" ? IntegratorMethod::ida : IntegratorMethod::cvode;
-    sc.solver.linear_solver = c.integrator == "cvode-gmres" ? LinearSolverChoice::gmres : LinearSolverChoice::dense;
-    if (c.evaluator != "none") {
-      sc.history.evaluator = *choice_from_string<HistoryEvaluator>(c.evaluator);
-      if (c.evaluator == "soe" || c.evaluator == "soe-step") {
-        sc.history.modes = 0;
-        sc.history.tolerance = history_tol;
-      } else {
-        sc.history.direct_step = direct_step;
-      }
-    }
-    return sc;
-  };
-  // The soe fit tolerance follows rtol (within what the fit supports), so that one knob sets the accuracy.
-  auto history_tol_for = [](double rtol) { return std::clamp(rtol, 1e-10, 1e-3); };
-
-  // Reference: the tightest settings.
-  const Config ref_cfg{"cvode-dense", history ? "soe" : "none"};
-  std::cerr << "reference run (cvode dense, rtol = atol = " << opt.ref_rtol << ")\n";
-  const RunResult ref = simulate(scene_for(ref_cfg, opt.ref_rtol, NAN, opt.ref_history_tol));
-  const double e_ref = metric_of(ref, collision);
-  if (std::isnan(e_ref))
-    throw SolverError("the reference run has no " + std::string(collision ? "e (no collision by t_end?)" : "final velocity"));
-  const Samples ref_s = samples(ref, D);
-  double u_scale = 0;
-  for (const auto& [t, v] : ref_s)
-    for (std::size_t k = 1; k < v.size(); ++k) u_scale = std::max(u_scale, std::abs(v[k]));
-  if (!(u_scale > 0)) u_scale = 1;
-
+  const Reference ref = run_reference(base, opt, history, collision, D);
   // The direct evaluator's accuracy is set by its step: its ladder varies the step at a tight rtol.
-  double h_direct = base.history.direct_step;
-  if (std::count(evaluators.begin(), evaluators.end(), "direct") && !(h_direct > 0)) {
-    Scene probe = base;  // the model's automatic step, read off a model that is built but not run
-    probe.history.evaluator = HistoryEvaluator::direct;
-    h_direct = model::CollisionModel(probe).history_options().direct_step;
-  }
-
-  std::vector<Point> pts;
-  for (const auto& c : configs) {
-    std::vector<std::pair<double, double>> ladder;  // (rtol, direct step)
-    if (c.evaluator == "direct")
-      for (double m : opt.direct_steps) ladder.push_back({opt.direct_rtol, m * h_direct});
-    else
-      for (double r : opt.rtols) ladder.push_back({r, NAN});
-    for (auto [rtol, h] : ladder) {
-      Point p;
-      p.cfg = c;
-      p.rtol = rtol;
-      p.direct_step = h;
-      p.history_tol = c.evaluator == "soe" || c.evaluator == "soe-step" ? history_tol_for(rtol) : NAN;
-      std::cerr << "  " << c.label() << "  rtol " << sci(rtol, 0) << (std::isnan(h) ? "" : "  direct_step " + sci(h)) << "\n";
-      try {
-        const Scene sc = scene_for(c, rtol, h, p.history_tol);
-        std::vector<double> times;
-        RunResult r;
-        for (int k = 0; k < opt.repeat; ++k) {
-          r = simulate(sc);
-          times.push_back(r.summary.wall_time_s);
-        }
-        std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-        const SolverStats& sol = r.summary.solver.stats;
-        p.ok = true;
-        p.e = metric_of(r, collision);
-        p.err_e = std::abs(p.e - e_ref);
-        p.err_traj = trajectory_error(samples(r, D), ref_s, u_scale);
-        p.ms = 1e3 * times[times.size() / 2];
-        p.steps = sol.steps;
-        p.rhs = sol.rhs_evals;
-        p.lin_iters = sol.lin_iters;
-        if (std::isnan(p.e)) p.message = collision ? "no e (no collision by t_end)" : "no final velocity";
-      } catch (const SolverError& ex) {
-        p.message = std::string("solver failure: ") + ex.what();
-      }
-      pts.push_back(p);
-    }
-  }
-
-  // Fits exclude errors within 10x of the reference's own uncertainty, estimated as the error of the
-  // same settings one decade looser than the reference (the tightest cvode-dense rung).
-  double ref_unc = 0;
-  for (const auto& p : pts)
-    if (p.ok && p.cfg.integrator == "cvode-dense" && p.cfg.evaluator == ref_cfg.evaluator && p.rtol == *std::min_element(opt.rtols.begin(), opt.rtols.end()))
-      ref_unc = p.err_e;
+  const std::vector<Point> pts = run_ladders(base, opt, ref, collision, configs, direct_base_step(base, evaluators));
+  // Fits exclude errors within 10x of the reference's own uncertainty.
+  const double ref_unc = reference_uncertainty(pts, opt, ref);
   const double floor = std::max(10 * ref_unc, 1e-15);
+  const double e_ref = ref.value, u_scale = ref.u_scale;
+  const Config& ref_cfg = ref.cfg;
 
   // Table.
   const std::string metric = collision ? "e" : "u_end";
@@ -365,14 +400,14 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   j["metric"] = metric;
   j["reference"] = {{"integrator", "cvode-dense"}, {"evaluator", ref_cfg.evaluator}, {"rtol", opt.ref_rtol}, {"atol", opt.ref_rtol},
                     {"history_tolerance", history ? nlohmann::ordered_json(opt.ref_history_tol) : nullptr},
-                    {"value", e_ref}, {"uncertainty", ref_unc}, {"wall_time_s", ref.summary.wall_time_s},
-                    {"solver", ref.summary_json["solver"]}};  // the reference run's solver block as in its summary.json
+                    {"value", e_ref}, {"uncertainty", ref_unc}, {"wall_time_s", ref.run.summary.wall_time_s},
+                    {"solver", ref.run.summary_json["solver"]}};  // the reference run's solver block as in its summary.json
   j["trajectory_velocity_scale_m_s"] = u_scale;
   j["repeat"] = opt.repeat;
   j["skipped"] = skipped;
   j["observed_order"] = orders;
   j["cheapest"] = cheapest;
-  j["effects"] = ref.summary.effects;
+  j["effects"] = ref.run.summary.effects;
   j["run"] = unit.run();
   write_file_atomic(unit.dir() / "work_precision.csv", points_csv(pts, metric));
   write_file_atomic(unit.dir() / "work_precision.json", j.dump(2) + "\n");

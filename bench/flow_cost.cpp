@@ -207,6 +207,124 @@ int wall_mode(const std::vector<int>& cells, int levels, double Re, const std::v
     }
   return 0;
 }
+/// The observed order p from three successive resolutions (any ratios): solves e_k = C h_k^p by bisection on
+/// (h0^p − h1^p)/(h1^p − h2^p) = d01/d12 for p in [0.1, 4]; NaN where no p there fits.
+double observed_order(double h0, double h1, double h2, double d01, double d12) {
+  auto f = [&](double p) { return (std::pow(h0, p) - std::pow(h1, p)) / (std::pow(h1, p) - std::pow(h2, p)) - d01 / d12; };
+  double lo = 0.1, hi = 4.0, p = NAN;
+  if (d01 / d12 > 0 && f(lo) * f(hi) < 0) {
+    for (int it = 0; it < 80; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (f(lo) * f(mid) <= 0 ? hi : lo) = mid;
+    }
+    p = 0.5 * (lo + hi);
+  }
+  return p;
+}
+
+/// (--refine) the flow scene at each resolution (dt ∝ h): C_D, its error, the observed order, the extrapolation.
+int refine_mode(const std::string& path, const std::vector<int>& cells) {
+  const imcol::flow::FlowScene sc = imcol::flow::load_flow_scene(path);
+  std::printf("%s: Re = %g, %d levels, finest r < %g D, %g D < z < %g D; dt = %g x (%d / cells)\n", sc.name.c_str(), sc.Re(),
+              sc.levels, sc.r_max, sc.z_min, sc.z_max, sc.dt, sc.cells_per_diameter);
+  std::printf("%8s %10s %10s %9s %12s %10s %10s %10s\n", "cells/D", "C_D", "standard", "error %", "wake L/D", "steps", "wall s", "order");
+  std::vector<double> cds;
+  for (int c : cells) {
+    imcol::FlowRunOptions o;
+    o.quiet = true;
+    o.cells_per_diameter = c;
+    o.dt = sc.dt * sc.cells_per_diameter / c;
+    const auto j = imcol::run_flow_scene(sc, o).summary;
+    const double cd = j["drag_coefficient"].get<double>();
+    cds.push_back(cd);
+    std::string order = "-";
+    if (cds.size() >= 3) {
+      const double h0 = 1.0 / cells[cds.size() - 3], h1 = 1.0 / cells[cds.size() - 2], h2 = 1.0 / c;
+      const double d01 = cds[cds.size() - 3] - cds[cds.size() - 2], d12 = cds[cds.size() - 2] - cd;
+      char b[32];
+      std::snprintf(b, sizeof b, "%.2f", observed_order(h0, h1, h2, d01, d12));
+      order = b;
+    }
+    auto num = [&](const char* k) { return j[k].is_number() ? j[k].get<double>() : NAN; };  // null: drag not settled
+    std::printf("%8d %10.4f %10.4f %9.2f %12.4f %10ld %10.2f %10s\n", c, cd, num("drag_coefficient_standard"),
+                num("drag_error_percent"), num("wake_length_D"), j["steps"].get<long>(),
+                j["wall_time_s"].get<double>(), order.c_str());
+  }
+  if (cds.size() >= 2) {
+    const double h1 = 1.0 / cells[cells.size() - 2], h2 = 1.0 / cells.back();
+    const double ex = cds.back() + (cds.back() - cds[cds.size() - 2]) * h2 / (h1 - h2);  // first order
+    std::printf("first-order Richardson extrapolation from the two finest: C_D = %.4f\n", ex);
+  }
+  return 0;
+}
+
+struct CostRow { int c, l; double n, ms; };
+
+/// The fixed sphere at Re = 100 on one grid: median ms per step after 3 warm-up steps; prints its row.
+CostRow cost_row(int c, int l, int steps) {
+  Settings s;
+  s.nu = 0.01;
+  s.h = 1.0 / c;
+  s.dt = 0.32 * s.h;
+  s.nr = 2 * c;
+  s.nz = 6 * c;
+  s.levels = l;
+  s.z_center = 1.0;
+  s.u_inf = 1.0;
+  s.measure_plans = true;
+  Solver solver(s, {{0.5, 0.0, 0.0}});
+  for (int n = 0; n < 3; ++n) solver.step({{0.5, 0.0, 0.0}});
+  std::vector<double> t;
+  for (int n = 0; n < steps; ++n) {
+    const auto t0 = WallClock::now();
+    solver.step({{0.5, 0.0, 0.0}});
+    t.push_back(1e3 * seconds_since(t0));
+  }
+  std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+  const double ms = t[t.size() / 2];
+  const double nv = static_cast<double>(l) * (s.nr + 1) * (s.nz + 1);
+  char grid[32];
+  std::snprintf(grid, sizeof grid, "%dx%d", s.nr, s.nz);
+  std::printf("%6d %7d %10s %12.0f %12.3f %12.2f %14.2f\n", c, l, grid, nv, ms, 1e6 * ms / nv, solver.bytes() / 1048576.0);
+  return {c, l, nv, ms};
+}
+
+/// Time per step and memory for every level count and resolution, and the growth of time with the vertices.
+void cost_mode(const std::vector<int>& cells, const std::vector<int>& levels, int steps) {
+  std::printf("fixed sphere, Re = 100, finest level r < 2D, -2D < z < 4D, dt = 0.32 h/U; median of %d steps after 3 warm-up steps\n", steps);
+  std::printf("%6s %7s %10s %12s %12s %12s %14s\n", "cells/D", "levels", "grid", "vertices", "ms/step", "ns/vertex", "solver MB");
+  std::vector<CostRow> rows;
+  for (int l : levels)
+    for (int c : cells) rows.push_back(cost_row(c, l, steps));
+  std::printf("peak resident set of this process: %.1f MB\n", peak_rss_kb() / 1024.0);
+  // growth: least-squares slope of log(ms) against log(vertices), per level count
+  for (int l : levels) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int n = 0;
+    for (const auto& r : rows)
+      if (r.l == l) {
+        const double x = std::log(r.n), y = std::log(r.ms);
+        sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
+      }
+    if (n >= 2) std::printf("%d level(s): time per step ~ vertices^%.2f\n", l, (n * sxy - sx * sy) / (n * sxx - sx * sx));
+  }
+}
+
+/// (--steady) the Re = 100 scene from a cold start: when its C_D comes within 3 % of the standard curve.
+void steady_mode(int steady_cells) {
+  imcol::FlowRunOptions o;
+  o.quiet = true;
+  if (steady_cells > 0) o.cells_per_diameter = steady_cells;
+  const auto j =
+      imcol::run_flow_scene(imcol::flow::load_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml"), o).summary;
+  std::printf("Re = 100 cold start, %d cells/D, %d levels: C_D = %.4f (standard %.4f, %+.2f %%); within 3 %% from t = %s after %s s wall; "
+              "whole run %.2f s for %ld steps\n",
+              j["grid"]["cells_per_diameter"].get<int>(), j["grid"]["levels"].get<int>(), j["drag_coefficient"].get<double>(),
+              j["drag_coefficient_standard"].is_number() ? j["drag_coefficient_standard"].get<double>() : NAN,
+              j["drag_error_percent"].is_number() ? j["drag_error_percent"].get<double>() : NAN, j["time_to_3pct_s"].dump().c_str(),
+              j["wall_time_to_3pct_s"].dump().c_str(), j["wall_time_s"].get<double>(), j["steps"].get<long>());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -237,106 +355,8 @@ int main(int argc, char** argv) {
     }
   }
   if (wall) return wall_mode(cells, wall_levels, wall_re, gaps, wall_steps);
-  if (!refine.empty()) {
-    const imcol::flow::FlowScene sc = imcol::flow::load_flow_scene(refine);
-    std::printf("%s: Re = %g, %d levels, finest r < %g D, %g D < z < %g D; dt = %g x (%d / cells)\n", sc.name.c_str(), sc.Re(),
-                sc.levels, sc.r_max, sc.z_min, sc.z_max, sc.dt, sc.cells_per_diameter);
-    std::printf("%8s %10s %10s %9s %12s %10s %10s %10s\n", "cells/D", "C_D", "standard", "error %", "wake L/D", "steps", "wall s", "order");
-    std::vector<double> cds;
-    for (int c : cells) {
-      imcol::FlowRunOptions o;
-      o.quiet = true;
-      o.cells_per_diameter = c;
-      o.dt = sc.dt * sc.cells_per_diameter / c;
-      const auto j = imcol::run_flow_scene(sc, o).summary;
-      const double cd = j["drag_coefficient"].get<double>();
-      cds.push_back(cd);
-      std::string order = "-";
-      if (cds.size() >= 3) {  // from three successive resolutions (any ratios): solve e_k = C h_k^p
-        const double h0 = 1.0 / cells[cds.size() - 3], h1 = 1.0 / cells[cds.size() - 2], h2 = 1.0 / c;
-        const double d01 = cds[cds.size() - 3] - cds[cds.size() - 2], d12 = cds[cds.size() - 2] - cd;
-        // bisection on (h0^p − h1^p)/(h1^p − h2^p) = d01/d12 for p in [0.1, 4]
-        auto f = [&](double p) { return (std::pow(h0, p) - std::pow(h1, p)) / (std::pow(h1, p) - std::pow(h2, p)) - d01 / d12; };
-        double lo = 0.1, hi = 4.0, p = NAN;
-        if (d01 / d12 > 0 && f(lo) * f(hi) < 0) {
-          for (int it = 0; it < 80; ++it) {
-            const double mid = 0.5 * (lo + hi);
-            (f(lo) * f(mid) <= 0 ? hi : lo) = mid;
-          }
-          p = 0.5 * (lo + hi);
-        }
-        char b[32];
-        std::snprintf(b, sizeof b, "%.2f", p);
-        order = b;
-      }
-      auto num = [&](const char* k) { return j[k].is_number() ? j[k].get<double>() : NAN; };  // null: drag not settled
-      std::printf("%8d %10.4f %10.4f %9.2f %12.4f %10ld %10.2f %10s\n", c, cd, num("drag_coefficient_standard"),
-                  num("drag_error_percent"), num("wake_length_D"), j["steps"].get<long>(),
-                  j["wall_time_s"].get<double>(), order.c_str());
-    }
-    if (cds.size() >= 2) {
-      const double h1 = 1.0 / cells[cells.size() - 2], h2 = 1.0 / cells.back();
-      const double ex = cds.back() + (cds.back() - cds[cds.size() - 2]) * h2 / (h1 - h2);  // first order
-      std::printf("first-order Richardson extrapolation from the two finest: C_D = %.4f\n", ex);
-    }
-    return 0;
-  }
-  std::printf("fixed sphere, Re = 100, finest level r < 2D, -2D < z < 4D, dt = 0.32 h/U; median of %d steps after 3 warm-up steps\n", steps);
-  std::printf("%6s %7s %10s %12s %12s %12s %14s\n", "cells/D", "levels", "grid", "vertices", "ms/step", "ns/vertex", "solver MB");
-  struct Row { int c, l; double n, ms; };
-  std::vector<Row> rows;
-  for (int l : levels)
-    for (int c : cells) {
-      Settings s;
-      s.nu = 0.01;
-      s.h = 1.0 / c;
-      s.dt = 0.32 * s.h;
-      s.nr = 2 * c;
-      s.nz = 6 * c;
-      s.levels = l;
-      s.z_center = 1.0;
-      s.u_inf = 1.0;
-      s.measure_plans = true;
-      Solver solver(s, {{0.5, 0.0, 0.0}});
-      for (int n = 0; n < 3; ++n) solver.step({{0.5, 0.0, 0.0}});
-      std::vector<double> t;
-      for (int n = 0; n < steps; ++n) {
-        const auto t0 = WallClock::now();
-        solver.step({{0.5, 0.0, 0.0}});
-        t.push_back(1e3 * seconds_since(t0));
-      }
-      std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
-      const double ms = t[t.size() / 2];
-      const double nv = static_cast<double>(l) * (s.nr + 1) * (s.nz + 1);
-      rows.push_back({c, l, nv, ms});
-      char grid[32];
-      std::snprintf(grid, sizeof grid, "%dx%d", s.nr, s.nz);
-      std::printf("%6d %7d %10s %12.0f %12.3f %12.2f %14.2f\n", c, l, grid, nv, ms, 1e6 * ms / nv, solver.bytes() / 1048576.0);
-    }
-  std::printf("peak resident set of this process: %.1f MB\n", peak_rss_kb() / 1024.0);
-  // growth: least-squares slope of log(ms) against log(vertices), per level count
-  for (int l : levels) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    int n = 0;
-    for (const auto& r : rows)
-      if (r.l == l) {
-        const double x = std::log(r.n), y = std::log(r.ms);
-        sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
-      }
-    if (n >= 2) std::printf("%d level(s): time per step ~ vertices^%.2f\n", l, (n * sxy - sx * sy) / (n * sxx - sx * sx));
-  }
-  if (steady) {
-    imcol::FlowRunOptions o;
-    o.quiet = true;
-    if (steady_cells > 0) o.cells_per_diameter = steady_cells;
-    const auto j =
-        imcol::run_flow_scene(imcol::flow::load_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml"), o).summary;
-    std::printf("Re = 100 cold start, %d cells/D, %d levels: C_D = %.4f (standard %.4f, %+.2f %%); within 3 %% from t = %s after %s s wall; "
-                "whole run %.2f s for %ld steps\n",
-                j["grid"]["cells_per_diameter"].get<int>(), j["grid"]["levels"].get<int>(), j["drag_coefficient"].get<double>(),
-                j["drag_coefficient_standard"].is_number() ? j["drag_coefficient_standard"].get<double>() : NAN,
-                j["drag_error_percent"].is_number() ? j["drag_error_percent"].get<double>() : NAN, j["time_to_3pct_s"].dump().c_str(),
-                j["wall_time_to_3pct_s"].dump().c_str(), j["wall_time_s"].get<double>(), j["steps"].get<long>());
-  }
+  if (!refine.empty()) return refine_mode(refine, cells);
+  cost_mode(cells, levels, steps);
+  if (steady) steady_mode(steady_cells);
   return 0;
 }

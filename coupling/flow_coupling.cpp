@@ -131,40 +131,64 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   return f;
 }
 
-void FlowCoupling::start_up() {
+FlowCoupling::StartUp FlowCoupling::plan_start_up() {
   const auto& fs = sc_.flow;
-  const auto t0 = WallClock::now();
-  // Geometry of the finest level in the frame of the midpoint: the largest centre distance over the start-up and
-  // the approach, the spheres, and room ahead of and behind the pair (its wake) in the direction of motion.
-  const double h = D_ / fs.cells_per_diameter;
-  const double u_mid = n_ == 2 ? 0.5 * (sc_.spheres[0].velocity + sc_.spheres[1].velocity) : sc_.spheres[0].velocity;
-  const FlowStep step = flow_step(sc_, h);
-  const double dt = step.dt;
+  StartUp su;
+  su.h = D_ / fs.cells_per_diameter;
+  su.u_mid = n_ == 2 ? 0.5 * (sc_.spheres[0].velocity + sc_.spheres[1].velocity) : sc_.spheres[0].velocity;
+  const FlowStep step = flow_step(sc_, su.h);
+  su.dt = step.dt;
   step_ = step;
   stats_.cfl = step.cfl;
-  double t_pre = dt;  // impulsive: one prescribed step
+  double t_pre = su.dt;  // impulsive: one prescribed step
   if (fs.start == FlowStart::developed) {
     if (fs.developed_time > 0) t_pre = fs.developed_time;
     else if (u_ref_ > 0) t_pre = fs.developed_distance * D_ / u_ref_;  // the faster sphere travels that far
   }
   // The start-up's flow steps, counted in double first: a huge developed_time must be refused, not overflow a long.
-  const double n_pre_d = std::max(1.0, std::round(t_pre / dt));
+  const double n_pre_d = std::max(1.0, std::round(t_pre / su.dt));
   if (!(n_pre_d <= 1e8)) {
     std::ostringstream os;
-    os << "the developed start would take " << n_pre_d << " flow steps of " << dt << " s before t = 0 (more than 1e8)";
+    os << "the developed start would take " << n_pre_d << " flow steps of " << su.dt << " s before t = 0 (more than 1e8)";
     throw InputError(sc_.path, fs.developed_time > 0 ? "flow.developed_time" : "flow.developed_distance", os.str());
   }
-  const long n_pre = static_cast<long>(n_pre_d);
-  t_pre = static_cast<double>(n_pre) * dt;
-  t_pre_ = t_pre;
+  su.n_pre = static_cast<long>(n_pre_d);
+  su.t_pre = static_cast<double>(su.n_pre) * su.dt;
+  t_pre_ = su.t_pre;
+  return su;
+}
+
+int FlowCoupling::finest_cells(const StartUp& su, double extent, int multiple) const {
+  // Cell counts in double first: a start-up that carries the spheres far (a flow step or a developed start of
+  // very long duration) is refused naming its key, not converted to an int that overflows.
+  const auto& fs = sc_.flow;
+  const double n = multiple * std::ceil(extent / su.h / multiple);
+  if (!(n <= 1e6)) {
+    double u_max = 0;
+    for (std::size_t m = 0; m < n_; ++m) u_max = std::max(u_max, std::abs(sc_.spheres[m].velocity));
+    const char* key = su.n_pre >= 2 ? (fs.developed_time > 0 ? "flow.developed_time" : "flow.developed_distance")
+                                    : (fs.dt > 0 ? "flow.dt" : "flow.cfl");
+    throw InputError(sc_.path, key,
+                     "the finest flow level would need " + fmt_number(n) + " cells along one axis (more than 1e6): the spheres travel up to " +
+                         fmt_number(u_max * su.t_pre) + " m in the start-up of " + fmt_number(su.t_pre) + " s before t = 0 (" +
+                         fmt_number(static_cast<double>(su.n_pre)) + " flow step" + (su.n_pre == 1 ? "" : "s") + " of " +
+                         fmt_number(su.dt) + " s)");
+  }
+  return static_cast<int>(n);
+}
+
+flow::Settings FlowCoupling::grid_settings(const StartUp& su) {
+  const auto& fs = sc_.flow;
+  // Geometry of the finest level in the frame of the midpoint: the largest centre distance over the start-up and
+  // the approach, the spheres, and room ahead of and behind the pair (its wake) in the direction of motion.
   double sep = 0;  // centre distance
   if (n_ == 2) {
     const double s0 = sc_.spheres[1].position - sc_.spheres[0].position;
     const double u_rel = sc_.spheres[0].velocity - sc_.spheres[1].velocity;
-    sep = std::max(s0, s0 + u_rel * t_pre) + 0.25 * D_;
+    sep = std::max(s0, s0 + u_rel * su.t_pre) + 0.25 * D_;
   }
-  double dir = u_mid >= 0 ? 1.0 : -1.0;
-  if (n_ == 1 && u_mid == 0 && sc_.has(Effect::gravity))
+  double dir = su.u_mid >= 0 ? 1.0 : -1.0;
+  if (n_ == 1 && su.u_mid == 0 && sc_.has(Effect::gravity))
     dir = (sc_.spheres[0].density - rho_) * sc_.gravity >= 0 ? 1.0 : -1.0;
   const double a_max = std::max(radius_[0], radius_[1]);
   const double front = 0.5 * sep + a_max + fs.ahead * D_, back = 0.5 * sep + a_max + fs.behind * D_;
@@ -172,79 +196,71 @@ void FlowCoupling::start_up() {
   flow::Settings s;
   s.nu = sc_.fluid->viscosity / rho_;
   s.density = rho_;
-  s.dt = dt;
+  s.dt = su.dt;
   s.theta = fs.theta;
-  s.h = h;
+  s.h = su.h;
   // r_max is in units of sphere 1's D; a larger target gets the same room relative to its own size.
   const double r_finest = std::max(fs.r_max * D_, fs.r_max * 2 * a_max);
-  // Cell counts in double first: a start-up that carries the spheres far (a flow step or a developed start of
-  // very long duration) is refused naming its key, not converted to an int that overflows.
-  auto cells = [&](double extent, int multiple) {
-    const double n = multiple * std::ceil(extent / h / multiple);
-    if (!(n <= 1e6)) {
-      double u_max = 0;
-      for (std::size_t m = 0; m < n_; ++m) u_max = std::max(u_max, std::abs(sc_.spheres[m].velocity));
-      const char* key = n_pre >= 2 ? (fs.developed_time > 0 ? "flow.developed_time" : "flow.developed_distance")
-                                   : (fs.dt > 0 ? "flow.dt" : "flow.cfl");
-      throw InputError(sc_.path, key,
-                       "the finest flow level would need " + fmt_number(n) + " cells along one axis (more than 1e6): the spheres travel up to " +
-                           fmt_number(u_max * t_pre) + " m in the start-up of " + fmt_number(t_pre) + " s before t = 0 (" +
-                           fmt_number(static_cast<double>(n_pre)) + " flow step" + (n_pre == 1 ? "" : "s") + " of " + fmt_number(dt) + " s)");
-    }
-    return static_cast<int>(n);
-  };
-  s.nr = cells(r_finest, 2);
-  s.nz = cells(z_hi - z_lo, 4);
+  s.nr = finest_cells(su, r_finest, 2);
+  s.nz = finest_cells(su, z_hi - z_lo, 4);
   s.levels = fs.levels;
   s.z_center = 0.5 * (z_lo + z_hi);
-  s.u_inf = -u_mid;
+  s.u_inf = -su.u_mid;
   s.krylov_tol = fs.krylov_tol;
   s.krylov_max_iter = fs.krylov_max_iter;
   s.krylov_restart = fs.krylov_restart;
   s.ring_spacing = fs.ring_spacing;
   s.preconditioner_bins = fs.preconditioner_bins;
-  stats_.dt = dt;
-  stats_.h = h;
+  stats_.dt = su.dt;
+  stats_.h = su.h;
   stats_.nr = s.nr;
   stats_.levels = s.levels;
   stats_.cells_per_diameter = fs.cells_per_diameter;
-  stats_.pre_steps = n_pre;
-  // Spheres on their constant-velocity paths before t = 0, in the frame moving with the midpoint at u_mid.
+  stats_.pre_steps = su.n_pre;
+  // The frame moves with the midpoint at u_mid, from where it was at the start-up's beginning.
   const double mid0 = n_ == 2 ? 0.5 * (sc_.spheres[0].position + sc_.spheres[1].position) : sc_.spheres[0].position;
-  auto prescribed = [&](double t) {
-    Predicted p;
-    for (std::size_t m = 0; m < n_; ++m) {
-      p.z[m] = sc_.spheres[m].position + sc_.spheres[m].velocity * t;
-      p.u[m] = sc_.spheres[m].velocity;
-    }
-    p.gap = gap_of(p.z);
-    return p;
-  };
-  frame_z_ = mid0 - u_mid * t_pre;
-  frame_u_ = u_mid;
+  frame_z_ = mid0 - su.u_mid * su.t_pre;
+  frame_u_ = su.u_mid;
   if (sc_.wall) {  // the lab frame; the finest level from behind the sphere's start to beyond the wall
     frame_z_ = 0;
     frame_u_ = 0;
     const double a = radius_[0];
-    const double z_start = std::min(sc_.spheres[0].position, sc_.spheres[0].position - sc_.spheres[0].velocity * t_pre);
+    const double z_start = std::min(sc_.spheres[0].position, sc_.spheres[0].position - sc_.spheres[0].velocity * su.t_pre);
     const double lo = z_start - a - fs.behind * D_, hi = sc_.wall->position + fs.ahead * D_;
     s.z_center = 0.5 * (lo + hi);
-    s.nz = cells(hi - lo, 4);
+    s.nz = finest_cells(su, hi - lo, 4);
     s.u_inf = 0;
     s.wall_z = sc_.wall->position;
   }
   stats_.nz = s.nz;
+  return s;
+}
+
+std::array<double, 2> FlowCoupling::start_up_travel(const StartUp& su) const {
   // Each sphere's travel relative to the grid over the start-up (the grid follows the midpoint, or is the lab).
   std::array<double, 2> travel{};
   for (std::size_t m = 0; m < n_; ++m) {
-    const double u_grid = sc_.wall ? 0.0 : u_mid;
-    travel[m] = std::abs(sc_.spheres[m].velocity - u_grid) * t_pre;
+    const double u_grid = sc_.wall ? 0.0 : su.u_mid;
+    travel[m] = std::abs(sc_.spheres[m].velocity - u_grid) * su.t_pre;
   }
-  check_cost(s, dt, n_pre, travel);
-  start_up_began_ = t0;
-  report_start_up(0, n_pre, "allocating the grid");
+  return travel;
+}
+
+FlowCoupling::Predicted FlowCoupling::prescribed(double t) const {
+  // The spheres on their constant-velocity paths before t = 0.
+  Predicted p;
+  for (std::size_t m = 0; m < n_; ++m) {
+    p.z[m] = sc_.spheres[m].position + sc_.spheres[m].velocity * t;
+    p.u[m] = sc_.spheres[m].velocity;
+  }
+  p.gap = gap_of(p.z);
+  return p;
+}
+
+std::array<double, 2> FlowCoupling::develop_flow(const StartUp& su, const flow::Settings& s) {
+  report_start_up(0, su.n_pre, "allocating the grid");
   try {
-    kernel_ = std::make_unique<flow::Solver>(s, frame_spheres(prescribed(-t_pre), frame_z_, frame_u_));
+    kernel_ = std::make_unique<flow::Solver>(s, frame_spheres(prescribed(-su.t_pre), frame_z_, frame_u_));
   } catch (const std::exception& e) {
     throw InputError(sc_.path, "flow", std::string("the flow grid cannot be built: ") + e.what());
   }
@@ -255,19 +271,18 @@ void FlowCoupling::start_up() {
   long step_now = 0;
   if (progress_)
     kernel_->set_block_progress([&](long col, long n) {
-      report_start_up(step_now, n_pre, "force system block " + std::to_string(col) + "/" + std::to_string(n));
+      report_start_up(step_now, su.n_pre, "force system block " + std::to_string(col) + "/" + std::to_string(n));
     });
-  for (long k = 1; k <= n_pre; ++k) {
+  for (long k = 1; k <= su.n_pre; ++k) {
     step_now = k;
-    report_start_up(k, n_pre, "");
-    f = step_kernel(prescribed(-t_pre + static_cast<double>(k) * dt), dt);
+    report_start_up(k, su.n_pre, "");
+    f = step_kernel(prescribed(-su.t_pre + static_cast<double>(k) * su.dt), su.dt);
   }
   kernel_->set_block_progress(nullptr);
-  // After a developed start the last prescribed step is a steady one: its force is f_rest at t = 0.
-  have_f_rest_ = n_pre >= 2;
-  f_rest_ = f;
-  start_force_ = f;
-  stats_.pre_seconds = seconds_since(t0);
+  return f;
+}
+
+void FlowCoupling::reset_step_stats() {
   stats_.flow_seconds = 0;
   stats_.krylov_iterations = 0;
   stats_.max_krylov_iterations = 0;
@@ -276,6 +291,21 @@ void FlowCoupling::start_up() {
   stats_.max_courant = 0;
   stats_.min_gap_clamped_steps = 0;
   stats_.frame_travel = 0;
+}
+
+void FlowCoupling::start_up() {
+  const auto t0 = WallClock::now();
+  const StartUp su = plan_start_up();
+  const flow::Settings s = grid_settings(su);
+  check_cost(s, su.dt, su.n_pre, start_up_travel(su));
+  start_up_began_ = t0;
+  const std::array<double, 2> f = develop_flow(su, s);
+  // After a developed start the last prescribed step is a steady one: its force is f_rest at t = 0.
+  have_f_rest_ = su.n_pre >= 2;
+  f_rest_ = f;
+  start_force_ = f;
+  stats_.pre_seconds = seconds_since(t0);
+  reset_step_stats();  // the start-up's kernel statistics are not the run's
 }
 
 void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel) {

@@ -83,7 +83,24 @@ class FlowCoupling {
   double gap_of(const std::array<double, 2>& z) const;  // surface gap to the target sphere or the wall; ∞ if none
   std::vector<flow::SphereState> frame_spheres(const Predicted& p, double frame_z, double frame_u);
   std::array<double, 2> step_kernel(const Predicted& p, double dt);
+  /// The start-up before t = 0 (impulsive or developed): the grid is built and the flow developed with the spheres
+  /// on their initial paths.
   void start_up();
+  struct StartUp {      // the start-up's plan
+    double h = 0;       // finest spacing, m
+    double dt = 0;      // flow step, s
+    double u_mid = 0;   // the frame's velocity (the spheres' midpoint), m/s
+    long n_pre = 1;     // prescribed flow steps before t = 0
+    double t_pre = 0;   // their duration, s
+  };
+  StartUp plan_start_up();  // the step and the start-up's length (InputError beyond 1e8 steps)
+  /// Cells of the finest level along an extent (m), a multiple of `multiple`; InputError beyond 1e6.
+  int finest_cells(const StartUp& su, double extent, int multiple) const;
+  flow::Settings grid_settings(const StartUp& su);  // the kernel's grid; places the frame
+  std::array<double, 2> start_up_travel(const StartUp& su) const;  // each sphere's travel relative to the grid, m
+  Predicted prescribed(double t) const;  // the spheres on their initial paths at t < 0
+  std::array<double, 2> develop_flow(const StartUp& su, const flow::Settings& s);  // builds the kernel; its last f
+  void reset_step_stats();
   /// Estimates the run's cost (stats_.est_*) and refuses (InputError) a grid beyond half the memory or a run beyond
   /// flow.max_wall_hours, before allocating. `travel`: each sphere's travel relative to the grid over the start-up, m.
   void check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel);

@@ -146,27 +146,22 @@ void check_flow_scene(const FlowScene& sc) {
   }
 }
 
-FlowScene load_flow_scene(const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse(read_scene_file(path), path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(path + ":" + std::to_string(e.source().begin.line), "", "TOML syntax error: " + std::string(e.description()));
-  }
-  FlowScene sc;
-  sc.path = path;
-  Reader top(root, "", path);
-  sc.name = top.string("name").value_or(std::filesystem::path(path).stem().string());
-  sc.description = top.string("description").value_or("");
+namespace {
 
+/// [fluid] (required): density and viscosity.
+void read_fluid(Reader& top, FlowScene& sc) {
+  const std::string& path = sc.path;
   const toml::table* fluid = top.table("fluid");
   if (!fluid) throw InputError(path, "fluid", "missing (required table)");
-  {
-    Reader r(*fluid, "fluid", path);
-    sc.density = r.required_positive("density");
-    sc.viscosity = r.required_positive("viscosity");
-    r.finish();
-  }
+  Reader r(*fluid, "fluid", path);
+  sc.density = r.required_positive("density");
+  sc.viscosity = r.required_positive("viscosity");
+  r.finish();
+}
+
+/// [stream]: the uniform stream.
+void read_stream(Reader& top, FlowScene& sc) {
+  const std::string& path = sc.path;
   if (const toml::table* st = top.table("stream")) {
     Reader r(*st, "stream", path);
     sc.stream = r.number("velocity", 0.0);
@@ -174,6 +169,11 @@ FlowScene load_flow_scene(const std::string& path) {
     sc.line_stream = static_cast<int>((v ? v->source() : st->source()).begin.line);
     r.finish();
   }
+}
+
+/// [wall]: the plane wall's position.
+void read_wall(Reader& top, FlowScene& sc) {
+  const std::string& path = sc.path;
   if (const toml::table* w = top.table("wall")) {
     Reader r(*w, "wall", path);
     const toml::node* v = w->get("position");
@@ -183,6 +183,11 @@ FlowScene load_flow_scene(const std::string& path) {
     if (!std::isfinite(*sc.wall_position)) r.fail("position", "must be a finite number");
     r.finish();
   }
+}
+
+/// [[sphere]] (at least one): size, position and prescribed motion.
+void read_spheres(Reader& top, FlowScene& sc) {
+  const std::string& path = sc.path;
   const toml::node* sn = top.node("sphere");
   if (!sn || !sn->is_array_of_tables() || sn->as_array()->empty())
     throw InputError(top.where(sn), "sphere", "give at least one [[sphere]] table");
@@ -202,6 +207,11 @@ FlowScene load_flow_scene(const std::string& path) {
     r.finish();
     sc.spheres.push_back(s);
   }
+}
+
+/// [grid]: cells per diameter, levels and the finest level's extent.
+void read_grid(Reader& top, FlowScene& sc) {
+  const std::string& path = sc.path;
   if (const toml::table* g = top.table("grid")) {
     Reader r(*g, "grid", path);
     const long cpd = r.integer("cells_per_diameter", sc.cells_per_diameter);
@@ -217,19 +227,26 @@ FlowScene load_flow_scene(const std::string& path) {
     if (!(sc.z_max > sc.z_min)) r.fail("z_max", "must exceed grid.z_min");
     r.finish();
   }
+}
+
+/// [time] (required): dt, t_end, theta.
+void read_time(Reader& top, FlowScene& sc) {
+  const std::string& path = sc.path;
   const toml::table* tt = top.table("time");
   if (!tt) throw InputError(path, "time", "missing (required table with dt and t_end)");
-  {
-    Reader r(*tt, "time", path);
-    sc.dt = r.required_positive("dt");
-    sc.t_end = r.required_positive("t_end");
-    sc.line_dt = static_cast<int>(tt->get("dt")->source().begin.line);
-    sc.line_t_end = static_cast<int>(tt->get("t_end")->source().begin.line);
-    sc.theta = r.number("theta", sc.theta);
-    if (!(sc.theta >= 0.5 && sc.theta <= 1)) r.fail("theta", "must be in [0.5, 1] (0.5 = Crank–Nicolson)");
-    r.finish();
-  }
-  // [flow] holds the kernel's solver settings, as in collision scenes; [solver] is the ODE solver there.
+  Reader r(*tt, "time", path);
+  sc.dt = r.required_positive("dt");
+  sc.t_end = r.required_positive("t_end");
+  sc.line_dt = static_cast<int>(tt->get("dt")->source().begin.line);
+  sc.line_t_end = static_cast<int>(tt->get("t_end")->source().begin.line);
+  sc.theta = r.number("theta", sc.theta);
+  if (!(sc.theta >= 0.5 && sc.theta <= 1)) r.fail("theta", "must be in [0.5, 1] (0.5 = Crank–Nicolson)");
+  r.finish();
+}
+
+/// [flow]: the kernel's solver settings, as in collision scenes ([solver] is the ODE solver there, refused here).
+void read_flow_settings(Reader& top, FlowScene& sc) {
+  const std::string& path = sc.path;
   if (top.has("solver"))
     top.fail("solver", "the flow kernel's settings (krylov_tol, krylov_max_iter, krylov_restart, ring_spacing, "
                        "direct_when_fixed, fft_plan) are in the [flow] table ([solver] is the ODE solver of collision scenes)");
@@ -253,6 +270,11 @@ FlowScene load_flow_scene(const std::string& path) {
     }
     r.finish();
   }
+}
+
+/// [output]: history stride, snapshots, min_gap stop.
+void read_output(Reader& top, FlowScene& sc) {
+  const std::string& path = sc.path;
   if (const toml::table* o = top.table("output")) {
     Reader r(*o, "output", path);
     const long e = r.integer("history_every", sc.history_every);
@@ -265,6 +287,30 @@ FlowScene load_flow_scene(const std::string& path) {
     if (sc.min_gap < 0) r.fail("min_gap", "must be >= 0");
     r.finish();
   }
+}
+
+}  // namespace
+
+FlowScene load_flow_scene(const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(read_scene_file(path), path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(path + ":" + std::to_string(e.source().begin.line), "", "TOML syntax error: " + std::string(e.description()));
+  }
+  FlowScene sc;
+  sc.path = path;
+  Reader top(root, "", path);
+  sc.name = top.string("name").value_or(std::filesystem::path(path).stem().string());
+  sc.description = top.string("description").value_or("");
+  read_fluid(top, sc);
+  read_stream(top, sc);
+  read_wall(top, sc);
+  read_spheres(top, sc);
+  read_grid(top, sc);
+  read_time(top, sc);
+  read_flow_settings(top, sc);
+  read_output(top, sc);
   top.finish();
   check_flow_scene(sc);
   return sc;

@@ -334,16 +334,11 @@ Eigen::MatrixXd Solver::diagonal_block_of_Q(Eigen::Index o, Eigen::Index n) {
   return blk;
 }
 
-StepInfo Solver::step(const std::vector<SphereState>& next) {
-  if (next.size() != sph_.size()) throw std::invalid_argument("flow: sphere count changed");
-  if (s_.wall_z && s_.u_inf != s_.wall_velocity)
-    throw std::invalid_argument("flow: with a wall the far fluid must move with it (u_inf = wall_velocity): a stream cannot cross the plate");
-  const int NL = static_cast<int>(lv_.size());
+void Solver::explicit_rhs() {
+  // The explicit part of the vorticity equation on every level (advection AB2, viscous (1 − θ)); the finer levels'
+  // right-hand sides replace the coarser ones where they overlap in pass_viscous (coarsify).
   const double dt = s_.dt, nu = s_.nu, th = s_.theta;
-  // 1. explicit part of the vorticity equation on every level (advection AB2, viscous (1 − θ)), then the finer
-  //    levels' right-hand sides replace the coarser ones where they overlap (coarsify)
-  for (int l = 0; l < NL; ++l) {
-    Level& L = lv_[l];
+  for (Level& L : lv_) {
     nonlinear(L, s_.u_inf, nl_);
     const double ab_new = n_ == 0 ? 1.0 : 1.5, ab_old = n_ == 0 ? 0.0 : -0.5;
     // interior only (the solves and coarsify read no boundary values of rhs)
@@ -356,15 +351,9 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     });
     std::swap(L.nl_old, nl_);
   }
-  // 2–3. vorticity predictor η* (its modes kept for the end of the step) and ψ* where the points read it
-  pass_viscous(&Level::rhs, &Level::eta, false);
-  for (auto& L : lv_) L.fast->save_modes(L.eta_modes);
-  pass_streamfunction(&Level::eta, &Level::psi, true, false);
-  // 4. body forces: Q g = U_b − U∞ e_z − Bψ*, Q the multi-level operator of apply_Q_into
-  StepInfo info;
-  bool moved = false;
-  for (std::size_t k = 0; k < next.size(); ++k) moved = moved || next[k].z != sph_[k].z;
-  if (moved || pts_.size() == 0) build_points(next);
+}
+
+void Solver::set_force_rhs(const std::vector<SphereState>& next) {
   const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
   const Eigen::Index m = ns + static_cast<Eigen::Index>(2 * wall_count_);
   target_.resize(m);
@@ -379,84 +368,118 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
     g_ = Eigen::VectorXd::Zero(m);
     g_prev_.resize(0);
   }
-  const bool use_direct = s_.direct_when_fixed && !moved;
+}
+
+void Solver::solve_direct(const std::vector<SphereState>& next) {
   bool same_z = fixed_z_.size() == next.size();
   for (std::size_t k = 0; same_z && k < next.size(); ++k) same_z = fixed_z_[k] == next[k].z;
-  if (use_direct) {
-    if (!lu_ || !same_z) {
-      lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::MatrixXd>>(force_matrix());
-      fixed_z_.resize(next.size());
-      for (std::size_t k = 0; k < next.size(); ++k) fixed_z_[k] = next[k].z;
-    }
-    g_prev_ = g_;  // keeps a later GMRES warm start current
-    g_ = lu_->solve(rhs_);
-    final_pass(g_);
-  } else {  // GMRES, warm start, right-preconditioned by each sphere's own block of Q
-    // preconditioner: each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of
-    // preconditioner_bins bins, built the first time a sphere is there): the rings' pattern relative to the grid repeats when
-    // a sphere moves by whole cells, and the multi-level Q is nearly translation invariant
-    prec_.clear();
-    const LevelGeometry& G = lv_[0].g;
-    auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) { return std::make_shared<BlockLU>(diagonal_block_of_Q(o, n)); };
-    for (std::size_t k = 0; k < pts_.size();) {
-      std::size_t e = k;
-      while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
-      const int b = pts_.body[k];
-      const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
-      const double x = (next[b].z - G.z0) / G.h;
-      const int bins = s_.preconditioner_bins;
-      const int bin = static_cast<int>(std::lround((x - std::floor(x)) * bins)) % bins;
-      if (prec_cache_.size() < next.size()) prec_cache_.resize(next.size());
-      auto& slot = prec_cache_[b];
-      if (slot.size() != static_cast<std::size_t>(bins)) slot.assign(bins, nullptr);
-      if (!slot[bin] || slot[bin]->rows() != n) {
-        slot[bin] = block_of_Q(o, n);
-        ++prec_builds_;
-      }
-      prec_.push_back({o, n, slot[bin]});
-      k = e;
-    }
-    if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the whole run
-      const Eigen::Index nw = static_cast<Eigen::Index>(2 * wall_count_);
-      if (!wall_lu_ || wall_lu_->rows() != nw) {
-        wall_lu_ = block_of_Q(ns, nw);
-        ++prec_builds_;
-      }
-      prec_.push_back({ns, nw, wall_lu_});
-    }
-    if (g_prev_.size() == m) {  // warm start: linear extrapolation of the last two steps' forces
-      t1_ = g_;
-      g_ = 2 * g_ - g_prev_;
-      g_prev_.swap(t1_);
-    } else {
-      g_prev_ = g_;
-    }
-    const auto [it, res] = gmres(rhs_);
-    info.krylov_iterations = it;
-    info.krylov_residual = res;
+  if (!lu_ || !same_z) {
+    lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::MatrixXd>>(force_matrix());
+    fixed_z_.resize(next.size());
+    for (std::size_t k = 0; k < next.size(); ++k) fixed_z_[k] = next[k].z;
   }
-  // final_pass(g_) is current: η = η* + A⁻¹Sg and ψ = P⁻¹η on every level, u_ the velocities at the points
-  for (auto& L : lv_) {
-    L.eta.swap(L.etac);
-    L.psi.swap(L.psic);
+  g_prev_ = g_;  // keeps a later GMRES warm start current
+  g_ = lu_->solve(rhs_);
+  final_pass(g_);
+}
+
+void Solver::build_preconditioner(const std::vector<SphereState>& next) {
+  // Each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of preconditioner_bins
+  // bins, built the first time a sphere is there): the rings' pattern relative to the grid repeats when a sphere
+  // moves by whole cells, and the multi-level Q is nearly translation invariant.
+  prec_.clear();
+  const LevelGeometry& G = lv_[0].g;
+  auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) { return std::make_shared<BlockLU>(diagonal_block_of_Q(o, n)); };
+  for (std::size_t k = 0; k < pts_.size();) {
+    std::size_t e = k;
+    while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
+    const int b = pts_.body[k];
+    const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
+    const double x = (next[b].z - G.z0) / G.h;
+    const int bins = s_.preconditioner_bins;
+    const int bin = static_cast<int>(std::lround((x - std::floor(x)) * bins)) % bins;
+    if (prec_cache_.size() < next.size()) prec_cache_.resize(next.size());
+    auto& slot = prec_cache_[b];
+    if (slot.size() != static_cast<std::size_t>(bins)) slot.assign(bins, nullptr);
+    if (!slot[bin] || slot[bin]->rows() != n) {
+      slot[bin] = block_of_Q(o, n);
+      ++prec_builds_;
+    }
+    prec_.push_back({o, n, slot[bin]});
+    k = e;
   }
-  for (Eigen::Index k = 0; k < m / 2; ++k) {
-    info.slip = std::max(info.slip, std::abs(u_[2 * k]));
-    info.slip = std::max(info.slip, std::abs(u_[2 * k + 1] - target_[2 * k + 1]));
+  if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the whole run
+    const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
+    const Eigen::Index nw = static_cast<Eigen::Index>(2 * wall_count_);
+    if (!wall_lu_ || wall_lu_->rows() != nw) {
+      wall_lu_ = block_of_Q(ns, nw);
+      ++prec_builds_;
+    }
+    prec_.push_back({ns, nw, wall_lu_});
   }
-  // 5. forces on the spheres: ring forces + the momentum change of the fluid inside (from u_in to U^{n+1})
+}
+
+void Solver::solve_gmres(const std::vector<SphereState>& next, StepInfo& info) {
+  build_preconditioner(next);
+  if (g_prev_.size() == g_.size()) {  // warm start: linear extrapolation of the last two steps' forces
+    t1_ = g_;
+    g_ = 2 * g_ - g_prev_;
+    g_prev_.swap(t1_);
+  } else {
+    g_prev_ = g_;
+  }
+  const auto [it, res] = gmres(rhs_);
+  info.krylov_iterations = it;
+  info.krylov_residual = res;
+}
+
+void Solver::sphere_forces(const std::vector<SphereState>& next, StepInfo& info) {
+  // Ring forces + the momentum change of the fluid inside (from u_in to U^{n+1}).
+  const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size()), m = g_.size();
   info.force.assign(next.size(), 0.0);
   info.internal.assign(next.size(), 0.0);
   for (std::size_t k = 0; k < pts_.size(); ++k) info.force[pts_.body[k]] -= s_.density * g_[2 * k + 1];
   for (Eigen::Index k = ns / 2; k < m / 2; ++k) info.wall_force -= s_.density * g_[2 * k + 1];
   for (std::size_t b = 0; b < next.size(); ++b) {
     const double V = 4.0 / 3.0 * M_PI * std::pow(next[b].radius, 3);
-    info.internal[b] = s_.density * V * (next[b].u - u_in_[b]) / dt;
+    info.internal[b] = s_.density * V * (next[b].u - u_in_[b]) / s_.dt;
     info.force[b] += info.internal[b];
     u_in_[b] = next[b].u;  // no-slip: the fluid inside now moves with the sphere
   }
+}
+
+StepInfo Solver::step(const std::vector<SphereState>& next) {
+  if (next.size() != sph_.size()) throw std::invalid_argument("flow: sphere count changed");
+  if (s_.wall_z && s_.u_inf != s_.wall_velocity)
+    throw std::invalid_argument("flow: with a wall the far fluid must move with it (u_inf = wall_velocity): a stream cannot cross the plate");
+  // 1. explicit part of the vorticity equation on every level
+  explicit_rhs();
+  // 2–3. vorticity predictor η* (its modes kept for the end of the step) and ψ* where the points read it
+  pass_viscous(&Level::rhs, &Level::eta, false);
+  for (auto& L : lv_) L.fast->save_modes(L.eta_modes);
+  pass_streamfunction(&Level::eta, &Level::psi, true, false);
+  // 4. body forces: Q g = U_b − U∞ e_z − Bψ*, Q the multi-level operator of apply_Q_into; LU while the spheres
+  //    stand still (direct_when_fixed), else GMRES, warm start, right-preconditioned by each sphere's own block of Q
+  StepInfo info;
+  bool moved = false;
+  for (std::size_t k = 0; k < next.size(); ++k) moved = moved || next[k].z != sph_[k].z;
+  if (moved || pts_.size() == 0) build_points(next);
+  set_force_rhs(next);
+  if (s_.direct_when_fixed && !moved) solve_direct(next);
+  else solve_gmres(next, info);
+  // final_pass(g_) is current: η = η* + A⁻¹Sg and ψ = P⁻¹η on every level, u_ the velocities at the points
+  for (auto& L : lv_) {
+    L.eta.swap(L.etac);
+    L.psi.swap(L.psic);
+  }
+  for (Eigen::Index k = 0; k < g_.size() / 2; ++k) {
+    info.slip = std::max(info.slip, std::abs(u_[2 * k]));
+    info.slip = std::max(info.slip, std::abs(u_[2 * k + 1] - target_[2 * k + 1]));
+  }
+  // 5. forces on the spheres
+  sphere_forces(next, info);
   sph_ = next;
-  t_ += dt;
+  t_ += s_.dt;
   ++n_;
   check_finite(info);
   return info;
@@ -483,6 +506,7 @@ void Solver::precondition(const Eigen::Ref<const Eigen::VectorXd>& r, Eigen::Vec
   for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu->solve(r.segment(blk.offset, blk.size));
 }
 
+// One piece: the restarts, the Arnoldi process and the Givens updates share H_, e_, the basis and the counts.
 std::pair<int, double> Solver::gmres(const Eigen::VectorXd& b) {
   // Restarted GMRES (Saad & Schultz 1986) on Q g = b with right preconditioning M⁻¹ = per-sphere block
   // inverses. Convergence is judged on the true residual ‖b − Qg‖/‖b‖, recomputed at every restart and

@@ -152,6 +152,13 @@ class Solver {
   // levels' boundary values read; Q g likewise (A⁻¹ on the coarsest level only on those lines); the step ends with
   // η = η* + A⁻¹Sg, ψ = P⁻¹η (full), the same as ψ* + P⁻¹A⁻¹Sg up to rounding. P⁻¹ starts from A⁻¹'s modes on the
   // lines that coarsify leaves alone (no transform pair between the two solves there).
+  // The parts of step().
+  void explicit_rhs();  // Level::rhs ← the explicit part of the vorticity equation (AB2 advection, (1 − θ) viscous)
+  void set_force_rhs(const std::vector<SphereState>& next);  // target_, rhs_ = target_ − Bψ*; g_ sized
+  void solve_direct(const std::vector<SphereState>& next);   // g_ by the LU of Q (refactorised when the spheres move)
+  void solve_gmres(const std::vector<SphereState>& next, StepInfo& info);  // g_ by GMRES; its counts into info
+  void build_preconditioner(const std::vector<SphereState>& next);          // prec_: per-sphere blocks of Q
+  void sphere_forces(const std::vector<SphereState>& next, StepInfo& info);  // info.force, internal, wall_force
   void build_points(const std::vector<SphereState>& sp);
   void build_wall();
   void plan_rows();    // the partial line counts per level, and their FFTW plans

@@ -315,7 +315,9 @@ TEST(Coupling, TheSpeedJumpCheckKnowsSolidContactByTheEventKind) {
       EXPECT_NE(ev.name.find("delta_ss"), std::string::npos) << ev.name;
       EXPECT_FALSE(coupling::is_solid_contact(ev.kind));
     }
-    if (ev.kind == model::EventKind::contact_in || ev.kind == model::EventKind::contact_out) EXPECT_TRUE(coupling::is_solid_contact(ev.kind));
+    if (ev.kind == model::EventKind::contact_in || ev.kind == model::EventKind::contact_out) {
+      EXPECT_TRUE(coupling::is_solid_contact(ev.kind));
+    }
   }
   EXPECT_EQ(in, 1);
   EXPECT_EQ(out, 1);

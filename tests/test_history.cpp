@@ -32,7 +32,11 @@ class BassetProblem : public DynamicalSystem {
   std::size_t size() const override { return 1 + h_.states(); }
   std::vector<std::string> component_names() const override {
     std::vector<std::string> n{"q"};
-    for (std::size_t i = 0; i < h_.states(); ++i) n.push_back("z" + std::to_string(i));
+    for (std::size_t i = 0; i < h_.states(); ++i) {
+      std::string name = "z";  // appended: "z" + std::to_string(i) gives a false -Wrestrict in GCC 12 at -O3
+      name += std::to_string(i);
+      n.push_back(name);
+    }
     return n;
   }
   std::vector<double> absolute_tolerances(double atol) const override {

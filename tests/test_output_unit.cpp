@@ -60,8 +60,11 @@ std::string imcol_cmd(const std::string& args) {
 /// Staging folders left beside `dir`.
 std::vector<fs::path> staged_beside(const fs::path& dir) {
   std::vector<fs::path> v;
+  std::string prefix = ".";  // appended: "." + a temporary string gives a false -Wrestrict in GCC 12 at -O3
+  prefix += dir.filename().string();
+  prefix += ".";
   for (const auto& f : fs::directory_iterator(dir.parent_path()))
-    if (f.path().filename().string().rfind("." + dir.filename().string() + ".", 0) == 0) v.push_back(f.path());
+    if (f.path().filename().string().rfind(prefix, 0) == 0) v.push_back(f.path());
   return v;
 }
 
