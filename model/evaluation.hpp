@@ -28,8 +28,12 @@ struct Evaluation {
   double H = 1;                     // blend weight of f_THR (MODEL.md §2.5); 1 without the flow effect
   std::array<double, 2> f_rest{};   // SimulatedForce at t (flow effect), N
   std::array<double, 2> thr_base{}, m_hist_full{};  // unblended f_THR without acceleration parts, N; history mass, kg
-  /// Solves the 2×2 mass system for the accelerations given the forces g.
-  std::array<double, 2> accelerations(const std::array<double, 2>& g, std::size_t n) const;
+  /// Solves the 2×2 mass system for the accelerations given the forces g (inline: it is on the right-hand side's path).
+  std::array<double, 2> accelerations(const std::array<double, 2>& g, std::size_t n) const {
+    if (n == 1) return {g[0] / m_eff[0], 0.0};
+    const double det = m_eff[0] * m_eff[1] - m_couple * m_couple;
+    return {(m_eff[1] * g[0] - m_couple * g[1]) / det, (m_eff[0] * g[1] - m_couple * g[0]) / det};
+  }
   std::array<SphereForces, 2> f{};
 };
 
