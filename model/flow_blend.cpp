@@ -1,0 +1,52 @@
+#include "model/flow_blend.hpp"
+
+#include <algorithm>
+
+namespace imcol::model {
+
+double blend_weight(double gap, double delta_sl_m) {
+  const double x = std::clamp(0.5 * gap / delta_sl_m, 0.0, 1.0);
+  return 1.0 - x * x * (3 - 2 * x);
+}
+
+FlowBlend::FlowBlend(const Scene& sc, const PairGeometry& p)
+    : delta_sl_m_(sc.contact.delta_sl * p.D), n_spheres_(p.n_spheres), has_target_(p.has_target()),
+      added_mass_listed_(sc.has(Effect::added_mass)), estimate_(sc.flow.added_mass_estimate),
+      lagrangian_pair_(sc.added_mass.model == AddedMassModel::lagrangian && p.pair()) {}
+
+void FlowBlend::apply(double t, const SimulatedForce& sim, const AddedMassMatrix& M, Evaluation& ev) const {
+  // f_SL = H f_THR + (1 − H) f_SIM (6.10). The acceleration parts: f_SIM's added mass is removed from it
+  // (f_rest = f_SIM + M_A a) and kept implicit, so the mass matrix carries M_A in full whatever H is; the
+  // history force's κ-like mass is blended like its force.
+  ev.H = has_target_ ? blend_weight(ev.gap, delta_sl_m_) : 0.0;
+  const double H = ev.H;
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    auto& f = ev.f[m];
+    ev.thr_base[m] = f.drag + f.lubrication + f.added_mass + f.history;
+    ev.m_hist_full[m] = ev.m_hist[m];
+    f.drag *= H;
+    f.lubrication *= H;
+    f.added_mass *= H;  // velocity (dW/dδ) part
+    f.history *= H;
+    ev.m_eff[m] -= (1 - H) * ev.m_hist[m];
+    ev.m_hist[m] *= H;
+    ev.f_rest[m] = sim.at(t, m);
+    f.simulated = (1 - H) * ev.f_rest[m];
+  }
+  if (!added_mass_listed_) {
+    // No analytic added mass: only the (1 − H) share standing for f_SIM's is implicit.
+    ev.m_eff[0] += (1 - H) * M.m11;
+    if (n_spheres_ == 2) ev.m_eff[1] += (1 - H) * M.m22;
+    ev.m_couple += (1 - H) * M.m12;
+  }
+}
+
+Choices FlowBlend::choices() const {
+  return {{"blend.H", "smoothstep: H = 1 - (3t^2 - 2t^3), t = gap/(2 delta_sl) in [0, 1]"},
+          {"blend.delta_sl_m", choice_number(delta_sl_m_)},
+          {"blend.added_mass_estimate", lagrangian_pair_ ? "lagrangian pair matrix, implicit" : "1/2 m_f (1 + 3W), implicit"}};
+}
+
+Choices FlowBlend::uncoupled_choices() { return {{"blend.H", "1 (reduced-order: no f_SIM)"}}; }
+
+}  // namespace imcol::model

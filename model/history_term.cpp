@@ -1,0 +1,179 @@
+#include "model/history_term.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "contact/formulas.hpp"
+#include "core/errors.hpp"
+
+namespace imcol::model {
+
+using namespace contact;
+
+HistoryTerm::HistoryTerm(const Scene& sc, const PairGeometry& p) : wall_(sc, p), n_spheres_(p.n_spheres) {
+  const auto& h = sc.history;
+  auto& o = opt_;
+  o.kernel = h.kernel;
+  o.evaluator = h.evaluator;
+  o.tolerance = h.tolerance;
+  o.modes = static_cast<int>(h.modes);
+  o.impulsive = h.start == HistoryStart::impulsive;
+  o.initial_re = h.reynolds == HistoryReynolds::initial;
+  kh_added_mass_ = h.wall_correction == WallCorrection::added_mass && p.has_target();
+  // Fastest time scale the memory must resolve: the viscous and particle relaxation times of each
+  // sphere and, with a target, the time to cross the contact zone and the Hertz contact time.
+  double t_fast = std::numeric_limits<double>::infinity();
+  const double nu = p.mu / p.rho_f;
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    t_fast = std::min(t_fast, p.a[m] * p.a[m] / nu);
+    t_fast = std::min(t_fast, (p.mp[m] + 0.5 * p.mf[m]) / (6 * pi * p.mu * p.a[m]));
+  }
+  if (p.has_target()) t_fast = std::min(t_fast, p.delta_ss_m / p.u_ref);
+  if (p.has_target() && sc.has(Effect::elastic) && p.u_rel0 > 0) {
+    // t_c ∝ U^(-1/5) through U² in the indentation: a speed whose square underflows gives t_c = 0 (the reader's
+    // bound |U| >= 1e-30 keeps it positive).
+    const double t_c = hertz_contact_time(p.m_star, p.u_rel0, p.E_star, p.a_star);
+    if (!(t_c > 0))
+      throw InputError(sc.path, "sphere[0].velocity",
+                       "an approach speed of " + fmt_number(p.u_rel0) + " m/s is too small for the Hertz contact time to be computed (got " +
+                           fmt_number(t_c) + " s)");
+    t_fast = std::min(t_fast, t_c);
+  }
+  o.horizon = h.horizon > 0 ? h.horizon : sc.solver.t_end;
+  o.min_lag = h.min_lag > 0 ? h.min_lag : 1e-3 * t_fast;
+  if (o.horizon < 10 * o.min_lag)
+    throw InputError(sc.path, h.horizon > 0 ? "history.horizon" : "history.min_lag",
+                     "the memory horizon " + fmt_number(o.horizon) + " s must be at least 10 × min_lag (" +
+                         fmt_number(o.min_lag) + " s)");
+  // Direct evaluator: 10 steps per fastest time scale, but at most 50000 steps up to t_end.
+  o.direct_step = h.direct_step > 0 ? h.direct_step : std::max(0.1 * t_fast, sc.solver.t_end / 50000);
+  const std::size_t core = 2 * n_spheres_;
+  std::size_t offset = core;
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    try {
+      h_[m] = std::make_unique<SphereHistory>(o, p.a[m], p.mu, p.rho_f, sc.spheres[m].velocity);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(sc.path, "history", e.what());
+    }
+    offset_[m] = offset;
+    offset += h_[m]->states();
+  }
+  states_ = offset - core;
+  if (n_spheres_ == 2) h_[1]->share_steps_with(h_[0].get());  // soe-step, equal exponentials
+  auto& c = choices_;
+  c.push_back({"history.kernel", to_string(h.kernel)});
+  c.push_back({"history.evaluator", to_string(h.evaluator)});
+  c.push_back({"history.start", to_string(h.start)});
+  c.push_back({"history.wall_correction", to_string(h.wall_correction)});
+  if (h.kernel != KernelKind::basset) c.push_back({"history.reynolds", to_string(h.reynolds)});
+  if (o.evaluator == HistoryEvaluator::direct) {
+    c.push_back({"history.direct_step_s", choice_number(o.direct_step)});
+  } else {
+    c.push_back({"history.modes", std::to_string(h_[0]->modes())});
+    c.push_back({"history.min_lag_s", choice_number(o.min_lag)});
+    c.push_back({"history.horizon_s", choice_number(o.horizon)});
+    c.push_back({"history.fit_error_basset", choice_number(h_[0]->soe()->base().max_rel_error)});
+  }
+}
+
+double HistoryTerm::K_H(double gap) const { return kh_added_mass_ ? 1 + 3 * wall_.W(gap) : 1.0; }
+
+double HistoryTerm::step_cap() const {
+  return opt_.evaluator == HistoryEvaluator::direct ? opt_.direct_step : std::numeric_limits<double>::infinity();
+}
+
+std::span<const double> HistoryTerm::memory(std::span<const double> y, std::size_t m) const {
+  return y.subspan(offset_[m], h_[m]->states());
+}
+
+void HistoryTerm::add(const TermInput& in, Evaluation& ev) const {
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    const auto term = h_[m]->evaluate(in.t, ev.u[m], K_H(ev.gap), memory(in.y, m));
+    ev.f[m].history = term.force;
+    ev.m_hist[m] = term.mass;
+  }
+}
+
+void HistoryTerm::append_names(std::vector<std::string>& names) const {
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    for (std::size_t i = 0; i < h_[m]->states(); ++i) names.push_back("mem" + std::to_string(m + 1) + "_" + std::to_string(i));
+}
+
+void HistoryTerm::append_tolerances(double u_floor, std::vector<double>& t) const {
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    for (double v : h_[m]->absolute_tolerances(u_floor)) t.push_back(v);
+}
+
+void HistoryTerm::initial_states(std::span<double> y, const std::function<Evaluation()>& evaluate_start) const {
+  for (std::size_t m = 0; m < n_spheres_; ++m) h_[m]->initial_states(y.subspan(offset_[m], h_[m]->states()));
+  // soe-step: the memory lives in the term (reset here, so that a second call starts afresh).
+  std::array<std::vector<double>, 2> zs;
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    if (h_[m]->stepwise()) {
+      zs[m].assign(h_[m]->modes(), 0.0);
+      h_[m]->initial_states(zs[m]);
+      h_[m]->reset_memory(0.0, zs[m]);
+    }
+  if (!opt_.impulsive) return;
+  // Impulsive start: the start-up momentum below the force floor is given at t = 0.
+  const Evaluation ev = evaluate_start();
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    auto& h = *h_[m];
+    const std::span<double> z = h.stepwise() ? std::span<double>(zs[m]) : y.subspan(offset_[m], h.states());
+    y[2 * m + 1] -= h.apply_start(K_H(ev.gap), ev.m_eff[m], z);
+    if (h.stepwise()) h.reset_memory(0.0, zs[m]);
+  }
+}
+
+void HistoryTerm::state_rhs(const std::array<double, 2>& acc, std::span<const double> y, std::span<double> ydot) const {
+  for (std::size_t m = 0; m < n_spheres_; ++m)
+    if (h_[m]->states()) h_[m]->state_rhs(acc[m], memory(y, m), ydot.subspan(offset_[m], h_[m]->states()));
+}
+
+void HistoryTerm::residual(std::span<const double> y, std::span<const double> yp, std::span<double> r) const {
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    if (!h_[m]->states()) continue;
+    const auto& lam = h_[m]->rates();
+    const std::size_t o = offset_[m];
+    for (std::size_t i = 0; i < lam.size(); ++i) r[o + i] = yp[o + i] - (yp[2 * m + 1] - lam[i] * y[o + i]);
+  }
+}
+
+double HistoryTerm::next_breakpoint() const {
+  if (opt_.evaluator != HistoryEvaluator::direct) return std::numeric_limits<double>::infinity();
+  return h_[0]->step() * static_cast<double>(direct_points_);
+}
+
+void HistoryTerm::at_breakpoint(double t, const Evaluation& ev) {
+  if (opt_.evaluator != HistoryEvaluator::direct) return;
+  for (std::size_t m = 0; m < n_spheres_; ++m) h_[m]->record(t, ev.u[m]);
+  ++direct_points_;
+}
+
+void HistoryTerm::at_step(double t, const Evaluation& ev, bool restart) {
+  if (opt_.evaluator != HistoryEvaluator::soe_step) return;
+  for (std::size_t m = 0; m < n_spheres_; ++m) h_[m]->advance_memory(t, ev.u[m], restart);
+}
+
+void HistoryTerm::modal_structure(const Evaluation& ev, std::size_t core, ModalStructure& s) const {
+  const double K_H = this->K_H(ev.gap);
+  s = ModalStructure{};
+  s.core = core;
+  s.groups = n_spheres_;
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    const auto& h = *h_[m];
+    std::vector<double> g(h.states());
+    h.gains(ev.u[m], K_H, g);
+    for (std::size_t i = 0; i < h.states(); ++i) {
+      s.source.push_back(2 * m + 1);  // velocity of sphere m
+      s.group.push_back(m);
+      s.rate.push_back(h.rates()[i]);
+      s.gain.push_back(g[i]);
+    }
+  }
+}
+
+std::unique_ptr<ForceTerm> make_history_term(const Scene& sc, const PairGeometry& p) { return std::make_unique<HistoryTerm>(sc, p); }
+
+}  // namespace imcol::model
