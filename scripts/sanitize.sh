@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
-# Debug build of the tests with AddressSanitizer and UndefinedBehaviorSanitizer (CMake option IMCOL_SANITIZE)
+# Build of imcol and its tests with AddressSanitizer and UndefinedBehaviorSanitizer (CMake option IMCOL_SANITIZE)
 # in build-asan/, and the test suite run there, without the `fuzz` label and the tests in SKIP below (the Release
 # suite runs them all). Run scripts/setup.sh first: the SUNDIALS is the one build/ uses. A sanitizer report ends
 # its process with exit code 86, so one in an imcol process that a test starts fails that test's status check too.
 # ASan's reports are also kept in build-asan/sanitizer-logs/ (any there fails the script); UBSan's go to stderr only
-# (GCC's combined runtime ignores UBSan's log_path).
+# (GCC's combined runtime ignores UBSan's log_path). .ci/run runs it after the Release suite.
+# Build: CMake's Debug type (assertions on) at -Og -g1: -Og is -O1 without the passes that hinder debugging and
+# compiles in about the CPU time of -O0 (contact/history_kernel.cpp with the sanitizers: 30 s at -Og -g1 and at
+# -O0 -g, 39 s at -O1 -g1); -g1 keeps the function and file:line of each stack frame in the reports. Only imcol
+# and imcol_tests are built (no benchmarks).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=build-asan
@@ -28,7 +32,7 @@ fi
 if [[ -n $sundials_dir ]]; then sundials_arg=(-DSUNDIALS_DIR="$sundials_dir"); else sundials_arg=(-USUNDIALS_DIR); fi
 
 t0=$SECONDS
-cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DIMCOL_SANITIZE=ON -DIMCOL_BUILD_BENCHMARKS=OFF "${sundials_arg[@]}"
+cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG='-Og -g1' -DIMCOL_SANITIZE=ON -DIMCOL_BUILD_BENCHMARKS=OFF "${sundials_arg[@]}"
 cmake --build "$B" -j"$JOBS" --target imcol imcol_tests
 t1=$SECONDS
 
