@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "apps/format.hpp"
+#include "apps/option_rules.hpp"
 #include "apps/plot.hpp"
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
@@ -124,7 +125,7 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
   if (!base.fluid) throw InputError(scene_path, "fluid", "the history force needs a [fluid] table");
   for (const auto& k : opt.kernels)
     if (!choice_from_string<KernelKind>(k))
-      throw InputError("--kernels", k, "unknown kernel (expected basset, mei-adrian, kim, dorgan-loth)");
+      throw InputError("--kernels", k, "unknown kernel (expected " + name_list(choice_names<KernelKind>()) + ")");
   for (const auto& e : opt.evaluators)
     if (!choice_from_string<HistoryEvaluator>(e)) throw InputError("--evaluators", e, "unknown evaluator (expected soe, soe-step, direct)");
   const bool collision = base.has_target();

@@ -8,7 +8,7 @@
 namespace imcol {
 
 struct HistoryCompareOptions {
-  std::vector<std::string> kernels = {"basset", "mei-adrian", "kim", "dorgan-loth"};
+  std::vector<std::string> kernels = choice_names<KernelKind>();  // every shipped kernel
   std::vector<std::string> evaluators = {"soe-step", "soe", "direct"};
   std::string out;   // default out/<scene>-history
   bool plot = true;

@@ -64,10 +64,16 @@ inline CLI::Validator integer_rule(const std::string& option, long lo, long hi) 
       "in " + range);
 }
 
-/// One of `names`.
-inline CLI::Validator choice_rule(const std::string& option, const std::vector<std::string>& names) {
+/// "a, b, c": the names for a message.
+inline std::string name_list(const std::vector<std::string>& names) {
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  return list;
+}
+
+/// One of `names`.
+inline CLI::Validator choice_rule(const std::string& option, const std::vector<std::string>& names) {
+  const std::string list = name_list(names);
   return CLI::Validator(
       [option, names, list](std::string& text) -> std::string {
         for (const auto& n : names)
@@ -87,12 +93,5 @@ inline CLI::Validator path_rule(const std::string& option) {
       "");
 }
 
-/// Every value of a choice enum (core/choices.hpp), by its spellings.
-template <class E>
-std::vector<std::string> choice_names() {
-  std::vector<std::string> out;
-  for (const auto& [e, name] : ChoiceNames<E>::list) out.emplace_back(name);
-  return out;
-}
 
 }  // namespace imcol

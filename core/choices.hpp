@@ -4,8 +4,10 @@
 // Each enum's names (the scene's spellings, also written to summary.json) are listed once, in ChoiceNames<E>::list below.
 #include <array>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace imcol {
 
@@ -78,6 +80,14 @@ constexpr std::optional<E> choice_from_string(std::string_view s) {
   for (const auto& [v, name] : ChoiceNames<E>::list)
     if (name == s) return v;
   return std::nullopt;
+}
+
+/// Every value of a choice enum, by its spellings, in the order above.
+template <class E>
+std::vector<std::string> choice_names() {
+  std::vector<std::string> out;
+  for (const auto& [e, name] : ChoiceNames<E>::list) out.emplace_back(name);
+  return out;
 }
 
 }  // namespace imcol

@@ -35,6 +35,25 @@ IntegratorSettings integrator_settings(const Scene& sc) {
   return st;
 }
 
+/// The effects that ran and the model's choices (summary.json's `effects` and `model`).
+void put_effects_and_model(RunSummary& s, nlohmann::ordered_json& j, const CollisionModel& model, const Scene& sc) {
+  for (Effect x : sc.effects) s.effects.push_back(to_string(x));
+  j["effects"] = s.effects;
+  s.model = model.choices();
+  nlohmann::ordered_json mod = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : s.model) mod[k] = v;
+  j["model"] = mod;
+  if (model.history(0) && model.history_options().evaluator != HistoryEvaluator::direct)
+    s.history_modes = static_cast<long>(model.history(0)->modes());
+}
+
+/// The events in the order they happened (summary.json's `events`).
+nlohmann::ordered_json events_block(const CollisionModel& model) {
+  nlohmann::ordered_json ev = nlohmann::ordered_json::array();
+  for (const auto& x : model.events()) ev.push_back({{"t", x.t}, {"event", x.name}, {"gap_m", x.gap}, {"u_rel_m_s", x.u_rel}});
+  return ev;
+}
+
 }  // namespace
 
 RunResult simulate(const Scene& sc, bool progress, Recording recording) {
@@ -100,21 +119,12 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
     s.contact = run::contact_summary(model);
     j["contact"] = run::contact_block(*s.contact);
   }
-  for (Effect x : sc.effects) s.effects.push_back(to_string(x));
-  j["effects"] = s.effects;
-  s.model = model.choices();
-  nlohmann::ordered_json mod = nlohmann::ordered_json::object();
-  for (const auto& [k, v] : s.model) mod[k] = v;
-  j["model"] = mod;
-  if (model.history(0) && model.history_options().evaluator != HistoryEvaluator::direct)
-    s.history_modes = static_cast<long>(model.history(0)->modes());
+  put_effects_and_model(s, j, model, sc);
   s.solver = {to_string(st.method), st.rtol, st.atol, t_final, st.output_dt, rec.track().t.size(), stats};
   j["solver"] = run::solver_block(model, st, stats, t_final);
   j["solver"]["measure_interval_s"] = s.solver.measure_interval_s;  // the integrator's sampling, which the measures read
   j["solver"]["measure_samples"] = s.solver.measure_samples;
-  nlohmann::ordered_json ev = nlohmann::ordered_json::array();
-  for (const auto& x : model.events()) ev.push_back({{"t", x.t}, {"event", x.name}, {"gap_m", x.gap}, {"u_rel_m_s", x.u_rel}});
-  j["events"] = ev;
+  j["events"] = events_block(model);
   s.warnings = warnings;
   j["warnings"] = s.warnings;
   if (coupled) {
