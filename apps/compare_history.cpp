@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "apps/compare_history.hpp"
 
 #include <cmath>

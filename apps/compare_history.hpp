@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // `imcol history`: one scene with every history kernel × evaluator (and none), side by side.
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "apps/compare_laws.hpp"
 
 #include <time.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // `imcol laws`: one scene run once per solid contact law (contact.law), side by side; optionally at each point of a
 // sweep of one quantity (e against St per law).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // `imcol flow SCENE [--out DIR] [--no-plot]`: runs a flow scene (data/scenes/flow/) with the immersed-boundary
 // kernel (run/flow_run.hpp) and writes DIR/forces.csv, DIR/summary.json, DIR/snapshot_NN.csv (+ PNGs via

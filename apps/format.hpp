@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Number formatting shared by the commands' tables and CSV files.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Checks of command-line option values, attached to the options as CLI11 validators: a value that is not a number,
 // not finite, outside its interval or not one of the choices is an InputError naming the option (exit 2, one line)

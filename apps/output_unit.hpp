@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A command's output folder as one unit: all of one run's files or none of them.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Plots are drawn by small matplotlib scripts in scripts/, run with Debian's /usr/bin/python3.
 #include <filesystem>

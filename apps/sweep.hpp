@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // `imcol sweep`: e against St over a range of one scene quantity, the points run in parallel.
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // `imcol validate seed`: the seed's Table 6.1 (data/reference/li_2010_table_6_1.csv) run by imcol with two gap laws,
 // reduced-order and with --flow also coupled (MODEL.md (6.10)); both St_B conventions (docs/model-notes.md, "Pairs").

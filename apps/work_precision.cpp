@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "apps/work_precision.hpp"
 #include "apps/work_precision_flow.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // `imcol work-precision`: what accuracy costs. A ladder of tolerances for each integrator and history
 // evaluator, each run compared with one reference run at the tightest settings.

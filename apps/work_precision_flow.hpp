@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // `imcol work-precision` on a coupled scene (the `flow` effect): what the flow kernel's accuracy costs. The ladder is
 // the grid (cells per diameter) at the scene's flow step rule, then the flow step (cfl) at the scene's grid, each run

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Scenes shared by the Google Benchmark programs: a shipped scene, optionally with the history effect.
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cost of one whole collision, simulate() on data/scenes/default.toml (steel onto a wall), per
 // integrator (cvode dense, cvode gmres, cvode schur, cvode with the soe-step history evaluator, ida) and rtol, without and with the history effect
 // (sum of exponentials at its default tolerance). Counters: e, the integrator's steps, the state

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cost of the immersed-boundary flow kernel: time per step and memory for 1, 2, 3 levels at 32, 64, 128
 // cells per diameter (fixed sphere, Re = 100, CFL 0.32), the growth exponent of time with the number of cells,
 // and (--steady) the wall time from a cold start to a C_D within 3 % of the standard curve at Re = 100.

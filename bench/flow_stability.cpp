@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Where the flow kernel's step breaks: a sphere (D = 1, U = 1, ρ = 1, ν = 1/Re) on a prescribed path, as the coupled
 // runs' start-up and approach move it, stepped at Δt = cfl·h/U for a table of Re, cfl and cells per diameter.
 //   wall: lab frame, a plane wall at z = 0, the sphere from a gap of 4 D toward it at U until the gap is 0.5 D;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the history force's accuracy costs: the sum-of-exponentials evaluator against direct
 // product integration on the rising-sphere scene (exact solution known, MODEL.md §2.3).
 //  1. At 100 relaxation times: error against the closed form and wall time for a ladder of settings

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cost of one right-hand-side evaluation of the collision model (model/collision_model.hpp),
 // for a wall and a pair scene, without the history effect and with it at several mode counts.
 // Items/s = right-hand sides per second. Usage: imcol_bench_rhs [--benchmark_filter=...]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A solid contact law f_SS (MODEL.md §2.4): the force that pushes the pair apart once the gap is below δ_SS.
 // The collision model owns one law, built by make_contact_law from the scene's contact.law, arms the events and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Analytic force laws of the reduced-order collision model (MODEL.md §2). SI units throughout.
 #include <array>

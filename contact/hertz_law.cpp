@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "contact/hertz_law.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Hertz contact with nonlinear viscous damping (Tsuji, Tanaka & Ishida, Powder Technol. 71 (1992) 239–250):
 //   f_SS = k ξ^{3/2} + η ξ^{1/4} dξ/dt,   k = (4/3) E* √a*,   η = α √(m* k),   clipped at 0 (never pulls),

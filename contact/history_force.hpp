@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // History force of one sphere (MODEL.md §2.3, seed 6.9), in a quiescent fluid (slip = U):
 //   f_H = −6πμa K_H ∫_0^t (dU/dτ) K(t − τ) dτ − [impulsive start] 6πμa K_H U(0) K(t)        [N]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // History (Basset-type) force kernels and their sum-of-exponentials approximation (MODEL.md §2.3).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The seed's exponential ramp (MODEL.md §2.4, choice): below the gap δ_SS,
 //   f_SS = F(x) · W_o · (branch factor),  F(x) = (e^{β(1−x)} − 1)/(e^β − 1),  x = gap/δ_SS,

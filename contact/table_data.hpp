@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Shipped nodes of the interpolation tables of contact/formulas.cpp: {f(x_i), x_i f'(x_i)} on
 // x_i = x_min (x_max/x_min)^(i/(n−1)). Written by imcol_gen_tables (contact/gen_tables.cpp);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Zero nodes for imcol_gen_tables itself (it computes the nodes from the series, never from these).
 #include "contact/table_data.hpp"
 

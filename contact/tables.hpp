@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Smooth interpolation of a costly function of a positive argument on a logarithmic grid
 // (cubic Hermite in u = ln x, with derivatives from the function's own derivative).

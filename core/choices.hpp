@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The model choices a scene makes, as enums: the scene reader turns each key's string into one of these
 // (an unknown string is an input error there), so nothing below the reader compares strings.

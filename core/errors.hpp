@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Error types shared by all modules. InputError -> exit status 2, SolverError -> exit status 3.
 #include <sstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "core/flow_spec.hpp"
 
 #include "core/toml_reader.hpp"

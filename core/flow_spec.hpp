@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The `[flow]` table of a collision scene: the embedded flow kernel that supplies f_SIM (MODEL.md §2, §2.5, §5).
 // Lengths in units of the impact sphere's diameter D, times in s. Read by read_flow_spec(); every key is checked.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Material database: data/materials.csv (SI units: kg/m^3, Pa, -, -, m).
 #include <map>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Measurements on a trajectory (MODEL.md §3): least-squares velocities, restitution, Stokes numbers.
 #include <optional>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Numbers as text for CSV files: printf's %.<digits>g (what a stream with setprecision(digits) writes), by
 // std::to_chars, which is several times faster than the stream and allocates nothing.

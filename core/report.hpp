@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Writing result files completely or not at all: write to a temporary file beside the target, then rename.
 #include <filesystem>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Scene description (MODEL.md §1) and its TOML parser. All quantities SI unless noted.
 #include <optional>

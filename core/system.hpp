@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The abstract ODE/DAE system that the integrators drive (Cantera-style "function evaluator").
 // Physics implements it; integrators/ wraps it in SUNDIALS. No SUNDIALS types appear here.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Wall-clock seconds for the run statistics (steady clock).
 #include <chrono>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Reading one TOML table with checks (toml++): every error names the file and line (or the command
 // line, for an override without a source) and the dotted key; keys never read are reported as unknown.

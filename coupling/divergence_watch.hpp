@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Detects a coupled run that is no longer physical (docs/coupling.md "Divergence"): the flow kernel's explicit AB2
 // advection breaks when the fluid's Courant number nears 1, and the partitioned f_SIM then feeds the spheres energy

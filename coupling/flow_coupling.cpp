@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "coupling/flow_coupling.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The coupling loop (MODEL.md §2, (6.10), §5): the flow kernel supplies f_SIM to the collision model each flow step.
 //

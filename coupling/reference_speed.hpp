@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The speed the flow step is scaled by (docs/coupling.md "The flow step"), m/s. Per sphere m:
 //   U_m = max(|u_m(0)|, min(U_T,m, U_fall,m))  with gravity (and ρ_m ≠ ρ_f), else |u_m(0)|;

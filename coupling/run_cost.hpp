@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What a coupled run will cost, before the flow grid is allocated (flow/cost.hpp gives the kernel's unit costs):
 //   start-up    n_pre prescribed steps before t = 0 (flow.developed_distance or developed_time over Δt);

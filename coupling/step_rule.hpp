@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The flow kernel's step in a coupled run (docs/coupling.md "The flow step"). The kernel's advection is explicit
 // (Adams–Bashforth 2); its viscous term is Crank–Nicolson, which sets no step limit. The fluid near the spheres moves

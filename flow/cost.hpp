@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What a flow run will cost, estimated from its grid before anything is allocated (measured constants:
 // docs/flow-kernel.md "cost"). Memory ~100 bytes per vertex and level plus the force system's dense matrices (Q of

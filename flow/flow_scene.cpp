@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "flow/flow_scene.hpp"
 
 #include <toml++/toml.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Flow scenes (data/scenes/flow/*.toml): spheres on the axis, fixed or on prescribed trajectories, optionally above a
 // plane no-slip wall ([wall] position = z_w: the spheres on its +z side, the fluid far away at rest, no stream)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "flow/grid.hpp"
 
 #include <fftw3.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One level of the nested axisymmetric vertex grid and its fast solver for (a I + b E²) x = f.
 //

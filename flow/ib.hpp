@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Immersed-boundary transfer operators on the finest level (MODEL.md §4).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Flow fields of every level as CSV: vertex rows "level,r,z,psi,omega,u_r,u_z" (m, m³/s, 1/s, m/s), level 0 the
 // finest; ψ is the total Stokes streamfunction ψ + ½U∞r² seen from the lab. A comment line states the moment, the time,

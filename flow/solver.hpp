@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Axisymmetric incompressible Navier–Stokes around spheres on the axis by the immersed-boundary projection
 // method in streamfunction (nullspace) form: Taira & Colonius, J. Comput. Phys. 225 (2007); Colonius & Taira,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Time integration of a DynamicalSystem with SUNDIALS CVODE (BDF) or IDA (residual form),
 // root finding, re-initialisation after events and statistics summed over re-initialisations.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // CVODE / IDA driver for imcol::DynamicalSystem (SUNDIALS 6.x). The only SUNDIALS user in imcol.
 #include <cvode/cvode.h>
 #include <ida/ida.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "model/added_mass_term.hpp"
 
 #include "contact/formulas.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Added mass f_AM (MODEL.md §2.2, seed (6.8)). Its acceleration part is moved to the left-hand side, a mass matrix
 // on the velocities (kg); its velocity part is a force (N):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Whether a scene can ever collide, decided at t = 0 (MODEL.md §1: +z points from the impact sphere to its target).
 // U_rel = U1 − U2 (> 0: approaching). Without gravity every force of the model is the fluid's or the solids' reaction

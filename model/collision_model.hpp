@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Reduced-order model of one head-on collision (MODEL.md §2, §3):
 //   m_p,m dU_m/dt = f_D,m + f_lub,m + f_AM,m + f_SS,m + (m_p,m − m_f,m) g + f_H,m        (seed 6.4, 6.10)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "model/contact_term.hpp"
 
 namespace imcol::model {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Solid contact f_SS (MODEL.md §2.4): the scene's contact law (contact/contact_law.hpp, from contact.law) pushes
 // the pair apart, −f on sphere 1 and +f on sphere 2, N. The law is consulted once the first contact has begun;

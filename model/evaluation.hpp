@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One evaluation of the model's right-hand side at (t, y): the kinematics, each term's force on each sphere, and
 // the velocity mass matrix (MODEL.md §2). Terms fill their own slots; CollisionModel sums them in a fixed order.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The blend between the analytic and the simulated fluid forces (MODEL.md (6.10), §2.5, §5), with the `flow`
 // effect: f_SL = H(δ/δ_SL) f_THR + (1 − H) f_SIM, H a smoothstep on [0, 2δ_SL] (1 at contact, ½ at δ_SL).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A force term of the reduced-order model (MODEL.md §2): one effect a scene can list. A term owns its parameters
 // (derived from the Scene in its constructor, refusing bad input with InputError) and adds its force on each

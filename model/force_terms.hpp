@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The force terms a scene calls for (MODEL.md §2), one line each in make_force_terms.
 #include "core/scene.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "model/gap_resistance_term.hpp"
 
 #include <limits>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Gap (lubrication) resistance (MODEL.md §2.1): on sphere 1 −6πμ R1(h) U_rel, on sphere 2 +6πμ R2(h) U_rel, N,
 // with the resistance lengths R_m of lubrication.model (contact/formulas.hpp gap_resistance) at the gap

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Gravity and buoyancy on each sphere (MODEL.md §2, seed (6.4)): (m_p,m − m_f,m) g, N along z.
 #include "core/scene.hpp"

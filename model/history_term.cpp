@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "model/history_term.hpp"
 
 #include <algorithm>

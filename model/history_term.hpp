@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // History force f_H (MODEL.md §2.3, seed (6.9)) on each sphere: −6πμ a_m K_H(δ**) ∫ (dU_m/dτ) K(t − τ) dτ, N, by
 // contact/history_force.hpp (SphereHistory). Its explicit part is a force; its acceleration part m_H,m dU_m/dt

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The pair's geometry and the parameters every force term reads, derived once from the Scene (SI units):
 // radii a_m, masses m_p,m and displaced fluid masses m_f,m, the reduced radius and mass a* = (1/a1 + 1/a2)⁻¹,

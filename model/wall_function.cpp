@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "model/wall_function.hpp"
 
 #include "contact/formulas.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The added mass's wall function W(δ**), δ** = h/a* (MODEL.md §2.2, seed (6.8)), and its slope dW/dδ**.
 // dW/dδ diverges like ln δ at contact: below dw_floor, W is continued linearly with the slope it has there. dW/dδ

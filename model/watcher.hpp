@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The seam between the model's events and the rules that measure a run or end it (those live in run/). The model
 // signals its events by kind; a watcher asks for extra roots (a level of the gap or of U_rel, crossed in a direction),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Every contact of a run and each named measure of e (docs/bounces.md): contact_ends (the default), the papers'
 // yang_hunt_2006, joseph_2001, gondret_2002, and fit_time, fit_distance, at_gap, peak_rebound, instant; the apex

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The first contact of a run measured as the seed does (MODEL.md §3): impact and rebound velocities from
 // least-squares lines over measure.window (m/s, fit_time), e (seed 6.1, fit_time), e_instant at measure.instant_gap, St (6.2) and

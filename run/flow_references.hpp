@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Analytic references for the flow kernel's forces on spheres on prescribed paths (`imcol flow`): SI units, forces
 // in N along +z on each sphere.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A flow scene's run (`imcol flow`, data/scenes/flow/): the immersed-boundary kernel stepped along the spheres'
 // prescribed paths, its forces compared with the analytic references (run/flow_references.hpp) and the standard

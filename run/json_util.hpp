@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A measured value or JSON null ("not measured").
 #include <nlohmann/json.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Samples a collision run into trajectory rows (one per output time and event) with the force terms of the
 // effects that ran (or, for sweeps, the kinematics alone), lets the model observe each row (it may end the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The results of a collision run as typed values: what the commands and benchmarks read. summary.json carries the
 // same numbers under the same names (run/summary.hpp writes it); absent and null there are std::nullopt here.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One collision run (the layer above coupling/): build the model the scene calls for, integrate (alone or
 // coupled to the flow kernel), measure the contacts, report. Used by every command, the benchmarks and the tests.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // summary.json of a collision run, block by block, and the short text `imcol run` prints.
 #include <nlohmann/json.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The rules that measure a run or end it, each a watcher of the model's events (model/watcher.hpp) in its own file,
 // added to the model before it is integrated. Their order is the order of their roots.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The apex of each flight between contacts (measure.bounces = "all"): the first U_rel = 0 after a separation, an event
 // in the summary; the pair moves together there when it never separates again.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The contacts of a run as the measures read them (docs/bounces.md): each contact's inward δ_SS crossing (or the start
 // inside the contact zone) and its separation, with U_rel there; and when the pair first moved together (the first

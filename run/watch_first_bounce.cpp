@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "run/watch_first_bounce.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The first rebound (measure.bounces = "first", docs/bounces.md): after the first separation the run goes on until the
 // rebound has passed the gaps its measures read (max(at_gap, δ_SS + fit_distance) outward and, after an inward

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // e_instant (docs/bounces.md): U_rel at the first inward crossing of measure.instant_gap and at the next outward one
 // (either side of δ_SS). With measure.bounces = "all" every crossing is an event, alternately inward and outward.

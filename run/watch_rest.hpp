@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // At rest (docs/bounces.md): after the first U_rel = 0 in contact (unloading, not separated; with measure.bounces =
 // "all" also in flight after a contact), a pair with |U_rel| < s and |dU_rel/dt|·window < s, s = measure.stall_fraction

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // All bounces (measure.bounces = "all", docs/bounces.md): a contact slower than measure.stall_fraction × the first
 // impact speed means the pair is at rest; the run ends there.

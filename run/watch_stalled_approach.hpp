@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An approach stopped without contact (MODEL.md §3): U_rel falls to measure.stall_fraction × the initial approach speed
 // before the gap reaches δ_SS. The run ends one measure.window later (the rebound fit's window), unless a contact

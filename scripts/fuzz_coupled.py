@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Fuzzed coupled runs (docs/coupling.md "Divergence"): random sphere-wall and sphere-sphere scenes, coarse grids, the
 default flow step, in three kinds (a third each): "moving" (the impact sphere at U, Re 5-1000), "low-Re" (the same at
 Re 0.05-5) and "from rest" (released from rest under gravity toward the target, terminal Re 0.05-1000 on the standard

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Seeded mutation fuzzer of whole runs: `imcol run` on mutated copies of the shipped scenes (docs/testing.md).
 
 Each case n takes one scene of data/scenes/ (not data/scenes/flow/, which are `imcol flow` scenes), applies one to

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Shared set-up of imcol's plot scripts: matplotlib without a display, the DIR argument, atomic PNGs.
 
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Vorticity and streamline pictures of a coupled `imcol run` (the `flow` effect).
 
 Usage: /usr/bin/python3 scripts/plot_coupled_flow.py DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Plot an `imcol flow` run: vorticity and streamlines of each snapshot, and the force history.
 
 Usage: /usr/bin/python3 scripts/plot_flow.py DIR

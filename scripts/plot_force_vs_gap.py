@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Plot f_SIM against f_THR on two spheres on a prescribed approach (the seed's Fig. 6.4) from an `imcol flow` run.
 
 Usage: /usr/bin/python3 scripts/plot_force_vs_gap.py DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Plot the history force against time for each kernel and evaluator of `imcol history`.
 
 Usage: /usr/bin/python3 scripts/plot_history.py DIR   (reads DIR/history_forces.csv, writes DIR/history.png)

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Plot `imcol laws`: for one scene the first contact of each law (U_rel and the gap against time: where each law stops
 the pair); for a sweep (--vary) e against St per law.
 

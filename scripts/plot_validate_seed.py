@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Plot `imcol validate seed`: e against St_B in both conventions, the seed's Table 6.1 beside imcol's models.
 
 Usage: /usr/bin/python3 scripts/plot_validate_seed.py DIR

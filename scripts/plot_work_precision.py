@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Work-precision plot of `imcol work-precision`: error against median wall time, log-log.
 
 Usage: /usr/bin/python3 scripts/plot_work_precision.py DIR

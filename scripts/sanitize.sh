@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Build of imcol and its tests with AddressSanitizer and UndefinedBehaviorSanitizer (CMake option IMCOL_SANITIZE)
 # in build-asan/, and the test suite run there, without the `fuzz` label and the tests in SKIP below (the Release
 # suite runs them all). Run scripts/setup.sh first: the SUNDIALS is the one build/ uses. A sanitizer report ends

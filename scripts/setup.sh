@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs imcol's build dependencies (Debian 12, as root) and builds into build/.
 # SUNDIALS: Debian's libsundials is built without optimisation (its packaging's -DCMAKE_C_FLAGS=-fcommon
 # replaces -O2), so the same Debian source package is fetched (apt-get source, from a deb-src entry for the

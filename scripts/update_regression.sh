@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Regenerates data/reference/imcol_regression.csv from the shipped scenes at rtol 1e-10.
 # Run it only after a deliberate model change, and say so in the commit.
 set -euo pipefail

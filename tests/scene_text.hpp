@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Scene-file text for the tests: one builder per TOML table, so that fixtures are not copied around.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every documented scene key and every command-line option, given each of a set of bad values: the value is either
 // legitimately allowed (listed below) or refused with an input error whose one-line message names the key or option.
 // The scene keys come from the scene reference's template (docs/scene-reference.md) and the [flow] table of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every bounce (measure.bounces = "all") and the named measures of e (docs/bounces.md).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The command line: exit status 2 and a one-line message naming key and file for bad input;
 // complete outputs for good input.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Layers 2-4: exact dry solutions, conservation, integrator agreement, convergence, physical trends.
 #include <gtest/gtest.h>
 

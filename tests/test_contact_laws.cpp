@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The contact laws (contact/contact_law.hpp): the seed's ramp and Hertz with Tsuji's nonlinear damping.
 // Dry restitution, Hertz's contact time and energy balance, a force that never pulls, a start inside the contact zone,
 // and both laws on an immersed scene.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Coupled model (flow kernel supplies f_SIM, MODEL.md (6.10), §5): free spheres against the standard drag curve and the
 // reduced-order model with Basset history, stability for light spheres, a coarse pair collision, scene checks.
 // Coarse grids only: the full validations are commands (imcol validate seed --flow; docs/coupling.md).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The default measure of e (contact_ends, docs/bounces.md): it does not move with its window or with output.dt,
 // a dry collision gives e_dry, measure.e picks the measure, and a point that cannot be measured says why.
 #include <gtest/gtest.h>

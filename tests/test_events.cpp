@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Event handling in the integrator driver (integrators/sundials_driver.cpp): a root function that is exactly zero
 // at an event and stays so over the solver's smallest step.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What a new user meets in the first hour, and the defects found there: bad command-line values, runaway
 // runs, plots written concurrently, killed sweeps, loose tolerances, unresolved flow gaps, odd scene files.
 // Each test runs the imcol program and checks its exit status, its message (problem and place) and its files.

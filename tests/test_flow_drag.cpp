@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Flow kernel physics on coarse grids (each test well under a few seconds): Stokes drag and its first-order
 // convergence, the impulsively started sphere against Stokes + Basset, the moving-body (GMRES) path against the
 // fixed-body (LU) path, two approaching spheres, and the flow-scene reader's errors.

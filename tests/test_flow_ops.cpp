@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Flow kernel identities on tiny grids (MODEL.md §4): zero discrete divergence, solve-then-apply,
 // adjoint interpolation/spreading under the axisymmetric inner product, force conservation, and the
 // second-order accuracy of E² on a manufactured solution.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The flow kernel's plane no-slip wall (flow/solver.hpp, "Wall") on coarse grids: the quasi-steady Stokes force on a
 // sphere moving toward the wall against Brenner's λ(h/a), the force on the wall (momentum balance), the sphere's frame
 // (wall and far fluid moving) against the lab frame, GMRES with the wall's preconditioner block against LU, and the

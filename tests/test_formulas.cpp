@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Layer 1: formulas and identities (MODEL.md §2.1, 2.2, 2.4, 2.5).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Gondret, Lance & Petit (2002)'s bouncing cases, shipped as data/scenes/gondret/st*.toml (reduced order, every bounce).
 // Checked: each sphere reaches its terminal speed before the first impact (computed here independently from the
 // Schiller–Naumann law), every case rebounds at least once and comes to rest, and the first bounce's e rises with St.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The hard-case suite (data/scenes/hard/): stiff contacts, light and heavy spheres, St ~ 0.1, a start
 // inside the contact zone, unequal spheres, Re = 1000, release under gravity. Each scene must finish
 // with finite results and e in [0, e_dry], CVODE and IDA must agree, and e must converge as rtol

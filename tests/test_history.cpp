@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // History force in the integrated model: exact Basset solutions (MODEL.md §2.3), evaluators,
 // linear solvers and integrators against each other, and a full scene against its closed form.
 #include <gtest/gtest.h>

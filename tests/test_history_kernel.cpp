@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // History kernels, their sum-of-exponentials form and the exact Basset solutions (MODEL.md §2.3).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Measurements: continuous least-squares fits, restitution and Stokes numbers.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An output folder is one unit: all of one run's files or none of them, one writer at a time
 // (apps/output_unit.hpp). Unit tests of OutputUnit, then faults through the binary: kill -9 at random
 // moments of a run and of a sweep, and concurrent writers into one folder.

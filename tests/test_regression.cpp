@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Layer 4: the shipped scenes against imcol's own stored results (data/reference/imcol_regression.csv).
 // A failure means the model's output changed: if the change was deliberate, regenerate the file.
 #include <gtest/gtest.h>

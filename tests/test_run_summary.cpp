@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The typed summary of a run (RunSummary) against summary.json: every typed field has the value written under its
 // name, on scenes that cover each configuration, the bounces, the history force and a coupled run.
 #include <gtest/gtest.h>

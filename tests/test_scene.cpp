@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scene parsing and validation: every bad input names its key and place.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Randomized test of the scene reader: thousands of malformed scenes, made deterministically from
 // valid ones (the shipped data/scenes/*.toml and builder scenes that use every table). Each must
 // either parse to a validated Scene or throw InputError with a one-line message naming the file

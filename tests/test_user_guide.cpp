@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The user's guide runs as written: the README's example scene and the scene reference's full template
 // are extracted from the Markdown and run with `imcol run` (exit status 0, e measured).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The added mass's wall function W(δ**) (model/wall_function.hpp, MODEL.md §2.2): continued linearly below dw_floor
 // for every scene whose model evaluates W near contact, so that the mass matrix stays continuous there.
 #include <gtest/gtest.h>

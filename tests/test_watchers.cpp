@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The seam between the model's events and the rules in run/ (model/watcher.hpp): the model alone arms only its own
 // roots; a watcher's root fires under its kind and name, and its stop time ends the run.
 #include <gtest/gtest.h>
