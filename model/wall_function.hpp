@@ -11,9 +11,7 @@ namespace imcol::model {
 
 class WallFunction {
  public:
-  /// dw_floor: added_mass.dw_floor, else δ_SS/a*. The continuation below it is built when the model uses W there
-  /// (with a target: the added-mass effect, history.wall_correction = "added-mass", or the flow blend's added-mass
-  /// estimate); otherwise W is 0 below it (and never read there).
+  /// dw_floor: added_mass.dw_floor, else δ_SS/a*.
   WallFunction(const Scene& sc, const PairGeometry& p);
   double W(double gap) const;   // gap in m
   double dW(double gap) const;  // dW/dδ** (per unit δ**)
