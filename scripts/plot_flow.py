@@ -18,6 +18,7 @@ from pathlib import Path
 import contourpy
 import numpy as np
 from matplotlib.collections import LineCollection
+from matplotlib.ticker import MaxNLocator
 
 from imcol_plot import out_dir, plt, save_png, write_text, read_rows
 
@@ -31,7 +32,8 @@ class Units:
         self.z = f"z {length_name}"
         self.r = f"r {length_name}"
         self.t = f"t {time_name}"
-        self.omega_name, self.force_name, self.pressure_name = omega_name, force_name, pressure_name
+        self.omega_name, self.pressure_name = omega_name, pressure_name
+        self.force_label = "force along +z" + force_name
 
     def time_text(self, t: float) -> str:
         """'t = 0.0123 s' or 't U/D = 1.5'."""
@@ -41,12 +43,12 @@ class Units:
 def si_units(D: float) -> "Units":
     """SI, lengths in mm for a sphere smaller than 5 cm (tick labels of a 2 mm sphere in metres overlap)."""
     mm = D < 0.05
-    return Units(1e-3 if mm else 1.0, "[mm]" if mm else "[m]", 1.0, "[s]", 1.0, "ω [1/s]", 1.0, "[N]", 1.0, "p − p∞ [Pa]")
+    return Units(1e-3 if mm else 1.0, "[mm]" if mm else "[m]", 1.0, "[s]", 1.0, "ω [1/s]", 1.0, " [N]", 1.0, "p − p∞ [Pa]")
 
 
 def scaled_units(D: float, U: float, rho: float) -> "Units":
     """A dimensionless scene: lengths in D, times in D/U, ω in U/D, forces in ρU²D², pressure in ρU²."""
-    return Units(D, "/ D", D / U, "U / D", U / D, "ω D / U", rho * U * U * D * D, "/ (ρ U² D²)", rho * U * U,
+    return Units(D, "/ D", D / U, "U / D", U / D, "ω D / U", rho * U * U * D * D, ", F / (ρ U² D²)", rho * U * U,
                  "(p − p∞) / (ρ U²)")
 
 
@@ -137,7 +139,7 @@ def plot_wall_gap(out: Path, rows, summary, units) -> None:
     ax.set_yscale("log")
     ax.invert_xaxis()
     ax.set_xlabel("gap / D")
-    ax.set_ylabel(f"force along +z {units.force_name}")
+    ax.set_ylabel(units.force_label)
     ax.set_title("(a) hydrodynamic force on the sphere approaching the wall")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
@@ -178,6 +180,25 @@ def streamline_levels(psi):
         return np.linspace(0, np.sqrt(extreme), 31 if extreme == big else 7)[1:-1] ** 2
 
     return np.unique(np.concatenate([-side(lo), [0.0], side(hi)]))
+
+
+def thin_ticks(ax) -> None:
+    """Ticks at 1, 2 or 5 × 10^k on both axes, as many as fit: fewer until the widest label, with a gap of one
+    character, fits between two neighbours (the axes' size as laid out now)."""
+    ax.apply_aspect()  # the box an equal-aspect axes is drawn in
+    box = ax.get_window_extent()
+    for axis, (lo, hi), size in ((ax.xaxis, ax.get_xlim(), box.width), (ax.yaxis, ax.get_ylim(), box.height)):
+        for n in (9, 7, 6, 5, 4, 3, 2):
+            locator = MaxNLocator(nbins=n, steps=[1, 2, 5, 10])
+            ticks = [t for t in locator.tick_values(lo, hi) if min(lo, hi) <= t <= max(lo, hi)]
+            labels = axis.get_major_formatter().format_ticks(ticks) if len(ticks) > 1 else [""]
+            font = axis.get_ticklabels()[0].get_fontsize() if axis.get_ticklabels() else 10.0
+            # the room a label needs along the axis: its width and a character (x), or 2.5 lines (y)
+            extent = (0.62 * max(len(t) for t in labels) + 1) if axis is ax.xaxis else 2.5
+            step = abs(ticks[1] - ticks[0]) / abs(hi - lo) * size if len(ticks) > 1 else size
+            if step >= extent * font * ax.figure.dpi / 72:
+                break
+        axis.set_major_locator(locator)
 
 
 def draw_level(fig, ax, z, r, fields, key, spheres, wall, units, stacked):
@@ -248,13 +269,15 @@ def plot_snapshot(path: Path, spheres, wall=None, title=None, sphere_label="sphe
             ax.set_title(f"level {level}: {what} (colour, clipped at 99.5 %), streamlines", fontsize=9 if stacked or aspect > 1.6 else 8)
         handles = [plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)")]
         if any_dashed:
-            handles.append(plt.Line2D([], [], color="k", lw=0.6, ls=(0, (3, 2)), label="dashed: ψ < 0 (circulating the other way)"))
+            handles.append(plt.Line2D([], [], color="k", lw=0.6, ls=(0, (3, 2)), label="dashed: ψ < 0, circulating opposite to ψ > 0"))
         handles.append(plt.Line2D([], [], color="g", lw=1.2, label=sphere_label))
         if wall is not None:
             handles.append(plt.Line2D([], [], color="m", lw=1.5, label="wall (hatched: beyond it)"))
         fig.legend(handles=handles, fontsize=8, loc="lower center", ncol=len(handles), frameon=False)
         fig.suptitle(title or comment.split(";")[0], fontsize=11)
         fig.tight_layout(rect=(0, 0.05 if stacked else 0.07, 1, 1))
+        for ax in axes.flat:
+            thin_ticks(ax)
         save_png(fig, path.with_suffix(".png") if key == "omega" else path.with_name(path.stem + "_pressure.png"), dpi=130)
 
 
@@ -316,7 +339,7 @@ def main() -> int:
             if on_axes(y):
                 ax.axhline(y, color="k", ls=":", label="standard drag curve (steady)")
     ax.set_xlabel(units.t)
-    ax.set_ylabel(f"force along +z {units.force_name}")
+    ax.set_ylabel(units.force_label)
     ax.set_title(f"{summary['name']}: Re = {summary['Re']:.3g}")
     ax.grid(alpha=0.3)
     ax.legend()

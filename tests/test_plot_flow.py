@@ -20,7 +20,7 @@ import numpy as np
 SCRIPTS = Path(__file__).resolve().parent.parent / "scripts"
 sys.path.insert(0, str(SCRIPTS))
 
-from plot_flow import outside_fluid, read_snapshot, scene_units, si_units, streamline_levels, streamlines  # noqa: E402
+from plot_flow import outside_fluid, plt, read_snapshot, scene_units, si_units, streamline_levels, streamlines, thin_ticks  # noqa: E402
 
 A, U, MU = 1e-3, 0.01, 1e-3  # a 2 mm sphere at the origin in a stream of 1 cm/s along +z, water's viscosity
 
@@ -123,7 +123,28 @@ class Units(unittest.TestCase):
             scene.write_text("[fluid]\ndensity = 1000.0\nviscosity = 1e-3\n[stream]\nvelocity = 0.01\n[[sphere]]\ndiameter = 0.002\n")
             summary["grid"]["h"] = 0.002 / 16
             u = scene_units(summary)
-            self.assertEqual((u.z, u.t, u.force_name, u.pressure_name), ("z [mm]", "t [s]", "[N]", "p − p∞ [Pa]"))
+            self.assertEqual((u.z, u.t, u.force_label, u.pressure_name), ("z [mm]", "t [s]", "force along +z [N]", "p − p∞ [Pa]"))
+
+
+class Ticks(unittest.TestCase):
+    def test_tick_labels_do_not_overlap(self):
+        """Level 1 of a 2 mm sphere in metres (the labels that overlapped) and in mm, in a narrow panel."""
+        for lo, hi in ((-0.0101, 0.0121), (-10.1, 12.1), (-0.0382, 0.0052)):
+            fig, ax = plt.subplots(figsize=(6, 3))
+            ax.set_xlim(lo, hi)
+            ax.set_ylim(0.4 * lo, -0.4 * lo)
+            ax.set_aspect("equal")
+            fig.colorbar(ax.pcolormesh([lo, hi], [0.4 * lo, -0.4 * lo], [[0.0]]), ax=ax)
+            fig.tight_layout()
+            thin_ticks(ax)
+            fig.canvas.draw()
+            for labels, first, last in ((ax.get_xticklabels(), "x0", "x1"), (ax.get_yticklabels(), "y0", "y1")):
+                boxes = sorted((getattr(b, first), getattr(b, last)) for b in
+                               (t.get_window_extent() for t in labels if t.get_visible() and t.get_text()))
+                self.assertGreaterEqual(len(boxes), 2)
+                for (_, end), (start, _) in zip(boxes, boxes[1:]):
+                    self.assertLess(end, start, (lo, hi, [t.get_text() for t in labels]))
+            plt.close(fig)
 
 
 class Scripts(unittest.TestCase):
