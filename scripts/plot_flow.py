@@ -267,9 +267,9 @@ def plot_snapshot(path: Path, spheres, wall=None, title=None, sphere_label="sphe
         for ax, (level, r, z, fields) in zip(axes.flat, levels):
             any_dashed |= draw_level(fig, ax, z, r, fields, key, spheres, wall, units, stacked)
             ax.set_title(f"level {level}: {what} (colour, clipped at 99.5 %), streamlines", fontsize=9 if stacked or aspect > 1.6 else 8)
-        handles = [plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const)")]
+        handles = [plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const" + (" ≥ 0)" if any_dashed else ")"))]
         if any_dashed:
-            handles.append(plt.Line2D([], [], color="k", lw=0.6, ls=(0, (3, 2)), label="dashed: ψ < 0, circulating opposite to ψ > 0"))
+            handles.append(plt.Line2D([], [], color="k", lw=0.6, ls=(0, (3, 2)), label="streamlines with ψ < 0 (circulating the other way)"))
         handles.append(plt.Line2D([], [], color="g", lw=1.2, label=sphere_label))
         if wall is not None:
             handles.append(plt.Line2D([], [], color="m", lw=1.5, label="wall (hatched: beyond it)"))
