@@ -74,16 +74,16 @@ def scene_units(summary) -> "Units":
     return si_units(D)
 
 
-def outside_fluid(r, z, spheres, wall=None):
+def outside_fluid(r, z, spheres, wall=None, margin=0.0):
     """True at the points (r, z) (arrays of one shape, the CSV's units) inside a sphere, or beyond the wall: on its
-    side without spheres. spheres: a list of (z, D)."""
+    side without spheres; with a margin, also that close to them. spheres: a list of (z, D)."""
     r, z = np.broadcast_arrays(np.asarray(r, float), np.asarray(z, float))
     out = np.zeros(r.shape, bool)
     for zc, d in spheres:
-        out |= (z - zc) ** 2 + r**2 < (0.5 * d) ** 2
+        out |= (z - zc) ** 2 + r**2 < (0.5 * d + margin) ** 2
     if wall is not None:
         side = 1.0 if not spheres or spheres[0][0] >= wall else -1.0  # the fluid's side
-        out |= (z - wall) * side < 0
+        out |= (z - wall) * side < margin
     return out
 
 
@@ -165,8 +165,8 @@ def snapshot_time(comment: str):
         return None
 
 
-def streamline_levels(psi):
-    """ψ values of the streamlines: even in sqrt|ψ| (ψ ~ r²), 29 on the side of ψ's larger extreme and 5 on the
+def streamline_levels(psi, n=29):
+    """ψ values of the streamlines: even in sqrt|ψ| (ψ ~ r²), n on the side of ψ's larger extreme and 5 on the
     other side when its extreme is at least 1 % of that (below, the other side is the smeared sphere surface's
     noise), and ψ = 0."""
     hi, lo = max(float(np.max(psi)), 0.0), max(-float(np.min(psi)), 0.0)
@@ -177,7 +177,7 @@ def streamline_levels(psi):
     def side(extreme):
         if extreme < 0.01 * big:
             return np.empty(0)
-        return np.linspace(0, np.sqrt(extreme), 31 if extreme == big else 7)[1:-1] ** 2
+        return np.linspace(0, np.sqrt(extreme), n + 2 if extreme == big else 7)[1:-1] ** 2
 
     return np.unique(np.concatenate([-side(lo), [0.0], side(hi)]))
 
@@ -210,7 +210,11 @@ def draw_level(fig, ax, z, r, fields, key, spheres, wall, units, stacked):
     F = np.concatenate([sign * fields[key][:0:-1], fields[key]]) / (units.omega if key == "omega" else units.pressure)
     Z, RR = np.meshgrid(z, R)
     fluid = ~outside_fluid(np.abs(RR), Z, spheres, wall)
-    lim = (np.nanpercentile(np.abs(F[fluid]), 99.5) if fluid.any() else 0.0) or 1.0
+    # the colour scale: ω over the fluid (its largest values, at the surfaces, are the boundary layers); p more than
+    # two cells from the bodies (in the kernel's smeared surface layer p is not resolved)
+    scaled = fluid if key == "omega" else ~outside_fluid(np.abs(RR), Z, spheres, wall, 2 * (r[1] - r[0]))
+    scaled = scaled if scaled.any() else fluid
+    lim = (np.nanpercentile(np.abs(F[scaled]), 99.5) if scaled.any() else 0.0) or 1.0
     L = units.length
     ax.set_facecolor("0.88")  # the cells masked at a sphere's edge in the bodies' grey
     cmap = "RdBu_r" if key == "omega" else "PuOr_r"
@@ -218,12 +222,14 @@ def draw_level(fig, ax, z, r, fields, key, spheres, wall, units, stacked):
                          shading="auto")
     cb = fig.colorbar(mesh, ax=ax, shrink=0.9, pad=0.01 if stacked else 0.03)
     cb.set_label(units.omega_name if key == "omega" else units.pressure_name)
-    lines = streamlines(z, R, P, streamline_levels(P[fluid] if fluid.any() else P.ravel()), spheres, wall)
+    # fewer and lighter streamlines over the pressure, whose largest values lie where the streamlines crowd
+    n, ink, width = (29, "k", 0.5) if key == "omega" else (15, "0.3", 0.4)
+    lines = streamlines(z, R, P, streamline_levels(P[fluid] if fluid.any() else P.ravel(), n), spheres, wall)
     solid = [seg / L for level, seg in lines if level >= 0]
     dashed = [seg / L for level, seg in lines if level < 0]
-    ax.add_collection(LineCollection(solid, colors="k", linewidths=0.5))
+    ax.add_collection(LineCollection(solid, colors=ink, linewidths=width))
     if dashed:
-        ax.add_collection(LineCollection(dashed, colors="k", linewidths=0.6, linestyles=(0, (3, 2))))
+        ax.add_collection(LineCollection(dashed, colors=ink, linewidths=width + 0.1, linestyles=(0, (3, 2))))
     for zc, d in spheres:
         ax.add_patch(plt.Circle((zc / L, 0), 0.5 * d / L, facecolor="0.88", edgecolor="g", lw=1.2))
     if wall is not None:
@@ -267,9 +273,10 @@ def plot_snapshot(path: Path, spheres, wall=None, title=None, sphere_label="sphe
         for ax, (level, r, z, fields) in zip(axes.flat, levels):
             any_dashed |= draw_level(fig, ax, z, r, fields, key, spheres, wall, units, stacked)
             ax.set_title(f"level {level}: {what} (colour, clipped at 99.5 %), streamlines", fontsize=9 if stacked or aspect > 1.6 else 8)
-        handles = [plt.Line2D([], [], color="k", lw=0.5, label="streamlines (ψ = const" + (" ≥ 0)" if any_dashed else ")"))]
+        ink = "k" if key == "omega" else "0.3"  # as draw_level draws them
+        handles = [plt.Line2D([], [], color=ink, lw=0.5, label="streamlines (ψ = const" + (" ≥ 0)" if any_dashed else ")"))]
         if any_dashed:
-            handles.append(plt.Line2D([], [], color="k", lw=0.6, ls=(0, (3, 2)), label="streamlines with ψ < 0 (circulating the other way)"))
+            handles.append(plt.Line2D([], [], color=ink, lw=0.6, ls=(0, (3, 2)), label="streamlines with ψ < 0 (circulating the other way)"))
         handles.append(plt.Line2D([], [], color="g", lw=1.2, label=sphere_label))
         if wall is not None:
             handles.append(plt.Line2D([], [], color="m", lw=1.5, label="wall (hatched: beyond it)"))

@@ -71,6 +71,10 @@ class Masking(unittest.TestCase):
         self.assertFalse(outside_fluid(5 * A, -1.9 * A, spheres, wall=-2 * A))
         self.assertTrue(outside_fluid(5 * A, 2.1 * A, spheres, wall=2 * A))
         self.assertFalse(outside_fluid(5 * A, 1.9 * A, spheres, wall=2 * A))
+        # a margin widens both (the colour scale of p leaves out the smeared surface layer)
+        self.assertTrue(outside_fluid(1.2 * A, 0.0, spheres, margin=0.25 * A))
+        self.assertTrue(outside_fluid(5 * A, 1.9 * A, spheres, wall=2 * A, margin=0.25 * A))
+        self.assertFalse(outside_fluid(5 * A, 1.7 * A, spheres, wall=2 * A, margin=0.25 * A))
 
     def test_no_streamline_vertex_inside_the_sphere(self):
         spheres = [(0.0, 2 * A)]
