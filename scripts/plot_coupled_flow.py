@@ -5,7 +5,9 @@
 Usage: /usr/bin/python3 scripts/plot_coupled_flow.py DIR
 Reads DIR/flow_*.csv (written at the first flow step with a gap of 1 D or less, at contact, one fit window
 after separation and at the end), and DIR/trajectory.csv and DIR/summary.json when present (the true gap at
-each snapshot's time; the wall's position); writes DIR/flow_*.png. Needs Debian's python3-matplotlib.
+each snapshot's time; the wall's position); writes DIR/flow_*.png (vorticity and streamlines, lengths in mm below a
+5 cm sphere) and, when the snapshots have a pressure column `p` (Pa), DIR/flow_*_pressure.png.
+Needs Debian's python3-matplotlib.
 """
 import json
 import sys
@@ -13,7 +15,7 @@ import sys
 import numpy as np
 
 from imcol_plot import out_dir, read_rows
-from plot_flow import plot_snapshot
+from plot_flow import plot_snapshot, si_units
 
 
 def spheres_of(path):
@@ -74,7 +76,7 @@ def main() -> int:
                 # the wall is at z1 + D/2 + gap (the sphere on its -z side); a sphere-wall run's snapshots are
                 # in the lab frame (z_shift = 0), so this is also the wall's place in the picture
                 wall = float(np.median(z1 + D / 2 + gap))
-        plot_snapshot(snap, spheres, wall, title, "sphere surface, where the kernel holds it")
+        plot_snapshot(snap, spheres, wall, title, "sphere surface, where the kernel holds it", si_units(D))
     return 0
 
 
