@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "apps/dem_export.hpp"
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
@@ -187,6 +188,29 @@ void check_options(const SweepOptions& opt) {
   if (opt.points > 1 && opt.from == opt.to) throw InputError("--to", "to", "equals --from: a sweep of several points needs a range");
   if (opt.spacing != "log" && opt.spacing != "linear") throw InputError("--spacing", opt.spacing, "expected log or linear");
   if (opt.jobs < 0) throw InputError("--jobs", "jobs", "must be >= 0 (0 = all cores)");
+  if (!opt.export_format.empty() && opt.export_format != "dem") throw InputError("command line", "--export", "unknown value '" + opt.export_format + "' (expected dem)");
+  if (opt.export_format == "dem" && opt.points < 3)
+    throw InputError("command line", "--export", "dem fits e_dry and St_c: it needs --points 3 or more (" + std::to_string(opt.points) + " given)");
+}
+
+/// The points as the DEM export reads them (apps/dem_export.hpp).
+std::vector<DemPoint> dem_points(const std::vector<PointResult>& pts) {
+  std::vector<DemPoint> out;
+  for (const auto& p : pts) {
+    DemPoint d;
+    d.value = p.value;
+    d.ok = p.ok;
+    if (p.ok) {
+      const auto& s = p.summary;
+      d.e_status = e_status(s);
+      if (s.U_i1 && s.U_i2) d.impact_speed_m_s = *s.U_i1 - *s.U_i2;
+      d.St = s.St;
+      d.St_B_eq_6_2 = s.St_B_eq_6_2;
+      d.e = s.e;
+    }
+    out.push_back(d);
+  }
+  return out;
 }
 
 /// Every point's scene, built and validated before anything runs: bad input stops the sweep at once. Sets each
@@ -402,6 +426,7 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
   j["measures_disagree_points"] = out.counts.disagree;
   j["measures_disagree_counts"] = out.counts.disagreeing;
   j["complete"] = true;  // every point ran (or failed with its reason)
+  if (!opt.export_format.empty()) j["export"] = opt.export_format + ".json";
   return j;
 }
 
@@ -436,9 +461,18 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   j["run"] = unit.run();
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
   fs::remove(dir / "sweep.partial");
+  std::string dem_line;
+  if (opt.export_format == "dem") {
+    std::optional<double> e_dry;
+    for (const auto& p : pts)
+      if (p.ok && p.summary.contact && !e_dry) e_dry = p.summary.contact->e_dry;
+    dem_line = export_dem(dir, base, {scene_path, opt.vary, q->column, e_dry}, dem_points(pts));
+  }
   if (opt.plot) run_plot_script("plot_sweep.py", unit, "sweep.png");
   unit.commit();
-  std::cout << "wrote " << (unit.target() / "sweep.csv").string() << " and " << (unit.target() / "sweep.json").string() << "\n";
+  if (!dem_line.empty()) std::cout << dem_line << "\n";
+  std::cout << "wrote " << (unit.target() / "sweep.csv").string() << " and " << (unit.target() / "sweep.json").string()
+            << (dem_line.empty() ? "" : ", dem.csv, dem_table.csv, dem.json") << "\n";
   if (failed) {  // stdout may go to a file or a pipe: the failure is also said where errors go
     std::cout.flush();
     std::cerr << "imcol: error: " << failed << " of " << opt.points << " sweep points failed; their reasons are in "
