@@ -97,6 +97,7 @@ nlohmann::ordered_json fit_json(const RestitutionFit& f, bool pair) {
   j["points_used"] = f.used;
   j["valid_St"] = {f.St_min, f.St_max};
   j["iterations"] = f.iterations;
+  if (f.e_dry > 1) j["note"] = "e_dry > 1 is no restitution: the form needs more than it to reach the points; take the fit with e_dry fixed";
   return j;
 }
 
@@ -160,15 +161,22 @@ std::string export_dem(const fs::path& dir, const Scene& base, const DemSweep& s
   j["fits"] = nlohmann::ordered_json::array();
   for (const auto& f : fits) j["fits"].push_back(fit_json(f, pair));
 
-  // The best fit: the smallest rms residual among those with e_dry free (with e_dry fixed when none is free).
+  // The best fit: the smallest rms residual among those with e_dry free (with e_dry fixed when none is free), of the
+  // fits whose e_dry is a restitution (<= 1).
   const RestitutionFit* best = nullptr;
   for (const auto& f : fits)
-    if (!best || (f.e_dry_free && !best->e_dry_free) || (f.e_dry_free == best->e_dry_free && f.rms_residual < best->rms_residual)) best = &f;
-  const RestitutionFit* expo = nullptr;  // the exponential fit with e_dry free: what LIGGGHTS's viscous model takes
+    if (f.e_dry <= 1 &&
+        (!best || (f.e_dry_free && !best->e_dry_free) || (f.e_dry_free == best->e_dry_free && f.rms_residual < best->rms_residual)))
+      best = &f;
+  const RestitutionFit* expo = nullptr;  // the exponential fit (e_dry free if <= 1): the form of LIGGGHTS's viscous model
   for (const auto& f : fits)
-    if (f.form == RestitutionForm::exponential && (!expo || f.e_dry_free)) expo = &f;
-  j["best"] = best ? nlohmann::ordered_json{{"form", to_string(best->form)}, {"e_dry_is", best->e_dry_free ? "fitted" : "fixed to the scene's"}}
-                   : nlohmann::ordered_json(nullptr);
+    if (f.form == RestitutionForm::exponential && (!expo || (f.e_dry_free && f.e_dry <= 1))) expo = &f;
+  auto which = [](const RestitutionFit* f) {
+    return f ? nlohmann::ordered_json{{"form", to_string(f->form)}, {"e_dry_is", f->e_dry_free ? "fitted" : "fixed to the scene's"}}
+             : nlohmann::ordered_json(nullptr);
+  };
+  j["best"] = which(best);
+  j["exp"] = which(expo);
   j["fit_error"] = fit_error.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(fit_error);
   write_file_atomic(dir / "dem.json", j.dump(2) + "\n");
 

@@ -87,18 +87,19 @@ def plot_fits(ax, folder: Path, meta) -> None:
     if not path.exists():
         return
     dem = json.loads(path.read_text())
-    best = dem.get("best")
     pair = dem.get("configuration") == "sphere-sphere"
-    chosen = [f for f in dem["fits"] if best and f["form"] == best["form"] and f["e_dry_is"] == best["e_dry_is"]]
-    chosen += [f for f in dem["fits"] if f["form"] == "exp" and f["e_dry_is"] == "fitted" and f not in chosen]
+    chosen = []
+    for which in (dem.get("best"), dem.get("exp")):  # the best fit, and the exponential one if it is another
+        chosen += [f for f in dem["fits"] if which and (f["form"], f["e_dry_is"]) == (which["form"], which["e_dry_is"]) and f not in chosen]
     for f, ls in zip(chosen, ("k:", "-.")):
         lo, hi = f["valid_St"]
         st = [lo * (hi / lo) ** (i / 199) for i in range(200)]
         g = (lambda x: math.exp(-f["St_c"] / x)) if f["form"] == "exp" else (lambda x: max(0.0, 1 - f["St_c"] / x))
         # a pair's bottom axis is the summary's St, half the DEM St of the fit
         ax.semilogx([x / 2 if pair else x for x in st], [f["e_dry"] * g(x) for x in st], ls, color="k" if ls == "k:" else "0.45",
-                    lw=1.6, label="fit (dem.json): %s, St_c = %.3g%s, e_dry = %.3f, rms %.3f" % (
-                        f["formula"], f["St_c"], " (St_B eq. 6.2)" if pair else "", f["e_dry"], f["rms_residual"]))
+                    lw=1.6, label="fit e_dry %s: St_c = %.3g%s, e_dry = %.3f, rms %.3f" % (
+                        "exp(-St_c/St)" if f["form"] == "exp" else "(1 - St_c/St)", f["St_c"], " (top axis)" if pair else "",
+                        f["e_dry"], f["rms_residual"]))
 
 
 def plot_legendre(ax, folder: Path, meta) -> bool:
