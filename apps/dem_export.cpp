@@ -42,7 +42,8 @@ std::string csv_comment(const Scene& base, const DemSweep& sw, bool pair) {
        << (sw.vary == "viscosity" ? " (the scene's; each row's is in its viscosity column)" : "") << "\n";
   for (std::size_t k = 0; k < base.spheres.size(); ++k)
     os << "# sphere " << k << (k == 0 ? " (impactor)" : " (target)") << ": " << solid_text(base.spheres[k]) << ", diameter "
-       << num(base.spheres[k].diameter) << " m, initial velocity " << num(base.spheres[k].velocity) << " m/s"
+       << num(base.spheres[k].diameter) << " m, initial velocity "
+       << (k == 0 && sw.vary == "velocity" ? "varied (column " + sw.column + ")" : num(base.spheres[k].velocity) + " m/s")
        << (sw.vary == "diameter" || sw.vary == "density" ? " (the scene's; scaled per row, ratios kept)" : "") << "\n";
   if (base.wall) os << "# wall: " << solid_text(*base.wall) << "\n";
   os << "# e_dry = " << (sw.e_dry ? num(*sw.e_dry) : std::string("n/a")) << " (dry restitution of the contact)\n";
