@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
 #include <chrono>
@@ -416,11 +417,13 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
   j["wall_time_s"] = out.tally.wall;
   j["collisions_per_second"] = finite_or_null(out.ok / out.tally.wall);
   j["failures"] = out.failures;
-  j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(pts[0].summary.St_convention);
-  if (!pts.empty() && pts[0].ok) {
-    j["effects"] = pts[0].summary.effects;
-    j["e_is"] = pts[0].summary.e_is;
-    if (pts[0].summary.contact) j["e_dry"] = pts[0].summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
+  // The first point that ran says what every point shares (a failed first point says nothing).
+  const auto ran = std::find_if(pts.begin(), pts.end(), [](const PointResult& p) { return p.ok; });
+  j["St_convention"] = ran == pts.end() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(ran->summary.St_convention);
+  if (ran != pts.end()) {
+    j["effects"] = ran->summary.effects;
+    j["e_is"] = ran->summary.e_is;
+    if (ran->summary.contact) j["e_dry"] = ran->summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
   }
   j["e_not_measured_points"] = out.counts.missing;
   j["measures_disagree_points"] = out.counts.disagree;
@@ -463,9 +466,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   fs::remove(dir / "sweep.partial");
   std::string dem_line;
   if (opt.export_format == "dem") {
-    std::optional<double> e_dry;
-    for (const auto& p : pts)
-      if (p.ok && p.summary.contact && !e_dry) e_dry = p.summary.contact->e_dry;
+    const std::optional<double> e_dry = j.contains("e_dry") ? std::optional<double>(j["e_dry"].get<double>()) : std::nullopt;
     dem_line = export_dem(dir, base, {scene_path, opt.vary, q->column, e_dry}, dem_points(pts));
   }
   if (opt.plot) run_plot_script("plot_sweep.py", unit, "sweep.png");

@@ -97,9 +97,9 @@ def plot_fits(ax, folder: Path, meta) -> None:
         g = (lambda x: math.exp(-f["St_c"] / x)) if f["form"] == "exp" else (lambda x: max(0.0, 1 - f["St_c"] / x))
         # a pair's bottom axis is the summary's St, half the DEM St of the fit
         ax.semilogx([x / 2 if pair else x for x in st], [f["e_dry"] * g(x) for x in st], ls, color="k" if ls == "k:" else "0.45",
-                    lw=1.6, label="fit e_dry %s: St_c = %.3g%s, e_dry = %.3f%s, rms %.3f" % (
+                    lw=1.6, label="fit %s: St_c = %.3g%s, e_dry = %.3f%s, rms %.3f" % (
                         "exp(-St_c/St)" if f["form"] == "exp" else "(1 - St_c/St)", f["St_c"], " (top axis)" if pair else "",
-                        f["e_dry"], "" if f["e_dry_is"] == "fitted" else " (fixed)", f["rms_residual"]))
+                        f["e_dry"], "" if f["e_dry_is"] == "fitted" else " fixed", f["rms_residual"]))
 
 
 def plot_legendre(ax, folder: Path, meta) -> bool:

@@ -475,9 +475,12 @@ TEST(Cli, SweepExportDemWritesATableAndFitsConsistentWithSweepCsv) {
 
   // Failed points stay in the table with their status and no e; two points with e fit only with e_dry fixed.
   fs::remove_all(out);
-  const Result f = run_imcol("sweep " + scene + " --vary viscosity --from 0.01 --to 0.05 --points 4 --no-plot --export dem --out " +
+  const Result f = run_imcol("sweep " + scene + " --vary viscosity --from 0.01 --to 0.05 --points 4 --export dem --out " +
                              out.string() + " --set solver.max_steps=70 --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
   EXPECT_EQ(f.status, 3) << f.err;
+  // The plot draws the failed points (marked gaps) and the fits without failing.
+  EXPECT_TRUE(fs::exists(out / "sweep.png"));
+  EXPECT_EQ(f.err.find("plot"), std::string::npos) << f.err;
   const auto rows = read_csv(out / "dem.csv");
   ASSERT_EQ(rows.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) {
