@@ -346,6 +346,7 @@ Subcommand add_sweep(CLI::App& app) {
   sw->add_option("--out", s.out, "output directory (default out/<scene name>-sweep_<quantity>)")->check(path_rule("--out"));
   sw->add_flag("--no-progress", o->no_progress, "no progress line on the terminal");
   sw->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
+  sw->add_option("--export", s.export_format, "dem: e(St) for a DEM code, a table and fits (docs/dem.md)")->check(choice_rule("--export", {"dem"}));
   add_common(sw, o->c);
   return {sw, [o] {
     o->s.plot = !o->no_plot;

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
 #include <chrono>
@@ -17,6 +18,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "apps/dem_export.hpp"
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
@@ -187,6 +189,29 @@ void check_options(const SweepOptions& opt) {
   if (opt.points > 1 && opt.from == opt.to) throw InputError("--to", "to", "equals --from: a sweep of several points needs a range");
   if (opt.spacing != "log" && opt.spacing != "linear") throw InputError("--spacing", opt.spacing, "expected log or linear");
   if (opt.jobs < 0) throw InputError("--jobs", "jobs", "must be >= 0 (0 = all cores)");
+  if (!opt.export_format.empty() && opt.export_format != "dem") throw InputError("command line", "--export", "unknown value '" + opt.export_format + "' (expected dem)");
+  if (opt.export_format == "dem" && opt.points < 3)
+    throw InputError("command line", "--export", "dem fits e_dry and St_c: it needs --points 3 or more (" + std::to_string(opt.points) + " given)");
+}
+
+/// The points as the DEM export reads them (apps/dem_export.hpp).
+std::vector<DemPoint> dem_points(const std::vector<PointResult>& pts) {
+  std::vector<DemPoint> out;
+  for (const auto& p : pts) {
+    DemPoint d;
+    d.value = p.value;
+    d.ok = p.ok;
+    if (p.ok) {
+      const auto& s = p.summary;
+      d.e_status = e_status(s);
+      if (s.U_i1 && s.U_i2) d.impact_speed_m_s = *s.U_i1 - *s.U_i2;
+      d.St = s.St;
+      d.St_B_eq_6_2 = s.St_B_eq_6_2;
+      d.e = s.e;
+    }
+    out.push_back(d);
+  }
+  return out;
 }
 
 /// Every point's scene, built and validated before anything runs: bad input stops the sweep at once. Sets each
@@ -392,16 +417,19 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
   j["wall_time_s"] = out.tally.wall;
   j["collisions_per_second"] = finite_or_null(out.ok / out.tally.wall);
   j["failures"] = out.failures;
-  j["St_convention"] = pts.empty() || !pts[0].ok ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(pts[0].summary.St_convention);
-  if (!pts.empty() && pts[0].ok) {
-    j["effects"] = pts[0].summary.effects;
-    j["e_is"] = pts[0].summary.e_is;
-    if (pts[0].summary.contact) j["e_dry"] = pts[0].summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
+  // The first point that ran says what every point shares (a failed first point says nothing).
+  const auto ran = std::find_if(pts.begin(), pts.end(), [](const PointResult& p) { return p.ok; });
+  j["St_convention"] = ran == pts.end() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(ran->summary.St_convention);
+  if (ran != pts.end()) {
+    j["effects"] = ran->summary.effects;
+    j["e_is"] = ran->summary.e_is;
+    if (ran->summary.contact) j["e_dry"] = ran->summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
   }
   j["e_not_measured_points"] = out.counts.missing;
   j["measures_disagree_points"] = out.counts.disagree;
   j["measures_disagree_counts"] = out.counts.disagreeing;
   j["complete"] = true;  // every point ran (or failed with its reason)
+  if (!opt.export_format.empty()) j["export"] = opt.export_format + ".json";
   return j;
 }
 
@@ -436,9 +464,16 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   j["run"] = unit.run();
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
   fs::remove(dir / "sweep.partial");
+  std::string dem_line;
+  if (opt.export_format == "dem") {
+    const std::optional<double> e_dry = j.contains("e_dry") ? std::optional<double>(j["e_dry"].get<double>()) : std::nullopt;
+    dem_line = export_dem(dir, base, {scene_path, opt.vary, q->column, e_dry}, dem_points(pts));
+  }
   if (opt.plot) run_plot_script("plot_sweep.py", unit, "sweep.png");
   unit.commit();
-  std::cout << "wrote " << (unit.target() / "sweep.csv").string() << " and " << (unit.target() / "sweep.json").string() << "\n";
+  if (!dem_line.empty()) std::cout << dem_line << "\n";
+  std::cout << "wrote " << (unit.target() / "sweep.csv").string() << " and " << (unit.target() / "sweep.json").string()
+            << (dem_line.empty() ? "" : ", dem.csv, dem_table.csv, dem.json") << "\n";
   if (failed) {  // stdout may go to a file or a pipe: the failure is also said where errors go
     std::cout.flush();
     std::cerr << "imcol: error: " << failed << " of " << opt.points << " sweep points failed; their reasons are in "

@@ -17,6 +17,7 @@ struct SweepOptions {
   std::string out;           // default out/<scene>-sweep_<vary>
   bool progress = true;      // on a terminal only
   bool plot = true;
+  std::string export_format;  // "dem": dem.csv, dem_table.csv, dem.json (apps/dem_export.hpp); empty: none
 };
 
 /// The scene keys one sweep point sets (exposed for tests): `value` of the varied quantity on `base`.
@@ -29,7 +30,7 @@ const char* sweep_column(const std::string& vary);
 std::vector<double> sweep_values(const SweepOptions& opt);
 
 /// Runs the sweep; rewrites DIR/sweep.csv as points finish (at most every 0.25 s, and at the end), so
-/// that finished points survive a later failure or an interrupt; then DIR/sweep.json and DIR/sweep.png.
+/// that finished points survive a later failure or an interrupt; then DIR/sweep.json, the export's files and DIR/sweep.png.
 /// Returns 0, or 3 if any point failed.
 int sweep(const std::string& scene_path, const std::vector<Override>& overrides, const SweepOptions& opt);
 

@@ -3,7 +3,8 @@
 """Plot e against St for `imcol sweep`, with the seed's Table 6.1 overlaid for a sphere pair.
 
 Usage: /usr/bin/python3 scripts/plot_sweep.py DIR [--compare DIR2]... [--out PNG]
-(reads DIR/sweep.csv and DIR/sweep.json, writes DIR/sweep.png; --compare draws another sweep dashed beside it)
+(reads DIR/sweep.csv and DIR/sweep.json, writes DIR/sweep.png; --compare draws another sweep dashed beside it;
+points without e are red x marks on the bottom axis and gaps in the lines; DIR/dem.json's fits are drawn when present)
 """
 import argparse
 import json
@@ -32,29 +33,90 @@ def sweep_label(meta) -> str:
     return ("coupled" if "flow" in effects else "reduced-order") + " (%s swept)" % meta["vary"]
 
 
+def has_e(r) -> bool:
+    return r["status"] == "ok" and bool(r["e"])
+
+
+def positions(rows, meta, key: str) -> list:
+    """Each row's x (its column `key`, e.g. St): a row without it (a failed run) gets the value interpolated in log-log
+    from the others' (x against the varied quantity), so that its gap and marker stand where it would have been."""
+    col = meta["column"]
+    known = sorted((math.log(float(r[col])), math.log(float(r[key]))) for r in rows if r.get(key) and float(r[key]) > 0)
+    xs = []
+    for r in rows:
+        if r.get(key) or len(known) < 2:
+            xs.append(float(r[key]) if r.get(key) else float("nan"))
+            continue
+        v = math.log(float(r[col]))
+        i = 1  # the segment of `known` around v; the end segments extrapolate
+        while i < len(known) - 1 and known[i][0] < v:
+            i += 1
+        (a0, b0), (a1, b1) = known[i - 1], known[i]
+        xs.append(math.exp(b0 + (b1 - b0) * (v - a0) / (a1 - a0)) if a1 != a0 else math.exp(b0))
+    return xs
+
+
+def mark_failed(ax, rows, xs, label_prefix: str = "") -> None:
+    """Points without e (the run failed, or e was not measured): a red x on the bottom axis at their St, and a gap in
+    the lines (drawn by the callers through NaN)."""
+    fx = [x for r, x in zip(rows, xs) if not has_e(r) and math.isfinite(x)]
+    if fx:
+        ax.plot(fx, [0.0] * len(fx), "x", color="red", ms=9, mew=2, clip_on=False, zorder=5,
+                transform=ax.get_xaxis_transform(),
+                label="%sfailed (no e): %d point%s, a gap in the lines" % (label_prefix, len(fx), "s" if len(fx) > 1 else ""))
+
+
 def plot_sweep(ax, folder: Path, meta, style: str, tag: str) -> None:
-    """Every named measure of one sweep: one colour per measure, `style` per sweep."""
-    rows = [r for r in read_rows(folder / "sweep.csv") if r["status"] == "ok" and r["St"] and r["e"]]
-    rows.sort(key=lambda r: float(r["St"]))
+    """Every named measure of one sweep: one colour per measure, `style` per sweep; failed points as marked gaps."""
+    rows = read_rows(folder / "sweep.csv")
+    if not rows:
+        return
+    xs = positions(rows, meta, "St")
     for i, (key, label, mk) in enumerate(MEASURES):
-        pts = [(float(r["St"]), float(r[key])) for r in rows if r.get(key)]
-        if pts:
+        pts = sorted((x, float(r[key]) if has_e(r) else float("nan")) for r, x in zip(rows, xs)
+                     if math.isfinite(x) and (not has_e(r) or r.get(key)))
+        if any(math.isfinite(y) for _, y in pts):
             ax.semilogx(*zip(*pts), mk + style, color="C%d" % i, ms=4, lw=1.2 if key == "e" else 0.8,
                         mfc="none" if tag else None, label=(tag + label) if tag else label)
+    mark_failed(ax, rows, xs, tag)
+
+
+def plot_fits(ax, folder: Path, meta) -> None:
+    """With --export dem: the best fit of e(St) and the exponential one (dem.json), over the St range they hold."""
+    path = folder / "dem.json"
+    if not path.exists():
+        return
+    dem = json.loads(path.read_text())
+    pair = dem.get("configuration") == "sphere-sphere"
+    chosen = []
+    for which in (dem.get("best"), dem.get("exp")):  # the best fit, and the exponential one if it is another
+        chosen += [f for f in dem["fits"] if which and (f["form"], f["e_dry_is"]) == (which["form"], which["e_dry_is"]) and f not in chosen]
+    for f, ls in zip(chosen, ("k:", "-.")):
+        lo, hi = f["valid_St"]
+        st = [lo * (hi / lo) ** (i / 199) for i in range(200)]
+        g = (lambda x: math.exp(-f["St_c"] / x)) if f["form"] == "exp" else (lambda x: max(0.0, 1 - f["St_c"] / x))
+        # a pair's bottom axis is the summary's St, half the DEM St of the fit
+        ax.semilogx([x / 2 if pair else x for x in st], [f["e_dry"] * g(x) for x in st], ls, color="k" if ls == "k:" else "0.45",
+                    lw=1.6, label="fit %s: St_c = %.3g%s, e_dry = %.3f%s, rms %.3f" % (
+                        "exp(-St_c/St)" if f["form"] == "exp" else "(1 - St_c/St)", f["St_c"], " (top axis)" if pair else "",
+                        f["e_dry"], "" if f["e_dry_is"] == "fitted" else " fixed", f["rms_residual"]))
 
 
 def plot_legendre(ax, folder: Path, meta) -> bool:
     """Sphere-wall sweeps: e/e_dry of the default measure against St_L, with Legendre et al. (2006)'s correlation."""
     e_dry = meta.get("e_dry")
-    rows = [r for r in read_rows(folder / "sweep.csv") if r["status"] == "ok" and r.get("St_L") and r["e"]]
-    if not e_dry or not rows:
+    rows = read_rows(folder / "sweep.csv")
+    if not e_dry or not any(has_e(r) and r.get("St_L") for r in rows):
         return False
-    pts = sorted((float(r["St_L"]), float(r["e"]) / e_dry) for r in rows)
+    xs = positions(rows, meta, "St_L")
+    pts = sorted((x, float(r["e"]) / e_dry if has_e(r) else float("nan")) for r, x in zip(rows, xs) if math.isfinite(x))
     ax.semilogx(*zip(*pts), "o-", color="C0", ms=4, label="imcol: e / e_dry (%s)" % str(meta.get("e_is") or "e").split(" (")[0])
-    lo, hi = min(p[0] for p in pts), max(p[0] for p in pts)
-    xs = [lo * (hi / lo) ** (i / 199) for i in range(200)] if hi > lo else [lo]
-    ax.semilogx(xs, [math.exp(-LEGENDRE_ST_C / x) for x in xs], "k--", lw=1.2,
+    finite = [p[0] for p in pts if math.isfinite(p[1])]
+    lo, hi = min(finite), max(finite)
+    xs_c = [lo * (hi / lo) ** (i / 199) for i in range(200)] if hi > lo else [lo]
+    ax.semilogx(xs_c, [math.exp(-LEGENDRE_ST_C / x) for x in xs_c], "k--", lw=1.2,
                 label="Legendre et al. (2006): exp(-35/St_L), a correlation of experiments")
+    mark_failed(ax, rows, xs)
     ax.set_xlabel("St_L = (rho_p + rho_f/2) U d / (9 mu)", fontsize=8)
     ax.set_ylabel("e / e_dry")
     ax.set_ylim(-0.02, 1.05)
@@ -84,6 +146,7 @@ def main() -> int:
     plot_sweep(ax, out, meta, "-", sweep_label(meta) + ": " if others else "")
     for d, m in others:
         plot_sweep(ax, d, m, "--", sweep_label(m) + ": ")
+    plot_fits(ax, out, meta)
     if meta["configuration"] == "sphere-sphere" and SEED_TABLE.exists():
         seed = read_rows(SEED_TABLE)
         ax.semilogx([float(r["St_B"]) for r in seed], [float(r["e"]) for r in seed], "s", color="k", mfc="none", ms=7,

@@ -319,7 +319,7 @@ TEST(BadValues, EveryOptionRefusesEachBadValueNamingIt) {
       {"--ref-rtol", numbers}, {"--ref-history-tolerance", numbers}, {"--from", numbers}, {"--to", numbers},
       {"--points", {"abc", "0", "-1", "1.5", "1e300"}}, {"--jobs", {"abc", "-1", "1.5", "1e300"}},
       {"--integrator", choices}, {"--integrators", choices}, {"--evaluators", choices}, {"--kernels", choices}, {"--laws", choices},
-      {"--models", choices}, {"--vary", choices}, {"--spacing", choices},
+      {"--models", choices}, {"--vary", choices}, {"--spacing", choices}, {"--export", choices},
       {"--set", {"novalue", "solver.rtol=1e-8\nsolver.bogus=1", "=1"}}, {"--out", {""}},
       {"--quiet", flag}, {"--no-plot", flag}, {"--flow", flag}, {"--allow-long", flag}, {"--add-history", flag}, {"--no-progress", flag}};
   struct Case {

@@ -149,7 +149,7 @@ TEST(Cli, HistoryComparesKernelsAndWritesTableAndPlotData) {
 }
 
 namespace {
-/// Rows of a CSV file as column name → cell.
+/// Rows of a CSV file as column name → cell (lines starting with '#' before the header are comments).
 std::vector<std::map<std::string, std::string>> read_csv(const fs::path& p) {
   std::ifstream in(p);
   std::vector<std::string> cols;
@@ -162,7 +162,9 @@ std::vector<std::map<std::string, std::string>> read_csv(const fs::path& p) {
     return v;
   };
   std::string line;
-  if (std::getline(in, line)) cols = split(line);
+  while (std::getline(in, line) && line.rfind('#', 0) == 0) {
+  }
+  cols = split(line);
   while (std::getline(in, line)) {
     const auto cells = split(line);
     std::map<std::string, std::string> row;
@@ -394,6 +396,114 @@ void expect_refused(const Result& r, const std::string& label, std::initializer_
   for (const auto& f : fragments) EXPECT_NE(r.err.find(f), std::string::npos) << label << ": '" << f << "' missing in: " << r.err;
 }
 }  // namespace
+
+TEST(Cli, SweepExportDemWritesATableAndFitsConsistentWithSweepCsv) {
+  const std::string scene = imcol::data_dir() + "/scenes/gg3462.toml";
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_sweep_dem";
+  fs::remove_all(out);
+  const Result r = run_imcol("sweep " + scene + " --vary velocity --from 0.005 --to 1 --points 8 --jobs 2 --no-plot --export dem --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto sweep = read_csv(out / "sweep.csv");
+  const auto dem = read_csv(out / "dem.csv");
+  ASSERT_EQ(sweep.size(), 8u);
+  ASSERT_EQ(dem.size(), 8u);
+  std::ifstream head(out / "dem.csv");
+  std::string first, second, third;
+  std::getline(head, first), std::getline(head, second), std::getline(head, third);
+  EXPECT_EQ(first.rfind("# imcol sweep --export dem", 0), 0u) << first;
+  EXPECT_NE(second.find("scene: gg3462"), std::string::npos) << second;
+  EXPECT_NE(third.find("fluid: density 1112 kg/m3, viscosity 0.004 Pa s"), std::string::npos) << third;
+  // A pair: St is the summary's (Table 6.1), St_B_eq_6_2 twice it, the DEM convention; impact speed proportional to St.
+  std::size_t with_e = 0, no_rebound = 0;
+  double St_lo = INFINITY, St_hi = 0, St_per_U = 0;
+  std::vector<std::pair<double, double>> used;  // (St eq. 6.2, e) of the points with e > 0
+  for (std::size_t i = 0; i < dem.size(); ++i) {
+    const auto &s = sweep[i], &d = dem[i];
+    EXPECT_EQ(d.at("point"), s.at("point"));
+    EXPECT_EQ(d.at("velocity_m_s"), s.at("velocity_m_s"));
+    EXPECT_EQ(d.at("St"), s.at("St"));
+    EXPECT_EQ(d.at("St_B_eq_6_2"), s.at("St_B_eq_6_2"));
+    EXPECT_EQ(d.at("e"), s.at("e"));
+    EXPECT_EQ(d.at("status"), s.at("status"));
+    EXPECT_EQ(d.at("e_status"), s.at("e_status"));
+    ASSERT_EQ(d.at("status"), "ok");
+    const double St = std::stod(d.at("St_B_eq_6_2")), e = std::stod(d.at("e")), U = std::stod(d.at("impact_speed_m_s"));
+    EXPECT_NEAR(St, 2 * std::stod(d.at("St")), 1e-9 * St);
+    if (St_per_U == 0) St_per_U = St / U;
+    EXPECT_NEAR(St / U, St_per_U, 1e-9 * St_per_U);
+    EXPECT_NEAR(std::stod(d.at("e_over_e_dry")), e / 0.97, 1e-9);
+    EXPECT_EQ(d.at("used_in_fit"), e > 0 ? "1" : "0");
+    ++with_e;
+    if (e == 0) {
+      ++no_rebound;
+      continue;
+    }
+    used.emplace_back(St, e);
+    St_lo = std::min(St_lo, St), St_hi = std::max(St_hi, St);
+  }
+  ASSERT_GE(used.size(), 3u);
+  ASSERT_GE(no_rebound, 1u);  // 5 mm/s: no rebound
+  // The lookup table: every point with e, by St (eq. 6.2).
+  const auto table = read_csv(out / "dem_table.csv");
+  ASSERT_EQ(table.size(), with_e);
+  for (std::size_t k = 1; k < table.size(); ++k) EXPECT_LT(std::stod(table[k - 1].at("St")), std::stod(table[k].at("St")));
+  std::ifstream js(out / "dem.json");
+  const auto j = nlohmann::json::parse(js);
+  EXPECT_EQ(j["table"], "dem.csv");
+  EXPECT_EQ(j["St_column"], "St_B_eq_6_2");
+  EXPECT_EQ(j["points"]["used_in_fits"].get<std::size_t>(), used.size());
+  EXPECT_EQ(j["points"]["no_rebound"].get<std::size_t>(), no_rebound);
+  ASSERT_EQ(j["fits"].size(), 4u);  // exp and linear, e_dry fixed and fitted
+  ASSERT_FALSE(j["best"].is_null());
+  for (const auto& f : j["fits"]) {
+    EXPECT_NEAR(f["valid_St"][0].get<double>(), St_lo, 1e-10 * St_lo);  // the CSV has 12 digits
+    EXPECT_NEAR(f["valid_St"][1].get<double>(), St_hi, 1e-10 * St_hi);
+    // The residual it reports is that of its curve against the table's e.
+    const bool expo = f["form"] == "exp";
+    const double St_c = f["St_c"], e_dry = f["e_dry"];
+    double ss = 0, mx = 0;
+    for (const auto& [St, e] : used) {
+      const double m = e_dry * (expo ? std::exp(-St_c / St) : std::max(0.0, 1 - St_c / St));
+      ss += (m - e) * (m - e), mx = std::max(mx, std::abs(m - e));
+    }
+    EXPECT_NEAR(f["rms_residual"].get<double>(), std::sqrt(ss / used.size()), 1e-6) << f["form"];
+    EXPECT_NEAR(f["max_residual"].get<double>(), mx, 1e-6) << f["form"];
+    if (f["e_dry_is"] != "fitted") {
+      EXPECT_EQ(e_dry, 0.97);
+    }
+  }
+
+  // Failed points stay in the table with their status and no e; two points with e fit only with e_dry fixed.
+  fs::remove_all(out);
+  const Result f = run_imcol("sweep " + scene + " --vary viscosity --from 0.01 --to 0.05 --points 4 --export dem --out " +
+                             out.string() + " --set solver.max_steps=70 --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
+  EXPECT_EQ(f.status, 3) << f.err;
+  // The plot draws the failed points (marked gaps) and the fits without failing.
+  EXPECT_TRUE(fs::exists(out / "sweep.png"));
+  EXPECT_EQ(f.err.find("plot"), std::string::npos) << f.err;
+  const auto rows = read_csv(out / "dem.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(rows[i].at("status"), i < 2 ? "failed" : "ok");  // the two least viscous need more than 70 steps
+    EXPECT_EQ(rows[i].at("e").empty(), i < 2);
+    EXPECT_EQ(rows[i].at("used_in_fit"), i < 2 ? "0" : "1");
+  }
+  std::ifstream js2(out / "dem.json");
+  const auto j2 = nlohmann::json::parse(js2);
+  EXPECT_EQ(j2["points"]["without_e"].get<int>(), 2);
+  ASSERT_EQ(j2["fits"].size(), 2u);
+  for (const auto& fit : j2["fits"]) EXPECT_EQ(fit["e_dry_is"], "fixed to the scene's");
+  EXPECT_NE(j2["fit_error"].get<std::string>().find("at least 3 points with e > 0"), std::string::npos) << j2["fit_error"];
+
+  // --export takes dem only; a fit needs 3 points.
+  const Result bad = run_imcol("sweep " + scene + " --vary velocity --from 0.05 --to 0.4 --points 4 --export vtk --out " + out.string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--export"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("expected dem"), std::string::npos) << bad.err;
+  const Result two = run_imcol("sweep " + scene + " --vary velocity --from 0.05 --to 0.4 --points 2 --export dem --out " + out.string());
+  EXPECT_EQ(two.status, 2);
+  EXPECT_NE(two.err.find("--points 3"), std::string::npos) << two.err;
+}
 
 TEST(Cli, NumericOptionsAreCheckedBeforeAnythingRuns) {
   const std::string scene = imcol::data_dir() + "/scenes/default.toml";
