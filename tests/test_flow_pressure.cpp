@@ -12,8 +12,10 @@
 
 #include "flow/pressure.hpp"
 #include "flow/solver.hpp"
+#include "flow_settings.hpp"
 
 using namespace imcol::flow;
+using imcol::flow::test_setup::stream_settings;
 
 namespace {
 
@@ -80,21 +82,6 @@ std::pair<double, double> manufactured_error(const std::vector<LevelGeometry>& g
       for (int j = 0; j <= g.nz; ++j) ev = std::max(ev, std::abs(v[g.at(i, j)] - exact_b(g.r(i), g.z(j))));
   }
   return {ec, ev};
-}
-
-// D = U = ρ = 1, ν = 1/Re, sphere of radius ½ at z = 0 in a stream along +z
-Settings stream_settings(double Re, int cpd, int levels, double r_max, double z_lo, double z_hi, double dt, double theta) {
-  Settings s;
-  s.nu = 1.0 / Re;
-  s.dt = dt;
-  s.theta = theta;
-  s.h = 1.0 / cpd;
-  s.nr = static_cast<int>(std::lround(r_max * cpd));
-  s.nz = static_cast<int>(std::lround((z_hi - z_lo) * cpd));
-  s.levels = levels;
-  s.z_center = 0.5 * (z_lo + z_hi);
-  s.u_inf = 1.0;
-  return s;
 }
 
 // bilinear interpolation of vertex fields at (r, z) on the finest level holding the point two cells clear
