@@ -195,8 +195,10 @@ std::vector<double> stagnation_source(const Solver& s, int level) {
   auto uz = [&](int i, int j) { return u.uz[static_cast<std::size_t>(i) * (nz + 1) + j]; };  // (i+½, j)
   auto ur = [&](int i, int j) { return u.ur[static_cast<std::size_t>(i) * nz + j]; };        // (i, j+½)
   auto om = [&](int i, int j) { return i == 0 ? 0.0 : L.eta[g.at(i, j)] / g.r(i); };
-  // the immersed-boundary force density H g on this level's faces: the sphere points spread with this level's delta
-  // (the kernel spreads them on the finest level only), wall points on their own level
+  // the immersed-boundary force density H g on this level's faces: every point inside the level spread with this
+  // level's delta — the sphere points (the kernel spreads them on the finest level only) and the wall points of this
+  // level and of the finer ones (the kernel's coarsify carries their vorticity source here); the coarser levels'
+  // wall points lie outside
   FaceField f;
   f.uz.assign(u.uz.size(), 0.0);
   f.ur.assign(u.ur.size(), 0.0);
@@ -214,7 +216,7 @@ std::vector<double> stagnation_source(const Solver& s, int level) {
     std::size_t o = ns;
     const auto& wall = s.wall_points();
     for (int l = 0; l < static_cast<int>(wall.size()); ++l) {
-      if (l == level) add(wall[l], o);
+      if (l <= level) add(wall[l], o);
       o += 2 * wall[l].size();
     }
   }

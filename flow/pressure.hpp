@@ -9,9 +9,9 @@
 //   ∇²B = ∇·(u × ω) + ∇·f,   axisymmetric (ω = ω e_θ):  u × ω = ω u_r e_z − ω u_z e_r,
 //   ∇²B = (1/r)∂r(r ∂r B) + ∂zz B,  ∂r B = 0 on the axis.
 // f is the immersed-boundary force density on the fluid (m/s²): the last step's point forces
-// (Solver::point_forces) spread with the kernel's own delta, H g (flow/ib.hpp): the sphere points on every level
-// (each with its own spacing), each level's wall points on that level. It carries the pressure jump across the
-// sphere surfaces and the plate.
+// (Solver::point_forces) spread with the kernel's own delta, H g (flow/ib.hpp), on every level with that level's
+// spacing: all points inside the level (the sphere points, the wall points of that level and of the finer ones).
+// It carries the pressure jump across the sphere surfaces and the plate.
 //
 // Discretisation: B at cell centres (r_{i+½}, z_{j+½}), the dual of the kernel's vertex ψ — the MAC layout of the
 // kernel's face velocities u = Cψ. The divergence is the kernel's cell volume flux (cell_outflux) over the cell
@@ -22,7 +22,7 @@
 // vertices they would not: their divergence on the vertex dual cells leaves an O(1) error in the body's layer).
 // Fast solve per level: a DST-II in z (Dirichlet at the faces z_0, z_nz: ghost = 2b − B) and one tridiagonal
 // system in r per mode (no flux through the axis, Dirichlet at r = R, ghost again). Multi-level: every level
-// solves with its own source (its own u, ω and the forces spread with its own delta), the coarsest with B = ½U∞² on
+// solves with its own source (its own u, ω and all the forces inside it spread with its own delta), the coarsest with B = ½U∞² on
 // its boundary (p = p∞ there), each finer one with boundary values from the next coarser by tensor cubic
 // interpolation of the cell values (even in r across the axis). Not the kernel's "finer source replaces coarser":
 // the source is a divergence, and summing the fine cells of a coarse one keeps its total but moves each fine cell's
