@@ -16,12 +16,10 @@ void apply_stokes_operator(const LevelGeometry& g, const std::vector<double>& x,
   for_each_stokes(g, x, [&](std::size_t p, double v) { y[p] = v; });
 }
 
-namespace {
-std::mutex& planner_mutex() {  // FFTW's planner (plan creation and destruction) is not thread-safe
+std::mutex& fftw_planner_mutex() {
   static std::mutex m;
   return m;
 }
-}  // namespace
 
 FastSolver::FastSolver(const LevelGeometry& g, std::vector<Op> ops, bool measure_plans) : g_(g), ops_(std::move(ops)) {
   if (g.nr < 2 || g.nz < 2) throw std::invalid_argument("FastSolver: grid needs at least 2 cells each way");
@@ -71,7 +69,7 @@ void FastSolver::prepare_rows(int rows) {
     if (p.rows == rows) return;
   Plans p{rows, nullptr, nullptr};
   {
-    std::lock_guard<std::mutex> lock(planner_mutex());
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     int n = static_cast<int>(ext_len()), nc = n / 2 + 1;
     p.fwd = fftw_plan_many_dft_r2c(1, &n, rows, ext_, nullptr, 1, n, reinterpret_cast<fftw_complex*>(spec_), nullptr, 1, nc, flags_);
     if (M_) {
@@ -80,7 +78,7 @@ void FastSolver::prepare_rows(int rows) {
     }
   }
   if (!p.fwd || (M_ && !p.bwd)) {
-    std::lock_guard<std::mutex> lock(planner_mutex());
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     if (p.fwd) fftw_destroy_plan(p.fwd);
     if (p.bwd) fftw_destroy_plan(p.bwd);
     throw std::runtime_error("FFTW could not plan the sine transform");
@@ -126,7 +124,7 @@ FastSolver::~FastSolver() { release(); }
 
 void FastSolver::release() {
   {
-    std::lock_guard<std::mutex> lock(planner_mutex());
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     for (Plans& p : plans_) {
       if (p.fwd) fftw_destroy_plan(p.fwd);
       if (p.bwd) fftw_destroy_plan(p.bwd);

@@ -16,11 +16,15 @@
 // counts given to prepare_rows): a solve allocates nothing. FFTW's planner is not thread-safe: plan creation and
 // destruction hold one process-wide mutex.
 #include <cstddef>
+#include <mutex>
 #include <vector>
 
 struct fftw_plan_s;
 
 namespace imcol::flow {
+
+/// FFTW's planner (plan creation and destruction) is not thread-safe: every plan made in flow/ holds this mutex.
+std::mutex& fftw_planner_mutex();
 
 /// Geometry of one level: vertices i = 0..nr (r = i h), j = 0..nz (z = z0 + j h). Arrays are stored
 /// full size (nr+1)(nz+1), index i·(nz+1) + j.

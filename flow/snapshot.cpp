@@ -5,12 +5,13 @@
 #include <sstream>
 
 #include "core/number_text.hpp"
+#include "flow/pressure.hpp"
 
 namespace imcol::flow {
 
 namespace {
 
-void write_level(std::string& os, int l, const Level& L, double u_inf, double z_shift) {
+void write_level(std::string& os, int l, const Level& L, const std::vector<double>& p, double u_inf, double z_shift) {
   // u_inf: the uniform stream as seen from the frame the fields are written in
   const auto& g = L.g;
   auto uzf = [&](int i, int j) { return (L.psi[g.at(i + 1, j)] - L.psi[g.at(i, j)]) / (g.h * g.r(i + 0.5)) + u_inf; };
@@ -28,7 +29,7 @@ void write_level(std::string& os, int l, const Level& L, double u_inf, double z_
       else if (j == g.nz) ur = urf(i, j - 1);
       else ur = 0.5 * (urf(i, j - 1) + urf(i, j));
       os += std::to_string(l);
-      for (double v : {r, z, psi, om, ur, uz}) {
+      for (double v : {r, z, psi, om, ur, uz, p[g.at(i, j)]}) {
         os += ',';
         append_number(os, v, 9);
       }
@@ -46,10 +47,11 @@ std::string snapshot_csv(const Solver& s, const SnapshotFrame& f, const std::str
      << " m; spheres (z, d) =";
   for (const auto& b : s.spheres()) os << " " << b.z + f.z_shift << " " << 2 * b.radius;
   os << "\n";
-  os << "level,r,z,psi,omega,u_r,u_z\n";
+  os << "level,r,z,psi,omega,u_r,u_z,p\n";
   std::string out = os.str();
+  const auto p = pressure(s);  // the same in the lab: a scalar, relative to the far field
   for (std::size_t l = 0; l < s.levels().size(); ++l)
-    write_level(out, static_cast<int>(l), s.levels()[l], s.settings().u_inf + f.u_frame, f.z_shift);
+    write_level(out, static_cast<int>(l), s.levels()[l], p[l], s.settings().u_inf + f.u_frame, f.z_shift);
   return out;
 }
 

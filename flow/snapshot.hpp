@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Flow fields of every level as CSV: vertex rows "level,r,z,psi,omega,u_r,u_z" (m, m³/s, 1/s, m/s), level 0 the
-// finest; ψ is the total Stokes streamfunction ψ + ½U∞r² seen from the lab. A comment line states the moment, the time,
+// Flow fields of every level as CSV: vertex rows "level,r,z,psi,omega,u_r,u_z,p" (m, m³/s, 1/s, m/s, Pa), level 0 the
+// finest; ψ is the total Stokes streamfunction ψ + ½U∞r² seen from the lab; p is p − p∞ (flow/pressure.hpp: the same
+// in every frame; not physical inside the spheres). A comment line states the moment, the time,
 // the shift added to z (coupled runs move the grid with the spheres) and the spheres' lab positions.
 #include <string>
 

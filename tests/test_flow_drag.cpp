@@ -20,27 +20,13 @@
 #include "core/errors.hpp"
 #include "flow/flow_scene.hpp"
 #include "flow/solver.hpp"
+#include "flow_settings.hpp"
 #include "run/flow_references.hpp"
 
 using namespace imcol::flow;
+using imcol::flow::test_setup::stream_settings;
 
 namespace {
-
-// D = 1, U = 1, ρ = 1, ν = 1/Re
-Settings stream_settings(double Re, int cpd, int levels, double r_max, double z_lo, double z_hi, double dt, double theta) {
-  Settings s;
-  s.nu = 1.0 / Re;
-  s.density = 1.0;
-  s.dt = dt;
-  s.theta = theta;
-  s.h = 1.0 / cpd;
-  s.nr = static_cast<int>(std::lround(r_max * cpd));
-  s.nz = static_cast<int>(std::lround((z_hi - z_lo) * cpd));
-  s.levels = levels;
-  s.z_center = 0.5 * (z_lo + z_hi);
-  s.u_inf = 1.0;
-  return s;
-}
 
 // Proudman & Pearson (J. Fluid Mech. 2, 1957): F/(6πμaU) = 1 + (3/16)Re + (9/160)Re² ln(Re/2), Re = UD/ν
 double proudman_pearson(double Re) { return 1 + 3.0 / 16.0 * Re + 9.0 / 160.0 * Re * Re * std::log(Re / 2); }
