@@ -17,6 +17,7 @@
 
 #include "apps/compare_history.hpp"
 #include "apps/compare_laws.hpp"
+#include "apps/history_sweep.hpp"
 #include "apps/format.hpp"
 #include "apps/option_rules.hpp"
 #include "apps/output_unit.hpp"
@@ -232,19 +233,35 @@ Subcommand add_effects(CLI::App& app) {
 }
 
 Subcommand add_history(CLI::App& app) {
-  struct Opt { CommonOptions c; std::string scene; HistoryCompareOptions h; bool no_plot = false; };
+  struct Opt { CommonOptions c; std::string scene; HistoryCompareOptions h; bool no_plot = false, no_progress = false; };
   auto o = std::make_shared<Opt>();
-  auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history)");
+  auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history); "
+                                                "with --vary, e against St per kernel over a sweep");
   history->add_option("scene", o->scene, "scene file (TOML)")->required();
-  history->add_option("--out", o->h.out, "output directory (default out/<scene name>-history)")->check(path_rule("--out"));
+  history->add_option("--out", o->h.out, "output directory (default out/<scene name>-history, a sweep: -history_<quantity>)")->check(path_rule("--out"));
   history->add_option("--kernels", o->h.kernels, "kernels to run (default all)")->delimiter(',')
       ->check(choice_rule("--kernels", choice_names<KernelKind>()));
-  history->add_option("--evaluators", o->h.evaluators, "soe-step, soe, direct (default all three)")->delimiter(',')
-      ->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
+  auto* evaluators = history->add_option("--evaluators", o->h.evaluators, "soe-step, soe, direct (default all three; a sweep: the scene's)")
+                         ->delimiter(',')->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
+  // Optionally at each point of a sweep (imcol sweep's quantities, spacing and --jobs): e against St per kernel.
+  auto& s = o->h.sweep;
+  auto* vary = history->add_option("--vary", s.vary, "sweep: velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
+                   ->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
+  auto* from = history->add_option("--from", s.from, "sweep: first value (SI units)")->check(number_rule("--from", kPositive));
+  auto* to = history->add_option("--to", s.to, "sweep: last value (SI units)")->check(number_rule("--to", kPositive));
+  auto* points = history->add_option("--points", s.points, "sweep: number of points")->check(integer_rule("--points", 1, 100000));
+  auto* spacing = history->add_option("--spacing", s.spacing, "sweep: log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
+  auto* jobs = history->add_option("--jobs", s.jobs, "sweep: parallel runs (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
+  auto* no_progress = history->add_flag("--no-progress", o->no_progress, "sweep: no progress line on the terminal");
+  vary->needs(from)->needs(to)->needs(points);
+  for (auto* opt : {from, to, points, spacing, jobs, no_progress}) opt->needs(vary);
   history->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
   add_common(history, o->c);
-  return {history, [o] {
+  return {history, [o, evaluators] {
     o->h.plot = !o->no_plot;
+    o->h.evaluators_given = evaluators->count() > 0;
+    o->h.sweep.progress = !o->no_progress;
+    if (!o->h.sweep.vary.empty()) return history_sweep(o->scene, o->c.overrides(), o->h);
     return compare_history(o->scene, o->c.overrides(), o->h);
   }};
 }
