@@ -137,19 +137,8 @@ Json number_or_null(const std::optional<double>& v) { return v && std::isfinite(
 /// history_sweep.json, all but its `run` block.
 Json sweep_json(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base, const SweepOptions& sw,
                 const char* column, const std::vector<Series>& series, const std::vector<Cell>& cells, int jobs, double wall) {
-  Json j;
-  j["scene"] = base.name;
-  j["scene_file"] = scene_path;
-  Json ov = Json::object();
-  for (const auto& o : overrides) ov[o.key] = o.value;
-  j["overrides"] = ov;
-  j["configuration"] = base.two_spheres() ? "sphere-sphere" : (base.wall ? "sphere-wall" : "free sphere");
-  j["vary"] = sw.vary;
-  j["column"] = column;
-  j["from"] = sw.from;
-  j["to"] = sw.to;
-  j["points"] = sw.points;
-  j["spacing"] = sw.spacing;
+  Json j = scene_json(scene_path, overrides, base);
+  put_sweep_settings(j, sw, column);
   j["jobs"] = jobs;
   j["wall_time_s"] = wall;
   Json js = Json::array();
