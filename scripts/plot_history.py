@@ -71,8 +71,9 @@ def plot_runs(out) -> int:
     for ax in (ax_a, ax_b):
         ax.set_xlabel("t [ms]")
         ax.grid(alpha=0.3)
-    ax_b.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                title="colour: kernel; solid soe-step, dotted soe, dashed direct", title_fontsize=7.5)
+    style_names = {"soe-step": "solid", "soe": "dotted", "direct": "dashed"}
+    ran = [f"{style_names[ev]} {ev}" for ev in style_names if any(e == ev for _, e in series)]
+    ax_b.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0), title="colour: kernel; " + ", ".join(ran), title_fontsize=7.5)
     fig.suptitle("History force by kernel and evaluator (peak |f_H| over the samples drawn, as in history.csv)")
     fig.tight_layout()
     save_png(fig, out / "history.png")
