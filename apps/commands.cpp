@@ -17,6 +17,7 @@
 
 #include "apps/compare_history.hpp"
 #include "apps/compare_laws.hpp"
+#include "apps/history_sweep.hpp"
 #include "apps/format.hpp"
 #include "apps/option_rules.hpp"
 #include "apps/output_unit.hpp"
@@ -231,20 +232,42 @@ Subcommand add_effects(CLI::App& app) {
   return {effects, [o] { return cmd_effects(o->scene, o->c); }};
 }
 
+/// The options of a sweep inside another command (laws, history): --vary, --from, --to, --points, --spacing (imcol
+/// sweep's quantities and spacing); a range needs --vary and --vary a range. Returns --vary, for further options that need it.
+CLI::Option* add_sweep_range(CLI::App* cmd, SweepOptions& s) {
+  auto* vary = cmd->add_option("--vary", s.vary, "sweep: velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
+                   ->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
+  auto* from = cmd->add_option("--from", s.from, "sweep: first value (SI units)")->check(number_rule("--from", kPositive));
+  auto* to = cmd->add_option("--to", s.to, "sweep: last value (SI units)")->check(number_rule("--to", kPositive));
+  auto* points = cmd->add_option("--points", s.points, "sweep: number of points")->check(integer_rule("--points", 1, 100000));
+  auto* spacing = cmd->add_option("--spacing", s.spacing, "sweep: log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
+  vary->needs(from)->needs(to)->needs(points);
+  for (auto* opt : {from, to, points, spacing}) opt->needs(vary);
+  return vary;
+}
+
 Subcommand add_history(CLI::App& app) {
-  struct Opt { CommonOptions c; std::string scene; HistoryCompareOptions h; bool no_plot = false; };
+  struct Opt { CommonOptions c; std::string scene; HistoryCompareOptions h; bool no_plot = false, no_progress = false; };
   auto o = std::make_shared<Opt>();
-  auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history)");
+  auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history); "
+                                                "with --vary, e against St per kernel over a sweep");
   history->add_option("scene", o->scene, "scene file (TOML)")->required();
-  history->add_option("--out", o->h.out, "output directory (default out/<scene name>-history)")->check(path_rule("--out"));
+  history->add_option("--out", o->h.out, "output directory (default out/<scene name>-history, a sweep: -history_<quantity>)")->check(path_rule("--out"));
   history->add_option("--kernels", o->h.kernels, "kernels to run (default all)")->delimiter(',')
       ->check(choice_rule("--kernels", choice_names<KernelKind>()));
-  history->add_option("--evaluators", o->h.evaluators, "soe-step, soe, direct (default all three)")->delimiter(',')
-      ->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
+  auto* evaluators = history->add_option("--evaluators", o->h.evaluators, "soe-step, soe, direct (default all three; a sweep: the scene's)")
+                         ->delimiter(',')->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
+  // Optionally at each point of a sweep (imcol sweep's quantities, spacing and --jobs): e against St per kernel.
+  auto* vary = add_sweep_range(history, o->h.sweep);
+  history->add_option("--jobs", o->h.sweep.jobs, "sweep: parallel runs (default: all cores)")->check(integer_rule("--jobs", 0, 1024))->needs(vary);
+  history->add_flag("--no-progress", o->no_progress, "sweep: no progress line on the terminal")->needs(vary);
   history->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
   add_common(history, o->c);
-  return {history, [o] {
+  return {history, [o, evaluators] {
     o->h.plot = !o->no_plot;
+    o->h.evaluators_given = evaluators->count() > 0;
+    o->h.sweep.progress = !o->no_progress;
+    if (!o->h.sweep.vary.empty()) return history_sweep(o->scene, o->c.overrides(), o->h);
     return compare_history(o->scene, o->c.overrides(), o->h);
   }};
 }
@@ -258,15 +281,7 @@ Subcommand add_laws(CLI::App& app) {
       ->check(choice_rule("--laws", choice_names<ContactLawKind>()));
   laws->add_option("--out", o->l.out, "output directory (default out/<scene name>-laws, a sweep: -laws_<quantity>)")->check(path_rule("--out"));
   // Optionally at each point of a sweep (imcol sweep's quantities and spacing): e against St per law.
-  auto& s = o->l.sweep;
-  auto* vary = laws->add_option("--vary", s.vary, "sweep: velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
-                   ->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
-  auto* from = laws->add_option("--from", s.from, "sweep: first value (SI units)")->check(number_rule("--from", kPositive));
-  auto* to = laws->add_option("--to", s.to, "sweep: last value (SI units)")->check(number_rule("--to", kPositive));
-  auto* points = laws->add_option("--points", s.points, "sweep: number of points")->check(integer_rule("--points", 1, 100000));
-  auto* spacing = laws->add_option("--spacing", s.spacing, "sweep: log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
-  vary->needs(from)->needs(to)->needs(points);
-  for (auto* opt : {from, to, points, spacing}) opt->needs(vary);
+  add_sweep_range(laws, o->l.sweep);
   laws->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
   add_common(laws, o->c);
   return {laws, [o] {

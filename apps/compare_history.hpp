@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/sweep.hpp"
 #include "core/scene.hpp"
 
 namespace imcol {
@@ -11,11 +12,20 @@ namespace imcol {
 struct HistoryCompareOptions {
   std::vector<std::string> kernels = choice_names<KernelKind>();  // every shipped kernel
   std::vector<std::string> evaluators = {"soe-step", "soe", "direct"};
-  std::string out;   // default out/<scene>-history
+  bool evaluators_given = false;  // --evaluators: a sweep otherwise runs the scene's own evaluator only
+  std::string out;   // default out/<scene>-history (a sweep: out/<scene>-history_<quantity>)
   bool plot = true;
+  SweepOptions sweep;  // sweep.vary empty: the scene alone; else vary, from, to, points, spacing, jobs
 };
 
-/// Prints the table, writes DIR/history.csv, DIR/history_forces.csv and DIR/history.png (matplotlib).
+/// The scene with the history force of `kernel` evaluated by `evaluator`, or without it ("none").
+Scene with_history_kernel(const Scene& base, const std::string& kernel, const std::string& evaluator);
+
+/// --kernels and --evaluators: unknown names refused (InputError).
+void check_history_choices(const HistoryCompareOptions& opt);
+
+/// Prints the table, writes DIR/history.csv, DIR/history_forces.csv (f_H of sphere 1 at the output samples, the
+/// events and every solver step near contact; the table's peak is taken over the same samples) and DIR/history.png.
 int compare_history(const std::string& scene_path, const std::vector<Override>& overrides, const HistoryCompareOptions& opt);
 
 }  // namespace imcol

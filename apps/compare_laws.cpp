@@ -352,27 +352,14 @@ struct LawsContext {
 /// laws.json, all but its `run` block.
 Json laws_json(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base, const SweepOptions& sw,
                const char* column, const LawsContext& cx, const std::vector<LawRow>& rows) {
-  Json j;
-  j["scene"] = base.name;
-  j["scene_file"] = scene_path;
-  Json ov = Json::object();
-  for (const auto& o : overrides) ov[o.key] = o.value;
-  j["overrides"] = ov;
-  j["configuration"] = base.two_spheres() ? "sphere-sphere" : "sphere-wall";
+  Json j = scene_json(scene_path, overrides, base);  // laws refuse a free sphere
   j["e_is"] = cx.e_is;
   if (cx.contact) {
     j["e_dry"] = cx.contact->e_dry;
     j["delta_ss_m"] = cx.contact->delta_ss_m;
   }
   if (cx.first_ran) j["effects"] = cx.first_ran->run.summary.effects;
-  if (!sw.vary.empty()) {
-    j["vary"] = sw.vary;
-    j["column"] = column;
-    j["from"] = sw.from;
-    j["to"] = sw.to;
-    j["points"] = sw.points;
-    j["spacing"] = sw.spacing;
-  }
+  if (!sw.vary.empty()) put_sweep_settings(j, sw, column);
   Json jrows = Json::array();
   for (const auto& r : rows) jrows.push_back(law_json(r, rows));
   j["laws"] = jrows;

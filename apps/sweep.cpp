@@ -482,4 +482,24 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   return failed ? 3 : 0;
 }
 
+nlohmann::ordered_json scene_json(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base) {
+  nlohmann::ordered_json j;
+  j["scene"] = base.name;
+  j["scene_file"] = scene_path;
+  nlohmann::ordered_json ov = nlohmann::ordered_json::object();  // --set/--rtol/... as given
+  for (const auto& o : overrides) ov[o.key] = o.value;
+  j["overrides"] = ov;
+  j["configuration"] = base.two_spheres() ? "sphere-sphere" : (base.wall ? "sphere-wall" : "free sphere");
+  return j;
+}
+
+void put_sweep_settings(nlohmann::ordered_json& j, const SweepOptions& opt, const char* column) {
+  j["vary"] = opt.vary;
+  j["column"] = column;
+  j["from"] = opt.from;
+  j["to"] = opt.to;
+  j["points"] = opt.points;
+  j["spacing"] = opt.spacing;
+}
+
 }  // namespace imcol

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/scene.hpp"
 
 namespace imcol {
@@ -25,6 +27,12 @@ std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary
 
 /// The CSV column of a varied quantity ("velocity" → "velocity_m_s"); nullptr for an unknown one.
 const char* sweep_column(const std::string& vary);
+
+/// The scene a command's json describes: scene (name), scene_file, overrides (as given), configuration.
+nlohmann::ordered_json scene_json(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base);
+
+/// A sweep's settings into j: vary, column (the CSV column of the varied quantity), from, to, points, spacing.
+void put_sweep_settings(nlohmann::ordered_json& j, const SweepOptions& opt, const char* column);
 
 /// The values of the points: opt.points from opt.from to opt.to, log or linear spacing (opt.spacing).
 std::vector<double> sweep_values(const SweepOptions& opt);

@@ -84,6 +84,8 @@ class Observer {
   virtual void sample(double t, std::span<const double> y, bool at_event) = 0;
   /// After each accepted solver step: the steps taken so far in this run (for a progress display).
   virtual void stepped(long steps) { (void)steps; }
+  /// After each accepted solver step that ends without an event: its end (t, y), after the system's at_step.
+  virtual void step_end(double t, std::span<const double> y) { (void)t, (void)y; }
 };
 
 }  // namespace imcol

@@ -687,6 +687,7 @@ double Integrator::advance(double t_target) {
       continue;
     }
     sys.at_step(t, view(m.y.get()), false);  // the step to t is accepted (its samples are taken)
+    m.observer.step_end(t, view(m.y.get()));
     const double t_eps_new = 1e-12 * std::max(1.0, std::abs(t));
     if (t >= bp - t_eps_new) {
       sys.at_breakpoint(t, view(m.y.get()));

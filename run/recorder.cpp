@@ -135,6 +135,16 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
   const bool evaluate = forces_ || model_.observes_accelerations();
   const Evaluation ev = evaluate ? model_.evaluate(t, y) : model_.kinematic_state(y);
   if (model_.has_target()) add_to_track(t, ev);
+  rows_.push_back(make_row(t, ev, at_event));
+  model_.observe(t, ev);  // its watchers may end the run: at rest on the wall, or moving with its partner
+  if (progress_) show_progress(t);
+  if (model_.has_target()) {
+    min_gap_ = std::min(min_gap_, ev.gap);
+    if (forces_) max_force_ = std::max(max_force_, std::abs(ev.f[0].contact));
+  }
+}
+
+std::vector<double> Recorder::make_row(double t, const Evaluation& ev, bool at_event) {
   std::vector<double> r;
   r.reserve(columns_.size());
   r.insert(r.end(), {t, ev.z[0], ev.u[0]});
@@ -153,13 +163,14 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
   }
   if (forces_ && sc_.has(Effect::flow)) r.push_back(ev.H);
   r.push_back(at_event ? 1.0 : 0.0);
-  rows_.push_back(std::move(r));
-  model_.observe(t, ev);  // its watchers may end the run: at rest on the wall, or moving with its partner
-  if (progress_) show_progress(t);
-  if (model_.has_target()) {
-    min_gap_ = std::min(min_gap_, ev.gap);
-    if (forces_) max_force_ = std::max(max_force_, std::abs(ev.f[0].contact));
-  }
+  return r;
+}
+
+void Recorder::step_end(double t, std::span<const double> y) {
+  if (!forces_ || !model_.has_target() || !sc_.has(Effect::elastic)) return;
+  if (!(model_.kinematic_state(y).gap < 3 * model_.delta_ss_m())) return;
+  if (!contact_rows_.empty() && !(t > contact_rows_.back()[0])) return;
+  contact_rows_.push_back(make_row(t, model_.evaluate(t, y), false));
 }
 
 void Recorder::add_to_track(double t, const Evaluation& ev) {

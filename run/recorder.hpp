@@ -30,6 +30,9 @@ class Recorder : public Observer {
 
   void sample(double t, std::span<const double> y, bool at_event) override;
   void stepped(long steps) override { steps_ = steps; }
+  /// With forces: a row at the end of every accepted step while the gap is below 3 δ_SS (contact_rows), where the
+  /// forces change faster than output.dt resolves (the history force peaks within the contact).
+  void step_end(double t, std::span<const double> y) override;
   /// Clears the progress line, if one was shown.
   void finish_progress();
   /// Shows `text` as the progress line (the same terminal and pacing rules): work before t = 0, such as a coupled
@@ -40,20 +43,24 @@ class Recorder : public Observer {
   std::vector<std::vector<double>>& rows() { return rows_; }
   /// The measures' samples: every sample of the run (each row among them).
   const Track& track() const { return track_; }
+  /// The rows at the solver's steps near contact (step_end), in time order; kept apart from rows().
+  std::vector<std::vector<double>>& contact_rows() { return contact_rows_; }
   double min_gap() const { return min_gap_; }          // m, over the samples
   bool forces() const { return forces_; }
   double max_contact_force() const { return max_force_; }  // N, sphere 1 (forces() only)
-  double max_history_force() const { return max_history_; }  // N, any sphere (forces() only)
+  double max_history_force() const { return max_history_; }  // N, any sphere, over rows() and contact_rows() (forces() only)
 
  private:
   void show_progress(double t);
   void add_to_track(double t, const model::Evaluation& ev);
+  /// The row of columns() at (t, ev); updates the peak history force.
+  std::vector<double> make_row(double t, const model::Evaluation& ev, bool at_event);
 
   model::CollisionModel& model_;
   const Scene& sc_;
   std::vector<std::string> columns_;
   std::vector<double model::SphereForces::*> fields_;  // the force columns of each sphere, in column order
-  std::vector<std::vector<double>> rows_;
+  std::vector<std::vector<double>> rows_, contact_rows_;
   Track track_;
   double sample_dt_, next_row_;  // s
   long k_row_ = 1;

@@ -93,6 +93,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   res.scene = sc;
   res.columns = rec.columns();
   res.rows = std::move(rec.rows());
+  res.contact_rows = std::move(rec.contact_rows());
   const double t_final = res.rows.empty() ? 0.0 : res.rows.back()[0];
 
   // Measure: the first contact as the seed does, then every contact with each named measure.

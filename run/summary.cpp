@@ -82,7 +82,7 @@ void measure_summary(RunSummary& s, const CollisionModel& model, const Watch& wa
   if (rec.forces()) s.max_contact_force_N = rec.max_contact_force();
   s.group_velocity_m_s = m.group_velocity;
   if (m.group_velocity) s.group_velocity_at_s = m.t_group;
-  if (sc.has(Effect::history) && rec.forces()) s.max_history_force_N = rec.max_history_force();  // at the output samples and events
+  if (sc.has(Effect::history) && rec.forces()) s.max_history_force_N = rec.max_history_force();  // at the output samples, events and the steps near contact
   if (!rows.empty()) {
     s.u1_final_m_s = rows.back()[2];
     if (pair) s.u2_final_m_s = rows.back()[5];

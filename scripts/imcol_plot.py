@@ -51,3 +51,29 @@ def read_rows(path: Path) -> list:
     """The rows of a CSV file written by imcol, as dicts by column name (lines starting with '#' are comments)."""
     with open(path, newline="") as f:
         return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+# One colour per history kernel, the same in every picture (history.png, history_sweep.png); a kernel not listed
+# takes the next free colour of matplotlib's cycle.
+KERNEL_COLOURS = {"none": "0.45", "basset": "C0", "mei-adrian": "C1", "kim": "C2", "dorgan-loth": "C3"}
+
+
+def kernel_colour(kernel: str) -> str:
+    if kernel not in KERNEL_COLOURS:
+        used = set(KERNEL_COLOURS.values())
+        KERNEL_COLOURS[kernel] = next((f"C{i}" for i in range(4, 10) if f"C{i}" not in used), "k")
+    return KERNEL_COLOURS[kernel]
+
+
+# The force columns of trajectory.csv by what they are (the sphere's number follows the name: f_drag1, f_drag2).
+FORCE_NAMES = {"f_drag": "drag", "f_lub": "lubrication", "f_am": "added mass", "f_contact": "contact", "f_hist": "history",
+               "f_grav": "gravity", "f_sim": "simulated f_SIM", "f_thr": "theory f_THR"}
+
+
+def force_label(column: str, pair: bool) -> str:
+    """'f_am1' -> 'added mass' (one sphere) or 'sphere 1 added mass' (a pair); other columns unchanged."""
+    stem, k = column.rstrip("0123456789"), column[len(column.rstrip("0123456789")):]
+    name = FORCE_NAMES.get(stem)
+    if name is None:
+        return column
+    return f"sphere {k} {name}" if pair and k else name

@@ -8,7 +8,7 @@ Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
 import json
 import sys
 
-from imcol_plot import out_dir, plt, save_png, read_rows
+from imcol_plot import FORCE_NAMES, force_label, out_dir, plt, read_rows, save_png
 
 
 def draw_e_fits(ax, ax_u, summary) -> None:
@@ -53,31 +53,37 @@ def main() -> int:
     t_ms = [1e3 * x for x in col["t"]]
 
     coupled = "H" in col  # the flow effect: f_SIM against f_THR and the blend in a panel of their own
-    fig, ax = plt.subplots(4 if coupled else 3, 1, figsize=(8, 13 if coupled else 10), sharex=True)
-    for k in ("z1", "z2"):
+    pair = "z2" in col
+    fig, ax = plt.subplots(4 if coupled else 3, 1, figsize=(10.5, 13 if coupled else 10), sharex=True)
+    # One colour per force term, the same for both spheres (sphere 2 dashed); one colour per sphere for z and u.
+    term_colour = {stem: f"C{i}" for i, stem in enumerate(FORCE_NAMES)}
+    term_colour.update({"f_sim": "C0", "f_thr": "C1"})
+    for m, k in enumerate(("z1", "z2")):
         if k in col:
-            ax[0].plot(t_ms, [1e3 * v for v in col[k]], label=k)
-    ax[0].set_ylabel("centre position (mm)")
-    ax[1].plot(t_ms, col["u1"], label="u1")
-    if "u2" in col:
-        ax[1].plot(t_ms, col["u2"], label="u2")
-    ax[1].set_ylabel("velocity (m/s)")
+            ax[0].plot(t_ms, [1e3 * v for v in col[k]], color=f"C{m}", label=f"sphere {m + 1}")
+    ax[0].set_ylabel("centre position z (mm)")
+    for m, k in enumerate(("u1", "u2")):
+        if k in col:
+            ax[1].plot(t_ms, col[k], color=f"C{m}", label=f"sphere {m + 1}")
+    ax[1].set_ylabel("velocity u (m/s)")
     for k in col:
         if k.startswith("f_") and not k.startswith(("f_sim", "f_thr")):
-            ax[2].plot(t_ms, col[k], label=k)
+            stem = k.rstrip("0123456789")
+            ax[2].plot(t_ms, col[k], color=term_colour.get(stem), ls="--" if k.endswith("2") else "-", label=force_label(k, pair))
     ax[2].set_yscale("symlog", linthresh=1e-4)
     ax[2].set_ylabel("force acting (N)" + (": fluid terms x H" if coupled else ""))
     if coupled:
         for k, ls in (("f_sim1", "-"), ("f_thr1", "--"), ("f_sim2", "-"), ("f_thr2", "--")):
             if k in col:
-                ax[3].plot(t_ms, col[k], ls=ls, label=k + (" (flow kernel)" if "sim" in k else " (analytic)"))
+                colour = "C0" if k.endswith("1") else "C3"
+                ax[3].plot(t_ms, col[k], ls=ls, color=colour, label=force_label(k, pair) + (" (flow kernel)" if "sim" in k else " (analytic)"))
         ax[3].set_yscale("symlog", linthresh=1e-4)
         ax[3].set_ylabel("fluid force (N)")
         h = ax[3].twinx()
         h.plot(t_ms, col["H"], color="k", lw=0.8, label="H (weight of f_THR)")
         h.set_ylim(-0.05, 1.05)
         h.set_ylabel("H")
-        h.legend(fontsize=8, loc="lower right")
+        h.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.09, 0.3))
     ax[-1].set_xlabel("t (ms)")
     contact = summary.get("contact") or {}
     marks = (("t_contact_s", "contact (gap = delta_SS)", ":"), ("t_separation_s", "separation", "--"))
@@ -99,8 +105,8 @@ def main() -> int:
         for b, t, z in zip(bounces, ax_t, ax_z):
             ax[0].annotate("%.2f mm" % (1e3 * b["apex_gap_m"]), (t, z), fontsize=7, xytext=(3, 5), textcoords="offset points")
     draw_e_fits(ax[0], ax[1], summary)
-    for a in ax:
-        a.legend(fontsize=8)
+    for a in ax:  # beside the panel (and the H axis), so that no legend hides a curve
+        a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.09 if coupled else 1.01, 1.0))
         a.grid(alpha=0.3)
     e = summary.get("e")
     st = summary.get("St")

@@ -715,3 +715,67 @@ TEST(Cli, LawsRefuseBadOptionsWithOneLine) {
   // A free sphere has no contact to compare.
   expect_refused(run_imcol("laws " + imcol::data_dir() + "/scenes/rising_sphere.toml" + out), "free sphere", {"no contact law"});
 }
+
+TEST(Cli, HistoryTablePeakIsThePlottedPeakAndResolvesTheContact) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_history_peak", fine = fs::temp_directory_path() / "imcol_cli_history_fine";
+  const std::string scene = imcol::data_dir() + "/scenes/default.toml";
+  ASSERT_EQ(run_imcol("history " + scene + " --kernels basset --evaluators soe-step --no-plot --out " + out.string()).status, 0);
+  // The reference: the run's own rows every microsecond (a hundredth of output.dt).
+  ASSERT_EQ(run_imcol("run " + scene + " --no-plot --quiet --set output.dt=1e-6 --out " + fine.string()).status, 0);
+  double fine_peak = 0;
+  for (const auto& row : read_csv(fine / "trajectory.csv")) fine_peak = std::max(fine_peak, std::abs(std::stod(row.at("f_hist1"))));
+  double plotted = 0;
+  for (const auto& row : read_csv(out / "history_forces.csv"))
+    if (row.at("kernel") == "basset") plotted = std::max(plotted, std::abs(std::stod(row.at("f_hist1"))));
+  double table = NAN;
+  for (const auto& row : read_csv(out / "history.csv"))
+    if (row.at("kernel") == "basset") table = std::stod(row.at("peak_history_force_N"));
+  EXPECT_NEAR(table, plotted, 1e-9 * plotted);  // the same samples
+  EXPECT_NEAR(plotted, fine_peak, 0.01 * fine_peak) << "the samples near contact miss the peak";
+}
+
+TEST(Cli, HistorySweepGivesEPerKernelAsSeparateRunsDo) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_history_sweep";
+  const fs::path one = fs::temp_directory_path() / "imcol_cli_history_sweep_one";
+  fs::remove_all(out);
+  const std::string scene = imcol::data_dir() + "/scenes/default.toml";
+  // From the scene's own speed upwards, so that the points keep its t_end (as a separate run does).
+  const Result r = run_imcol("history " + scene + " --vary velocity --from 0.3 --to 0.6 --points 3 --kernels basset,kim --jobs 2 --out " +
+                             out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* f : {"history_sweep.csv", "history_sweep.json", "history_sweep.png"}) EXPECT_TRUE(fs::exists(out / f)) << f;
+  const auto rows = read_csv(out / "history_sweep.csv");
+  ASSERT_EQ(rows.size(), 9u);  // 3 points × (none, basset, kim)
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("status"), "ok") << row.at("message");
+    EXPECT_GT(std::stod(row.at("St")), 0);
+    if (row.at("kernel") == "none") continue;
+    EXPECT_EQ(row.at("evaluator"), "soe-step");  // the scene's evaluator
+    const Result single = run_imcol("run " + scene + " --no-plot --quiet --out " + one.string() + " --set sphere[0].velocity=" +
+                                    row.at("velocity_m_s") + " --set 'history.kernel=\"" + row.at("kernel") + "\"'");
+    ASSERT_EQ(single.status, 0) << single.err;
+    const double e = read_json(one / "summary.json")["e"].get<double>();
+    EXPECT_NEAR(std::stod(row.at("e")), e, 5e-7) << row.at("kernel") << " at " << row.at("velocity_m_s");  // the printed digits
+  }
+  // A kernel changes e: the three series differ at every point.
+  EXPECT_NE(rows[0].at("e"), rows[1].at("e"));
+  EXPECT_NE(rows[1].at("e"), rows[2].at("e"));
+  const auto j = read_json(out / "history_sweep.json");
+  EXPECT_EQ(j["vary"], "velocity");
+  EXPECT_EQ(j["series"].size(), 3u);
+  EXPECT_EQ(j["failures"].size(), 0u);
+}
+
+TEST(Cli, HistorySweepRefusesBadOptionsWithOneLine) {
+  const std::string scene = imcol::data_dir() + "/scenes/default.toml";
+  const std::string out = " --out " + (fs::temp_directory_path() / "imcol_cli_history_bad").string();
+  expect_refused(run_imcol("history " + scene + " --from 0.1" + out), "--from alone", {"--from", "--vary"});
+  expect_refused(run_imcol("history " + scene + " --jobs 2" + out), "--jobs alone", {"--jobs", "--vary"});
+  expect_refused(run_imcol("history " + scene + " --vary velocity --from 0.1 --to 0.2" + out), "--vary without --points", {"--vary", "--points"});
+  expect_refused(run_imcol("history " + scene + " --vary speed --from 0.1 --to 0.2 --points 2" + out), "--vary speed", {"--vary", "speed"});
+  expect_refused(run_imcol("history " + scene + " --vary velocity --from 0.1 --to 0.1 --points 3" + out), "empty range", {"--to", "--from"});
+  expect_refused(run_imcol("history " + scene + " --vary velocity --from 0.1 --to 0.2 --points 2 --kernels oseen" + out), "--kernels oseen",
+                 {"--kernels", "oseen"});
+  expect_refused(run_imcol("history " + imcol::data_dir() + "/scenes/rising_sphere.toml --vary velocity --from 0.1 --to 0.2 --points 2" + out),
+                 "free sphere", {"no collision"});
+}
