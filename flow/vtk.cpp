@@ -160,19 +160,19 @@ std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level,
       xyz[3 * k + 1] = L.z(j);
     }
   // Quads counter-clockwise in (r, z); cell data: the level, and whether the next finer level covers the cell.
-  std::vector<std::int64_t> conn(4 * nc), offsets(nc);
-  std::vector<std::uint8_t> types(nc, 9), finer(nc, 0);  // 9: VTK_QUAD
-  std::vector<std::int32_t> lev(nc, static_cast<std::int32_t>(level));
+  // Int32 indices: a level has far fewer than 2³¹ vertices (flow/cost.hpp refuses grids beyond half the memory).
+  std::vector<std::int32_t> conn(4 * nc), offsets(nc);
+  std::vector<std::uint8_t> types(nc, 9), finer(nc, 0), lev(nc, static_cast<std::uint8_t>(level));  // 9: VTK_QUAD
   const LevelGeometry* fg = level > 0 ? &levels[level - 1].g : nullptr;
   std::size_t c = 0;
   for (int i = 0; i < g.nr; ++i)
     for (int j = 0; j < g.nz; ++j, ++c) {
-      const auto p = static_cast<std::int64_t>(g.at(i, j)), q = static_cast<std::int64_t>(g.at(i + 1, j));
+      const auto p = static_cast<std::int32_t>(g.at(i, j)), q = static_cast<std::int32_t>(g.at(i + 1, j));
       conn[4 * c] = p;
       conn[4 * c + 1] = q;
       conn[4 * c + 2] = q + 1;
       conn[4 * c + 3] = p + 1;
-      offsets[c] = static_cast<std::int64_t>(4 * (c + 1));
+      offsets[c] = static_cast<std::int32_t>(4 * (c + 1));
       if (fg) {
         const double rc = g.r(i + 0.5), zc = g.z(j + 0.5);
         finer[c] = rc < fg->r(fg->nr) && zc > fg->z0 && zc < fg->z(fg->nz);

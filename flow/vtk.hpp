@@ -8,8 +8,9 @@
 //                      the cell: threshold finer < 0.5 to see each place once);
 //   STEM_spheres.vtp   each sphere as a semicircle polyline in the (r, z) plane, cell data diameter (m), velocity (m/s);
 //   STEM_wall.vtp      with a wall: the line z = z_w from the axis to the coarsest level's radius;
-// and a time series (.pvd) over the snapshots' .vtm files. The .vtu arrays are appended raw binary (Float64, Int64,
-// header_type UInt64, the machine's byte order); the bodies, a few hundred numbers, are ASCII with 17 digits.
+// and a time series (.pvd) over the snapshots' .vtm files. The .vtu arrays are appended raw binary (fields and points
+// Float64, cells Int32, cell data UInt8; header_type UInt64; the machine's byte order); the bodies, a few hundred
+// numbers, are ASCII with 17 digits.
 #include <string>
 #include <vector>
 
