@@ -5,10 +5,12 @@ namespace imcol::flow {
 
 namespace {
 
-/// ψ, ω, u_r, u_z at every vertex; u_inf the uniform stream as seen from the frame the fields are written in.
-LevelFields fields_of(const Level& L, double u_inf, double z_shift) {
+/// ψ, ω, u_r, u_z at every vertex of level l, seen from frame f.
+LevelFields fields_of(const Solver& s, std::size_t l, const SnapshotFrame& f) {
+  const Level& L = s.levels()[l];
+  const double u_inf = s.settings().u_inf + f.u_frame;  // the uniform stream as seen from the frame
   const auto& g = L.g;
-  LevelFields out{g, z_shift, {}};
+  LevelFields out{g, f.z_shift, {}};
   const std::size_t n = g.size();
   std::vector<double> psi(n), om(n), ur(n), uz(n);
   auto uzf = [&](int i, int j) { return (L.psi[g.at(i + 1, j)] - L.psi[g.at(i, j)]) / (g.h * g.r(i + 0.5)) + u_inf; };
@@ -45,7 +47,7 @@ const PointField* LevelFields::find(const std::string& column) const {
 std::vector<LevelFields> level_fields(const Solver& s, const SnapshotFrame& f) {
   std::vector<LevelFields> out;
   out.reserve(s.levels().size());
-  for (const auto& L : s.levels()) out.push_back(fields_of(L, s.settings().u_inf + f.u_frame, f.z_shift));
+  for (std::size_t l = 0; l < s.levels().size(); ++l) out.push_back(fields_of(s, l, f));
   return out;
 }
 
