@@ -72,7 +72,10 @@ void refuse_option(const CLI::App* cmd, const std::string& option, const std::st
 int cmd_run(const std::string& scene_path, const std::string& out, const CommonOptions& c, bool quiet, bool plot) {
   Scene sc = load_scene(scene_path, c.overrides());
   OutputUnit unit(out, fs::path("out") / sc.name, sc.path);
-  RunResult r = simulate(sc, !quiet);
+  // A coupled run's flow fields go to the staging folder as they are made (many snapshots are never held at once).
+  RunResult r = simulate(sc, !quiet, Recording::full, [&unit](const std::string& name, const std::string& content) {
+    write_file_atomic(unit.dir() / name, content);
+  });
   r.summary_json["run"] = unit.run();
   write_outputs(r, unit.dir());
   // "wrote" names the files where they are once the unit is committed, a moment later.

@@ -19,10 +19,8 @@ namespace fs = std::filesystem;
 int cmd_flow(const std::string& scene_path, const FlowCommandOptions& opt) {
   const flow::FlowScene sc = flow::load_flow_scene(scene_path);
   OutputUnit unit(opt.out, fs::path("out") / sc.name, scene_path);
-  const auto snapshot = [&](int k, const std::string& csv) {
-    write_file_atomic(unit.dir() / ("snapshot_" + std::string(k < 10 ? "0" : "") + std::to_string(k) + ".csv"), csv);
-  };
-  FlowRunResult r = run_flow_scene(sc, opt, snapshot);
+  const auto files = [&](const std::string& name, const std::string& content) { write_file_atomic(unit.dir() / name, content); };
+  FlowRunResult r = run_flow_scene(sc, opt, files);
   auto& j = r.summary;
   j["run"] = unit.run();
   write_file_atomic(unit.dir() / "forces.csv", r.forces_csv);

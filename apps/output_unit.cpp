@@ -64,10 +64,19 @@ std::string host_name() {
 
 /// Names of files a run of imcol writes (a folder holding only these may be replaced, even without a marker).
 bool written_by_imcol(const fs::directory_entry& f) {
-  if (!f.is_regular_file()) return false;
   const std::string n = f.path().filename().string();
   const std::string ext = f.path().extension().string();
-  return ext == ".csv" || ext == ".json" || ext == ".png" || n == "sweep.partial" || n.find(".tmp.") != std::string::npos;
+  std::error_code ec;
+  if (f.is_directory(ec) && !f.is_symlink(ec) && n == "vtk") {  // flow fields for ParaView: VTK files only
+    for (const auto& g : fs::directory_iterator(f.path(), ec)) {
+      const std::string e = g.path().extension().string();
+      if (!g.is_regular_file(ec) || (e != ".vtu" && e != ".vtp" && e != ".vtm" && g.path().filename().string().find(".tmp.") == std::string::npos))
+        return false;
+    }
+    return !ec;
+  }
+  if (!f.is_regular_file()) return false;
+  return ext == ".csv" || ext == ".json" || ext == ".png" || ext == ".pvd" || n == "sweep.partial" || n.find(".tmp.") != std::string::npos;
 }
 
 bool is_within(const fs::path& inner, const fs::path& outer) {

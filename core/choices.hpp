@@ -38,6 +38,9 @@ enum class ForceInStep {
            // light spheres (density ratio 0.5 at 24 cells/D): docs/coupling.md
 };
 
+/// Which files hold the flow fields (collision scenes' flow.fields_format, flow scenes' output.fields_format).
+enum class FieldsFormat { csv, vtk, both };
+
 template <class E> struct ChoiceNames;
 #define IMCOL_CHOICE_NAMES(E, ...)                                                   \
   template <> struct ChoiceNames<E> {                                                \
@@ -65,6 +68,7 @@ IMCOL_CHOICE_NAMES(EMeasure, {EMeasure::contact_ends, "contact_ends"}, {EMeasure
                    {EMeasure::gondret_2002, "gondret_2002"})
 IMCOL_CHOICE_NAMES(FlowStart, {FlowStart::impulsive, "impulsive"}, {FlowStart::developed, "developed"})
 IMCOL_CHOICE_NAMES(ForceInStep, {ForceInStep::linear, "linear"}, {ForceInStep::held, "held"})
+IMCOL_CHOICE_NAMES(FieldsFormat, {FieldsFormat::csv, "csv"}, {FieldsFormat::vtk, "vtk"}, {FieldsFormat::both, "both"})
 #undef IMCOL_CHOICE_NAMES
 
 /// The scene's spelling of a choice.

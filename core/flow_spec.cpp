@@ -45,6 +45,11 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   r.number_in("speed_jump_floor", f.speed_jump_floor, 0.0, 1e6, true, false);
   r.number_in("max_wall_hours", f.max_wall_hours, 0.0, 1e4, true, false);
   f.fields = r.boolean("fields", f.fields);
+  r.choice("fields_format", f.fields_format);
+  r.number_in("fields_every", f.fields_every, 0.0, 1e30, false, false);
+  if (!f.fields)
+    for (const char* k : {"fields_format", "fields_every"})
+      if (r.has(k)) r.fail(k, "applies only with fields = true (fields = false writes no flow fields)");
   r.finish();
 }
 

@@ -41,6 +41,8 @@ struct FlowSpec {
   double speed_jump_floor = 0.5;
   double max_wall_hours = 1.0;   // a run whose estimated wall time (flow/cost.hpp, up to t_end) exceeds this is refused
   bool fields = true;            // write the flow fields and pictures (gap 1 D, contact, one window after separation, end)
+  FieldsFormat fields_format = FieldsFormat::both;  // their files: CSV (the pictures read it), VTK XML (ParaView), or both
+  double fields_every = 0;       // and every this many seconds from t = 0 (0: only the moments above), s
   int line = 0;                  // line of the [flow] table (0: not given)
 };
 

@@ -13,7 +13,6 @@
 #include "coupling/run_cost.hpp"
 #include "coupling/step_rule.hpp"
 #include "flow/cost.hpp"
-#include "flow/snapshot.hpp"
 
 namespace imcol::coupling {
 
@@ -353,12 +352,33 @@ void FlowCoupling::report_start_up(long step, long n_pre, const std::string& doi
 
 flow::SnapshotFrame FlowCoupling::lab_frame() const { return {frame_z_, frame_u_, -t_pre_}; }
 
+void FlowCoupling::take_snapshot(const std::string& name, const std::string& label) {
+  if (!series_) {
+    series_ = std::make_unique<flow::FieldSeries>(sc_.flow.fields_format, [this](const std::string& n, const std::string& c) {
+      if (sink_) sink_(n, c);
+      else files_.emplace_back(n, c);
+    });
+  }
+  series_->take(*kernel_, lab_frame(), name, label);
+  ++stats_.field_snapshots;
+  stats_.fields_seconds = series_->seconds();
+}
+
+void FlowCoupling::take_regular(double t) {
+  const double every = sc_.flow.fields_every;
+  std::ostringstream name, label;
+  name << "fields_" << std::setw(6) << std::setfill('0') << stats_.steps;
+  label << "flow step " << stats_.steps << ",";
+  take_snapshot(name.str(), label.str());
+  next_every_ = (std::floor(t / every * (1 + 1e-12)) + 1) * every;
+}
+
 void FlowCoupling::maybe_snapshot(double t, double gap) {
   if (!sc_.flow.fields) return;
+  bool took = false;
   auto take = [&](const char* name, const std::string& label) {
-    std::ostringstream os;
-    os << std::setprecision(4) << label << ",";
-    snaps_.push_back({name, os.str(), flow::snapshot_csv(*kernel_, lab_frame(), os.str())});
+    take_snapshot(name, label + ",");
+    took = true;
   };
   if (std::isfinite(gap) && !snap_gap_ && gap <= D_) {
     snap_gap_ = true;
@@ -372,6 +392,12 @@ void FlowCoupling::maybe_snapshot(double t, double gap) {
     snap_after_ = true;
     take("flow_after_separation", "one fit window after separation");
   }
+  // The regular snapshots: at the first step at or past each multiple of flow.fields_every (one per step; a step
+  // that took a named snapshot already has its fields).
+  if (sc_.flow.fields_every > 0 && t >= next_every_ * (1 - 1e-12)) {
+    if (took) next_every_ = (std::floor(t / sc_.flow.fields_every * (1 + 1e-12)) + 1) * sc_.flow.fields_every;
+    else take_regular(t);
+  }
 }
 
 SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) {
@@ -384,6 +410,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
   watch.check_kernel_force(0.0, dt, acting(start_force_, integ.state()), integ.state());
   double t = 0;
   long n = 0;
+  if (sc_.flow.fields && sc_.flow.fields_every > 0) take_regular(0.0);  // the flow the spheres start in
   while (!integ.finished()) {
     const double t1 = static_cast<double>(n + 1) * dt;
     const Predicted p = predict(t, integ.state(), dt);
@@ -422,7 +449,9 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
   if (sc_.flow.fields) {
-    snaps_.push_back({"flow_end", "end of run", flow::snapshot_csv(*kernel_, lab_frame(), "end of run,")});
+    take_snapshot("flow_end", "end of run,");
+    series_->finish();
+    stats_.fields_seconds = series_->seconds();
   }
   return integ.stats();
 }

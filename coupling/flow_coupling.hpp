@@ -30,7 +30,7 @@
 #include "core/timing.hpp"
 #include "core/scene.hpp"
 #include "coupling/step_rule.hpp"
-#include "flow/snapshot.hpp"
+#include "flow/field_series.hpp"
 #include "flow/solver.hpp"
 #include "integrators/integrator.hpp"
 
@@ -56,11 +56,8 @@ struct FlowRunStats {
   // system's blocks, the coupled steps up to t_end, and the solver's memory.
   double est_start_up_s = 0, est_blocks_s = 0, est_steps_s = 0, est_bytes = 0;
   double est_total_s() const { return est_start_up_s + est_blocks_s + est_steps_s; }
-};
-
-/// A flow-field picture moment: its label and the kernel's fields as CSV (flow/snapshot.hpp).
-struct FlowSnapshot {
-  std::string name, label, csv;
+  int field_snapshots = 0;         // flow-field snapshots taken
+  double fields_seconds = 0;       // wall time computing and writing them, s
 };
 
 class FlowCoupling {
@@ -73,7 +70,10 @@ class FlowCoupling {
   const FlowRunStats& stats() const { return stats_; }
   /// Receives a progress text during the start-up (before t = 0: the flow developing, the force system's blocks).
   void set_progress(std::function<void(const std::string&)> f) { progress_ = std::move(f); }
-  const std::vector<FlowSnapshot>& snapshots() const { return snaps_; }
+  /// Where the flow-field files go as they are made (flow/field_series.hpp): names relative to the output folder.
+  /// Without a sink they are kept and returned by files().
+  void set_file_sink(flow::FileSink sink) { sink_ = std::move(sink); }
+  const std::vector<std::pair<std::string, std::string>>& files() const { return files_; }
 
  private:
   struct Predicted {
@@ -107,6 +107,8 @@ class FlowCoupling {
   void check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel);
   void report_start_up(long step, long n_pre, const std::string& doing);
   void maybe_snapshot(double t, double gap);
+  void take_snapshot(const std::string& name, const std::string& label);
+  void take_regular(double t);  // the flow.fields_every snapshot named by the step
   std::array<double, 2> acting(const std::array<double, 2>& f_rest, std::span<const double> y) const;  // (1 − H) f_rest
   flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
 
@@ -124,7 +126,10 @@ class FlowCoupling {
   FlowStep step_;                            // the flow step and how it was chosen (coupling/step_rule.hpp)
   bool have_f_rest_ = false;
   FlowRunStats stats_;
-  std::vector<FlowSnapshot> snaps_;
+  flow::FileSink sink_;
+  std::vector<std::pair<std::string, std::string>> files_;  // without a sink
+  std::unique_ptr<flow::FieldSeries> series_;               // with flow.fields
+  double next_every_ = 0;                                   // next regular snapshot (flow.fields_every), s
   std::function<void(const std::string&)> progress_;
   WallClock::time_point start_up_began_{};
   double est_before_t0_s_ = 0;  // estimated start-up and its blocks, s

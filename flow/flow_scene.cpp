@@ -273,7 +273,7 @@ void read_flow_settings(Reader& top, FlowScene& sc) {
   }
 }
 
-/// [output]: history stride, snapshots, min_gap stop.
+/// [output]: history stride, snapshots and their format, min_gap stop.
 void read_output(Reader& top, FlowScene& sc) {
   const std::string& path = sc.path;
   if (const toml::table* o = top.table("output")) {
@@ -284,6 +284,7 @@ void read_output(Reader& top, FlowScene& sc) {
     const long s = r.integer("snapshots", sc.snapshots);
     if (s < 0 || s > 1000) r.fail("snapshots", "must be in [0, 1000]");
     sc.snapshots = static_cast<int>(s);
+    r.choice("fields_format", sc.fields_format);
     sc.min_gap = r.number("min_gap", 0.0);
     if (sc.min_gap < 0) r.fail("min_gap", "must be >= 0");
     r.finish();

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/choices.hpp"
 #include "flow/solver.hpp"
 
 namespace imcol::flow {
@@ -47,6 +48,7 @@ struct FlowScene {
   // output
   int history_every = 1;  // force history stride, steps
   int snapshots = 1;      // evenly spaced in time, the last at t_end
+  FieldsFormat fields_format = FieldsFormat::both;  // snapshot files: CSV, VTK XML (+ flow.pvd), or both
   double min_gap = 0;     // stop when the surface gap of two spheres falls below this, units of D (0 = off)
   // where values came from, for error messages: lines in the file (0: not given), and the command-line options
   // that replaced scene values ("--cells", "--levels", "--dt", "--t-end")

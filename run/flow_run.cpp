@@ -12,7 +12,6 @@
 #include "core/errors.hpp"
 #include "core/timing.hpp"
 #include "flow/cost.hpp"
-#include "flow/snapshot.hpp"
 #include "flow/solver.hpp"
 #include "run/flow_references.hpp"
 
@@ -74,7 +73,7 @@ void check_cost(const flow::FlowScene& sc, const FlowRunOptions& opt) {
 /// One run: the solver, the references, and what the steps have gathered for the force history and the summary.
 class FlowRun {
  public:
-  FlowRun(const flow::FlowScene& sc, const FlowRunOptions& opt, const SnapshotSink& snapshot);
+  FlowRun(const flow::FlowScene& sc, const FlowRunOptions& opt, const flow::FileSink& files);
   FlowRunResult run();
 
  private:
@@ -96,7 +95,7 @@ class FlowRun {
 
   const flow::FlowScene& sc_;
   const FlowRunOptions& opt_;
-  const SnapshotSink& snapshot_;
+  std::optional<flow::FieldSeries> series_;  // with a file sink
   const flow::Settings set_;
   const int nb_;
   const double D_, a_, U_, Re_, mu_, nu_;
@@ -127,10 +126,10 @@ class FlowRun {
   bool basset_any_ = false;
 };
 
-FlowRun::FlowRun(const flow::FlowScene& sc, const FlowRunOptions& opt, const SnapshotSink& snapshot)
+FlowRun::FlowRun(const flow::FlowScene& sc, const FlowRunOptions& opt, const flow::FileSink& files)
     : sc_(sc),
       opt_(opt),
-      snapshot_(snapshot),
+
       set_(sc.settings()),
       nb_(static_cast<int>(sc.spheres.size())),
       D_(sc.D()),
@@ -154,6 +153,7 @@ FlowRun::FlowRun(const flow::FlowScene& sc, const FlowRunOptions& opt, const Sna
       thr_(nb_ == 2 ? std::make_unique<AnalyticPairForce>(sc) : nullptr),
       last_force_(nb_, 0.0) {
   if (osc_) f_osc_.emplace(mu_, sc.density, a_, s0_.amplitude, s0_.frequency);
+  if (files) series_.emplace(sc.fields_format, files);
 }
 
 void FlowRun::announce() const {
@@ -237,7 +237,7 @@ void FlowRun::progress_line(long n, double t, double wall, double cd, const flow
 }
 
 void FlowRun::take_snapshot() {
-  if (snapshot_) snapshot_(snap_, snapshot_csv(solver_));
+  if (series_) series_->take(solver_, {}, std::string("snapshot_") + (snap_ < 10 ? "0" : "") + std::to_string(snap_), "");
   ++snap_;
 }
 
@@ -290,6 +290,7 @@ FlowRunResult FlowRun::run() {
     if (!advance(n)) break;
   const double wall_total = seconds_since(t0_);
   if (sc_.snapshots > 0 && snap_ < sc_.snapshots) take_snapshot();  // stopped early: one last snapshot
+  if (series_) series_->finish();
   return {hist_.str(), summary(wall_total)};
 }
 
@@ -374,11 +375,11 @@ void FlowRun::grid_and_solver_summary(json& j, double wall_total) const {
 
 }  // namespace
 
-FlowRunResult run_flow_scene(flow::FlowScene scene, const FlowRunOptions& opt, const SnapshotSink& snapshot) {
+FlowRunResult run_flow_scene(flow::FlowScene scene, const FlowRunOptions& opt, const flow::FileSink& files) {
   apply_overrides(scene, opt);
   flow::check_flow_scene(scene);
   check_cost(scene, opt);
-  return FlowRun(scene, opt, snapshot).run();
+  return FlowRun(scene, opt, files).run();
 }
 
 }  // namespace imcol

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "flow/field_series.hpp"
 #include "flow/flow_scene.hpp"
 
 namespace imcol {
@@ -28,11 +29,10 @@ struct FlowRunResult {
   nlohmann::ordered_json summary;  // summary.json (without the `run` block)
 };
 
-/// Called with each snapshot's index (0, 1, …) and its CSV text (flow/snapshot.hpp), as the run reaches it.
-using SnapshotSink = std::function<void(int index, const std::string& csv)>;
-
 /// Runs the scene with the options' overrides. Throws InputError (overrides, a grid beyond the memory, an estimated
-/// wall time beyond an hour without allow_long) before anything is allocated.
-FlowRunResult run_flow_scene(flow::FlowScene scene, const FlowRunOptions& opt, const SnapshotSink& snapshot = {});
+/// wall time beyond an hour without allow_long) before anything is allocated. The snapshots' files (snapshot_NN.csv,
+/// vtk/snapshot_NN.*, flow.pvd as output.fields_format says: flow/field_series.hpp) go to `files` as the run
+/// reaches them, in the kernel's frame.
+FlowRunResult run_flow_scene(flow::FlowScene scene, const FlowRunOptions& opt, const flow::FileSink& files = {});
 
 }  // namespace imcol

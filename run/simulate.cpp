@@ -57,7 +57,7 @@ nlohmann::ordered_json events_block(const CollisionModel& model) {
 
 }  // namespace
 
-RunResult simulate(const Scene& sc, bool progress, Recording recording) {
+RunResult simulate(const Scene& sc, bool progress, Recording recording, const flow::FileSink& fields) {
   // A scene that can never collide is refused before anything is integrated: its trajectory would be the whole
   // run to t_end with nothing to measure.
   if (const auto why = model::never_approaching(sc)) throw InputError(sc.path, "sphere[0].velocity", *why);
@@ -78,6 +78,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
     if (sc.has(Effect::flow)) {
       coupled = std::make_unique<coupling::FlowCoupling>(model, sc);
       if (progress) coupled->set_progress([&rec](const std::string& text) { rec.show_status(text); });
+      if (fields) coupled->set_file_sink(fields);
       stats = coupled->run(st, rec);
     } else {
       stats = integrate(model, st, rec);
@@ -132,7 +133,7 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording) {
   if (coupled) {
     s.flow = run::flow_summary(coupled->stats(), sc, wall);
     j["flow"] = run::flow_block(*s.flow);
-    for (const auto& snap : coupled->snapshots()) res.files.push_back({snap.name + ".csv", snap.csv});
+    res.files = coupled->files();
   }
   s.wall_time_s = wall;
   s.setup_time_s = setup;  // model construction, incl. one-off lookup tables

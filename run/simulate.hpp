@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/scene.hpp"
+#include "flow/field_series.hpp"
 #include "run/run_summary.hpp"
 
 namespace imcol {
@@ -29,7 +30,9 @@ enum class Recording { full, kinematics };
 
 /// Runs one scene. Throws InputError (bad scene), SolverError (integration failed).
 /// `progress`: a run still going after 2 s shows a progress line on a terminal (stderr).
-RunResult simulate(const Scene& scene, bool progress = false, Recording recording = Recording::full);
+/// `fields`: receives a coupled run's flow-field files as they are made (flow/field_series.hpp); without it they are
+/// kept in RunResult::files.
+RunResult simulate(const Scene& scene, bool progress = false, Recording recording = Recording::full, const flow::FileSink& fields = {});
 
 /// DIR/trajectory.csv and DIR/summary.json (and a coupled run's flow fields), each written completely or not at all.
 void write_outputs(const RunResult& r, const std::filesystem::path& dir);

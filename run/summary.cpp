@@ -190,6 +190,7 @@ nlohmann::ordered_json flow_block(const FlowSummary& f) {
           {"frame_travel_m", fs.frame_travel}, {"start_up_time_s", fs.pre_seconds},
           {"flow_time_s", fs.flow_seconds}, {"ode_time_s", fs.ode_seconds},
           {"flow_share", f.flow_share}, {"ode_share", f.ode_share},
+          {"field_snapshots", fs.field_snapshots}, {"fields_time_s", fs.fields_seconds},
           {"estimate", {{"start_up_s", fs.est_start_up_s}, {"force_system_blocks_s", fs.est_blocks_s}, {"steps_to_t_end_s", fs.est_steps_s},
                         {"total_s", fs.est_total_s()}, {"memory_MB", fs.est_bytes / 1e6}}}};
 }

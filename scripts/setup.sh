@@ -91,7 +91,7 @@ if [[ $(id -u) -eq 0 ]] && command -v apt-get >/dev/null; then
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends \
     cmake ninja-build g++ dpkg-dev libeigen3-dev libfftw3-dev libcli11-dev libtomlplusplus-dev \
-    nlohmann-json3-dev libgtest-dev libbenchmark-dev libcerf-dev python3-matplotlib >/dev/null
+    nlohmann-json3-dev libgtest-dev libbenchmark-dev libcerf-dev python3-matplotlib python3-meshio >/dev/null
   t0=$SECONDS
   mkdir -p "$DEPS"
   log=$DEPS/sundials-build.log

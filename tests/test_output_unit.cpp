@@ -189,6 +189,35 @@ TEST(OutputUnit, FoldersThatAreNotImcolOutputsAreRefused) {
   fs::remove_all(dir);
 }
 
+TEST(OutputUnit, AFolderOfFlowFieldsIsAnImcolOutput) {
+  // Without the marker, a folder holding what a coupled run writes (CSV, flow.pvd, vtk/ of VTK files) may be
+  // replaced; a vtk/ folder holding anything else may not.
+  const fs::path dir = fresh("vtkfields");
+  fs::create_directories(dir / "vtk");
+  std::ofstream(dir / "flow_end.csv") << "level,r,z\n";
+  std::ofstream(dir / "flow.pvd") << "<VTKFile/>";
+  std::ofstream(dir / "vtk" / "flow_end.vtm") << "<VTKFile/>";
+  std::ofstream(dir / "vtk" / "flow_end_level0.vtu") << "<VTKFile/>";
+  {
+    OutputUnit unit(dir.string(), "unused");
+    std::ofstream(unit.dir() / "summary.json") << "{}";
+    unit.commit();
+  }
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "vtk"));
+  fs::remove(dir / ".imcol-run.json");
+  fs::create_directories(dir / "vtk");
+  std::ofstream(dir / "vtk" / "notes.txt") << "mine";
+  try {
+    OutputUnit unit(dir.string(), "unused");
+    ADD_FAILURE() << "a vtk folder holding other files was taken";
+  } catch (const imcol::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'vtk', which imcol did not write"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(slurp(dir / "vtk" / "notes.txt"), "mine");
+  fs::remove_all(dir);
+}
+
 TEST(OutputUnit, AnImpossiblePlaceIsRefusedBeforeAnythingRuns) {
   // A folder under a regular file: exit 2 naming --out, before the sweep's 2000 points run (none is in the message).
   const fs::path file = fresh("file");

@@ -106,6 +106,13 @@ TEST(Scene, RejectsBadInput) {
   expect_error(kWall + "effects = [\"drag\"]\n", {"wall.effects", "unknown key"});
   expect_error(kWall + "[drag]\nlaw = \"newton\"\n", {"drag.law"});
   expect_error("[[sphere]\n", {"bad.toml:1", "TOML"});
+  // The flow fields' files: a known format, and no format or interval when no fields are written.
+  const std::string coupled = "effects = [\"drag\", \"elastic\", \"flow\"]\n" + kWall;
+  expect_error(coupled + "[flow]\nfields_format = \"hdf5\"\n", {"flow.fields_format", "csv | vtk | both"});
+  expect_error(coupled + "[flow]\nfields_every = -0.01\n", {"flow.fields_every"});
+  expect_error(coupled + "[flow]\nfields = false\nfields_every = 0.01\n", {"flow.fields_every", "fields = true"});
+  EXPECT_EQ(parse_scene(coupled + "[flow]\nfields_format = \"vtk\"\nfields_every = 0.01\n", "ok.toml").flow.fields_format,
+            imcol::FieldsFormat::vtk);
 }
 
 TEST(Scene, RejectsOverlappingSpheresAndWrongLubrication) {

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "flow/field_series.hpp"
+
+#include "core/timing.hpp"
+#include "flow/snapshot.hpp"
+
+namespace imcol::flow {
+
+void FieldSeries::take(const Solver& s, const SnapshotFrame& frame, const std::string& name, const std::string& label) {
+  const auto t0 = WallClock::now();
+  const std::vector<LevelFields> levels = level_fields(s, frame);
+  if (csv()) sink_(name + ".csv", snapshot_csv(s, levels, frame, label));
+  std::string moment = label;  // without the CSV comment's trailing comma
+  if (!moment.empty() && moment.back() == ',') moment.pop_back();
+  if (vtk() && s.steps() == last_vtk_step_ && !entries_.empty()) {
+    entries_.back().label += "; " + moment;  // the same fields: named in the series' comment
+  } else if (vtk()) {
+    last_vtk_step_ = s.steps();
+    for (const auto& f : snapshot_vtk(s, levels, frame, name, moment)) sink_("vtk/" + f.name, f.content);
+    entries_.push_back({s.time() + frame.t_shift, "vtk/" + name + ".vtm", moment});
+  }
+  seconds_ += seconds_since(t0);
+}
+
+void FieldSeries::finish() {
+  const auto t0 = WallClock::now();
+  if (vtk() && !entries_.empty()) sink_("flow.pvd", vtk_series(entries_));
+  seconds_ += seconds_since(t0);
+}
+
+}  // namespace imcol::flow

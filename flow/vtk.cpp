@@ -1,0 +1,236 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "flow/vtk.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <iomanip>
+#include <sstream>
+
+#include "core/number_text.hpp"
+
+namespace imcol::flow {
+
+namespace {
+
+constexpr const char* kByteOrder = std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian";
+
+std::string file_head(const char* type) {
+  return std::string("<?xml version=\"1.0\"?>\n<VTKFile type=\"") + type + "\" version=\"1.0\" byte_order=\"" + kByteOrder +
+         "\" header_type=\"UInt64\">\n";
+}
+
+/// Text safe inside an XML comment or attribute.
+std::string xml_text(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else if (c == '-' && !out.empty() && out.back() == '-') out += ' ', out += c;  // no "--" in a comment
+    else out += c;
+  }
+  return out;
+}
+
+template <class T> constexpr const char* vtk_type();
+template <> constexpr const char* vtk_type<double>() { return "Float64"; }
+template <> constexpr const char* vtk_type<std::int64_t>() { return "Int64"; }
+template <> constexpr const char* vtk_type<std::int32_t>() { return "Int32"; }
+template <> constexpr const char* vtk_type<std::uint8_t>() { return "UInt8"; }
+
+/// The appended-data block: each array is its byte count (UInt64) followed by its raw bytes; the XML element names
+/// its offset into the block.
+class Appended {
+ public:
+  template <class T>
+  std::string array(const std::string& name, int components, const std::vector<T>& v) {
+    std::ostringstream os;
+    os << "<DataArray type=\"" << vtk_type<T>() << "\"";
+    if (!name.empty()) os << " Name=\"" << name << "\"";
+    if (components > 1) os << " NumberOfComponents=\"" << components << "\"";
+    os << " format=\"appended\" offset=\"" << blob_.size() << "\"/>\n";
+    const std::uint64_t bytes = v.size() * sizeof(T);
+    const std::size_t at = blob_.size();
+    blob_.resize(at + sizeof bytes + bytes);
+    std::memcpy(blob_.data() + at, &bytes, sizeof bytes);
+    if (bytes) std::memcpy(blob_.data() + at + sizeof bytes, v.data(), bytes);
+    return os.str();
+  }
+  const std::string& blob() const { return blob_; }
+
+ private:
+  std::string blob_;
+};
+
+/// 17 significant digits: a double read back is the same double.
+void append_exact(std::string& out, double v) { append_number(out, v, 17); }
+
+std::string spheres_vtp(const Solver& s, const SnapshotFrame& f, const std::string& label) {
+  constexpr int kSegments = 64;  // per semicircle
+  const auto& sph = s.spheres();
+  const std::size_t n = sph.size();
+  std::string pts, conn, offs, diam, vel;
+  for (std::size_t b = 0; b < n; ++b) {
+    const double a = sph[b].radius, zc = sph[b].z + f.z_shift;
+    for (int k = 0; k <= kSegments; ++k) {
+      const double th = M_PI * k / kSegments;  // from the south pole (r = 0, z = zc − a) round to the north pole
+      append_exact(pts, k == 0 || k == kSegments ? 0.0 : a * std::sin(th));
+      pts += ' ';
+      append_exact(pts, zc - a * std::cos(th));
+      pts += " 0\n";
+      conn += std::to_string(b * (kSegments + 1) + k) + (k == kSegments ? "\n" : " ");
+    }
+    offs += std::to_string((b + 1) * (kSegments + 1)) + " ";
+    append_exact(diam, 2 * a);
+    diam += ' ';
+    vel += "0 ";
+    append_exact(vel, sph[b].u + f.u_frame);
+    vel += " 0\n";
+  }
+  std::ostringstream os;
+  os << file_head("PolyData") << "<!-- imcol: the spheres at " << xml_text(label)
+     << "; (x, y) = (r, z) m; diameter m; velocity m/s seen from the same frame as the flow fields -->\n"
+     << "<PolyData>\n<Piece NumberOfPoints=\"" << n * (kSegments + 1) << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
+     << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+     << "<CellData Scalars=\"diameter\" Vectors=\"velocity\">\n"
+     << "<DataArray type=\"Float64\" Name=\"diameter\" format=\"ascii\">\n" << diam << "\n</DataArray>\n"
+     << "<DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">\n" << vel << "</DataArray>\n"
+     << "</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n" << pts << "</DataArray>\n</Points>\n"
+     << "<Lines>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n" << conn << "</DataArray>\n"
+     << "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n" << offs << "\n</DataArray>\n</Lines>\n"
+     << "</Piece>\n</PolyData>\n</VTKFile>\n";
+  return os.str();
+}
+
+std::string wall_vtp(const Solver& s, const SnapshotFrame& f, const std::string& label) {
+  const auto& gc = s.levels().back().g;
+  std::string pts;
+  const double zw = *s.settings().wall_z + f.z_shift;
+  for (double r : {0.0, gc.r(gc.nr)}) {
+    append_exact(pts, r);
+    pts += ' ';
+    append_exact(pts, zw);
+    pts += " 0\n";
+  }
+  std::ostringstream os;
+  os << file_head("PolyData") << "<!-- imcol: the no-slip wall at " << xml_text(label)
+     << "; (x, y) = (r, z) m, from the axis to the coarsest level's radius -->\n"
+     << "<PolyData>\n<Piece NumberOfPoints=\"2\" NumberOfVerts=\"0\" NumberOfLines=\"1\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+     << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n" << pts << "</DataArray>\n</Points>\n"
+     << "<Lines>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n0 1\n</DataArray>\n"
+     << "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n2\n</DataArray>\n</Lines>\n"
+     << "</Piece>\n</PolyData>\n</VTKFile>\n";
+  return os.str();
+}
+
+}  // namespace
+
+std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level, const std::string& label) {
+  const LevelFields& L = levels[level];
+  const auto& g = L.g;
+  const std::size_t np = g.size(), nc = static_cast<std::size_t>(g.nr) * g.nz;
+  Appended ap;
+  std::string point_data, names;
+  // Vectors first (their components gathered as (r, z, 0)), then the scalars, in the fields' order.
+  std::vector<std::string> vectors;
+  for (const auto& f : L.fields)
+    if (f.component >= 0 && std::find(vectors.begin(), vectors.end(), f.name) == vectors.end()) vectors.push_back(f.name);
+  for (const auto& name : vectors) {
+    std::vector<double> v(3 * np, 0.0);
+    for (const auto& f : L.fields)
+      if (f.name == name)
+        for (std::size_t k = 0; k < np; ++k) v[3 * k + f.component] = f.values[k];
+    point_data += ap.array(name, 3, v);
+  }
+  std::string first_scalar;
+  for (const auto& f : L.fields)
+    if (f.component < 0) {
+      if (first_scalar.empty()) first_scalar = f.name;
+      point_data += ap.array(f.name, 1, f.values);
+    }
+  std::vector<double> xyz(3 * np, 0.0);
+  for (int i = 0; i <= g.nr; ++i)
+    for (int j = 0; j <= g.nz; ++j) {
+      const std::size_t k = g.at(i, j);
+      xyz[3 * k] = L.r(i);
+      xyz[3 * k + 1] = L.z(j);
+    }
+  // Quads counter-clockwise in (r, z); cell data: the level, and whether the next finer level covers the cell.
+  // Int32 indices: a level has far fewer than 2³¹ vertices (flow/cost.hpp refuses grids beyond half the memory).
+  std::vector<std::int32_t> conn(4 * nc), offsets(nc);
+  std::vector<std::uint8_t> types(nc, 9), finer(nc, 0), lev(nc, static_cast<std::uint8_t>(level));  // 9: VTK_QUAD
+  const LevelGeometry* fg = level > 0 ? &levels[level - 1].g : nullptr;
+  std::size_t c = 0;
+  for (int i = 0; i < g.nr; ++i)
+    for (int j = 0; j < g.nz; ++j, ++c) {
+      const auto p = static_cast<std::int32_t>(g.at(i, j)), q = static_cast<std::int32_t>(g.at(i + 1, j));
+      conn[4 * c] = p;
+      conn[4 * c + 1] = q;
+      conn[4 * c + 2] = q + 1;
+      conn[4 * c + 3] = p + 1;
+      offsets[c] = static_cast<std::int32_t>(4 * (c + 1));
+      if (fg) {
+        const double rc = g.r(i + 0.5), zc = g.z(j + 0.5);
+        finer[c] = rc < fg->r(fg->nr) && zc > fg->z0 && zc < fg->z(fg->nz);
+      }
+    }
+  std::string cell_data = ap.array("level", 1, lev) + ap.array("finer", 1, finer);
+  const std::string points = ap.array("", 3, xyz);
+  const std::string cells = ap.array("connectivity", 1, conn) + ap.array("offsets", 1, offsets) + ap.array("types", 1, types);
+
+  std::ostringstream os;
+  os << file_head("UnstructuredGrid") << "<!-- imcol: flow fields, level " << level << " (0 the finest, spacing " << std::setprecision(17)
+     << g.h << " m), " << xml_text(label)
+     << "; (x, y) = (r, z) m; velocity (u_r, u_z, 0) m/s, stream_function (total Stokes streamfunction) m^3/s, vorticity 1/s; "
+        "cell data: level, finer = 1 where a finer level covers the cell -->\n"
+     << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << np << "\" NumberOfCells=\"" << nc << "\">\n"
+     << "<PointData";
+  if (!vectors.empty()) os << " Vectors=\"" << vectors.front() << "\"";
+  if (!first_scalar.empty()) os << " Scalars=\"" << first_scalar << "\"";
+  os << ">\n" << point_data << "</PointData>\n<CellData Scalars=\"finer\">\n" << cell_data << "</CellData>\n<Points>\n" << points
+     << "</Points>\n<Cells>\n" << cells << "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  std::string out = os.str();
+  out += ap.blob();
+  out += "\n</AppendedData>\n</VTKFile>\n";
+  return out;
+}
+
+std::vector<NamedText> snapshot_vtk(const Solver& s, const std::vector<LevelFields>& levels, const SnapshotFrame& f,
+                                    const std::string& stem, const std::string& label) {
+  std::vector<NamedText> out;
+  std::ostringstream vtm;
+  vtm << file_head("vtkMultiBlockDataSet") << "<!-- imcol: flow fields at " << xml_text(label) << ", t = " << std::setprecision(17)
+      << s.time() + f.t_shift << " s -->\n<vtkMultiBlockDataSet>\n<Block index=\"0\" name=\"levels\">\n";
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const std::string name = stem + "_level" + std::to_string(l) + ".vtu";
+    out.push_back({name, level_vtu(levels, l, label)});
+    vtm << "<DataSet index=\"" << l << "\" name=\"level " << l << "\" file=\"" << xml_text(name) << "\"/>\n";
+  }
+  vtm << "</Block>\n<Block index=\"1\" name=\"bodies\">\n";
+  out.push_back({stem + "_spheres.vtp", spheres_vtp(s, f, label)});
+  vtm << "<DataSet index=\"0\" name=\"spheres\" file=\"" << xml_text(out.back().name) << "\"/>\n";
+  if (s.settings().wall_z) {
+    out.push_back({stem + "_wall.vtp", wall_vtp(s, f, label)});
+    vtm << "<DataSet index=\"1\" name=\"wall\" file=\"" << xml_text(out.back().name) << "\"/>\n";
+  }
+  vtm << "</Block>\n</vtkMultiBlockDataSet>\n</VTKFile>\n";
+  out.insert(out.begin(), {stem + ".vtm", vtm.str()});
+  return out;
+}
+
+std::string vtk_series(const std::vector<SeriesEntry>& entries) {
+  std::ostringstream os;
+  os << file_head("Collection") << "<!-- imcol: flow fields over time (s); each file groups the grid levels and the bodies -->\n<Collection>\n"
+     << std::setprecision(17);
+  for (const auto& e : entries)
+    os << "<DataSet timestep=\"" << e.time << "\" group=\"\" part=\"0\" file=\"" << xml_text(e.file) << "\"/> <!-- " << xml_text(e.label)
+       << " -->\n";
+  os << "</Collection>\n</VTKFile>\n";
+  return os.str();
+}
+
+}  // namespace imcol::flow
