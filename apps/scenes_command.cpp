@@ -65,13 +65,18 @@ int cmd_scenes(const std::string& pattern) {
     std::cout << "no shipped scene matches '" << pattern << "' (in " << scenes_dir() << ")\n";
     return 0;
   }
+  // Grouped by folder: the top level first, then each folder in order.
+  auto folder_of = [](const Entry& e) {
+    const auto slash = e.name.rfind('/');
+    return slash == std::string::npos ? std::string() : e.name.substr(0, slash + 1);
+  };
+  std::stable_sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) { return folder_of(a) < folder_of(b); });
   std::size_t width = 0;
   for (const auto& e : entries) width = std::max(width, e.name.size());
   std::cout << "shipped scenes in " << scenes_dir() << " (imcol run NAME; a path to a file of your own works too)\n";
   std::string folder = "\x01";
   for (const auto& e : entries) {
-    const auto slash = e.name.rfind('/');
-    const std::string f = slash == std::string::npos ? "" : e.name.substr(0, slash + 1);
+    const std::string f = folder_of(e);
     if (f != folder) {
       folder = f;
       std::cout << "\n" << (f.empty() ? std::string("(top level)") : f) << "\n";
