@@ -167,15 +167,4 @@ const FluidTable& FluidTable::builtin() {
   return t;
 }
 
-const FluidEntry* FluidTable::find(const std::string& name) const {
-  auto it = by_name_.find(name);
-  return it == by_name_.end() ? nullptr : &it->second;
-}
-
-std::string FluidTable::names() const {
-  std::string s;
-  for (const auto& [k, v] : by_name_) s += (s.empty() ? "" : ", ") + k;
-  return s;
-}
-
 }  // namespace imcol

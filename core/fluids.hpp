@@ -3,9 +3,10 @@
 // Liquids by name: data/fluids.csv gives each property (density kg/m^3, viscosity Pa s) as a fixed value or as a
 // correlation in the temperature t (°C) and, for glycerol-water, the glycerol mass fraction w (-). The correlations'
 // formulas are here; their ranges and sources are the table's.
-#include <map>
 #include <optional>
 #include <string>
+
+#include "core/named_table.hpp"
 
 namespace imcol {
 
@@ -39,19 +40,13 @@ struct FluidEntry {
   bool takes_mass_fraction() const { return density.uses_mass_fraction() || viscosity.uses_mass_fraction(); }
 };
 
-class FluidTable {
+class FluidTable : public NamedTable<FluidEntry> {
  public:
   /// Reads a CSV with header fluid,property,value,correlation,t_min_C,t_max_C,w_min,w_max,source ('#' lines are
   /// comments). Throws InputError naming the file and line.
   static FluidTable load(const std::string& path);
   /// The table shipped in data/fluids.csv.
   static const FluidTable& builtin();
-
-  const FluidEntry* find(const std::string& name) const;
-  std::string names() const;  // comma-separated, for error messages
-
- private:
-  std::map<std::string, FluidEntry> by_name_;
 };
 
 }  // namespace imcol

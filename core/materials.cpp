@@ -72,15 +72,4 @@ const MaterialTable& MaterialTable::builtin() {
   return t;
 }
 
-const Material* MaterialTable::find(const std::string& name) const {
-  auto it = by_name_.find(name);
-  return it == by_name_.end() ? nullptr : &it->second;
-}
-
-std::string MaterialTable::names() const {
-  std::string s;
-  for (const auto& [k, v] : by_name_) s += (s.empty() ? "" : ", ") + k;
-  return s;
-}
-
 }  // namespace imcol
