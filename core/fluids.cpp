@@ -2,7 +2,6 @@
 #include "core/fluids.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -114,22 +113,9 @@ double FluidProperty::at(double w, double t_C) const {
 }
 
 FluidTable FluidTable::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the fluid table");
   FluidTable table;
-  std::string line;
-  int lineno = 0;
-  bool header_seen = false;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (line.empty() || line[0] == '#') continue;
-    const std::string where = path + ":" + std::to_string(lineno);
-    if (!header_seen) {
-      header_seen = true;
-      if (line.rfind("fluid,property,value,correlation,", 0) != 0)
-        throw InputError(where, "", "expected the header fluid,property,value,correlation,t_min_C,t_max_C,w_min,w_max,source");
-      continue;
-    }
+  read_csv_rows(path, "fluid table", "fluid,property,value,correlation,t_min_C,t_max_C,w_min,w_max,source",
+                [&](const std::string& where, const std::string& line) {
     const auto c = cells(line, 8);
     if (c.size() != 9) throw InputError(where, "", "expected 9 columns");
     FluidEntry& e = table.by_name_[c[0]];
@@ -155,7 +141,7 @@ FluidTable FluidTable::load(const std::string& path) {
       p.w_max = cell_number(c[7], where, "w_max");
       if (k->uses_w != (p.w_min && p.w_max)) throw InputError(where, "w_min", "'" + p.correlation + (k->uses_w ? "' needs" : "' takes no") + " w_min and w_max");
     }
-  }
+  });
   for (const auto& [name, e] : table.by_name_)
     if (e.density.source.empty() || e.viscosity.source.empty())
       throw InputError(path, "", "fluid '" + name + "' needs both a density and a viscosity row");
