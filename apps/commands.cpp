@@ -22,6 +22,7 @@
 #include "apps/option_rules.hpp"
 #include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
+#include "apps/scenes_command.hpp"
 #include "core/toml_reader.hpp"
 #include "apps/flow_command.hpp"
 #include "run/simulate.hpp"
@@ -62,6 +63,12 @@ void add_common(CLI::App* cmd, CommonOptions& c) {
   cmd->add_option("--integrator", c.integrator, "cvode | ida (same as --set solver.integrator=NAME)")
       ->check(choice_rule("--integrator", choice_names<IntegratorMethod>()));
   cmd->add_option("--set", c.sets, "override a scene key: dotted.key=value (TOML value syntax)");
+}
+
+/// The scene argument of a command: a file, or a shipped scene's name (find_scene), replaced by the file it names.
+void add_scene(CLI::App* cmd, std::string& scene,
+               const std::string& help = "scene: a file (TOML), or a shipped scene's name (default, coupled/gg3462; imcol scenes lists them)") {
+  cmd->add_option("scene", scene, help)->required()->transform(scene_rule());
 }
 
 /// An option the command sets itself (bench takes its tolerances from --rtols): refused if given.
@@ -184,7 +191,7 @@ Subcommand add_run(CLI::App& app) {
   struct Opt { CommonOptions c; std::string scene, out; bool quiet = false, no_plot = false; };
   auto o = std::make_shared<Opt>();
   auto* run = app.add_subcommand("run", "simulate one scene; writes DIR/trajectory.csv and DIR/summary.json");
-  run->add_option("scene", o->scene, "scene file (TOML)")->required();
+  add_scene(run, o->scene);
   run->add_option("--out", o->out, "output directory (default out/<scene name>)")->check(path_rule("--out"));
   run->add_flag("--quiet", o->quiet, "print nothing on success (no progress line)");
   run->add_flag("--no-plot", o->no_plot, "skip DIR/trajectory.png");
@@ -215,7 +222,7 @@ Subcommand add_bench(CLI::App& app) {
   struct Opt { CommonOptions c; std::string scene; std::vector<double> rtols = {1e-6, 1e-8, 1e-10}; int repeat = 5; };
   auto o = std::make_shared<Opt>();
   auto* bench = app.add_subcommand("bench", "what accuracy costs: e and median wall time at several rtol");
-  bench->add_option("scene", o->scene, "scene file (TOML)")->required();
+  add_scene(bench, o->scene);
   bench->add_option("--rtols", o->rtols, "relative tolerances to compare")->delimiter(',')->check(number_rule("--rtols", kRtol));
   bench->add_option("--repeat", o->repeat, "runs per tolerance (median reported)")->check(integer_rule("--repeat", 1, 1000));
   add_common(bench, o->c);
@@ -230,7 +237,7 @@ Subcommand add_effects(CLI::App& app) {
   struct Opt { CommonOptions c; std::string scene; };
   auto o = std::make_shared<Opt>();
   auto* effects = app.add_subcommand("effects", "which effect does what: rerun the scene without each of its effects");
-  effects->add_option("scene", o->scene, "scene file (TOML)")->required();
+  add_scene(effects, o->scene);
   add_common(effects, o->c);
   return {effects, [o] { return cmd_effects(o->scene, o->c); }};
 }
@@ -254,7 +261,7 @@ Subcommand add_history(CLI::App& app) {
   auto o = std::make_shared<Opt>();
   auto* history = app.add_subcommand("history", "compare history-force kernels and evaluators on one scene (and without history); "
                                                 "with --vary, e against St per kernel over a sweep");
-  history->add_option("scene", o->scene, "scene file (TOML)")->required();
+  add_scene(history, o->scene);
   history->add_option("--out", o->h.out, "output directory (default out/<scene name>-history, a sweep: -history_<quantity>)")->check(path_rule("--out"));
   history->add_option("--kernels", o->h.kernels, "kernels to run (default all)")->delimiter(',')
       ->check(choice_rule("--kernels", choice_names<KernelKind>()));
@@ -279,7 +286,7 @@ Subcommand add_laws(CLI::App& app) {
   struct Opt { CommonOptions c; std::string scene; LawsCompareOptions l; bool no_plot = false; };
   auto o = std::make_shared<Opt>();
   auto* laws = app.add_subcommand("laws", "compare the solid contact laws (contact.law) on one scene: e, contact time, peak force, overlap");
-  laws->add_option("scene", o->scene, "scene file (TOML)")->required();
+  add_scene(laws, o->scene);
   laws->add_option("--laws", o->l.laws, "contact laws to run (default every shipped law)")->delimiter(',')
       ->check(choice_rule("--laws", choice_names<ContactLawKind>()));
   laws->add_option("--out", o->l.out, "output directory (default out/<scene name>-laws, a sweep: -laws_<quantity>)")->check(path_rule("--out"));
@@ -297,7 +304,7 @@ Subcommand add_flow(CLI::App& app) {
   struct Opt { std::string scene; FlowCommandOptions f; bool no_plot = false; long cells = 0, levels = 0; double dt = 0, t_end = 0; };
   auto o = std::make_shared<Opt>();
   auto* flowc = app.add_subcommand("flow", "immersed-boundary flow around spheres on the axis: force history, C_D, snapshots");
-  flowc->add_option("scene", o->scene, "flow scene file (TOML, data/scenes/flow/)")->required();
+  add_scene(flowc, o->scene, "flow scene: a file (TOML), or a shipped scene's name (flow/fixed_sphere_re20; imcol scenes flow/)");
   flowc->add_option("--out", o->f.out, "output directory (default out/<scene name>)")->check(path_rule("--out"));
   // The flow scene's ranges (flow/flow_scene.cpp): grid.cells_per_diameter 4-4096, grid.levels 1-16.
   auto* o_cells = flowc->add_option("--cells", o->cells, "override grid.cells_per_diameter")->check(integer_rule("--cells", 4, 4096));
@@ -322,7 +329,7 @@ Subcommand add_work_precision(CLI::App& app) {
   auto o = std::make_shared<Opt>();
   auto& w = o->w;
   auto* wp = app.add_subcommand("work-precision", "what accuracy costs: a tolerance ladder per integrator and history evaluator against a tight reference");
-  wp->add_option("scene", o->scene, "scene file (TOML)")->required();
+  add_scene(wp, o->scene);
   wp->add_option("--out", w.out, "output directory (default out/<scene name>-work_precision)")->check(path_rule("--out"));
   wp->add_option("--rtols", w.rtols, "the rtol ladder (atol = rtol)")->delimiter(',')->check(number_rule("--rtols", kRtol));
   wp->add_option("--integrators", w.integrators, "cvode-dense, cvode-gmres, ida (default all)")->delimiter(',')
@@ -348,12 +355,19 @@ Subcommand add_work_precision(CLI::App& app) {
   }};
 }
 
+Subcommand add_scenes(CLI::App& app) {
+  auto pattern = std::make_shared<std::string>();
+  auto* sc = app.add_subcommand("scenes", "list the shipped scenes (the names imcol run takes) with their kind and description");
+  sc->add_option("pattern", *pattern, "only the scenes whose name or description contains PATTERN (or whose name matches a glob: 'coupled/*')");
+  return {sc, [pattern] { return cmd_scenes(*pattern); }};
+}
+
 Subcommand add_sweep(CLI::App& app) {
   struct Opt { CommonOptions c; std::string scene; SweepOptions s; bool no_plot = false, no_progress = false; };
   auto o = std::make_shared<Opt>();
   auto& s = o->s;
   auto* sw = app.add_subcommand("sweep", "e against St over a range of one quantity, the points in parallel");
-  sw->add_option("scene", o->scene, "scene file (TOML)")->required();
+  add_scene(sw, o->scene);
   sw->add_option("--vary", s.vary, "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
       ->required()->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
   sw->add_option("--from", s.from, "first value (SI units)")->required()->check(number_rule("--from", kPositive));
@@ -416,7 +430,7 @@ int run_cli(int argc, char** argv) {
   app.set_version_flag("--version", std::string("imcol ") + IMCOL_VERSION);
   const std::vector<Subcommand> subcommands = {add_run(app),     add_validate(app), add_bench(app),          add_effects(app),
                                                add_history(app), add_flow(app),     add_work_precision(app), add_sweep(app),
-                                               add_laws(app)};
+                                               add_laws(app),    add_scenes(app)};
   bool found = false;
   if (!known_subcommand(app, argc, argv, found)) return 2;
 

@@ -13,6 +13,7 @@
 
 #include "core/choices.hpp"
 #include "core/errors.hpp"
+#include "core/scene_files.hpp"
 
 namespace imcol {
 
@@ -94,5 +95,14 @@ inline CLI::Validator path_rule(const std::string& option) {
       "");
 }
 
+/// A scene argument: an existing path, or a shipped scene's name (core/scene_files.hpp), replaced by the file it names.
+inline CLI::Validator scene_rule() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        text = find_scene(text);
+        return {};
+      },
+      "");
+}
 
 }  // namespace imcol

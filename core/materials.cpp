@@ -2,7 +2,6 @@
 #include "core/materials.hpp"
 
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -33,21 +32,8 @@ double number(const std::string& cell, const std::string& where, const std::stri
 }  // namespace
 
 MaterialTable MaterialTable::load(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the material table");
   MaterialTable table;
-  std::string line;
-  int lineno = 0;
-  bool header_seen = false;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (line.empty() || line[0] == '#') continue;
-    if (!header_seen) {
-      header_seen = true;
-      if (line.rfind("material,", 0) != 0) throw InputError(path + ":" + std::to_string(lineno), "", "expected a header starting with 'material,'");
-      continue;
-    }
-    const std::string where = path + ":" + std::to_string(lineno);
+  read_csv_rows(path, "material table", "material,", [&](const std::string& where, const std::string& line) {
     auto c = split(line);
     if (c.size() < 4) throw InputError(where, "", "expected at least 4 columns");
     Material m;
@@ -58,7 +44,7 @@ MaterialTable MaterialTable::load(const std::string& path) {
     if (c.size() > 4 && !c[4].empty()) m.e_dry = number(c[4], where, "e_dry");
     if (c.size() > 5 && !c[5].empty()) m.roughness = number(c[5], where, "roughness_m");
     table.by_name_[m.name] = m;
-  }
+  });
   return table;
 }
 
@@ -70,17 +56,6 @@ std::string data_dir() {
 const MaterialTable& MaterialTable::builtin() {
   static const MaterialTable t = load(data_dir() + "/materials.csv");
   return t;
-}
-
-const Material* MaterialTable::find(const std::string& name) const {
-  auto it = by_name_.find(name);
-  return it == by_name_.end() ? nullptr : &it->second;
-}
-
-std::string MaterialTable::names() const {
-  std::string s;
-  for (const auto& [k, v] : by_name_) s += (s.empty() ? "" : ", ") + k;
-  return s;
 }
 
 }  // namespace imcol

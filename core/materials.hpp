@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Material database: data/materials.csv (SI units: kg/m^3, Pa, -, -, m).
-#include <map>
 #include <optional>
 #include <string>
+
+#include "core/named_table.hpp"
 
 namespace imcol {
 
@@ -19,19 +20,13 @@ struct Material {
   std::optional<double> roughness;  // m
 };
 
-class MaterialTable {
+class MaterialTable : public NamedTable<Material> {
  public:
   /// Reads a CSV with header material,density_kg_m3,youngs_modulus_Pa,poisson_ratio,e_dry,roughness_m.
   /// Lines starting with '#' are comments. Throws InputError naming file and line.
   static MaterialTable load(const std::string& path);
   /// The table shipped in data/materials.csv.
   static const MaterialTable& builtin();
-
-  const Material* find(const std::string& name) const;
-  std::string names() const;  // comma-separated, for error messages
-
- private:
-  std::map<std::string, Material> by_name_;
 };
 
 }  // namespace imcol

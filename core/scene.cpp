@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "core/toml_reader.hpp"
+#include "core/fluids.hpp"
 #include "core/materials.hpp"
 
 namespace imcol {
@@ -125,13 +126,63 @@ void read_name(Reader& top, Scene& sc) {
   if (auto v = top.string("description")) sc.description = *v;
 }
 
+/// The value of one property of the named liquid `e` at (w, t), after checking the correlation's ranges.
+double table_value(Reader& r, const FluidEntry& e, const FluidProperty& p, const char* property, double w, double t) {
+  if (p.value) return *p.value;
+  auto range = [&](const char* key, double v, double lo, double hi, const char* unit) {
+    if (!(v >= lo && v <= hi))
+      r.fail(key, fmt_number(v) + unit + " is outside [" + fmt_number(lo) + ", " + fmt_number(hi) + "]" + unit + ", the range of the " +
+                      e.name + " " + property + " correlation (" + p.source + "); give `" + property + "` inline instead");
+  };
+  range("temperature", t, p.t_min, p.t_max, " °C");
+  if (p.uses_mass_fraction()) range("mass_fraction", w, *p.w_min, *p.w_max, "");
+  return p.at(w, t);
+}
+
+/// `fluid = NAME` (data/fluids.csv) with `mass_fraction`/`temperature` where its correlations take them, and inline
+/// `density`/`viscosity`, which override the table's values.
 void read_fluid(Reader& top, Scene& sc) {
   const auto* f = top.table("fluid");
   if (!f) return;
   Reader r(*f, "fluid", sc.path);
   FluidSpec fl;
-  fl.density = r.required_positive("density");
-  fl.viscosity = r.required_positive("viscosity");
+  const auto density = r.number("density"), viscosity = r.number("viscosity");
+  const auto w = r.number("mass_fraction"), t = r.number("temperature");
+  const FluidEntry* e = nullptr;
+  if (auto name = r.string("fluid")) {
+    e = FluidTable::builtin().find(*name);
+    if (!e) r.fail("fluid", "unknown fluid '" + *name + "' (known: " + FluidTable::builtin().names() + ")");
+    fl.name = *name;
+  }
+  if (w && !(e && e->takes_mass_fraction()))
+    r.fail("mass_fraction", e ? "'" + e->name + "' is not given by mass fraction (only glycerol-water is)"
+                              : std::string("needs `fluid` naming a mixture given by mass fraction (glycerol-water)"));
+  if (t && !(e && e->takes_temperature()))
+    r.fail("temperature", e ? "'" + e->name + "' has fixed values (as its experiment reports them): give density and viscosity inline for another temperature"
+                            : std::string("needs `fluid` naming a liquid whose properties depend on temperature (water, glycerol-water)"));
+  if (e && e->takes_mass_fraction() && !w)
+    throw InputError(r.where(nullptr), "fluid.mass_fraction", "missing (required for " + e->name + ": the glycerol mass fraction, 0 to 1)");
+  if (e && e->takes_temperature()) fl.temperature = t.value_or(20.0);  // °C
+  if (w) {
+    r.in_range("mass_fraction", *w, 0.0, 1.0, false, false);
+    fl.mass_fraction = *w;
+  }
+  auto property = [&](const char* key, const std::optional<double>& inline_value, const FluidProperty* p, double& field,
+                      std::string& source) {
+    if (inline_value) {
+      field = *inline_value;
+      source = "scene";
+    } else if (e) {
+      field = table_value(r, *e, *p, key, fl.mass_fraction.value_or(0.0), fl.temperature.value_or(20.0));
+      source = p->source;
+    } else {
+      throw InputError(r.where(nullptr), r.full(key), "missing (required without `fluid`; or name a liquid: fluid = \"water\")");
+    }
+  };
+  property("density", density, e ? &e->density : nullptr, fl.density, fl.density_source);
+  property("viscosity", viscosity, e ? &e->viscosity : nullptr, fl.viscosity, fl.viscosity_source);
+  r.positive("density", fl.density);
+  r.positive("viscosity", fl.viscosity);
   // Above 1e12 Pa s (glass at its transition) a "liquid" is a solid on any laboratory time scale; the drag and
   // history forces would also dwarf every other force by more than double precision resolves.
   if (fl.viscosity > kMaxViscosity)

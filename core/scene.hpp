@@ -71,6 +71,10 @@ struct WallSpec : Solid {
 struct FluidSpec {
   double density = 0;    // kg/m^3
   double viscosity = 0;  // Pa s
+  std::string name;      // `fluid`: a liquid of data/fluids.csv; "" = inline values only
+  std::optional<double> mass_fraction;  // glycerol mass fraction (glycerol-water), -
+  std::optional<double> temperature;    // °C (a liquid whose properties are correlations)
+  std::string density_source, viscosity_source;  // "scene" (inline) or the table's source
 };
 
 struct Scene {

@@ -29,7 +29,9 @@ Scene pair_force_scene(const flow::FlowScene& sc) {
   Scene s;
   s.path = sc.path + " (its f_THR)";
   s.name = sc.name;
-  s.fluid = FluidSpec{sc.density, sc.viscosity};
+  s.fluid = FluidSpec();
+  s.fluid->density = sc.density;
+  s.fluid->viscosity = sc.viscosity;
   for (const auto& b : sc.spheres) {
     SphereSpec p;
     p.density = 2 * sc.density;

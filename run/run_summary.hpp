@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/scene.hpp"
 #include "coupling/flow_coupling.hpp"
 #include "integrators/integrator.hpp"
 
@@ -56,6 +57,7 @@ struct SolverSummary {
 struct RunSummary {
   std::string scene, scene_file;
   Configuration configuration = Configuration::free_sphere;
+  std::optional<FluidSpec> fluid;  // the liquid's values used and where each came from (none: dry)
 
   // e and its measures (docs/bounces.md)
   std::optional<double> e;

@@ -117,6 +117,8 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording, const fl
   j["scene"] = s.scene;
   j["scene_file"] = s.scene_file;
   j["configuration"] = to_string(s.configuration);
+  s.fluid = sc.fluid;
+  if (s.fluid) j["fluid"] = run::fluid_block(*s.fluid);
   run::put_measurements(j, s, sc, bounces);
   if (model.has_target() && sc.has(Effect::elastic)) {
     s.contact = run::contact_summary(model);

@@ -195,6 +195,35 @@ nlohmann::ordered_json flow_block(const FlowSummary& f) {
                         {"total_s", fs.est_total_s()}, {"memory_MB", fs.est_bytes / 1e6}}}};
 }
 
+nlohmann::ordered_json fluid_block(const FluidSpec& f) {
+  nlohmann::ordered_json j;
+  j["name"] = f.name.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(f.name);
+  j["mass_fraction"] = f.mass_fraction ? nlohmann::ordered_json(*f.mass_fraction) : nlohmann::ordered_json(nullptr);
+  j["temperature_C"] = f.temperature ? nlohmann::ordered_json(*f.temperature) : nlohmann::ordered_json(nullptr);
+  j["density_kg_m3"] = f.density;
+  j["viscosity_Pa_s"] = f.viscosity;
+  j["density_source"] = f.density_source;
+  j["viscosity_source"] = f.viscosity_source;
+  return j;
+}
+
+std::string fluid_line(const FluidSpec& f) {
+  std::ostringstream os;
+  os << "fluid: ";
+  if (f.name.empty()) {
+    os << "rho = " << std::setprecision(5) << f.density << " kg/m3, mu = " << std::setprecision(4) << f.viscosity << " Pa s (given in the scene)";
+    return os.str();
+  }
+  os << f.name;
+  if (f.mass_fraction) os << ", w = " << std::setprecision(4) << *f.mass_fraction;
+  if (f.temperature) os << ", " << std::setprecision(4) << *f.temperature << " °C";
+  // The source up to its year: "Cheng (2008)"; an inline value is "inline".
+  auto src = [](const std::string& s) { return s == "scene" ? std::string("inline") : s.substr(0, s.find(')') + 1); };
+  os << ": rho = " << std::setprecision(5) << f.density << " kg/m3 (" << src(f.density_source) << "), mu = " << std::setprecision(4)
+     << f.viscosity << " Pa s (" << src(f.viscosity_source) << ")";
+  return os.str();
+}
+
 std::string human_summary(const RunSummary& s) {
   std::ostringstream os;
   auto num = [](const std::optional<double>& v, int prec = 4) {
@@ -204,6 +233,7 @@ std::string human_summary(const RunSummary& s) {
     return o.str();
   };
   os << "scene " << s.scene << " (" << to_string(s.configuration) << ")\n";
+  if (s.fluid) os << "  " << fluid_line(*s.fluid) << "\n";
   os << "  e = " << num(s.e) << "   e_instant = " << num(s.e_instant) << "   St = " << num(s.St);
   if (s.configuration == Configuration::sphere_sphere) os << " (St_B, Table 6.1; eq. 6.2: " << num(s.St_B_eq_6_2) << ")";
   os << "   Re = " << num(s.Re) << "\n";

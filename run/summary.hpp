@@ -35,6 +35,11 @@ nlohmann::ordered_json solver_block(const model::CollisionModel& model, const In
 FlowSummary flow_summary(const coupling::FlowRunStats& fs, const Scene& sc, double wall);
 nlohmann::ordered_json flow_block(const FlowSummary& f);
 
+/// The `fluid` block: name, mass fraction, temperature (°C), density, viscosity and the source of each value.
+nlohmann::ordered_json fluid_block(const FluidSpec& f);
+/// One line on the liquid: "fluid: glycerol-water, w = 0.5, 20 °C: rho = 1126.1 kg/m3 (Volk & Kähler (2018)), mu = ..."
+std::string fluid_line(const FluidSpec& f);
+
 /// What `imcol run` prints.
 std::string human_summary(const RunSummary& s);
 

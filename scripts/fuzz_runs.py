@@ -49,6 +49,7 @@ CHOICES = {  # (table, key): the scene's spellings
     ("history", "wall_correction"): ["none", "added-mass"],
     ("flow", "start"): ["impulsive", "developed"],
     ("flow", "force_in_step"): ["linear", "held"],
+    ("fluid", "fluid"): ["water", "glycerol-water", "gondret-oil-20mPas", "li2010-43cP", "honey"],
 }
 NUMBERS = {  # (table, key): a typical value (docs/scene-reference.md, docs/coupling.md)
     ("contact", "delta_ss"): 0.017, ("contact", "delta_sl"): 0.1, ("contact", "e_dry"): 0.97, ("contact", "beta"): 200.0,
@@ -67,6 +68,7 @@ NUMBERS = {  # (table, key): a typical value (docs/scene-reference.md, docs/coup
     ("flow", "speed_jump_floor"): 0.5, ("flow", "krylov_restart"): 30, ("flow", "krylov_tol"): 1e-6,
     ("flow", "ring_spacing"): 1.0, ("flow", "r_max"): 1.0, ("flow", "theta"): 0.5, ("flow", "min_gap_cells"): 3.0,
     ("flow", "dt"): 1e-3,
+    ("fluid", "mass_fraction"): 0.5, ("fluid", "temperature"): 20.0,
 }
 SPHERE_NUMBERS = {"density": 2500.0, "youngs_modulus": 6e10, "poisson_ratio": 0.23, "e_dry": 0.95}
 FACTORS = [1e-6, 1e-3, 0.1, 0.5, 0.9, 1.1, 2.0, 10.0, 1e3, 1e6]

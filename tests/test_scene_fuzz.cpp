@@ -158,7 +158,8 @@ const char* kTables[] = {"fluid", "wall", "contact", "drag", "lubrication", "add
 const char* kOverrideKeys[] = {"fluid.viscosity", "sphere[0].velocity", "sphere[1].position", "sphere.0.diameter",
                                "solver.rtol", "solver.integrator", "history.modes", "effects", "wall.position",
                                "bogus.key", "sphere[5].velocity", "fluid.viscosity.deeper", "name", "..", "[0]",
-                               "wall", "sphere", "contact.e_dry", "effects[0]", "effects[0].x"};
+                               "wall", "sphere", "contact.e_dry", "effects[0]", "effects[0].x", "fluid.fluid",
+                               "fluid.mass_fraction", "fluid.temperature"};
 
 // ---- Random helpers (modulo arithmetic: the same cases with every standard library) ---------
 
@@ -469,6 +470,8 @@ TEST(SceneFuzz, CertainlyInvalidScenesAreRejectedAtTheirKey) {
       {"fluid", "viscosity", "-0.02", "> 0"},         {"fluid", "viscosity", "0.0", "> 0"},
       {"fluid", "viscosity", "nan", "finite"},         {"fluid", "density", "-1.0", "> 0"},
       {"fluid", "viscosity", "\"0.02\"", "must be a number"},
+      {"fluid", "fluid", "\"honey\"", "unknown fluid"},     {"fluid", "fluid", "3", "must be a string"},
+      {"fluid", "temperature", "\"warm\"", "must be a number"},
       {"sphere[0]", "diameter", "nan", "finite"},      {"sphere[0]", "diameter", "-0.0", "> 0"},
       {"sphere[0]", "diameter", "-0.0127", "> 0"},     {"sphere[0]", "diameter", "1e-31", "at least 1e-30"},
       {"sphere[0]", "diameter", "inf", "finite"},      {"sphere[0]", "velocity", "[0.3]", "must be a number"},

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "core/scene_files.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/errors.hpp"
+#include "core/materials.hpp"
+
+namespace imcol {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+/// Edit distance (insertions, deletions, substitutions).
+std::size_t distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// Shipped scenes whose name (or its last part) is within a few edits of `name`, or contains it; closest first.
+std::vector<std::string> close_names(const std::string& name) {
+  std::vector<std::pair<std::size_t, std::string>> scored;
+  const std::size_t allowed = std::max<std::size_t>(2, name.size() / 3);
+  for (const auto& s : shipped_scene_names()) {
+    const std::string last = s.substr(s.rfind('/') + 1);
+    std::size_t d = std::min(distance(name, s), distance(name, last));
+    if (name.size() >= 3 && s.find(name) != std::string::npos) d = std::min<std::size_t>(d, 1);
+    if (d <= allowed) scored.push_back({d, s});
+  }
+  std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < scored.size() && i < 5; ++i) out.push_back(scored[i].second);
+  return out;
+}
+
+}  // namespace
+
+std::string scenes_dir() { return (fs::path(data_dir()) / "scenes").string(); }
+
+std::string find_scene(const std::string& arg) {
+  if (arg.empty()) throw InputError("command line", "scene", "empty scene argument (give a scene file or a shipped scene's name: imcol scenes lists them)");
+  std::error_code ec;
+  if (fs::exists(arg, ec)) return arg;
+  std::string name = arg;
+  if (name.rfind("data/scenes/", 0) == 0) name = name.substr(12);
+  const std::string file = ends_with(name, ".toml") ? name : name + ".toml";
+  const fs::path shipped = fs::path(scenes_dir()) / file;
+  if (!fs::path(file).is_absolute() && fs::is_regular_file(shipped, ec)) return shipped.string();
+  const std::string stem = file.substr(0, file.size() - 5);
+  std::string msg = "no scene '" + arg + "': no file " + (fs::absolute(arg, ec)).string() + " (relative to the current folder), and no " +
+                    file + " in " + scenes_dir() + " (imcol scenes lists the shipped scenes)";
+  const auto close = close_names(stem);
+  if (!close.empty()) {
+    msg += "; close names:";
+    for (std::size_t i = 0; i < close.size(); ++i) msg += (i ? ", " : " ") + close[i];
+  }
+  throw InputError("command line", "scene", msg);
+}
+
+std::vector<std::string> shipped_scene_names() {
+  std::vector<std::string> out;
+  std::error_code ec;
+  const fs::path dir = scenes_dir();
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file(ec) || it->path().extension() != ".toml") continue;
+    std::string rel = it->path().lexically_relative(dir).generic_string();
+    out.push_back(rel.substr(0, rel.size() - 5));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace imcol

@@ -1,0 +1,21 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// Scenes by name: a scene argument that is not an existing path names a shipped scene, a file under
+// data_dir()/scenes ("default", "coupled/gg3462", with or without ".toml").
+#include <string>
+#include <vector>
+
+namespace imcol {
+
+/// The shipped scenes' folder: data_dir()/scenes.
+std::string scenes_dir();
+
+/// The file a scene argument stands for: `arg` itself if it exists (a path always wins); else the shipped scene of
+/// that name (".toml" optional; a leading "data/scenes/" is dropped, so the README's paths work from any folder).
+/// Throws InputError (key 'scene') saying where it looked, with the shipped scenes of a close name.
+std::string find_scene(const std::string& arg);
+
+/// The shipped scenes' names, as find_scene takes them ("default", "coupled/gg3462"), sorted.
+std::vector<std::string> shipped_scene_names();
+
+}  // namespace imcol
