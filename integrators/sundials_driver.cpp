@@ -501,13 +501,19 @@ struct Integrator::Impl {
   /// Samples the output times k·dt in (t, t_upto) (strict) or (t, t_upto] from the solver's interpolant,
   /// without stopping the solver there. If the system's stop time falls to a sample (the observer ended the
   /// run), the state becomes the one at that sample and true is returned.
+  /// Not strict, an output time less than t_eps after t_upto counts as reached at t_upto, as everywhere in the loop
+  /// (the next step starts there and would pass it unsampled): it is sampled under its time k·dt with the state at
+  /// t_upto. So a stop a rounding short of the output grid (a breakpoint kΔ, a coupled run's target n·Δt) keeps the
+  /// output times of a run that does not stop there. The stop time is left to advance(), which samples the end.
   bool emit_outputs(double t_upto, bool strict) {
     const double t_eps = 1e-12 * std::max(1.0, std::abs(t));
+    const double eps_upto = 1e-12 * std::max(1.0, std::abs(t_upto));
     while (k_out * st.output_dt <= t + t_eps) ++k_out;
     for (;; ++k_out) {
       const double tau = k_out * st.output_dt;
-      if (strict ? tau >= t_upto : tau > t_upto) return false;
-      be->interpolate(tau, yi.get());
+      const bool in_step = strict ? tau < t_upto : tau <= t_upto;
+      if (!in_step && (strict || tau > t_upto + eps_upto || t_upto >= sys.stop_time() - eps_upto)) return false;
+      be->interpolate(in_step ? tau : t_upto, yi.get());
       observer.sample(tau, view(yi.get()), false);
       t_sampled = tau;
       if (tau >= sys.stop_time() - 1e-12 * std::max(1.0, std::abs(tau))) {
