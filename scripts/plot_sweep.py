@@ -68,12 +68,12 @@ def plot_fits(ax, folder: Path, meta) -> None:
     chosen = []
     for which in (dem.get("best"), dem.get("exp")):  # the best fit, and the exponential one if it is another
         chosen += [f for f in dem["fits"] if which and (f["form"], f["e_dry_is"]) == (which["form"], which["e_dry_is"]) and f not in chosen]
-    for f, ls in zip(chosen, ("k:", "-.")):
+    for f, (ls, colour) in zip(chosen, ((":", "k"), ("-.", "0.45"))):
         lo, hi = f["valid_St"]
         st = [lo * (hi / lo) ** (i / 199) for i in range(200)]
         g = (lambda x: math.exp(-f["St_c"] / x)) if f["form"] == "exp" else (lambda x: max(0.0, 1 - f["St_c"] / x))
         # a pair's bottom axis is the summary's St, half the DEM St of the fit
-        ax.semilogx([x / 2 if pair else x for x in st], [f["e_dry"] * g(x) for x in st], ls, color="k" if ls == "k:" else "0.45",
+        ax.semilogx([x / 2 if pair else x for x in st], [f["e_dry"] * g(x) for x in st], ls, color=colour,
                     lw=1.6, label="fit %s: St_c = %.3g%s, e_dry = %.3f%s, rms %.3f" % (
                         "exp(-St_c/St)" if f["form"] == "exp" else "(1 - St_c/St)", f["St_c"], " (top axis)" if pair else "",
                         f["e_dry"], "" if f["e_dry_is"] == "fitted" else " fixed", f["rms_residual"]))
