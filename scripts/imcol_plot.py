@@ -4,6 +4,7 @@
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
 """
 import csv
+import math
 import os
 import sys
 from pathlib import Path
@@ -77,3 +78,27 @@ def force_label(column: str, pair: bool) -> str:
     if name is None:
         return column
     return f"sphere {k} {name}" if pair and k else name
+
+
+def has_e(r) -> bool:
+    """A sweep row (sweep.csv, history_sweep.csv) whose run ended and measured e."""
+    return r["status"] == "ok" and bool(r["e"])
+
+
+def positions(rows, meta, key: str) -> list:
+    """Each row's x (its column `key`, e.g. St): a row without it (a failed run) gets the value interpolated in log-log
+    from the others' (x against the varied quantity), so that its gap and marker stand where it would have been."""
+    col = meta["column"]
+    known = sorted((math.log(float(r[col])), math.log(float(r[key]))) for r in rows if r.get(key) and float(r[key]) > 0)
+    xs = []
+    for r in rows:
+        if r.get(key) or len(known) < 2:
+            xs.append(float(r[key]) if r.get(key) else float("nan"))
+            continue
+        v = math.log(float(r[col]))
+        i = 1  # the segment of `known` around v; the end segments extrapolate
+        while i < len(known) - 1 and known[i][0] < v:
+            i += 1
+        (a0, b0), (a1, b1) = known[i - 1], known[i]
+        xs.append(math.exp(b0 + (b1 - b0) * (v - a0) / (a1 - a0)) if a1 != a0 else math.exp(b0))
+    return xs

@@ -128,7 +128,7 @@ def plot_wall_gap(out: Path, rows, summary, units) -> None:
     write_text(out / "forces_vs_gap.csv", "\n".join([",".join(keys)] + [",".join(r[k] for k in keys) for r in rows]) + "\n")
     gap = np.array([float(r["wall_gap_D"]) for r in rows])
     fs, ft, fw = (np.array([float(r[k]) for r in rows]) / units.force for k in ("F1", "F_THR_wall", "F_wall"))
-    h = summary["grid"]["h"] / (summary["grid"]["h"] * summary["grid"]["cells_per_diameter"])  # cell / D
+    h = 1.0 / summary["grid"]["cells_per_diameter"]  # cell / D
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
     ax = axes[0]
     ax.plot(gap, fs, label="f_SIM (flow kernel)")

@@ -15,7 +15,7 @@ from collections import defaultdict
 
 from matplotlib import ticker
 
-from imcol_plot import kernel_colour, out_dir, plt, read_rows, save_png
+from imcol_plot import has_e, kernel_colour, out_dir, plt, positions, read_rows, save_png
 
 # Line style per evaluator: the sums of exponentials solid and dotted, the direct quadrature (reference) dashed.
 STYLE = {"soe-step": "-", "soe": ":", "direct": "--", "-": "-"}
@@ -87,22 +87,10 @@ def plot_sweep(out) -> int:
     if not rows:
         print("history_sweep.csv has no rows", file=sys.stderr)
         return 1
-    # Where a run has no St (it failed), the point's St from another run there, else from its neighbours (log scale).
     n = meta["points"]
-    known = {}
-    for r in rows:
-        st = number(r["St"]) or number(r["St_initial"])
-        if st and int(r["point"]) not in known:
-            known[int(r["point"])] = st
-    def st_at(i):
-        if i in known:
-            return known[i]
-        below = [p for p in known if p < i]
-        above = [p for p in known if p > i]
-        if below and above:
-            a, b = max(below), min(above)
-            return math.exp(math.log(known[a]) + (i - a) / (b - a) * (math.log(known[b]) - math.log(known[a])))
-        return known[max(below)] if below else (known[min(above)] if above else None)
+    # Where a run has no St (it failed), the St of the other runs at its point, else interpolated from its neighbours.
+    for r, x in zip(rows, positions(rows, meta, "St")):
+        r["x"] = x
     fig, (ax, ax_d) = plt.subplots(2, 1, figsize=(9.5, 8), sharex=True, gridspec_kw={"height_ratios": [2, 1]})
     series = defaultdict(list)
     for r in rows:
@@ -118,16 +106,16 @@ def plot_sweep(out) -> int:
         if kernel == "none":
             label = "none (no history force)"
         style = dict(marker="o", ms=4, lw=1.3, color=kernel_colour(kernel), ls=STYLE.get(evaluator, "-."))
-        has_e = [r["status"] == "ok" and bool(r["St"]) and bool(r["e"]) for r in rs]
-        xs = [number(r["St"]) if ok else st_at(int(r["point"])) for r, ok in zip(rs, has_e)]
-        es = [number(r["e"]) if ok else float("nan") for r, ok in zip(rs, has_e)]
+        ok = [has_e(r) and bool(r["St"]) for r in rs]
+        xs = [r["x"] for r in rs]
+        es = [number(r["e"]) if good else float("nan") for r, good in zip(rs, ok)]
         ax.plot(xs, es, label=label, **style)
         if kernel != "none":
             ax_d.plot(xs, [e - ref.get(int(r["point"]), float("nan")) for r, e in zip(rs, es)], **style)
-        for i, (r, ok) in enumerate(zip(rs, has_e)):
-            if ok or xs[i] is None:
+        for i, (r, good) in enumerate(zip(rs, ok)):
+            if good or not math.isfinite(xs[i]):
                 continue
-            near = [es[j] for j in (i - 1, i + 1) if 0 <= j < len(es) and has_e[j]]
+            near = [es[j] for j in (i - 1, i + 1) if 0 <= j < len(es) and ok[j]]
             (failed if r["status"] != "ok" else missing).append((xs[i], sum(near) / len(near) if near else None))
     for marks, symbol, colour, what in ((failed, "x", "red", "run failed"), (missing, "+", "darkorange", "e not measured")):
         placed = [(x, y) for x, y in marks if y is not None]

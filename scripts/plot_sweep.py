@@ -12,7 +12,7 @@ import math
 import sys
 from pathlib import Path
 
-from imcol_plot import plt, save_png, read_rows
+from imcol_plot import has_e, plt, positions, read_rows, save_png
 
 SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li_2010_table_6_1.csv"
 # Legendre, Zenit, Daniel & Guiraud (2006), Chem. Eng. Sci. 61, 3543: e/e_dry = exp(-35/St_L),
@@ -31,29 +31,6 @@ MEASURES = (("e", "e (the measure e_is names; default contact_ends)", "o"),
 def sweep_label(meta) -> str:
     effects = meta.get("effects", [])
     return ("coupled" if "flow" in effects else "reduced-order") + " (%s swept)" % meta["vary"]
-
-
-def has_e(r) -> bool:
-    return r["status"] == "ok" and bool(r["e"])
-
-
-def positions(rows, meta, key: str) -> list:
-    """Each row's x (its column `key`, e.g. St): a row without it (a failed run) gets the value interpolated in log-log
-    from the others' (x against the varied quantity), so that its gap and marker stand where it would have been."""
-    col = meta["column"]
-    known = sorted((math.log(float(r[col])), math.log(float(r[key]))) for r in rows if r.get(key) and float(r[key]) > 0)
-    xs = []
-    for r in rows:
-        if r.get(key) or len(known) < 2:
-            xs.append(float(r[key]) if r.get(key) else float("nan"))
-            continue
-        v = math.log(float(r[col]))
-        i = 1  # the segment of `known` around v; the end segments extrapolate
-        while i < len(known) - 1 and known[i][0] < v:
-            i += 1
-        (a0, b0), (a1, b1) = known[i - 1], known[i]
-        xs.append(math.exp(b0 + (b1 - b0) * (v - a0) / (a1 - a0)) if a1 != a0 else math.exp(b0))
-    return xs
 
 
 def mark_failed(ax, rows, xs, label_prefix: str = "") -> None:
@@ -91,12 +68,12 @@ def plot_fits(ax, folder: Path, meta) -> None:
     chosen = []
     for which in (dem.get("best"), dem.get("exp")):  # the best fit, and the exponential one if it is another
         chosen += [f for f in dem["fits"] if which and (f["form"], f["e_dry_is"]) == (which["form"], which["e_dry_is"]) and f not in chosen]
-    for f, ls in zip(chosen, ("k:", "-.")):
+    for f, (ls, colour) in zip(chosen, ((":", "k"), ("-.", "0.45"))):
         lo, hi = f["valid_St"]
         st = [lo * (hi / lo) ** (i / 199) for i in range(200)]
         g = (lambda x: math.exp(-f["St_c"] / x)) if f["form"] == "exp" else (lambda x: max(0.0, 1 - f["St_c"] / x))
         # a pair's bottom axis is the summary's St, half the DEM St of the fit
-        ax.semilogx([x / 2 if pair else x for x in st], [f["e_dry"] * g(x) for x in st], ls, color="k" if ls == "k:" else "0.45",
+        ax.semilogx([x / 2 if pair else x for x in st], [f["e_dry"] * g(x) for x in st], ls, color=colour,
                     lw=1.6, label="fit %s: St_c = %.3g%s, e_dry = %.3f%s, rms %.3f" % (
                         "exp(-St_c/St)" if f["form"] == "exp" else "(1 - St_c/St)", f["St_c"], " (top axis)" if pair else "",
                         f["e_dry"], "" if f["e_dry_is"] == "fitted" else " fixed", f["rms_residual"]))
