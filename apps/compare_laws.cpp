@@ -334,6 +334,7 @@ std::vector<LawRow> run_laws(const std::string& scene_path, const std::vector<Ov
         r.point = static_cast<int>(i);
         r.value = values[i];
         r.run.rows = {};
+        r.run.contact_rows = {};
         r.run.summary_json = {};
         r.run.files = {};
       }

@@ -4,19 +4,17 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
+#include "apps/parallel_runs.hpp"
 #include "apps/plot.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
@@ -81,32 +79,30 @@ std::string sweep_csv(const std::vector<Cell>& cells, const char* column) {
 /// Runs every cell on `jobs` threads (a failed run ends that cell only); a progress line on a terminal.
 double run_cells(const std::vector<Scene>& scenes, std::vector<Cell>& cells, int jobs, bool progress) {
   const bool tty = progress && isatty(STDERR_FILENO);
-  std::atomic<std::size_t> next{0};
-  std::mutex mu;
   std::size_t finished = 0, failed = 0;
   const auto start = WallClock::now();
-  auto worker = [&] {
-    for (std::size_t i = next++; i < cells.size(); i = next++) {
-      Cell& c = cells[i];
-      try {
-        // e needs no force columns (as imcol sweep)
-        c.summary = simulate(with_history_kernel(scenes[c.point], c.series.kernel, c.series.evaluator), false, Recording::kinematics).summary;
-        if (!c.summary.e) c.message = c.summary.e_missing.value_or("e is undefined");
-      } catch (const std::exception& e) {
-        c.status = "failed";
-        c.message = e.what();
-      }
-      std::lock_guard lock(mu);
-      ++finished;
-      if (!c.ok()) ++failed;
-      if (tty)
-        std::cerr << "\r  history sweep: " << finished << "/" << cells.size() << " runs, " << failed << " failed, " << std::fixed
-                  << std::setprecision(1) << seconds_since(start) << " s   " << std::defaultfloat << std::flush;
+  auto run_cell = [&](std::size_t i) {
+    Cell c = cells[i];
+    try {
+      // e needs no force columns (as imcol sweep)
+      c.summary = simulate(with_history_kernel(scenes[c.point], c.series.kernel, c.series.evaluator), false, Recording::kinematics).summary;
+      if (!c.summary.e) c.message = c.summary.e_missing.value_or("e is undefined");
+    } catch (const std::exception& e) {
+      c.status = "failed";
+      c.message = e.what();
     }
+    return c;
   };
-  std::vector<std::thread> threads;
-  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
-  for (auto& t : threads) t.join();
+  auto take = [&](std::size_t i, Cell c) {
+    cells[i] = std::move(c);
+    ++finished;
+    if (!cells[i].ok()) ++failed;
+    if (tty)
+      std::cerr << "\r  history sweep: " << finished << "/" << cells.size() << " runs, " << failed << " failed, " << std::fixed
+                << std::setprecision(1) << seconds_since(start) << " s   " << std::defaultfloat << std::flush;
+    return true;
+  };
+  run_parallel(cells.size(), jobs, run_cell, take);
   if (tty) std::cerr << "\n";
   return seconds_since(start);
 }
@@ -180,20 +176,8 @@ int history_sweep(const std::string& scene_path, const std::vector<Override>& ov
   if (!base.has_target())
     throw InputError(base.path, "wall", "a free sphere has no collision, so no e to compare (add a [wall] or a second [[sphere]])");
 
-  // Every point's scene, built and checked before anything runs: bad input stops the sweep at once.
   const std::vector<double> values = sweep_values(sw);
-  std::vector<Scene> scenes;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    auto ov = overrides;
-    for (auto& o : sweep_overrides(base, sw.vary, values[i])) ov.push_back(o);
-    try {
-      scenes.push_back(load_scene(scene_path, ov));
-    } catch (const InputError& e) {
-      std::ostringstream os;
-      os << std::setprecision(6) << "sweep point " << i << " (" << sw.vary << " = " << values[i] << ")";
-      throw InputError(e.where(), e.key(), os.str() + ": " + e.what());
-    }
-  }
+  const std::vector<Scene> scenes = sweep_scenes(scene_path, overrides, base, sw.vary, values);  // all checked before anything runs
   const std::vector<Series> series = series_of(opt, base);
   OutputUnit unit(opt.out, fs::path("out") / (base.name + "-history_" + sw.vary), base.path);
 
@@ -206,8 +190,7 @@ int history_sweep(const std::string& scene_path, const std::vector<Override>& ov
       c.series = s;
       cells.push_back(std::move(c));
     }
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = static_cast<int>(std::min<std::size_t>(cells.size(), sw.jobs > 0 ? sw.jobs : hw));
+  const int jobs = job_count(sw.jobs, cells.size());
   const double wall = run_cells(scenes, cells, jobs, sw.progress);
 
   const Cell* first = nullptr;

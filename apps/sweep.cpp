@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -12,15 +11,14 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "apps/dem_export.hpp"
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
+#include "apps/parallel_runs.hpp"
 #include "apps/plot.hpp"
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
@@ -180,6 +178,23 @@ std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary
   return ov;
 }
 
+std::vector<Scene> sweep_scenes(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
+                                const std::string& vary, const std::vector<double>& values) {
+  std::vector<Scene> scenes;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    auto ov = overrides;
+    for (auto& o : sweep_overrides(base, vary, values[i])) ov.push_back(o);
+    try {
+      scenes.push_back(load_scene(scene_path, ov));
+    } catch (const InputError& e) {
+      std::ostringstream os;
+      os << std::setprecision(6) << "sweep point " << i << " (" << vary << " = " << values[i] << ")";
+      throw InputError(e.where(), e.key(), os.str() + ": " + e.what());
+    }
+  }
+  return scenes;
+}
+
 namespace {
 
 void check_options(const SweepOptions& opt) {
@@ -214,28 +229,6 @@ std::vector<DemPoint> dem_points(const std::vector<PointResult>& pts) {
   return out;
 }
 
-/// Every point's scene, built and validated before anything runs: bad input stops the sweep at once. Sets each
-/// point's value.
-std::vector<Scene> point_scenes(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
-                                const SweepOptions& opt, std::vector<PointResult>& pts) {
-  std::vector<Scene> scenes;
-  const std::vector<double> values = sweep_values(opt);
-  for (int i = 0; i < opt.points; ++i) {
-    const double v = values[i];
-    pts[i].value = v;
-    auto ov = overrides;
-    for (auto& o : sweep_overrides(base, opt.vary, v)) ov.push_back(o);
-    try {
-      scenes.push_back(load_scene(scene_path, ov));
-    } catch (const InputError& e) {
-      std::ostringstream os;
-      os << std::setprecision(6) << "sweep point " << i << " (" << opt.vary << " = " << v << ")";
-      throw InputError(e.where(), e.key(), os.str() + ": " + e.what());
-    }
-  }
-  return scenes;
-}
-
 struct Tally {
   int finished = 0, failed = 0;
   double wall = 0;
@@ -246,60 +239,53 @@ struct Tally {
 Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts, const SweepOptions& opt, const Quantity& q,
                  const fs::path& dir, int jobs) {
   const bool tty = opt.progress && isatty(STDERR_FILENO);
-  std::mutex mu;
-  std::atomic<int> next{0};
   Tally tally;
-  int& finished = tally.finished;
-  int& failed = tally.failed;
-  std::string& write_error = tally.write_error;
   double last_write = -1;
   const auto start = WallClock::now();
   auto elapsed = [&] { return seconds_since(start); };
 
-  auto worker = [&] {
-    for (int i = next++; i < opt.points; i = next++) {
-      PointResult r;
-      r.value = pts[i].value;
-      try {
-        // A point whose collision or rebound window did not fit in t_end is rerun with t_end doubled (twice at most).
-        Scene sc = scenes[i];
-        for (int attempt = 0;; ++attempt) {
-          r.summary = simulate(sc, false, Recording::kinematics).summary;  // e needs no force columns
-          if (attempt == 2 || !r.summary.t_end_too_short) break;
-          sc.solver.t_end *= 2;
-        }
-        r.ok = true;
-        r.message = point_message(r.summary, scenes[i].solver.t_end, sc.solver.t_end);
-      } catch (const std::exception& e) {
-        r.message = e.what();  // a solver failure (or anything else) ends this point only
+  auto run_point = [&](std::size_t i) {
+    PointResult r;
+    r.value = pts[i].value;
+    try {
+      // A point whose collision or rebound window did not fit in t_end is rerun with t_end doubled (twice at most).
+      Scene sc = scenes[i];
+      for (int attempt = 0;; ++attempt) {
+        r.summary = simulate(sc, false, Recording::kinematics).summary;  // e needs no force columns
+        if (attempt == 2 || !r.summary.t_end_too_short) break;
+        sc.solver.t_end *= 2;
       }
-      r.done = true;
-      r.row = csv_row(i, r);
-      std::lock_guard lock(mu);
-      pts[i] = std::move(r);
-      ++finished;
-      if (!pts[i].ok) ++failed;
-      // Finished points survive what follows: the file is rewritten at most every 0.25 s, and at the end.
-      if (write_error.empty() && (finished == opt.points || elapsed() - last_write >= 0.25)) {
-        try {
-          write_file_atomic(dir / "sweep.csv", sweep_csv(pts, q));
-        } catch (const std::exception& e) {  // a full disk, a vanished folder: not a crash of the worker thread
-          write_error = e.what();
-          next = opt.points;
-        }
-        last_write = elapsed();
-      }
-      if (tty) {
-        const double t = elapsed();
-        std::cerr << "\r  sweep " << opt.vary << ": " << finished << "/" << opt.points << " done, " << failed << " failed, "
-                  << std::fixed << std::setprecision(1) << t << " s, ~" << t / finished * (opt.points - finished) << " s left   "
-                  << std::flush;
-      }
+      r.ok = true;
+      r.message = point_message(r.summary, scenes[i].solver.t_end, sc.solver.t_end);
+    } catch (const std::exception& e) {
+      r.message = e.what();  // a solver failure (or anything else) ends this point only
     }
+    r.done = true;
+    r.row = csv_row(i, r);
+    return r;
   };
-  std::vector<std::thread> threads;
-  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
-  for (auto& t : threads) t.join();
+  auto take = [&](std::size_t i, PointResult r) {
+    pts[i] = std::move(r);
+    ++tally.finished;
+    if (!pts[i].ok) ++tally.failed;
+    // Finished points survive what follows: the file is rewritten at most every 0.25 s, and at the end.
+    if (tally.write_error.empty() && (tally.finished == opt.points || elapsed() - last_write >= 0.25)) {
+      try {
+        write_file_atomic(dir / "sweep.csv", sweep_csv(pts, q));
+      } catch (const std::exception& e) {  // a full disk, a vanished folder: not a crash of the worker thread
+        tally.write_error = e.what();
+      }
+      last_write = elapsed();
+    }
+    if (tty) {
+      const double t = elapsed();
+      std::cerr << "\r  sweep " << opt.vary << ": " << tally.finished << "/" << opt.points << " done, " << tally.failed << " failed, "
+                << std::fixed << std::setprecision(1) << t << " s, ~" << t / tally.finished * (opt.points - tally.finished) << " s left   "
+                << std::flush;
+    }
+    return tally.write_error.empty();  // a failed write stops the sweep taking points
+  };
+  run_parallel(pts.size(), jobs, run_point, take);
   tally.wall = elapsed();
   if (tty) std::cerr << "\n";
   return tally;
@@ -442,8 +428,10 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
 
   const Scene base = load_scene(scene_path, overrides);
   if (opt.vary == "viscosity" && !base.fluid) throw InputError(scene_path, "fluid", "a viscosity sweep needs a [fluid] table");
-  std::vector<PointResult> pts(opt.points);
-  const std::vector<Scene> scenes = point_scenes(scene_path, overrides, base, opt, pts);
+  const std::vector<double> values = sweep_values(opt);
+  const std::vector<Scene> scenes = sweep_scenes(scene_path, overrides, base, opt.vary, values);
+  std::vector<PointResult> pts(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) pts[i].value = values[i];
 
   // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
   // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
@@ -452,8 +440,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   write_file_atomic(dir / "sweep.partial",
                     "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
                         "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const int jobs = std::min(opt.points, opt.jobs > 0 ? opt.jobs : static_cast<int>(hw));
+  const int jobs = job_count(opt.jobs, pts.size());
   const Tally tally = run_points(scenes, pts, opt, *q, dir, jobs);
   if (!tally.write_error.empty()) stop_on_write_error(unit, tally, opt);
   const int failed = tally.failed;

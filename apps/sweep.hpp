@@ -25,6 +25,11 @@ struct SweepOptions {
 /// The scene keys one sweep point sets (exposed for tests): `value` of the varied quantity on `base`.
 std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary, double value);
 
+/// Every point's scene (the scene with `overrides`, then the point's sweep_overrides), built and validated before
+/// anything runs: bad input stops the sweep at once (InputError naming the point).
+std::vector<Scene> sweep_scenes(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
+                                const std::string& vary, const std::vector<double>& values);
+
 /// The CSV column of a varied quantity ("velocity" → "velocity_m_s"); nullptr for an unknown one.
 const char* sweep_column(const std::string& vary);
 

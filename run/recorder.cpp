@@ -87,7 +87,9 @@ double measure_interval(const model::CollisionModel& model, const Scene& sc) {
 }
 
 Recorder::Recorder(model::CollisionModel& model, const Scene& sc, bool progress, bool forces, double sample_dt)
-    : model_(model), sc_(sc), sample_dt_(sample_dt > 0 ? sample_dt : sc.output.dt), next_row_(sc.output.dt), min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)) {
+    : model_(model), sc_(sc), sample_dt_(sample_dt > 0 ? sample_dt : sc.output.dt), next_row_(sc.output.dt), min_gap_(INFINITY), forces_(forces), progress_(progress && ::isatty(2)),
+      contact_rows_on_(forces && model.has_target() && sc.has(Effect::elastic) && sc.has(Effect::history)),
+      contact_zone_(3 * model.delta_ss_m()) {
   const bool pair = model.n_spheres() == 2;
   columns_ = {"t", "z1", "u1"};
   if (model.has_target()) columns_.push_back("gap");
@@ -167,8 +169,8 @@ std::vector<double> Recorder::make_row(double t, const Evaluation& ev, bool at_e
 }
 
 void Recorder::step_end(double t, std::span<const double> y) {
-  if (!forces_ || !model_.has_target() || !sc_.has(Effect::elastic)) return;
-  if (!(model_.kinematic_state(y).gap < 3 * model_.delta_ss_m())) return;
+  if (!contact_rows_on_) return;
+  if (!(model_.kinematic_state(y).gap < contact_zone_)) return;
   if (!contact_rows_.empty() && !(t > contact_rows_.back()[0])) return;
   contact_rows_.push_back(make_row(t, model_.evaluate(t, y), false));
 }

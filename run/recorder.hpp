@@ -30,8 +30,8 @@ class Recorder : public Observer {
 
   void sample(double t, std::span<const double> y, bool at_event) override;
   void stepped(long steps) override { steps_ = steps; }
-  /// With forces: a row at the end of every accepted step while the gap is below 3 δ_SS (contact_rows), where the
-  /// forces change faster than output.dt resolves (the history force peaks within the contact).
+  /// With forces and the history force: a row at the end of every accepted step while the gap is below 3 δ_SS
+  /// (contact_rows), where the history force peaks faster than output.dt resolves. Otherwise nothing.
   void step_end(double t, std::span<const double> y) override;
   /// Clears the progress line, if one was shown.
   void finish_progress();
@@ -70,6 +70,8 @@ class Recorder : public Observer {
   WallClock::time_point start_ = WallClock::now(), last_ = start_;
   WallClock::time_point t0_ = start_;  // when t = 0 was sampled: the projection counts from there
   bool sampled_ = false;
+  const bool contact_rows_on_;  // step_end keeps rows (forces, a contact and the history force)
+  const double contact_zone_;   // m: 3 δ_SS, the gap below which step_end keeps rows
 };
 
 }  // namespace imcol::run

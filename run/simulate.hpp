@@ -17,7 +17,7 @@ struct RunResult {
   Scene scene;
   std::vector<std::string> columns;
   std::vector<std::vector<double>> rows;  // trajectory samples
-  std::vector<std::vector<double>> contact_rows;  // the same columns at every solver step while the gap < 3 δ_SS (full recording)
+  std::vector<std::vector<double>> contact_rows;  // the same columns at every solver step while the gap < 3 δ_SS (full recording, history force)
   RunSummary summary;                   // what the run measured, typed
   nlohmann::ordered_json summary_json;    // summary.json: the same values (and more) under their names
   std::vector<std::pair<std::string, std::string>> files;  // further files: name in the output directory, content

@@ -47,6 +47,12 @@ fs::path write_scene(const std::string& name, const std::string& text) {
 
 const std::string kScene = imcol::test::basic_wall_scene();
 
+/// `imcol sweep` of the gg3462 scene with `args` into `out`, emptied first.
+Result sweep_gg3462(const fs::path& out, const std::string& args) {
+  fs::remove_all(out);
+  return run_imcol("sweep " + imcol::data_dir() + "/scenes/gg3462.toml " + args + " --out " + out.string());
+}
+
 void expect_input_error(const std::string& name, const std::string& text, const std::string& key, const std::string& extra = "") {
   const fs::path p = write_scene(name, text);
   const Result r = run_imcol("run " + p.string() + " --out " + (fs::temp_directory_path() / "imcol_cli_out").string() + " " + extra);
@@ -208,8 +214,7 @@ TEST(Cli, WorkPrecisionErrorsFallAsTheToleranceTightens) {
 TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
   const std::string scene = imcol::data_dir() + "/scenes/gg3462.toml";
   const fs::path out = fs::temp_directory_path() / "imcol_cli_sweep";
-  fs::remove_all(out);
-  const Result r = run_imcol("sweep " + scene + " --vary velocity --from 0.05 --to 0.4 --points 4 --jobs 2 --no-plot --out " + out.string());
+  const Result r = sweep_gg3462(out, "--vary velocity --from 0.05 --to 0.4 --points 4 --jobs 2 --no-plot");
   ASSERT_EQ(r.status, 0) << r.err;
   auto rows = read_csv(out / "sweep.csv");
   ASSERT_EQ(rows.size(), 4u);
@@ -223,9 +228,8 @@ TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
     last_st = st, last_e = e;
   }
   // The very viscous point needs < 50 steps between samples, the least viscous > 80: with 70 allowed, one fails.
-  fs::remove_all(out);
-  const Result f = run_imcol("sweep " + scene + " --vary viscosity --from 0.001 --to 0.1 --points 2 --no-plot --out " + out.string() +
-                             " --set solver.max_steps=70 --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
+  const Result f = sweep_gg3462(out, "--vary viscosity --from 0.001 --to 0.1 --points 2 --no-plot --set solver.max_steps=70 "
+                                     "--set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
   EXPECT_EQ(f.status, 3) << f.err;
   // Said on stderr too (stdout may be a file): one line with the count and where the reasons are.
   EXPECT_EQ(f.err.rfind("imcol: error: 1 of 2 sweep points failed", 0), 0u) << f.err;
@@ -400,8 +404,7 @@ void expect_refused(const Result& r, const std::string& label, std::initializer_
 TEST(Cli, SweepExportDemWritesATableAndFitsConsistentWithSweepCsv) {
   const std::string scene = imcol::data_dir() + "/scenes/gg3462.toml";
   const fs::path out = fs::temp_directory_path() / "imcol_cli_sweep_dem";
-  fs::remove_all(out);
-  const Result r = run_imcol("sweep " + scene + " --vary velocity --from 0.005 --to 1 --points 8 --jobs 2 --no-plot --export dem --out " + out.string());
+  const Result r = sweep_gg3462(out, "--vary velocity --from 0.005 --to 1 --points 8 --jobs 2 --no-plot --export dem");
   ASSERT_EQ(r.status, 0) << r.err;
   const auto sweep = read_csv(out / "sweep.csv");
   const auto dem = read_csv(out / "dem.csv");
@@ -474,9 +477,8 @@ TEST(Cli, SweepExportDemWritesATableAndFitsConsistentWithSweepCsv) {
   }
 
   // Failed points stay in the table with their status and no e; two points with e fit only with e_dry fixed.
-  fs::remove_all(out);
-  const Result f = run_imcol("sweep " + scene + " --vary viscosity --from 0.01 --to 0.05 --points 4 --export dem --out " +
-                             out.string() + " --set solver.max_steps=70 --set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
+  const Result f = sweep_gg3462(out, "--vary viscosity --from 0.01 --to 0.05 --points 4 --export dem --set solver.max_steps=70 "
+                                     "--set 'effects=[\"drag\",\"lubrication\",\"added_mass\",\"elastic\"]'");
   EXPECT_EQ(f.status, 3) << f.err;
   // The plot draws the failed points (marked gaps) and the fits without failing.
   EXPECT_TRUE(fs::exists(out / "sweep.png"));

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "integrators/integrator.hpp"
+#include "tests/unit_ramp.hpp"
 
 namespace {
 
@@ -12,14 +13,8 @@ using namespace imcol;
 /// y' = 1 from y = 0; one root g = y − 0.5 that sits at exactly 0 over a plateau of 1e-9 (as a slowly moving gap
 /// whose change over the solver's smallest step is below rounding), reported as a diagnostic (proceed), and a
 /// second ordinary root g = y − 0.75.
-class PlateauRoot : public DynamicalSystem {
+class PlateauRoot : public test::UnitRamp {
  public:
-  std::size_t size() const override { return 1; }
-  std::vector<std::string> component_names() const override { return {"y"}; }
-  std::vector<double> absolute_tolerances(double atol) const override { return {atol}; }
-  void initial_state(std::span<double> y) const override { y[0] = 0; }
-  void rhs(double, std::span<const double>, std::span<double> yd) override { yd[0] = 1; }
-  void residual(double, std::span<const double>, std::span<const double> yp, std::span<double> r) override { r[0] = yp[0] - 1; }
   std::vector<RootSpec> roots() const override { return {{"plateau", 0}, {"y=0.75", 0}}; }
   void root_values(double, std::span<const double> y, std::span<double> g) override {
     g[0] = (y[0] >= 0.5 && y[0] <= 0.5 + 1e-9) ? 0.0 : y[0] - 0.5;

@@ -9,21 +9,16 @@
 #include <vector>
 
 #include "integrators/integrator.hpp"
+#include "tests/unit_ramp.hpp"
 
 namespace {
 
 using namespace imcol;
 
 /// y' = 1 from y = 0 up to t_end, with breakpoints on the grid kΔ when Δ > 0.
-class Ramp : public DynamicalSystem {
+class Ramp : public test::UnitRamp {
  public:
   Ramp(double t_end, double grid) : t_end_(t_end), grid_(grid) {}
-  std::size_t size() const override { return 1; }
-  std::vector<std::string> component_names() const override { return {"y"}; }
-  std::vector<double> absolute_tolerances(double atol) const override { return {atol}; }
-  void initial_state(std::span<double> y) const override { y[0] = 0; }
-  void rhs(double, std::span<const double>, std::span<double> yd) override { yd[0] = 1; }
-  void residual(double, std::span<const double>, std::span<const double> yp, std::span<double> r) override { r[0] = yp[0] - 1; }
   std::vector<RootSpec> roots() const override { return {}; }
   void root_values(double, std::span<const double>, std::span<double>) override {}
   EventAction on_roots(std::span<const std::size_t>, double, std::span<double>) override { return EventAction::proceed; }
