@@ -198,8 +198,8 @@ nlohmann::ordered_json flow_block(const FlowSummary& f) {
 nlohmann::ordered_json fluid_block(const FluidSpec& f) {
   nlohmann::ordered_json j;
   j["name"] = f.name.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(f.name);
-  j["mass_fraction"] = f.mass_fraction ? nlohmann::ordered_json(*f.mass_fraction) : nlohmann::ordered_json(nullptr);
-  j["temperature_C"] = f.temperature ? nlohmann::ordered_json(*f.temperature) : nlohmann::ordered_json(nullptr);
+  j["mass_fraction"] = or_null(f.mass_fraction);
+  j["temperature_C"] = or_null(f.temperature);
   j["density_kg_m3"] = f.density;
   j["viscosity_Pa_s"] = f.viscosity;
   j["density_source"] = f.density_source;
