@@ -12,6 +12,7 @@
 #include "core/materials.hpp"
 #include "core/scene.hpp"
 #include "run/simulate.hpp"
+#include "tests/input_error.hpp"
 #include "tests/scene_text.hpp"
 
 using namespace imcol;
@@ -24,13 +25,9 @@ std::string with_fluid(const std::string& fluid_table) {
   return test::edit(test::basic_wall_scene(), test::fluid(0.01), fluid_table);
 }
 
+/// The input error parsing `text` gives; "" if none.
 std::string error_of(const std::string& text, const std::vector<Override>& ov = {}) {
-  try {
-    parse_scene(text, "f.toml", ov);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_of([&] { parse_scene(text, "f.toml", ov); });
 }
 
 }  // namespace
