@@ -217,8 +217,11 @@ std::string fluid_line(const FluidSpec& f) {
   os << f.name;
   if (f.mass_fraction) os << ", w = " << std::setprecision(4) << *f.mass_fraction;
   if (f.temperature) os << ", " << std::setprecision(4) << *f.temperature << " °C";
-  // The source up to its year: "Cheng (2008)"; an inline value is "inline".
-  auto src = [](const std::string& s) { return s == "scene" ? std::string("inline") : s.substr(0, s.find(')') + 1); };
+  // The source up to its year: "Cheng (2008)" (a source without one, whole); an inline value is "inline".
+  auto src = [](const std::string& s) {
+    const auto year_end = s.find(')');
+    return s == "scene" ? std::string("inline") : year_end == std::string::npos ? s : s.substr(0, year_end + 1);
+  };
   os << ": rho = " << std::setprecision(5) << f.density << " kg/m3 (" << src(f.density_source) << "), mu = " << std::setprecision(4)
      << f.viscosity << " Pa s (" << src(f.viscosity_source) << ")";
   return os.str();

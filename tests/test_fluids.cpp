@@ -12,6 +12,7 @@
 #include "core/materials.hpp"
 #include "core/scene.hpp"
 #include "run/simulate.hpp"
+#include "run/summary.hpp"
 #include "tests/input_error.hpp"
 #include "tests/scene_text.hpp"
 
@@ -159,4 +160,19 @@ TEST(Fluids, SummaryRecordsTheValuesAndSources) {
   ASSERT_TRUE(r.summary.e);
   EXPECT_GT(*r.summary.e, 0.05);
   EXPECT_LT(*r.summary.e, 0.97);
+}
+
+// The run's line names each value's source up to its year; a source without a year in parentheses, whole.
+TEST(Fluids, FluidLineNamesEverySource) {
+  FluidSpec f;
+  f.name = "castor-oil";
+  f.density = 961;
+  f.viscosity = 0.985;
+  f.density_source = "CRC Handbook of Chemistry and Physics";
+  f.viscosity_source = "Cheng (2008) Ind. Eng. Chem. Res. 47:3285";
+  const std::string line = run::fluid_line(f);
+  EXPECT_NE(line.find("(CRC Handbook of Chemistry and Physics)"), std::string::npos) << line;
+  EXPECT_NE(line.find("(Cheng (2008))"), std::string::npos) << line;
+  f.viscosity_source = "scene";
+  EXPECT_NE(run::fluid_line(f).find("Pa s (inline)"), std::string::npos) << run::fluid_line(f);
 }
