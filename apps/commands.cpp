@@ -242,15 +242,21 @@ Subcommand add_effects(CLI::App& app) {
   return {effects, [o] { return cmd_effects(o->scene, o->c); }};
 }
 
-/// The options of a sweep inside another command (laws, history): --vary, --from, --to, --points, --spacing (imcol
-/// sweep's quantities and spacing); a range needs --vary and --vary a range. Returns --vary, for further options that need it.
-CLI::Option* add_sweep_range(CLI::App* cmd, SweepOptions& s) {
-  auto* vary = cmd->add_option("--vary", s.vary, "sweep: velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
+/// The range of a sweep: --vary, --from, --to, --points, --spacing. imcol sweep requires the range; inside another
+/// command (laws, history: `optional`, "sweep: " in the help) a range needs --vary and --vary a range. Returns --vary,
+/// for further options that need it.
+CLI::Option* add_sweep_range(CLI::App* cmd, SweepOptions& s, bool optional) {
+  const std::string tag = optional ? "sweep: " : "";
+  auto* vary = cmd->add_option("--vary", s.vary, tag + "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
                    ->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
-  auto* from = cmd->add_option("--from", s.from, "sweep: first value (SI units)")->check(number_rule("--from", kPositive));
-  auto* to = cmd->add_option("--to", s.to, "sweep: last value (SI units)")->check(number_rule("--to", kPositive));
-  auto* points = cmd->add_option("--points", s.points, "sweep: number of points")->check(integer_rule("--points", 1, 100000));
-  auto* spacing = cmd->add_option("--spacing", s.spacing, "sweep: log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
+  auto* from = cmd->add_option("--from", s.from, tag + "first value (SI units)")->check(number_rule("--from", kPositive));
+  auto* to = cmd->add_option("--to", s.to, tag + "last value (SI units)")->check(number_rule("--to", kPositive));
+  auto* points = cmd->add_option("--points", s.points, tag + "number of points")->check(integer_rule("--points", 1, 100000));
+  auto* spacing = cmd->add_option("--spacing", s.spacing, tag + "log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
+  if (!optional) {
+    for (auto* opt : {vary, from, to, points}) opt->required();
+    return vary;
+  }
   vary->needs(from)->needs(to)->needs(points);
   for (auto* opt : {from, to, points, spacing}) opt->needs(vary);
   return vary;
@@ -268,7 +274,7 @@ Subcommand add_history(CLI::App& app) {
   auto* evaluators = history->add_option("--evaluators", o->h.evaluators, "soe-step, soe, direct (default all three; a sweep: the scene's)")
                          ->delimiter(',')->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
   // Optionally at each point of a sweep (imcol sweep's quantities, spacing and --jobs): e against St per kernel.
-  auto* vary = add_sweep_range(history, o->h.sweep);
+  auto* vary = add_sweep_range(history, o->h.sweep, true);
   history->add_option("--jobs", o->h.sweep.jobs, "sweep: parallel runs (default: all cores)")->check(integer_rule("--jobs", 0, 1024))->needs(vary);
   history->add_flag("--no-progress", o->no_progress, "sweep: no progress line on the terminal")->needs(vary);
   history->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
@@ -291,7 +297,7 @@ Subcommand add_laws(CLI::App& app) {
       ->check(choice_rule("--laws", choice_names<ContactLawKind>()));
   laws->add_option("--out", o->l.out, "output directory (default out/<scene name>-laws, a sweep: -laws_<quantity>)")->check(path_rule("--out"));
   // Optionally at each point of a sweep (imcol sweep's quantities and spacing): e against St per law.
-  add_sweep_range(laws, o->l.sweep);
+  add_sweep_range(laws, o->l.sweep, true);
   laws->add_flag("--no-plot", o->no_plot, "skip the PNG plot");
   add_common(laws, o->c);
   return {laws, [o] {
@@ -368,12 +374,7 @@ Subcommand add_sweep(CLI::App& app) {
   auto& s = o->s;
   auto* sw = app.add_subcommand("sweep", "e against St over a range of one quantity, the points in parallel");
   add_scene(sw, o->scene);
-  sw->add_option("--vary", s.vary, "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
-      ->required()->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
-  sw->add_option("--from", s.from, "first value (SI units)")->required()->check(number_rule("--from", kPositive));
-  sw->add_option("--to", s.to, "last value (SI units)")->required()->check(number_rule("--to", kPositive));
-  sw->add_option("--points", s.points, "number of points")->required()->check(integer_rule("--points", 1, 100000));
-  sw->add_option("--spacing", s.spacing, "log (default) | linear")->check(choice_rule("--spacing", {"log", "linear"}));
+  add_sweep_range(sw, s, false);
   sw->add_option("--jobs", s.jobs, "parallel runs (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
   sw->add_option("--out", s.out, "output directory (default out/<scene name>-sweep_<quantity>)")->check(path_rule("--out"));
   sw->add_flag("--no-progress", o->no_progress, "no progress line on the terminal");

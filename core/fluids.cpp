@@ -97,14 +97,6 @@ std::vector<std::string> cells(const std::string& line, std::size_t n) {
   return out;
 }
 
-std::optional<double> cell_number(const std::string& cell, const std::string& where, const std::string& column) {
-  if (cell.empty()) return std::nullopt;
-  char* end = nullptr;
-  const double v = std::strtod(cell.c_str(), &end);
-  if (end == cell.c_str() || *end != '\0' || !std::isfinite(v)) throw InputError(where, column, "not a number: '" + cell + "'");
-  return v;
-}
-
 }  // namespace
 
 double FluidProperty::at(double w, double t_C) const {
@@ -123,7 +115,7 @@ FluidTable FluidTable::load(const std::string& path) {
     if (c[1] != "density" && c[1] != "viscosity") throw InputError(where, "property", "expected density or viscosity, got '" + c[1] + "'");
     FluidProperty& p = c[1] == "density" ? e.density : e.viscosity;
     if (!p.source.empty()) throw InputError(where, "property", "the " + c[1] + " of '" + c[0] + "' is given twice");
-    p.value = cell_number(c[2], where, "value");
+    p.value = csv_number(c[2], where, "value");
     p.correlation = c[3];
     p.source = c[8];
     if (p.source.empty()) throw InputError(where, "source", "missing");
@@ -133,12 +125,12 @@ FluidTable FluidTable::load(const std::string& path) {
       const Correlation* k = find_correlation(p.correlation);
       if (!k) throw InputError(where, "correlation", "unknown correlation '" + p.correlation + "'");
       if (c[1] != k->property) throw InputError(where, "correlation", "'" + p.correlation + "' gives the " + k->property);
-      const auto t_min = cell_number(c[4], where, "t_min_C"), t_max = cell_number(c[5], where, "t_max_C");
+      const auto t_min = csv_number(c[4], where, "t_min_C"), t_max = csv_number(c[5], where, "t_max_C");
       if (!t_min || !t_max || !(*t_min < *t_max)) throw InputError(where, "t_min_C", "a correlation needs t_min_C < t_max_C");
       p.t_min = *t_min;
       p.t_max = *t_max;
-      p.w_min = cell_number(c[6], where, "w_min");
-      p.w_max = cell_number(c[7], where, "w_max");
+      p.w_min = csv_number(c[6], where, "w_min");
+      p.w_max = csv_number(c[7], where, "w_max");
       if (k->uses_w != (p.w_min && p.w_max)) throw InputError(where, "w_min", "'" + p.correlation + (k->uses_w ? "' needs" : "' takes no") + " w_min and w_max");
     }
   });

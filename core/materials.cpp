@@ -19,15 +19,10 @@ std::vector<std::string> split(const std::string& line) {
   return out;
 }
 
+/// A cell that must hold a number.
 double number(const std::string& cell, const std::string& where, const std::string& col) {
-  try {
-    std::size_t used = 0;
-    double v = std::stod(cell, &used);
-    if (used != cell.size()) throw std::invalid_argument(cell);
-    return v;
-  } catch (const std::exception&) {
-    throw InputError(where, col, "not a number: '" + cell + "'");
-  }
+  if (auto v = csv_number(cell, where, col)) return *v;
+  throw InputError(where, col, "not a number: ''");
 }
 }  // namespace
 
@@ -41,8 +36,8 @@ MaterialTable MaterialTable::load(const std::string& path) {
     m.density = number(c[1], where, "density_kg_m3");
     m.youngs_modulus = number(c[2], where, "youngs_modulus_Pa");
     m.poisson_ratio = number(c[3], where, "poisson_ratio");
-    if (c.size() > 4 && !c[4].empty()) m.e_dry = number(c[4], where, "e_dry");
-    if (c.size() > 5 && !c[5].empty()) m.roughness = number(c[5], where, "roughness_m");
+    if (c.size() > 4) m.e_dry = csv_number(c[4], where, "e_dry");
+    if (c.size() > 5) m.roughness = csv_number(c[5], where, "roughness_m");
     table.by_name_[m.name] = m;
   });
   return table;

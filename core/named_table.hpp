@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A table of entries by name (the materials, the fluids): lookup and the list of names for error messages, and the
-// reading of its CSV file's rows.
+// reading of its CSV file's rows and numbers.
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "core/errors.hpp"
@@ -28,6 +31,16 @@ class NamedTable {
  protected:
   std::map<std::string, Entry> by_name_;
 };
+
+/// The number in a CSV cell, or nullopt for an empty cell. Throws InputError (`where`, `column`) for anything else that
+/// is not a finite number.
+inline std::optional<double> csv_number(const std::string& cell, const std::string& where, const std::string& column) {
+  if (cell.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(cell.c_str(), &end);
+  if (end == cell.c_str() || *end != '\0' || !std::isfinite(v)) throw InputError(where, column, "not a number: '" + cell + "'");
+  return v;
+}
 
 /// Calls `row(where, line)` for each data line of the CSV file `path` ("FILE:LINE", the line): blank lines and lines
 /// starting with '#' are skipped, and the first other line must be a header starting with `header`. `what` names the

@@ -162,7 +162,8 @@ void read_fluid(Reader& top, Scene& sc) {
                             : std::string("needs `fluid` naming a liquid whose properties depend on temperature (water, glycerol-water)"));
   if (e && e->takes_mass_fraction() && !w)
     throw InputError(r.where(nullptr), "fluid.mass_fraction", "missing (required for " + e->name + ": the glycerol mass fraction, 0 to 1)");
-  if (e && e->takes_temperature()) fl.temperature = t.value_or(20.0);  // °C
+  constexpr double kDefaultTemperatureC = 20.0;
+  if (e && e->takes_temperature()) fl.temperature = t.value_or(kDefaultTemperatureC);
   if (w) {
     r.in_range("mass_fraction", *w, 0.0, 1.0, false, false);
     fl.mass_fraction = *w;
@@ -173,7 +174,7 @@ void read_fluid(Reader& top, Scene& sc) {
       field = *inline_value;
       source = "scene";
     } else if (e) {
-      field = table_value(r, *e, *p, key, fl.mass_fraction.value_or(0.0), fl.temperature.value_or(20.0));
+      field = table_value(r, *e, *p, key, fl.mass_fraction.value_or(0.0), fl.temperature.value_or(kDefaultTemperatureC));
       source = p->source;
     } else {
       throw InputError(r.where(nullptr), r.full(key), "missing (required without `fluid`; or name a liquid: fluid = \"water\")");

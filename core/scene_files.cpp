@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <string_view>
 
 #include "core/errors.hpp"
 #include "core/materials.hpp"
@@ -12,10 +13,6 @@ namespace imcol {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
 
 /// Edit distance (insertions, deletions, substitutions).
 std::size_t distance(const std::string& a, const std::string& b) {
@@ -57,9 +54,9 @@ std::string find_scene(const std::string& arg) {
   if (arg.empty()) throw InputError("command line", "scene", "empty scene argument (give a scene file or a shipped scene's name: imcol scenes lists them)");
   std::error_code ec;
   if (fs::exists(arg, ec)) return arg;
-  std::string name = arg;
-  if (name.rfind("data/scenes/", 0) == 0) name = name.substr(12);
-  const std::string file = ends_with(name, ".toml") ? name : name + ".toml";
+  constexpr std::string_view kReadmePrefix = "data/scenes/";
+  const std::string name = arg.starts_with(kReadmePrefix) ? arg.substr(kReadmePrefix.size()) : arg;
+  const std::string file = name.ends_with(".toml") ? name : name + ".toml";
   const fs::path shipped = fs::path(scenes_dir()) / file;
   if (!fs::path(file).is_absolute() && fs::is_regular_file(shipped, ec)) return shipped.string();
   const std::string stem = file.substr(0, file.size() - 5);

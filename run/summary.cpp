@@ -198,8 +198,8 @@ nlohmann::ordered_json flow_block(const FlowSummary& f) {
 nlohmann::ordered_json fluid_block(const FluidSpec& f) {
   nlohmann::ordered_json j;
   j["name"] = f.name.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(f.name);
-  j["mass_fraction"] = f.mass_fraction ? nlohmann::ordered_json(*f.mass_fraction) : nlohmann::ordered_json(nullptr);
-  j["temperature_C"] = f.temperature ? nlohmann::ordered_json(*f.temperature) : nlohmann::ordered_json(nullptr);
+  j["mass_fraction"] = or_null(f.mass_fraction);
+  j["temperature_C"] = or_null(f.temperature);
   j["density_kg_m3"] = f.density;
   j["viscosity_Pa_s"] = f.viscosity;
   j["density_source"] = f.density_source;
@@ -217,8 +217,11 @@ std::string fluid_line(const FluidSpec& f) {
   os << f.name;
   if (f.mass_fraction) os << ", w = " << std::setprecision(4) << *f.mass_fraction;
   if (f.temperature) os << ", " << std::setprecision(4) << *f.temperature << " °C";
-  // The source up to its year: "Cheng (2008)"; an inline value is "inline".
-  auto src = [](const std::string& s) { return s == "scene" ? std::string("inline") : s.substr(0, s.find(')') + 1); };
+  // The source up to its year: "Cheng (2008)" (a source without one, whole); an inline value is "inline".
+  auto src = [](const std::string& s) {
+    const auto year_end = s.find(')');
+    return s == "scene" ? std::string("inline") : year_end == std::string::npos ? s : s.substr(0, year_end + 1);
+  };
   os << ": rho = " << std::setprecision(5) << f.density << " kg/m3 (" << src(f.density_source) << "), mu = " << std::setprecision(4)
      << f.viscosity << " Pa s (" << src(f.viscosity_source) << ")";
   return os.str();

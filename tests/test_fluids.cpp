@@ -2,6 +2,7 @@
 // Liquids by name (core/fluids.hpp, data/fluids.csv): the correlations against published values, and the scene's
 // [fluid] keys (fluid, mass_fraction, temperature, inline overrides, the errors).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +13,8 @@
 #include "core/materials.hpp"
 #include "core/scene.hpp"
 #include "run/simulate.hpp"
+#include "run/summary.hpp"
+#include "tests/input_error.hpp"
 #include "tests/scene_text.hpp"
 
 using namespace imcol;
@@ -24,13 +27,9 @@ std::string with_fluid(const std::string& fluid_table) {
   return test::edit(test::basic_wall_scene(), test::fluid(0.01), fluid_table);
 }
 
+/// The input error parsing `text` gives; "" if none.
 std::string error_of(const std::string& text, const std::vector<Override>& ov = {}) {
-  try {
-    parse_scene(text, "f.toml", ov);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_of([&] { parse_scene(text, "f.toml", ov); });
 }
 
 }  // namespace
@@ -162,4 +161,47 @@ TEST(Fluids, SummaryRecordsTheValuesAndSources) {
   ASSERT_TRUE(r.summary.e);
   EXPECT_GT(*r.summary.e, 0.05);
   EXPECT_LT(*r.summary.e, 0.97);
+}
+
+// The run's line names each value's source up to its year; a source without a year in parentheses, whole.
+TEST(Fluids, FluidLineNamesEverySource) {
+  FluidSpec f;
+  f.name = "castor-oil";
+  f.density = 961;
+  f.viscosity = 0.985;
+  f.density_source = "CRC Handbook of Chemistry and Physics";
+  f.viscosity_source = "Cheng (2008) Ind. Eng. Chem. Res. 47:3285";
+  const std::string line = run::fluid_line(f);
+  EXPECT_NE(line.find("(CRC Handbook of Chemistry and Physics)"), std::string::npos) << line;
+  EXPECT_NE(line.find("(Cheng (2008))"), std::string::npos) << line;
+  f.viscosity_source = "scene";
+  EXPECT_NE(run::fluid_line(f).find("Pa s (inline)"), std::string::npos) << run::fluid_line(f);
+}
+
+// The material and fluid tables read their numbers alike: an empty optional cell is absent; text, "nan" or "inf" is
+// refused naming the file, line and column.
+TEST(Fluids, TablesRefuseCellsThatAreNotFiniteNumbers) {
+  const std::filesystem::path csv = std::filesystem::temp_directory_path() / ("imcol_tables_" + std::to_string(::getpid()) + ".csv");
+  auto error_loading = [&](auto load, const std::string& text) {
+    std::ofstream(csv) << text;
+    return test::input_error_of([&] { load(csv.string()); });
+  };
+  const std::string materials = "# comment\nmaterial,density_kg_m3,youngs_modulus_Pa,poisson_ratio,e_dry,roughness_m\n";
+  auto material = [](const std::string& p) { MaterialTable::load(p); };
+  EXPECT_EQ(error_loading(material, materials + "glass,2500,6e10,0.23,,\n"), "");
+  for (const char* density : {"nan", "inf", "25x0", ""}) {
+    const std::string e = error_loading(material, materials + "glass," + density + ",6e10,0.23,,\n");
+    EXPECT_NE(e.find(csv.string() + ":3"), std::string::npos) << density << ": " << e;
+    EXPECT_NE(e.find("key 'density_kg_m3'"), std::string::npos) << density << ": " << e;
+  }
+  EXPECT_NE(error_loading(material, materials + "glass,2500,6e10,0.23,-inf,\n").find("key 'e_dry'"), std::string::npos);
+  const std::string fluids = "fluid,property,value,correlation,t_min_C,t_max_C,w_min,w_max,source\n";
+  auto fluid = [](const std::string& p) { FluidTable::load(p); };
+  EXPECT_EQ(error_loading(fluid, fluids + "oil,density,950,,,,,,a book\noil,viscosity,0.02,,,,,,a book\n"), "");
+  for (const char* value : {"nan", "inf", "0.0x2"}) {
+    const std::string e = error_loading(fluid, fluids + "oil,density,950,,,,,,a book\noil,viscosity," + value + ",,,,,,a book\n");
+    EXPECT_NE(e.find(csv.string() + ":3"), std::string::npos) << value << ": " << e;
+    EXPECT_NE(e.find("key 'value'"), std::string::npos) << value << ": " << e;
+  }
+  std::filesystem::remove(csv);
 }

@@ -18,6 +18,7 @@
 #include "core/materials.hpp"
 #include "core/scene.hpp"
 #include "core/scene_files.hpp"
+#include "tests/input_error.hpp"
 
 namespace fs = std::filesystem;
 using namespace imcol;
@@ -72,17 +73,13 @@ TEST(SceneNames, FindSceneByName) {
 }
 
 TEST(SceneNames, MissingSceneSaysWhereItLooked) {
-  try {
-    find_scene("defualt");
-    FAIL() << "no error";
-  } catch (const InputError& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("key 'scene'"), std::string::npos) << m;
-    EXPECT_NE(m.find(fs::absolute("defualt").string()), std::string::npos) << m;
-    EXPECT_NE(m.find(scenes_dir()), std::string::npos) << m;
-    EXPECT_NE(m.find("close names: default"), std::string::npos) << m;
-    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
-  }
+  const std::string m = test::input_error_of([] { find_scene("defualt"); });
+  ASSERT_FALSE(m.empty()) << "no error";
+  EXPECT_NE(m.find("key 'scene'"), std::string::npos) << m;
+  EXPECT_NE(m.find(fs::absolute("defualt").string()), std::string::npos) << m;
+  EXPECT_NE(m.find(scenes_dir()), std::string::npos) << m;
+  EXPECT_NE(m.find("close names: default"), std::string::npos) << m;
+  EXPECT_EQ(m.find('\n'), std::string::npos) << m;
 }
 
 TEST(SceneNames, CommandsTakeNamesFromAnotherFolder) {
