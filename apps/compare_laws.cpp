@@ -335,7 +335,6 @@ std::vector<LawRow> run_laws(const std::string& scene_path, const std::vector<Ov
         r.value = values[i];
         r.run.rows = {};
         r.run.summary_json = {};
-        r.run.files = {};
       }
     }
   }

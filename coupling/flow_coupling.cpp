@@ -353,12 +353,6 @@ void FlowCoupling::report_start_up(long step, long n_pre, const std::string& doi
 flow::SnapshotFrame FlowCoupling::lab_frame() const { return {frame_z_, frame_u_, -t_pre_}; }
 
 void FlowCoupling::take_snapshot(const std::string& name, const std::string& label) {
-  if (!series_) {
-    series_ = std::make_unique<flow::FieldSeries>(sc_.flow.fields_format, [this](const std::string& n, const std::string& c) {
-      if (sink_) sink_(n, c);
-      else files_.emplace_back(n, c);
-    });
-  }
   series_->take(*kernel_, lab_frame(), name, label);
   ++stats_.field_snapshots;
   stats_.fields_seconds = series_->seconds();
@@ -374,7 +368,7 @@ void FlowCoupling::take_regular(double t) {
 }
 
 void FlowCoupling::maybe_snapshot(double t, double gap) {
-  if (!sc_.flow.fields) return;
+  if (!series_) return;
   bool took = false;
   auto take = [&](const char* name, const std::string& label) {
     take_snapshot(name, label + ",");
@@ -410,7 +404,9 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
   watch.check_kernel_force(0.0, dt, acting(start_force_, integ.state()), integ.state());
   double t = 0;
   long n = 0;
-  if (sc_.flow.fields && sc_.flow.fields_every > 0) take_regular(0.0);  // the flow the spheres start in
+  // The flow fields are computed only when something writes them (a file sink): sweeps and comparisons skip them.
+  if (sc_.flow.fields && sink_) series_.emplace(sc_.flow.fields_format, sink_);
+  if (series_ && sc_.flow.fields_every > 0) take_regular(0.0);  // the flow the spheres start in
   while (!integ.finished()) {
     const double t1 = static_cast<double>(n + 1) * dt;
     const Predicted p = predict(t, integ.state(), dt);
@@ -448,7 +444,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     if (t < t1 - 1e-12 * std::max(1.0, t1) && !integ.finished())
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
-  if (sc_.flow.fields) {
+  if (series_) {
     take_snapshot("flow_end", "end of run,");
     series_->finish();
     stats_.fields_seconds = series_->seconds();
