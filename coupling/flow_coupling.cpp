@@ -358,13 +358,11 @@ void FlowCoupling::take_snapshot(const std::string& name, const std::string& lab
   stats_.fields_seconds = series_->seconds();
 }
 
-void FlowCoupling::take_regular(double t) {
-  const double every = sc_.flow.fields_every;
+void FlowCoupling::take_regular() {
   std::ostringstream name, label;
   name << "fields_" << std::setw(6) << std::setfill('0') << stats_.steps;
   label << "flow step " << stats_.steps << ",";
   take_snapshot(name.str(), label.str());
-  next_every_ = (std::floor(t / every * (1 + 1e-12)) + 1) * every;
 }
 
 void FlowCoupling::maybe_snapshot(double t, double gap) {
@@ -388,9 +386,10 @@ void FlowCoupling::maybe_snapshot(double t, double gap) {
   }
   // The regular snapshots: at the first step at or past each multiple of flow.fields_every (one per step; a step
   // that took a named snapshot already has its fields).
-  if (sc_.flow.fields_every > 0 && t >= next_every_ * (1 - 1e-12)) {
-    if (took) next_every_ = (std::floor(t / sc_.flow.fields_every * (1 + 1e-12)) + 1) * sc_.flow.fields_every;
-    else take_regular(t);
+  const double every = sc_.flow.fields_every;
+  if (every > 0 && t >= next_every_ * (1 - 1e-12)) {
+    if (!took) take_regular();
+    next_every_ = (std::floor(t / every * (1 + 1e-12)) + 1) * every;
   }
 }
 
@@ -406,7 +405,10 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
   long n = 0;
   // The flow fields are computed only when something writes them (a file sink): sweeps and comparisons skip them.
   if (sc_.flow.fields && sink_) series_.emplace(sc_.flow.fields_format, sink_);
-  if (series_ && sc_.flow.fields_every > 0) take_regular(0.0);  // the flow the spheres start in
+  if (series_ && sc_.flow.fields_every > 0) {  // the flow the spheres start in
+    take_regular();
+    next_every_ = sc_.flow.fields_every;
+  }
   while (!integ.finished()) {
     const double t1 = static_cast<double>(n + 1) * dt;
     const Predicted p = predict(t, integ.state(), dt);

@@ -108,7 +108,7 @@ class FlowCoupling {
   void report_start_up(long step, long n_pre, const std::string& doing);
   void maybe_snapshot(double t, double gap);
   void take_snapshot(const std::string& name, const std::string& label);
-  void take_regular(double t);  // the flow.fields_every snapshot named by the step
+  void take_regular();  // the flow.fields_every snapshot named by the step
   std::array<double, 2> acting(const std::array<double, 2>& f_rest, std::span<const double> y) const;  // (1 − H) f_rest
   flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
 
