@@ -336,7 +336,6 @@ std::vector<LawRow> run_laws(const std::string& scene_path, const std::vector<Ov
         r.run.rows = {};
         r.run.contact_rows = {};
         r.run.summary_json = {};
-        r.run.files = {};
       }
     }
   }

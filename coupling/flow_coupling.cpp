@@ -353,28 +353,20 @@ void FlowCoupling::report_start_up(long step, long n_pre, const std::string& doi
 flow::SnapshotFrame FlowCoupling::lab_frame() const { return {frame_z_, frame_u_, -t_pre_}; }
 
 void FlowCoupling::take_snapshot(const std::string& name, const std::string& label) {
-  if (!series_) {
-    series_ = std::make_unique<flow::FieldSeries>(sc_.flow.fields_format, [this](const std::string& n, const std::string& c) {
-      if (sink_) sink_(n, c);
-      else files_.emplace_back(n, c);
-    });
-  }
   series_->take(*kernel_, lab_frame(), name, label);
   ++stats_.field_snapshots;
   stats_.fields_seconds = series_->seconds();
 }
 
-void FlowCoupling::take_regular(double t) {
-  const double every = sc_.flow.fields_every;
+void FlowCoupling::take_regular() {
   std::ostringstream name, label;
   name << "fields_" << std::setw(6) << std::setfill('0') << stats_.steps;
   label << "flow step " << stats_.steps << ",";
   take_snapshot(name.str(), label.str());
-  next_every_ = (std::floor(t / every * (1 + 1e-12)) + 1) * every;
 }
 
 void FlowCoupling::maybe_snapshot(double t, double gap) {
-  if (!sc_.flow.fields) return;
+  if (!series_) return;
   bool took = false;
   auto take = [&](const char* name, const std::string& label) {
     take_snapshot(name, label + ",");
@@ -394,9 +386,10 @@ void FlowCoupling::maybe_snapshot(double t, double gap) {
   }
   // The regular snapshots: at the first step at or past each multiple of flow.fields_every (one per step; a step
   // that took a named snapshot already has its fields).
-  if (sc_.flow.fields_every > 0 && t >= next_every_ * (1 - 1e-12)) {
-    if (took) next_every_ = (std::floor(t / sc_.flow.fields_every * (1 + 1e-12)) + 1) * sc_.flow.fields_every;
-    else take_regular(t);
+  const double every = sc_.flow.fields_every;
+  if (every > 0 && t >= next_every_ * (1 - 1e-12)) {
+    if (!took) take_regular();
+    next_every_ = (std::floor(t / every * (1 + 1e-12)) + 1) * every;
   }
 }
 
@@ -410,7 +403,12 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
   watch.check_kernel_force(0.0, dt, acting(start_force_, integ.state()), integ.state());
   double t = 0;
   long n = 0;
-  if (sc_.flow.fields && sc_.flow.fields_every > 0) take_regular(0.0);  // the flow the spheres start in
+  // The flow fields are computed only when something writes them (a file sink): sweeps and comparisons skip them.
+  if (sc_.flow.fields && sink_) series_.emplace(sc_.flow.fields_format, sink_);
+  if (series_ && sc_.flow.fields_every > 0) {  // the flow the spheres start in
+    take_regular();
+    next_every_ = sc_.flow.fields_every;
+  }
   while (!integ.finished()) {
     const double t1 = static_cast<double>(n + 1) * dt;
     const Predicted p = predict(t, integ.state(), dt);
@@ -448,7 +446,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     if (t < t1 - 1e-12 * std::max(1.0, t1) && !integ.finished())
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
-  if (sc_.flow.fields) {
+  if (series_) {
     take_snapshot("flow_end", "end of run,");
     series_->finish();
     stats_.fields_seconds = series_->seconds();

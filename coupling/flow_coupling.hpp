@@ -23,6 +23,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,9 +72,8 @@ class FlowCoupling {
   /// Receives a progress text during the start-up (before t = 0: the flow developing, the force system's blocks).
   void set_progress(std::function<void(const std::string&)> f) { progress_ = std::move(f); }
   /// Where the flow-field files go as they are made (flow/field_series.hpp): names relative to the output folder.
-  /// Without a sink they are kept and returned by files().
+  /// Without a sink (sweeps, comparisons) no flow fields are computed, whatever flow.fields says.
   void set_file_sink(flow::FileSink sink) { sink_ = std::move(sink); }
-  const std::vector<std::pair<std::string, std::string>>& files() const { return files_; }
 
  private:
   struct Predicted {
@@ -108,7 +108,7 @@ class FlowCoupling {
   void report_start_up(long step, long n_pre, const std::string& doing);
   void maybe_snapshot(double t, double gap);
   void take_snapshot(const std::string& name, const std::string& label);
-  void take_regular(double t);  // the flow.fields_every snapshot named by the step
+  void take_regular();  // the flow.fields_every snapshot named by the step
   std::array<double, 2> acting(const std::array<double, 2>& f_rest, std::span<const double> y) const;  // (1 − H) f_rest
   flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
 
@@ -127,9 +127,8 @@ class FlowCoupling {
   bool have_f_rest_ = false;
   FlowRunStats stats_;
   flow::FileSink sink_;
-  std::vector<std::pair<std::string, std::string>> files_;  // without a sink
-  std::unique_ptr<flow::FieldSeries> series_;               // with flow.fields
-  double next_every_ = 0;                                   // next regular snapshot (flow.fields_every), s
+  std::optional<flow::FieldSeries> series_;  // with flow.fields and a sink
+  double next_every_ = 0;                    // next regular snapshot (flow.fields_every), s
   std::function<void(const std::string&)> progress_;
   WallClock::time_point start_up_began_{};
   double est_before_t0_s_ = 0;  // estimated start-up and its blocks, s

@@ -8,16 +8,19 @@ namespace imcol::flow {
 
 void FieldSeries::take(const Solver& s, const SnapshotFrame& frame, const std::string& name, const std::string& label) {
   const auto t0 = WallClock::now();
-  const std::vector<LevelFields> levels = level_fields(s, frame);
-  if (csv()) sink_(name + ".csv", snapshot_csv(s, levels, frame, label));
   std::string moment = label;  // without the CSV comment's trailing comma
   if (!moment.empty() && moment.back() == ',') moment.pop_back();
-  if (vtk() && s.steps() == last_vtk_step_ && !entries_.empty()) {
-    entries_.back().label += "; " + moment;  // the same fields: named in the series' comment
-  } else if (vtk()) {
-    last_vtk_step_ = s.steps();
-    for (const auto& f : snapshot_vtk(s, levels, frame, name, moment)) sink_("vtk/" + f.name, f.content);
-    entries_.push_back({s.time() + frame.t_shift, "vtk/" + name + ".vtm", moment});
+  const bool same_step = s.steps() == last_vtk_step_ && !entries_.empty();
+  if (vtk() && same_step) entries_.back().label += "; " + moment;  // the same fields: named in the series' comment
+  const bool new_vtk = vtk() && !same_step;
+  if (csv() || new_vtk) {  // the fields (and their pressure solve) only for a file that needs them
+    const std::vector<LevelFields> levels = level_fields(s, frame);
+    if (csv()) sink_(name + ".csv", snapshot_csv(s, levels, frame, label));
+    if (new_vtk) {
+      last_vtk_step_ = s.steps();
+      for (const auto& f : snapshot_vtk(s, levels, frame, name, moment)) sink_("vtk/" + f.name, f.content);
+      entries_.push_back({s.time() + frame.t_shift, "vtk/" + name + ".vtm", moment});
+    }
   }
   seconds_ += seconds_since(t0);
 }

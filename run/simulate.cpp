@@ -135,7 +135,6 @@ RunResult simulate(const Scene& sc, bool progress, Recording recording, const fl
   if (coupled) {
     s.flow = run::flow_summary(coupled->stats(), sc, wall);
     j["flow"] = run::flow_block(*s.flow);
-    res.files = coupled->files();
   }
   s.wall_time_s = wall;
   s.setup_time_s = setup;  // model construction, incl. one-off lookup tables
@@ -157,7 +156,6 @@ void write_outputs(const RunResult& r, const std::filesystem::path& dir) {
     csv += '\n';
   }
   write_file_atomic(dir / "trajectory.csv", csv);
-  for (const auto& [name, content] : r.files) write_file_atomic(dir / name, content);
   write_file_atomic(dir / "summary.json", r.summary_json.dump(2) + "\n");
 }
 

@@ -20,7 +20,6 @@ struct RunResult {
   std::vector<std::vector<double>> contact_rows;  // the same columns at every solver step while the gap < 3 δ_SS (full recording, history force)
   RunSummary summary;                   // what the run measured, typed
   nlohmann::ordered_json summary_json;    // summary.json: the same values (and more) under their names
-  std::vector<std::pair<std::string, std::string>> files;  // further files: name in the output directory, content
 };
 
 /// What the trajectory rows carry. `kinematics`: positions, velocities and events only (what e is measured from);
@@ -30,11 +29,11 @@ enum class Recording { full, kinematics };
 
 /// Runs one scene. Throws InputError (bad scene), SolverError (integration failed).
 /// `progress`: a run still going after 2 s shows a progress line on a terminal (stderr).
-/// `fields`: receives a coupled run's flow-field files as they are made (flow/field_series.hpp); without it they are
-/// kept in RunResult::files.
+/// `fields`: receives a coupled run's flow-field files as they are made (flow/field_series.hpp); without it a coupled
+/// run computes no flow fields (flow.fields applies to the runs that write them).
 RunResult simulate(const Scene& scene, bool progress = false, Recording recording = Recording::full, const flow::FileSink& fields = {});
 
-/// DIR/trajectory.csv and DIR/summary.json (and a coupled run's flow fields), each written completely or not at all.
+/// DIR/trajectory.csv and DIR/summary.json, each written completely or not at all (the flow fields went to simulate's sink).
 void write_outputs(const RunResult& r, const std::filesystem::path& dir);
 
 /// A short human-readable summary.

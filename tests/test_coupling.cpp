@@ -4,6 +4,7 @@
 // Coarse grids only: the full validations are commands (imcol validate seed --flow; docs/coupling.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -414,4 +415,22 @@ TEST(Coupling, AHugeDevelopedTimeIsRefusedNotOverflowed) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "flow.developed_time") << e.what();
   }
+}
+
+TEST(Coupling, FlowFieldsAreComputedOnlyForASink) {
+  // flow.fields (on by default) writes through simulate's file sink; a run without one (a sweep's point, a comparison)
+  // computes no snapshots. The fields are read from the kernel, so the run itself is the same either way.
+  const Scene sc = load_scene(scene_path("coupled/gg3462.toml"), {{"flow.cells_per_diameter", "8"}});
+  std::vector<std::string> names;
+  const RunResult written = simulate(sc, false, Recording::full, [&names](const std::string& name, const std::string&) { names.push_back(name); });
+  const RunResult silent = simulate(sc);
+  const auto& w = written.summary_json["flow"];
+  const auto& s = silent.summary_json["flow"];
+  EXPECT_GE(w["field_snapshots"].get<int>(), 2);  // at least the contact and the end
+  EXPECT_NE(std::find(names.begin(), names.end(), "flow_end.csv"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "flow.pvd"), names.end());
+  EXPECT_EQ(s["field_snapshots"].get<int>(), 0);
+  EXPECT_EQ(s["fields_time_s"].get<double>(), 0.0);
+  EXPECT_EQ(silent.summary_json["e"].get<double>(), written.summary_json["e"].get<double>());
+  EXPECT_EQ(s["steps"].get<long>(), w["steps"].get<long>());
 }

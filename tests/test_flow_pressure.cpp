@@ -216,7 +216,7 @@ TEST(FlowPressure, StokesFlowPastASphere) {
   }
   EXPECT_LT(full[1], 0.07);      // 32 cells/D: 5.3 % (2–5 % of it the Oseen asymmetry)
   EXPECT_LT(full[1], full[0]);   // falls with h (16 cells/D: 8.3 %)
-  EXPECT_LT(odd[1], 0.05);       // the dipole: 32 cells/D 3.9 %, the drag's own bias
+  EXPECT_LT(odd[1], 0.05);       // the dipole: 32 cells/D 4.1 %, the drag's own bias
   EXPECT_LT(odd_corr[1], 0.01);  // with that bias taken out: 0.2 % (16 cells/D: 0.7 %)
   // the pressure drag over any sphere around the body is 2πμaU = F/3 in Stokes flow
   EXPECT_LT(share[0], 0.01);
@@ -328,5 +328,5 @@ TEST(FlowPressure, PressureJumpAcrossTheWall) {
   std::printf("load: r < %.3f %.4f N (%.4f of the sphere's force; a point force %.4f), whole plate %.4f N; the kernel's wall force %.4f N, "
               "minus the sphere's %.4f N\n", R0, F0, F0 / -info.force[0], blake, F, info.wall_force, -info.force[0]);
   EXPECT_LT(std::abs(below), 0.01 * std::abs(above - below));
-  EXPECT_NEAR(F0 / -info.force[0], blake, 0.1 * blake);  // measured 0.605 against 0.590; a sphere is not a point force
+  EXPECT_NEAR(F0 / -info.force[0], blake, 0.1 * blake);  // measured 0.607 against 0.587; a sphere is not a point force
 }
