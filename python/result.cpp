@@ -19,10 +19,22 @@ namespace imcol::python {
 
 namespace {
 
+py::dict columns_as_arrays(const RunResult& r);
+
+/// The run and its Python views, made on first use (a caller reading only e and St pays for neither).
 struct PyResult {
   RunResult run;
-  py::dict summary;     // summary.json as Python
-  py::dict trajectory;  // column name -> 1-D float64 array
+  const py::dict& summary() {  // summary.json as Python
+    if (!summary_) summary_ = to_python(run.summary_json);
+    return summary_;
+  }
+  const py::dict& trajectory() {  // column name -> 1-D float64 array
+    if (!trajectory_) trajectory_ = columns_as_arrays(run);
+    return trajectory_;
+  }
+
+ private:
+  py::dict summary_{py::reinterpret_steal<py::dict>(py::handle())}, trajectory_{py::reinterpret_steal<py::dict>(py::handle())};
 };
 
 py::dict columns_as_arrays(const RunResult& r) {
@@ -64,8 +76,6 @@ std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::obje
     // A coupled run's flow-field files are not kept (the sink drops them as they are made).
     out->run = simulate(sc, false, rec, [](const std::string&, const std::string&) {});
   }
-  out->summary = to_python(out->run.summary_json);
-  out->trajectory = columns_as_arrays(out->run);
   return out;
 }
 
@@ -100,17 +110,17 @@ void bind_run(py::module_& m) {
             return d;
           },
           "The solver's statistics (steps, rhs_evals, …).")
-      .def_property_readonly("bounces", [](const PyResult& r) { return r.summary.contains("bounces") ? r.summary["bounces"] : py::object(py::list()); },
+      .def_property_readonly("bounces", [](PyResult& r) { return r.summary().contains("bounces") ? r.summary()["bounces"] : py::object(py::list()); },
                              "The contacts (summary.json `bounces`), one dict each.")
       .def_property_readonly("columns", [](const PyResult& r) { return r.run.columns; }, "The trajectory's columns.")
-      .def_property_readonly("trajectory", [](const PyResult& r) { return r.trajectory; },
+      .def_property_readonly("trajectory", [](PyResult& r) { return r.trajectory(); },
                              "The trajectory samples: column name -> NumPy array (result.trajectory[\"u1\"]).")
-      .def_property_readonly("summary", [](const PyResult& r) { return r.summary.attr("copy")(); })
-      .def("to_dict", [](const PyResult& r) { return py::module_::import("copy").attr("deepcopy")(r.summary); },
+      .def_property_readonly("summary", [](PyResult& r) { return r.summary().attr("copy")(); })
+      .def("to_dict", [](PyResult& r) { return py::module_::import("copy").attr("deepcopy")(r.summary()); },
            "The summary as summary.json writes it, as a dict.")
       .def("__getattr__",
-           [](const PyResult& r, const std::string& name) -> py::object {
-             if (r.summary.contains(name)) return r.summary[py::str(name)];
+           [](PyResult& r, const std::string& name) -> py::object {
+             if (r.summary().contains(name)) return r.summary()[py::str(name)];
              throw py::attribute_error("imcol.Result has no attribute '" + name + "'");
            })
       .def("__repr__", [](const PyResult& r) {
