@@ -1,0 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The Python module's parts, one per concept: each adds its classes and functions to the module.
+#include <pybind11/pybind11.h>
+
+namespace imcol::python {
+
+void bind_errors(pybind11::module_& m);  // InputError -> ValueError, SolverError -> imcol.SolverError
+void bind_scene(pybind11::module_& m);   // imcol.Scene
+void bind_run(pybind11::module_& m);     // imcol.run and imcol.Result
+
+}  // namespace imcol::python

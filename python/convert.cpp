@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "python/convert.hpp"
+
+#include <cmath>
+#include <cstdint>
+
+namespace py = pybind11;
+
+namespace imcol::python {
+
+py::object to_python(const nlohmann::ordered_json& j) {
+  using T = nlohmann::ordered_json::value_t;
+  switch (j.type()) {
+    case T::null:
+    case T::discarded: return py::none();
+    case T::boolean: return py::bool_(j.get<bool>());
+    case T::number_integer: return py::int_(j.get<std::int64_t>());
+    case T::number_unsigned: return py::int_(j.get<std::uint64_t>());
+    case T::number_float: return py::float_(j.get<double>());
+    case T::string: return py::str(j.get_ref<const std::string&>());
+    case T::binary: {
+      const auto& b = j.get_binary();
+      return py::bytes(reinterpret_cast<const char*>(b.data()), b.size());
+    }
+    case T::array: {
+      py::list out;
+      for (const auto& v : j) out.append(to_python(v));
+      return out;
+    }
+    case T::object: {
+      py::dict out;
+      for (const auto& [k, v] : j.items()) out[py::str(k)] = to_python(v);
+      return out;
+    }
+  }
+  return py::none();
+}
+
+namespace {
+
+std::string quoted(const std::string& s) { return nlohmann::json(s).dump(); }  // JSON strings are TOML basic strings
+
+std::string element_text(const py::handle& v);
+
+std::string scalar_text(const py::handle& v, bool bare_str) {
+  if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
+  if (py::isinstance<py::float_>(v)) {
+    const double x = v.cast<double>();
+    if (std::isnan(x)) return "nan";
+    if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+    std::string r = py::repr(v).cast<std::string>();  // shortest text that reads back as the same double
+    if (r.find_first_of(".eE") == std::string::npos) r += ".0";
+    return r;
+  }
+  if (py::isinstance<py::str>(v)) return bare_str ? v.cast<std::string>() : quoted(v.cast<std::string>());
+  if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
+    std::string s = "[";
+    bool first = true;
+    for (const auto& e : v) {
+      s += (first ? "" : ", ") + element_text(e);
+      first = false;
+    }
+    return s + "]";
+  }
+  // NumPy scalars and other numbers: as a float if they convert to one.
+  if (py::hasattr(v, "__float__")) return scalar_text(py::float_(v.cast<py::object>()), bare_str);
+  throw py::type_error("a scene value must be a str, bool, int, float or a list of them (got " +
+                       py::str(py::type::of(v).attr("__name__")).cast<std::string>() + ")");
+}
+
+std::string element_text(const py::handle& v) { return scalar_text(v, false); }
+
+}  // namespace
+
+std::string toml_value_text(const py::handle& value) { return scalar_text(value, true); }
+
+}  // namespace imcol::python

@@ -1,0 +1,10 @@
+# SPDX-License-Identifier: BSD-3-Clause
+"""imcol: head-on collisions of spheres immersed in a viscous liquid.
+
+    scene = imcol.Scene.load("default").set("fluid.viscosity", 0.05)
+    result = imcol.run(scene)
+    result.e, result.St, result.trajectory["u1"]
+"""
+from ._imcol import Result, Scene, SolverError, __version__, run
+
+__all__ = ["Result", "Scene", "SolverError", "run", "__version__"]

@@ -1,0 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The extension module imcol._imcol (the package imcol re-exports it).
+#include "python/bindings.hpp"
+
+PYBIND11_MODULE(_imcol, m) {
+  m.doc() = "imcol: head-on collisions of spheres immersed in a viscous liquid";
+  m.attr("__version__") = IMCOL_VERSION;
+  imcol::python::bind_errors(m);
+  imcol::python::bind_scene(m);
+  imcol::python::bind_run(m);
+}

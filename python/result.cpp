@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// imcol.run and imcol.Result: one run of a scene (run/simulate.hpp, the code path of `imcol run`) and what it
+// measured, read from its RunResult: e, St and the named measures, the summary (summary.json as a dict), the
+// trajectory as NumPy arrays by column name, the warnings and the solver's statistics.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+
+#include "core/errors.hpp"
+#include "python/bindings.hpp"
+#include "python/convert.hpp"
+#include "python/scene.hpp"
+#include "run/simulate.hpp"
+
+namespace py = pybind11;
+
+namespace imcol::python {
+
+namespace {
+
+py::dict columns_as_arrays(const RunResult& r);
+
+/// The run and its Python views, made on first use (a caller reading only e and St pays for neither).
+struct PyResult {
+  RunResult run;
+  const py::dict& summary() {  // summary.json as Python
+    if (!summary_) summary_ = to_python(run.summary_json);
+    return summary_;
+  }
+  const py::dict& trajectory() {  // column name -> 1-D float64 array
+    if (!trajectory_) trajectory_ = columns_as_arrays(run);
+    return trajectory_;
+  }
+
+ private:
+  py::dict summary_{py::reinterpret_steal<py::dict>(py::handle())}, trajectory_{py::reinterpret_steal<py::dict>(py::handle())};
+};
+
+py::dict columns_as_arrays(const RunResult& r) {
+  py::dict out;
+  const std::size_t n = r.rows.size();
+  for (std::size_t c = 0; c < r.columns.size(); ++c) {
+    py::array_t<double> a(static_cast<py::ssize_t>(n));
+    auto v = a.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < n; ++i) v(static_cast<py::ssize_t>(i)) = c < r.rows[i].size() ? r.rows[i][c] : NAN;
+    out[py::str(r.columns[c])] = std::move(a);
+  }
+  return out;
+}
+
+Recording recording_from(const std::string& record) {
+  if (record == "full") return Recording::full;
+  if (record == "kinematics") return Recording::kinematics;
+  throw InputError("imcol.run", "record", "must be full or kinematics (got '" + record + "')");
+}
+
+/// A tolerance or integrator given to run(): an override of the solver key, as --rtol / --atol / --integrator are.
+std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
+                                       const std::optional<std::string>& integrator) {
+  std::vector<Override> o;
+  if (rtol) o.push_back({"solver.rtol", toml_value_text(*rtol)});
+  if (atol) o.push_back({"solver.atol", toml_value_text(*atol)});
+  if (integrator) o.push_back({"solver.integrator", "\"" + *integrator + "\""});
+  return o;
+}
+
+std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::object>& rtol,
+                              const std::optional<py::object>& atol, const std::optional<std::string>& integrator,
+                              const std::string& record) {
+  const Recording rec = recording_from(record);
+  const Scene sc = scene.with(solver_overrides(rtol, atol, integrator));
+  auto out = std::make_shared<PyResult>();
+  {
+    py::gil_scoped_release free;
+    // A coupled run's flow-field files are not kept (the sink drops them as they are made).
+    out->run = simulate(sc, false, rec, [](const std::string&, const std::string&) {});
+  }
+  return out;
+}
+
+py::object opt(const std::optional<double>& v) { return v ? py::object(py::float_(*v)) : py::object(py::none()); }
+
+}  // namespace
+
+void bind_run(py::module_& m) {
+  py::class_<PyResult, std::shared_ptr<PyResult>>(m, "Result",
+                                                  "What a run measured. Every key of the summary (summary.json) is "
+                                                  "also an attribute: result.Re, result.min_gap_m, …")
+      .def_property_readonly("e", [](const PyResult& r) { return opt(r.run.summary.e); },
+                             "Restitution coefficient by the measure `e_is` names; None without one (see e_missing).")
+      .def_property_readonly("St", [](const PyResult& r) { return opt(r.run.summary.St); }, "Stokes number at impact.")
+      .def_property_readonly(
+          "measures",
+          [](const PyResult& r) {
+            py::dict d;
+            for (const auto& [name, e] : r.run.summary.e_measures) d[py::str(name)] = opt(e);
+            return d;
+          },
+          "The first contact's named measures of e, name -> e (None where not measured).")
+      .def_property_readonly("warnings", [](const PyResult& r) { return r.run.summary.warnings; })
+      .def_property_readonly(
+          "stats",
+          [](const PyResult& r) {
+            const auto& s = r.run.summary.solver.stats;
+            py::dict d;
+            for (const auto& [k, v] : s.as_map()) d[py::str(k)] = v;
+            d["linear_solver"] = s.linear_solver;
+            d["state_size"] = s.state_size;
+            return d;
+          },
+          "The solver's statistics (steps, rhs_evals, …).")
+      .def_property_readonly("bounces", [](PyResult& r) { return r.summary().contains("bounces") ? r.summary()["bounces"] : py::object(py::list()); },
+                             "The contacts (summary.json `bounces`), one dict each.")
+      .def_property_readonly("columns", [](const PyResult& r) { return r.run.columns; }, "The trajectory's columns.")
+      .def_property_readonly("trajectory", [](PyResult& r) { return r.trajectory(); },
+                             "The trajectory samples: column name -> NumPy array (result.trajectory[\"u1\"]).")
+      .def_property_readonly("summary", [](PyResult& r) { return r.summary().attr("copy")(); })
+      .def("to_dict", [](PyResult& r) { return py::module_::import("copy").attr("deepcopy")(r.summary()); },
+           "The summary as summary.json writes it, as a dict.")
+      .def("__getattr__",
+           [](PyResult& r, const std::string& name) -> py::object {
+             if (r.summary().contains(name)) return r.summary()[py::str(name)];
+             throw py::attribute_error("imcol.Result has no attribute '" + name + "'");
+           })
+      .def("__repr__", [](const PyResult& r) {
+        const auto& s = r.run.summary;
+        auto num = [](const std::optional<double>& v) { return v ? fmt_number(*v) : std::string("None"); };
+        return "imcol.Result(scene='" + s.scene + "', e=" + num(s.e) + ", St=" + num(s.St) + ")";
+      });
+
+  m.def("run", &run, py::arg("scene"), py::arg("rtol") = py::none(), py::arg("atol") = py::none(),
+        py::arg("integrator") = py::none(), py::arg("record") = "full",
+        "Runs a scene as `imcol run` does (rtol, atol, integrator: as --rtol, --atol, --integrator). record: \"full\" "
+        "(forces in the trajectory) or \"kinematics\" (positions, velocities and events only, faster). The GIL is "
+        "released while it runs. Raises ValueError (bad input) or imcol.SolverError.");
+}
+
+}  // namespace imcol::python

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "python/scene.hpp"
+
+#include "core/scene_files.hpp"
+#include "core/toml_reader.hpp"
+#include "python/bindings.hpp"
+#include "python/convert.hpp"
+
+namespace py = pybind11;
+
+namespace imcol::python {
+
+PyScene::PyScene(std::string path, std::string text)
+    : path_(std::move(path)), text_(std::move(text)), scene_(parse_scene(text_, path_)) {}
+
+PyScene PyScene::load(const std::string& name_or_path) {
+  const std::string path = find_scene(name_or_path);
+  return PyScene(path, read_scene_file(path));
+}
+
+PyScene PyScene::from_toml(const std::string& text) { return PyScene("<string>", text); }
+
+void PyScene::set(const std::string& key, const std::string& value_text) {
+  auto trial = overrides_;
+  trial.push_back(parse_override(key + "=" + value_text));
+  scene_ = parse_scene(text_, path_, trial);
+  overrides_ = std::move(trial);
+}
+
+Scene PyScene::with(const std::vector<Override>& extra) const {
+  if (extra.empty()) return scene_;
+  auto all = overrides_;
+  all.insert(all.end(), extra.begin(), extra.end());
+  return parse_scene(text_, path_, all);
+}
+
+void bind_scene(py::module_& m) {
+  py::class_<PyScene>(m, "Scene", "A scene: a TOML file or text, with keys set on it as the command line's --set does.")
+      .def_static("load", &PyScene::load, py::arg("name_or_path"),
+                  "A scene file, or a shipped scene's name (\"default\", \"coupled/gg3462\"), as `imcol run` takes it.")
+      .def_static("from_toml", &PyScene::from_toml, py::arg("text"), "A scene given as TOML text.")
+      .def(
+          "set",
+          [](PyScene& s, const std::string& key, const py::handle& value) -> PyScene& {
+            s.set(key, toml_value_text(value));
+            return s;
+          },
+          py::arg("key"), py::arg("value"), py::return_value_policy::reference_internal,
+          "Sets a dotted key as `--set key=value` does, with the same checks and messages (ValueError); returns the "
+          "scene. A str is taken as --set takes its text (a bare word is a string); numbers, bools and lists as TOML.")
+      .def_property_readonly("name", [](const PyScene& s) { return s.scene().name; })
+      .def_property_readonly("path", &PyScene::path, "The file the scene was read from (`<string>` for from_toml).")
+      .def_property_readonly("description", [](const PyScene& s) { return s.scene().description; })
+      .def_property_readonly("toml", &PyScene::text, "The scene's TOML text, before the keys set on it.")
+      .def_property_readonly(
+          "overrides",
+          [](const PyScene& s) {
+            py::list out;
+            for (const auto& o : s.overrides()) out.append(o.key + "=" + o.value);
+            return out;
+          },
+          "The keys set, as --set options would give them.")
+      .def("__copy__", [](const PyScene& s) { return s; })
+      .def("__deepcopy__", [](const PyScene& s, const py::dict&) { return s; }, py::arg("memo"))
+      .def("__repr__", [](const PyScene& s) {
+        std::string r = "imcol.Scene('" + s.scene().name + "', path='" + s.path() + "'";
+        if (!s.overrides().empty()) r += ", " + std::to_string(s.overrides().size()) + " keys set";
+        return r + ")";
+      });
+}
+
+}  // namespace imcol::python

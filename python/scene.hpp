@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// imcol.Scene: a scene's TOML text and the overrides set on it, read and checked as the command line reads a scene
+// file and its --set options (core/scene.hpp load_scene / parse_scene).
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace imcol::python {
+
+class PyScene {
+ public:
+  /// A file, or a shipped scene's name (core/scene_files.hpp find_scene), as `imcol run NAME` takes it.
+  static PyScene load(const std::string& name_or_path);
+  /// A scene given as TOML text; messages name it `<string>`.
+  static PyScene from_toml(const std::string& text);
+
+  /// Sets one key as `--set key=value_text` does (the same checks and messages); the scene is unchanged on error.
+  void set(const std::string& key, const std::string& value_text);
+
+  /// The scene with `extra` overrides after the scene's own.
+  Scene with(const std::vector<Override>& extra) const;
+
+  const Scene& scene() const { return scene_; }
+  const std::string& path() const { return path_; }
+  const std::string& text() const { return text_; }
+  const std::vector<Override>& overrides() const { return overrides_; }
+
+ private:
+  PyScene(std::string path, std::string text);
+  std::string path_, text_;
+  std::vector<Override> overrides_;
+  Scene scene_;
+};
+
+}  // namespace imcol::python
