@@ -9,7 +9,8 @@
 # Build: CMake's Debug type (assertions on) at -Og -g1: -Og is -O1 without the passes that hinder debugging and
 # compiles in about the CPU time of -O0 (contact/history_kernel.cpp with the sanitizers: 30 s at -Og -g1 and at
 # -O0 -g, 39 s at -O1 -g1); -g1 keeps the function and file:line of each stack frame in the reports. Only imcol
-# and imcol_tests are built (no benchmarks).
+# and imcol_tests are built (no benchmarks, no Python module: a sanitized extension cannot load into an
+# interpreter built without the sanitizers' runtime).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=build-asan
@@ -33,7 +34,7 @@ fi
 if [[ -n $sundials_dir ]]; then sundials_arg=(-DSUNDIALS_DIR="$sundials_dir"); else sundials_arg=(-USUNDIALS_DIR); fi
 
 t0=$SECONDS
-cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG='-Og -g1' -DIMCOL_SANITIZE=ON -DIMCOL_BUILD_BENCHMARKS=OFF "${sundials_arg[@]}"
+cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG='-Og -g1' -DIMCOL_SANITIZE=ON -DIMCOL_BUILD_BENCHMARKS=OFF -DIMCOL_PYTHON=OFF "${sundials_arg[@]}"
 cmake --build "$B" -j"$JOBS" --target imcol imcol_tests
 t1=$SECONDS
 
