@@ -121,3 +121,22 @@ def test_bad_vary_and_bad_values_raise_value_error_with_the_command_lines_messag
     with pytest.raises(ValueError) as bad:
         imcol.sweep(dry, vary="viscosity", values=[0.1, 1.0])
     assert "imcol: error: " + str(bad.value) == err.strip()
+
+
+def test_the_gil_is_released_while_the_points_run():
+    # Another Python thread keeps running during a sweep (with the GIL held it would not run at all until the end).
+    import threading
+    done, ticks, out = threading.Event(), [0], {}
+
+    def run():
+        out["r"] = imcol.sweep("default", values=log_values(0.05, 1.0, 40), jobs=1)
+        done.set()
+
+    t = threading.Thread(target=run)
+    t.start()
+    while not done.is_set():
+        ticks[0] += 1
+        done.wait(0.001)
+    t.join()
+    assert list(out["r"].status) == ["ok"] * 40
+    assert ticks[0] > 20
