@@ -248,7 +248,7 @@ Subcommand add_effects(CLI::App& app) {
 CLI::Option* add_sweep_range(CLI::App* cmd, SweepOptions& s, bool optional) {
   const std::string tag = optional ? "sweep: " : "";
   auto* vary = cmd->add_option("--vary", s.vary, tag + "velocity (impactor) | viscosity | diameter | density (every sphere, ratios kept)")
-                   ->check(choice_rule("--vary", {"velocity", "viscosity", "diameter", "density"}));
+                   ->check(choice_rule("--vary", sweep_quantities()));
   auto* from = cmd->add_option("--from", s.from, tag + "first value (SI units)")->check(number_rule("--from", kPositive));
   auto* to = cmd->add_option("--to", s.to, tag + "last value (SI units)")->check(number_rule("--to", kPositive));
   auto* points = cmd->add_option("--points", s.points, tag + "number of points")->check(integer_rule("--points", 1, 100000));

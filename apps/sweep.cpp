@@ -44,29 +44,20 @@ struct Quantity {
   const char* column;  // CSV column of the varied value
 };
 
+const Quantity kQuantities[] = {{"velocity", "velocity_m_s"}, {"viscosity", "viscosity_Pa_s"}, {"diameter", "diameter_m"}, {"density", "density_kg_m3"}};
+
 const Quantity* quantity(const std::string& vary) {
-  static const Quantity q[] = {{"velocity", "velocity_m_s"},
-                               {"viscosity", "viscosity_Pa_s"},
-                               {"diameter", "diameter_m"},
-                               {"density", "density_kg_m3"}};
-  for (const auto& x : q)
+  for (const auto& x : kQuantities)
     if (vary == x.name) return &x;
   return nullptr;
 }
 
-struct PointResult {
-  bool done = false, ok = false;
-  double value = NAN;
-  RunSummary summary;  // when ok
-  std::string message;
+struct PointResult : SweepPoint {
+  bool done = false;
   std::string row;  // CSV
 };
 
 nlohmann::ordered_json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
-
-const char* kCsvHeader =
-    "point,{},St,St_B_table_6_1,St_B_eq_6_2,St_L,St_initial,Re,e,e_instant,e_fit_distance,e_at_gap,e_peak_rebound,separated,min_gap_m,steps,rhs_evals,"
-    "wall_time_s,status,message,e_is,e_status,e_fit_time,e_yang_hunt_2006,e_joseph_2001,e_gondret_2002\n";
 
 /// What became of e at a point that ran: measured (the named measures agree within measure.disagreement),
 /// measures_disagree (the message names them), or not_measured (the message says why).
@@ -75,30 +66,35 @@ std::string e_status(const RunSummary& s) {
   return s.measures_disagree.empty() ? "measured" : "measures_disagree";
 }
 
-/// One finished point's CSV row (formatted once: the file is rewritten after every point).
+/// sweep.csv's header, the varied quantity's column second.
+std::string csv_header(const Quantity& q) {
+  std::string h = std::string("point,") + q.column;
+  for (const auto& c : sweep_columns()) h += std::string(",") + c.name;
+  return h + "\n";
+}
+
+/// One finished point's CSV row (formatted once: the file is rewritten after every point). A failed point has
+/// empty cells but its status and message.
 std::string csv_row(std::size_t i, const PointResult& p) {
-  const auto& s = p.summary;
-  // A failed point has empty cells.
-  auto get = [&](const std::optional<double>& v) { return p.ok ? csv_cell(v) : std::string(); };
-  // The named measures of e (docs/bounces.md); `e` is the one e_is names (measure.e).
-  auto measure = [&](const char* k) { return get(s.measure_e(k)); };
-  std::string msg = p.message;
-  for (char& c : msg)
-    if (c == ',' || c == '\n') c = ';';
   std::ostringstream csv;
-  csv << i << "," << std::setprecision(12) << p.value << "," << get(s.St) << "," << get(s.St_B_table_6_1) << "," << get(s.St_B_eq_6_2) << "," << get(s.St_L) << "," << get(s.St_initial)
-      << "," << get(s.Re) << "," << get(s.e) << "," << get(s.e_instant) << "," << measure("fit_distance") << "," << measure("at_gap") << ","
-      << measure("peak_rebound") << "," << (p.ok ? (s.separated ? "1" : "0") : "") << "," << get(s.min_gap_m) << ","
-      << get(s.solver.stats.steps) << "," << get(s.solver.stats.rhs_evals) << ","
-      << get(s.wall_time_s) << "," << (p.ok ? "ok" : "failed") << "," << msg << "," << (p.ok ? s.e_is : "") << "," << (p.ok ? e_status(s) : "")
-      << "," << measure("fit_time") << "," << measure("yang_hunt_2006") << "," << measure("joseph_2001") << "," << measure("gondret_2002")
-      << "\n";
+  csv << i << "," << std::setprecision(12) << p.value;
+  for (const auto& c : sweep_columns()) {
+    csv << ",";
+    if (c.number) {
+      csv << csv_cell(c.number(p));
+      continue;
+    }
+    std::string w = c.word(p);
+    for (char& ch : w)
+      if (ch == ',' || ch == '\n') ch = ';';
+    csv << w;
+  }
+  csv << "\n";
   return csv.str();
 }
 
 std::string sweep_csv(const std::vector<PointResult>& pts, const Quantity& q) {
-  std::string header = kCsvHeader;
-  std::string out = header.replace(header.find("{}"), 2, q.column);
+  std::string out = csv_header(q);
   for (const auto& p : pts)
     if (p.done) out += p.row;
   return out;
@@ -127,11 +123,91 @@ std::string point_message(const RunSummary& s, double t_end_scene, double t_end_
   return os.str();
 }
 
+/// "sweep point 3 (velocity = 0.5)": a point in messages.
+std::string point_name(std::size_t i, const std::string& vary, double value) {
+  std::ostringstream os;
+  os << std::setprecision(6) << "sweep point " << i << " (" << vary << " = " << value << ")";
+  return os.str();
+}
+
 }  // namespace
 
 const char* sweep_column(const std::string& vary) {
   const Quantity* q = quantity(vary);
   return q ? q->column : nullptr;
+}
+
+std::vector<std::string> sweep_quantities() {
+  std::vector<std::string> out;
+  for (const auto& q : kQuantities) out.emplace_back(q.name);
+  return out;
+}
+
+void check_sweep_quantity(const std::string& vary, const std::string& where, const std::string& key) {
+  if (quantity(vary)) return;
+  std::string list;
+  for (const auto& q : kQuantities) list += (list.empty() ? "" : ", ") + std::string(q.name);
+  throw InputError(where, key, "unknown value '" + vary + "' (expected " + list + ")");
+}
+
+void check_sweep_values(const std::string& vary, const std::vector<double>& values, const std::string& where, const std::string& key) {
+  if (values.empty() || values.size() > 100000)
+    throw InputError(where, key, "must hold 1 to 100000 values (" + std::to_string(values.size()) + " given)");
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!(values[i] > 0 && std::isfinite(values[i]))) throw InputError(where, key, point_name(i, vary, values[i]) + ": must be a positive number");
+}
+
+const std::vector<SweepColumn>& sweep_columns() {
+  using P = const SweepPoint&;
+  using V = std::optional<double>;
+  // A failed point has no numbers.
+  static const std::vector<SweepColumn> cols = {
+      {"St", [](P p) { return p.ok ? p.summary.St : V(); }, nullptr},
+      {"St_B_table_6_1", [](P p) { return p.ok ? p.summary.St_B_table_6_1 : V(); }, nullptr},
+      {"St_B_eq_6_2", [](P p) { return p.ok ? p.summary.St_B_eq_6_2 : V(); }, nullptr},
+      {"St_L", [](P p) { return p.ok ? p.summary.St_L : V(); }, nullptr},
+      {"St_initial", [](P p) { return p.ok ? p.summary.St_initial : V(); }, nullptr},
+      {"Re", [](P p) { return p.ok ? p.summary.Re : V(); }, nullptr},
+      {"e", [](P p) { return p.ok ? p.summary.e : V(); }, nullptr},
+      {"e_instant", [](P p) { return p.ok ? p.summary.e_instant : V(); }, nullptr},
+      // The named measures of e (docs/bounces.md); `e` is the one e_is names (measure.e).
+      {"e_fit_distance", [](P p) { return p.ok ? p.summary.measure_e("fit_distance") : V(); }, nullptr},
+      {"e_at_gap", [](P p) { return p.ok ? p.summary.measure_e("at_gap") : V(); }, nullptr},
+      {"e_peak_rebound", [](P p) { return p.ok ? p.summary.measure_e("peak_rebound") : V(); }, nullptr},
+      {"separated", [](P p) { return p.ok ? V(p.summary.separated ? 1.0 : 0.0) : V(); }, nullptr},
+      {"min_gap_m", [](P p) { return p.ok ? p.summary.min_gap_m : V(); }, nullptr},
+      {"steps", [](P p) { return p.ok ? V(static_cast<double>(p.summary.solver.stats.steps)) : V(); }, nullptr},
+      {"rhs_evals", [](P p) { return p.ok ? V(static_cast<double>(p.summary.solver.stats.rhs_evals)) : V(); }, nullptr},
+      {"wall_time_s", [](P p) { return p.ok ? V(p.summary.wall_time_s) : V(); }, nullptr},
+      {"status", nullptr, [](P p) { return std::string(p.ok ? "ok" : "failed"); }},
+      {"message", nullptr, [](P p) { return p.message; }},
+      {"e_is", nullptr, [](P p) { return p.ok ? p.summary.e_is : std::string(); }},
+      {"e_status", nullptr, [](P p) { return p.ok ? e_status(p.summary) : std::string(); }},
+      {"e_fit_time", [](P p) { return p.ok ? p.summary.measure_e("fit_time") : V(); }, nullptr},
+      {"e_yang_hunt_2006", [](P p) { return p.ok ? p.summary.measure_e("yang_hunt_2006") : V(); }, nullptr},
+      {"e_joseph_2001", [](P p) { return p.ok ? p.summary.measure_e("joseph_2001") : V(); }, nullptr},
+      {"e_gondret_2002", [](P p) { return p.ok ? p.summary.measure_e("gondret_2002") : V(); }, nullptr},
+  };
+  return cols;
+}
+
+SweepPoint run_sweep_point(const Scene& scene, double value) {
+  SweepPoint r;
+  r.value = value;
+  try {
+    // A point whose collision or rebound window did not fit in t_end is rerun with t_end doubled (twice at most).
+    Scene sc = scene;
+    for (int attempt = 0;; ++attempt) {
+      r.summary = simulate(sc, false, Recording::kinematics).summary;  // e needs no force columns
+      if (attempt == 2 || !r.summary.t_end_too_short) break;
+      sc.solver.t_end *= 2;
+    }
+    r.ok = true;
+    r.message = point_message(r.summary, scene.solver.t_end, sc.solver.t_end);
+  } catch (const std::exception& e) {
+    r.message = e.what();  // a solver failure (or anything else) ends this point only
+  }
+  return r;
 }
 
 std::vector<double> sweep_values(const SweepOptions& opt) {
@@ -180,16 +256,20 @@ std::vector<Override> sweep_overrides(const Scene& base, const std::string& vary
 
 std::vector<Scene> sweep_scenes(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
                                 const std::string& vary, const std::vector<double>& values) {
+  return sweep_scenes([&](const std::vector<Override>& ov) { return load_scene(scene_path, ov); }, overrides, base, vary, values);
+}
+
+std::vector<Scene> sweep_scenes(const std::function<Scene(const std::vector<Override>&)>& load, const std::vector<Override>& overrides,
+                                const Scene& base, const std::string& vary, const std::vector<double>& values) {
+  if (vary == "viscosity" && !base.fluid) throw InputError(base.path, "fluid", "a viscosity sweep needs a [fluid] table");
   std::vector<Scene> scenes;
   for (std::size_t i = 0; i < values.size(); ++i) {
     auto ov = overrides;
     for (auto& o : sweep_overrides(base, vary, values[i])) ov.push_back(o);
     try {
-      scenes.push_back(load_scene(scene_path, ov));
+      scenes.push_back(load(ov));
     } catch (const InputError& e) {
-      std::ostringstream os;
-      os << std::setprecision(6) << "sweep point " << i << " (" << vary << " = " << values[i] << ")";
-      throw InputError(e.where(), e.key(), os.str() + ": " + e.what());
+      throw InputError(e.where(), e.key(), point_name(i, vary, values[i]) + ": " + e.what());
     }
   }
   return scenes;
@@ -246,20 +326,7 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
 
   auto run_point = [&](std::size_t i) {
     PointResult r;
-    r.value = pts[i].value;
-    try {
-      // A point whose collision or rebound window did not fit in t_end is rerun with t_end doubled (twice at most).
-      Scene sc = scenes[i];
-      for (int attempt = 0;; ++attempt) {
-        r.summary = simulate(sc, false, Recording::kinematics).summary;  // e needs no force columns
-        if (attempt == 2 || !r.summary.t_end_too_short) break;
-        sc.solver.t_end *= 2;
-      }
-      r.ok = true;
-      r.message = point_message(r.summary, scenes[i].solver.t_end, sc.solver.t_end);
-    } catch (const std::exception& e) {
-      r.message = e.what();  // a solver failure (or anything else) ends this point only
-    }
+    static_cast<SweepPoint&>(r) = run_sweep_point(scenes[i], pts[i].value);
     r.done = true;
     r.row = csv_row(i, r);
     return r;
@@ -427,7 +494,6 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   check_options(opt);
 
   const Scene base = load_scene(scene_path, overrides);
-  if (opt.vary == "viscosity" && !base.fluid) throw InputError(scene_path, "fluid", "a viscosity sweep needs a [fluid] table");
   const std::vector<double> values = sweep_values(opt);
   const std::vector<Scene> scenes = sweep_scenes(scene_path, overrides, base, opt.vary, values);
   std::vector<PointResult> pts(values.size());

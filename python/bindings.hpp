@@ -8,5 +8,6 @@ namespace imcol::python {
 void bind_errors(pybind11::module_& m);  // InputError -> ValueError, SolverError -> imcol.SolverError
 void bind_scene(pybind11::module_& m);   // imcol.Scene
 void bind_run(pybind11::module_& m);     // imcol.run and imcol.Result
+void bind_sweep(pybind11::module_& m);   // imcol.sweep and imcol.SweepResult
 
 }  // namespace imcol::python

@@ -8,4 +8,5 @@ PYBIND11_MODULE(_imcol, m) {
   imcol::python::bind_errors(m);
   imcol::python::bind_scene(m);
   imcol::python::bind_run(m);
+  imcol::python::bind_sweep(m);
 }

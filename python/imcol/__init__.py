@@ -5,6 +5,6 @@
     result = imcol.run(scene)
     result.e, result.St, result.trajectory["u1"]
 """
-from ._imcol import Result, Scene, SolverError, __version__, run
+from ._imcol import Result, Scene, SolverError, SweepResult, __version__, run, sweep
 
-__all__ = ["Result", "Scene", "SolverError", "run", "__version__"]
+__all__ = ["Result", "Scene", "SolverError", "SweepResult", "run", "sweep", "__version__"]

@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// imcol.sweep and imcol.SweepResult: e against St over values of one quantity, as `imcol sweep` runs it: the points'
+// scenes from apps/sweep.hpp sweep_scenes (all checked before anything runs), each point run by run_sweep_point on
+// run_parallel's threads with the GIL released, and sweep.csv's columns (sweep_columns) as NumPy arrays.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+
+#include "apps/parallel_runs.hpp"
+#include "apps/sweep.hpp"
+#include "core/errors.hpp"
+#include "python/bindings.hpp"
+#include "python/convert.hpp"
+#include "python/scene.hpp"
+
+namespace py = pybind11;
+
+namespace imcol::python {
+
+namespace {
+
+/// A sweep's points as columns: name -> 1-D array, in sweep.csv's order (`point`, the varied quantity's, then
+/// sweep_columns(): numbers as float64 with NaN where the point has none, words as str arrays).
+struct PySweepResult {
+  std::string vary, column;
+  py::list columns;
+  py::dict table;
+};
+
+py::array_t<double> number_array(const std::vector<SweepPoint>& pts, std::optional<double> (*get)(const SweepPoint&)) {
+  py::array_t<double> a(static_cast<py::ssize_t>(pts.size()));
+  auto v = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < pts.size(); ++i) v(static_cast<py::ssize_t>(i)) = get(pts[i]).value_or(NAN);
+  return a;
+}
+
+py::object word_array(const std::vector<SweepPoint>& pts, std::string (*get)(const SweepPoint&)) {
+  py::list words;
+  for (const auto& p : pts) words.append(get(p));
+  return py::module_::import("numpy").attr("array")(words, py::arg("dtype") = "str");
+}
+
+PySweepResult make_result(const std::string& vary, const std::vector<SweepPoint>& pts) {
+  PySweepResult r;
+  r.vary = vary;
+  r.column = sweep_column(vary);
+  auto put = [&](const std::string& name, py::object a) {
+    r.columns.append(name);
+    r.table[py::str(name)] = std::move(a);
+  };
+  py::array_t<long long> point(static_cast<py::ssize_t>(pts.size()));
+  for (std::size_t i = 0; i < pts.size(); ++i) point.mutable_at(static_cast<py::ssize_t>(i)) = static_cast<long long>(i);
+  put("point", point);
+  put(r.column, number_array(pts, [](const SweepPoint& p) { return std::optional<double>(p.value); }));
+  for (const auto& c : sweep_columns()) put(c.name, c.number ? py::object(number_array(pts, c.number)) : word_array(pts, c.word));
+  return r;
+}
+
+/// A tolerance or integrator given to sweep(): an override of the solver key, as --rtol / --atol / --integrator are.
+std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
+                                       const std::optional<std::string>& integrator) {
+  std::vector<Override> o;
+  if (rtol) o.push_back({"solver.rtol", toml_value_text(*rtol)});
+  if (atol) o.push_back({"solver.atol", toml_value_text(*atol)});
+  if (integrator) o.push_back({"solver.integrator", "\"" + *integrator + "\""});
+  return o;
+}
+
+std::vector<double> values_from(const py::handle& values) {
+  py::array_t<double, py::array::c_style | py::array::forcecast> a = py::module_::import("numpy").attr("asarray")(values, "float64");
+  if (a.ndim() != 1)
+    throw InputError("imcol.sweep", "values", "must be one-dimensional (" + std::to_string(a.ndim()) + " dimensions given)");
+  return std::vector<double>(a.data(), a.data() + a.size());
+}
+
+PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const py::object& values_arg, int jobs,
+                    const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
+                    const std::optional<std::string>& integrator) {
+  const PyScene scene = py::isinstance<py::str>(scene_arg) ? PyScene::load(scene_arg.cast<std::string>()) : scene_arg.cast<PyScene>();
+  check_sweep_quantity(vary, "imcol.sweep", "vary");
+  if (values_arg.is_none()) throw InputError("imcol.sweep", "values", "missing: give the values of " + vary + " (SI units)");
+  const std::vector<double> values = values_from(values_arg);
+  check_sweep_values(vary, values, "imcol.sweep", "values");
+  if (jobs < 0) throw InputError("imcol.sweep", "jobs", "must be >= 0 (0 = all cores)");
+
+  // The scene's keys, then the solver's as given here (as --set, then --rtol/--atol/--integrator), then the point's.
+  std::vector<Override> overrides = scene.overrides();
+  for (auto& o : solver_overrides(rtol, atol, integrator)) overrides.push_back(o);
+  const auto load = [&](const std::vector<Override>& ov) { return parse_scene(scene.text(), scene.path(), ov); };
+  const Scene base = load(overrides);
+  const std::vector<Scene> scenes = sweep_scenes(load, overrides, base, vary, values);
+
+  std::vector<SweepPoint> pts(values.size());
+  {
+    py::gil_scoped_release free;
+    run_parallel(
+        scenes.size(), job_count(jobs, scenes.size()), [&](std::size_t i) { return run_sweep_point(scenes[i], values[i]); },
+        [&](std::size_t i, SweepPoint p) {
+          pts[i] = std::move(p);
+          return true;
+        });
+  }
+  return make_result(vary, pts);
+}
+
+py::object column(const PySweepResult& r, const std::string& name) { return r.table[py::str(name)]; }
+
+}  // namespace
+
+void bind_sweep(py::module_& m) {
+  py::class_<PySweepResult>(m, "SweepResult",
+                            "A sweep's points as NumPy arrays, one per column of sweep.csv (`columns`, `table[name]`); "
+                            "every column is also an attribute: r.St_B_eq_6_2, r.steps, …")
+      .def_readonly("vary", &PySweepResult::vary, "The varied quantity.")
+      .def_readonly("column", &PySweepResult::column, "sweep.csv's column of the varied quantity (\"velocity_m_s\").")
+      .def_property_readonly("values", [](const PySweepResult& r) { return column(r, r.column); }, "The varied quantity's values (SI units).")
+      .def_property_readonly("St", [](const PySweepResult& r) { return column(r, "St"); }, "Stokes number at impact (NaN where a point failed).")
+      .def_property_readonly("e", [](const PySweepResult& r) { return column(r, "e"); }, "Restitution coefficient (NaN where not measured).")
+      .def_property_readonly("status", [](const PySweepResult& r) { return column(r, "status"); }, "\"ok\" or \"failed\" per point.")
+      .def_property_readonly("messages", [](const PySweepResult& r) { return column(r, "message"); },
+                             "Per point: why e is missing, which measures disagree, the t_end it took, or why the point failed; \"\" if none.")
+      .def_property_readonly("columns", [](const PySweepResult& r) { return r.columns.attr("copy")(); }, "The columns, in sweep.csv's order.")
+      .def_readonly("table", &PySweepResult::table, "Column name -> NumPy array.")
+      .def("to_dict", [](const PySweepResult& r) { return py::module_::import("copy").attr("deepcopy")(r.table); },
+           "The columns as a dict of NumPy arrays (copies), in sweep.csv's order: pandas.DataFrame(r.to_dict()).")
+      .def("__len__", [](const PySweepResult& r) { return py::len(column(r, "point")); })
+      .def("__getattr__",
+           [](const PySweepResult& r, const std::string& name) -> py::object {
+             if (r.table.contains(name)) return r.table[py::str(name)];
+             throw py::attribute_error("imcol.SweepResult has no attribute '" + name + "'");
+           })
+      .def("__repr__", [](const PySweepResult& r) {
+        const auto n = py::len(column(r, "point"));
+        py::ssize_t failed = 0;
+        for (const auto& s : column(r, "status"))
+          if (s.cast<std::string>() != "ok") ++failed;
+        return "imcol.SweepResult(vary='" + r.vary + "', points=" + std::to_string(n) + ", failed=" + std::to_string(failed) + ")";
+      });
+
+  m.def("sweep", &sweep, py::arg("scene"), py::arg("vary") = "velocity", py::arg("values") = py::none(), py::arg("jobs") = 0,
+        py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
+        "Runs a scene (an imcol.Scene or a scene's name) at each of `values` of `vary` (imcol.sweep_quantities()) as "
+        "`imcol sweep` does, on `jobs` threads (0: all cores), the GIL released. rtol, atol, integrator: as --rtol, "
+        "--atol, --integrator. Bad input raises ValueError naming the point before anything runs; a point that fails "
+        "is reported in `status` and `messages`, never raised. Returns an imcol.SweepResult.");
+}
+
+}  // namespace imcol::python
