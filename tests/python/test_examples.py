@@ -105,3 +105,18 @@ def test_history_kernels_list_and_values_equal_the_cli(example, cli_run):
         assert (got["kernels"][kernel]["e"][point], got["kernels"][kernel]["St"][point]) == (summary["e"],
                                                                                             summary["St"]), kernel
 
+
+
+def test_restitution_vs_stokes_equals_imcol_sweep(example, tmp_path):
+    got = example("restitution_vs_stokes")
+    wall, pair = got["wall"], got["pair"]
+    assert wall["status"].count("ok") >= len(wall["status"]) - 1 and pair["status"].count("ok") >= len(pair["status"]) - 1
+    # The pair's two conventions: eq. (6.2) is twice Table 6.1's, which is imcol's St.
+    for st, t61, e62 in zip(pair["St"], pair["St_B_table_6_1"], pair["St_B_eq_6_2"]):
+        assert t61 == st and e62 == pytest.approx(2 * st, rel=1e-12)
+    for curve, columns in ((wall, ("St", "e")), (pair, ("St", "St_B_table_6_1", "St_B_eq_6_2", "e"))):
+        i = len(curve["velocity_m_s"]) // 2
+        row = cli_sweep_point(tmp_path / curve["scene"], curve["scene"], curve["velocity_m_s"][i], curve["set"])
+        assert row["status"] == curve["status"][i]
+        for c in columns:
+            assert cell(curve[c][i]) == row[c], (curve["scene"], c)
