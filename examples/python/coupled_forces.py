@@ -2,8 +2,10 @@
 """A coupled sphere-wall run (Gondret et al.'s St = 27 case with the flow kernel, on a coarse grid): the kernel's
 force f_SIM against the analytic forces f_THR, and the blend H that weighs them, f = H f_THR + (1 - H) f_SIM
 (docs/coupling.md).
+Within a cell or two of the wall f_SIM departs from f_THR: the grid does not resolve the gap; H hands the force to
+f_THR from a gap of 2 delta_SL in.
 
-    python3 examples/python/coupled_forces.py --out out/examples
+    PYTHONPATH=build/python /usr/bin/python3 examples/python/coupled_forces.py --out out/examples
 """
 import argparse
 import json

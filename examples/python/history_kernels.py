@@ -2,7 +2,7 @@
 """e against St with each history kernel (`history.kernel`) on the `default` scene (a steel sphere onto a Zerodur
 wall, Re 40-1100), and each kernel's e minus Basset's.
 
-    python3 examples/python/history_kernels.py --out out/examples
+    PYTHONPATH=build/python /usr/bin/python3 examples/python/history_kernels.py --out out/examples
 """
 import argparse
 import copy

@@ -4,7 +4,7 @@ both St_B conventions: the seed's Table 6.1 (imcol's St for a pair) and its eq. 
 gap law (the scene's `lubrication.model = "seed"`) the pair falls on the wall curve in the Table 6.1 convention
 (docs/model-notes.md, "Pairs"). The points are the seed's Table 6.1 (data/reference/li_2010_table_6_1.csv).
 
-    python3 examples/python/restitution_vs_stokes.py --out out/examples
+    PYTHONPATH=build/python /usr/bin/python3 examples/python/restitution_vs_stokes.py --out out/examples
 """
 import argparse
 import csv

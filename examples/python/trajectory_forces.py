@@ -2,7 +2,7 @@
 """One run of the `default` scene (a steel sphere onto a Zerodur wall): the gap and the velocity against time, and
 every force column of the trajectory (drag, lubrication, added mass, contact, history, ...) near the contact.
 
-    python3 examples/python/trajectory_forces.py --out out/examples
+    PYTHONPATH=build/python /usr/bin/python3 examples/python/trajectory_forces.py --out out/examples
 """
 import argparse
 import json
