@@ -53,24 +53,36 @@ bool matches(const Entry& e, const std::string& pattern) {
   return lower(e.name).find(p) != std::string::npos || lower(e.description).find(p) != std::string::npos;
 }
 
-}  // namespace
+std::string folder_of(const Entry& e) {
+  const auto slash = e.name.rfind('/');
+  return slash == std::string::npos ? std::string() : e.name.substr(0, slash + 1);
+}
 
-int cmd_scenes(const std::string& pattern) {
+/// The shipped scenes matching `pattern`, grouped by folder: the top level first, then each folder in order.
+std::vector<Entry> matching(const std::string& pattern) {
   std::vector<Entry> entries;
   for (const auto& name : shipped_scene_names()) {
     Entry e = describe(name);
     if (matches(e, pattern)) entries.push_back(e);
   }
+  std::stable_sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) { return folder_of(a) < folder_of(b); });
+  return entries;
+}
+
+}  // namespace
+
+std::vector<std::string> matching_scenes(const std::string& pattern) {
+  std::vector<std::string> out;
+  for (const auto& e : matching(pattern)) out.push_back(e.name);
+  return out;
+}
+
+int cmd_scenes(const std::string& pattern) {
+  const std::vector<Entry> entries = matching(pattern);
   if (entries.empty()) {
     std::cout << "no shipped scene matches '" << pattern << "' (in " << scenes_dir() << ")\n";
     return 0;
   }
-  // Grouped by folder: the top level first, then each folder in order.
-  auto folder_of = [](const Entry& e) {
-    const auto slash = e.name.rfind('/');
-    return slash == std::string::npos ? std::string() : e.name.substr(0, slash + 1);
-  };
-  std::stable_sort(entries.begin(), entries.end(), [&](const Entry& a, const Entry& b) { return folder_of(a) < folder_of(b); });
   std::size_t width = 0;
   for (const auto& e : entries) width = std::max(width, e.name.size());
   std::cout << "shipped scenes in " << scenes_dir() << " (imcol run NAME; a path to a file of your own works too)\n";

@@ -29,11 +29,20 @@ const char* to_string(Effect e) {
   return "?";
 }
 
+namespace {
+constexpr Effect kEffects[] = {Effect::drag, Effect::lubrication, Effect::added_mass, Effect::elastic, Effect::gravity, Effect::history, Effect::flow};
+}  // namespace
+
 std::optional<Effect> effect_from_string(const std::string& s) {
-  for (Effect e : {Effect::drag, Effect::lubrication, Effect::added_mass, Effect::elastic, Effect::gravity,
-                   Effect::history, Effect::flow})
+  for (Effect e : kEffects)
     if (s == to_string(e)) return e;
   return std::nullopt;
+}
+
+std::vector<std::string> effect_names() {
+  std::vector<std::string> out;
+  for (Effect e : kEffects) out.emplace_back(to_string(e));
+  return out;
 }
 
 namespace {
@@ -245,7 +254,11 @@ void read_effects(Reader& top, Scene& sc) {
       auto name = item.value<std::string>();
       if (!name) top.fail("effects", "must be an array of strings");
       auto e = effect_from_string(*name);
-      if (!e) top.fail("effects", "unknown effect '" + *name + "' (expected drag, lubrication, added_mass, elastic, gravity, history, flow)");
+      if (!e) {
+        std::string list;
+        for (const auto& n : effect_names()) list += (list.empty() ? "" : ", ") + n;
+        top.fail("effects", "unknown effect '" + *name + "' (expected " + list + ")");
+      }
       sc.effects.insert(*e);
     }
     return;

@@ -13,6 +13,8 @@ namespace imcol {
 enum class Effect { drag, lubrication, added_mass, elastic, gravity, history, flow };
 const char* to_string(Effect e);
 std::optional<Effect> effect_from_string(const std::string& s);
+/// Every effect's name, in the order of the enum.
+std::vector<std::string> effect_names();
 
 /// The effects a scene lists, as a bit set (the right-hand side asks for them on every evaluation);
 /// iterated in the order of the enum.

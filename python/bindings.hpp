@@ -9,5 +9,6 @@ void bind_errors(pybind11::module_& m);  // InputError -> ValueError, SolverErro
 void bind_scene(pybind11::module_& m);   // imcol.Scene
 void bind_run(pybind11::module_& m);     // imcol.run and imcol.Result
 void bind_sweep(pybind11::module_& m);   // imcol.sweep and imcol.SweepResult
+void bind_choices(pybind11::module_& m); // imcol.history_kernels(), …, imcol.scenes(), imcol.choices()
 
 }  // namespace imcol::python

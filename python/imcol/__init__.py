@@ -5,6 +5,9 @@
     result = imcol.run(scene)
     result.e, result.St, result.trajectory["u1"]
 """
-from ._imcol import Result, Scene, SolverError, SweepResult, __version__, run, sweep
+from ._imcol import (Result, Scene, SolverError, SweepResult, __version__, choices, contact_laws, drag_laws, e_measures,
+                     effects, history_kernels, integrators, lubrication_models, run, scenes, sweep, sweep_quantities)
 
-__all__ = ["Result", "Scene", "SolverError", "SweepResult", "run", "sweep", "__version__"]
+__all__ = ["Result", "Scene", "SolverError", "SweepResult", "run", "sweep", "__version__", "choices", "contact_laws",
+           "drag_laws", "e_measures", "effects", "history_kernels", "integrators", "lubrication_models", "scenes",
+           "sweep_quantities"]
