@@ -26,19 +26,7 @@ out.mkdir(parents=True, exist_ok=True)
 
 base = imcol.Scene.load("default")
 speeds = np.geomspace(0.05, 1.5, args.points)  # m/s
-
-
-def history_kernels():
-    """The kernels imcol knows, from the module (imcol.history_kernels()) or from the message of an unknown one."""
-    if hasattr(imcol, "history_kernels"):
-        return list(imcol.history_kernels())
-    try:
-        copy.copy(base).set("history.kernel", "?")
-    except ValueError as err:  # "... unknown choice '?' (expected basset | mei-adrian | kim | dorgan-loth)"
-        return str(err).rsplit("(expected ", 1)[1].rstrip(")").split(" | ")
-
-
-kernels = history_kernels()
+kernels = imcol.history_kernels()  # the values `history.kernel` takes, from the code; basset first
 curves = {}
 for kernel in kernels:
     runs = [imcol.run(copy.copy(base).set("history.kernel", kernel).set("sphere[0].velocity", float(u)))
