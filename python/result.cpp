@@ -74,12 +74,12 @@ std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::obje
                               const std::optional<py::object>& atol, const std::optional<std::string>& integrator,
                               const std::string& record) {
   const Recording rec = recording_from(record);
-  const Scene sc = scene.with(solver_overrides(rtol, atol, integrator));
+  const auto sc = scene.snapshot(solver_overrides(rtol, atol, integrator));  // no copy without run() options
   auto out = std::make_shared<PyResult>();
   {
     py::gil_scoped_release free;
     // A coupled run's flow-field files are not kept (the sink drops them as they are made).
-    out->run = simulate(sc, false, rec, [](const std::string&, const std::string&) {});
+    out->run = simulate(*sc, false, rec, [](const std::string&, const std::string&) {});
   }
   return out;
 }
