@@ -60,16 +60,6 @@ Recording recording_from(const std::string& record) {
   throw InputError("imcol.run", "record", "must be full or kinematics (got '" + record + "')");
 }
 
-/// A tolerance or integrator given to run(): an override of the solver key, as --rtol / --atol / --integrator are.
-std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
-                                       const std::optional<std::string>& integrator) {
-  std::vector<Override> o;
-  if (rtol) o.push_back({"solver.rtol", toml_value_text(*rtol)});
-  if (atol) o.push_back({"solver.atol", toml_value_text(*atol)});
-  if (integrator) o.push_back({"solver.integrator", "\"" + *integrator + "\""});
-  return o;
-}
-
 std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::object>& rtol,
                               const std::optional<py::object>& atol, const std::optional<std::string>& integrator,
                               const std::string& record) {
