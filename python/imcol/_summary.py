@@ -19,10 +19,13 @@ class Block:
 
     @classmethod
     def _declared(cls) -> List[str]:
-        names: List[str] = []
-        for c in reversed(cls.__mro__):
-            names += [n for n in getattr(c, "__annotations__", {}) if not n.startswith("_") and n not in names]
-        return names
+        """The names this class declares (its annotations), computed once per class."""
+        if "_names" not in cls.__dict__:
+            names: List[str] = []
+            for c in reversed(cls.__mro__):
+                names += [n for n in c.__dict__.get("__annotations__", {}) if not n.startswith("_") and n not in names]
+            cls._names = names
+        return cls.__dict__["_names"]
 
     def __getattr__(self, name: str) -> Any:
         d = object.__getattribute__(self, "_d")
