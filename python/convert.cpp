@@ -75,4 +75,13 @@ std::string element_text(const py::handle& v) { return scalar_text(v, false); }
 
 std::string toml_value_text(const py::handle& value) { return scalar_text(value, true); }
 
+std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
+                                       const std::optional<std::string>& integrator) {
+  std::vector<Override> o;
+  if (rtol) o.push_back({"solver.rtol", toml_value_text(*rtol)});
+  if (atol) o.push_back({"solver.atol", toml_value_text(*atol)});
+  if (integrator) o.push_back({"solver.integrator", "\"" + *integrator + "\""});
+  return o;
+}
+
 }  // namespace imcol::python

@@ -4,7 +4,11 @@
 #include <pybind11/pybind11.h>
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "core/scene.hpp"
 
 namespace imcol::python {
 
@@ -15,5 +19,10 @@ pybind11::object to_python(const nlohmann::ordered_json& j);
 /// string, TOML syntax such as "[1, 2]" or "\"x\"" is read as TOML); bool, int and float (round-trip digits) as
 /// TOML; a list or tuple as a TOML array (its strings quoted).
 std::string toml_value_text(const pybind11::handle& value);
+
+/// The solver options of run() and sweep() as overrides of the solver keys, as --rtol / --atol / --integrator are.
+std::vector<Override> solver_overrides(const std::optional<pybind11::object>& rtol,
+                                       const std::optional<pybind11::object>& atol,
+                                       const std::optional<std::string>& integrator);
 
 }  // namespace imcol::python

@@ -28,6 +28,10 @@ struct PyResult {
     if (!summary_) summary_ = to_python(run.summary_json);
     return summary_;
   }
+  const py::object& view() {  // the summary as typed attributes (imcol._summary.Summary)
+    if (!view_) view_ = py::module_::import("imcol._summary").attr("Summary")(summary());
+    return view_;
+  }
   const py::dict& trajectory() {  // column name -> 1-D float64 array
     if (!trajectory_) trajectory_ = columns_as_arrays(run);
     return trajectory_;
@@ -35,6 +39,7 @@ struct PyResult {
 
  private:
   py::dict summary_{py::reinterpret_steal<py::dict>(py::handle())}, trajectory_{py::reinterpret_steal<py::dict>(py::handle())};
+  py::object view_;
 };
 
 py::dict columns_as_arrays(const RunResult& r) {
@@ -55,26 +60,16 @@ Recording recording_from(const std::string& record) {
   throw InputError("imcol.run", "record", "must be full or kinematics (got '" + record + "')");
 }
 
-/// A tolerance or integrator given to run(): an override of the solver key, as --rtol / --atol / --integrator are.
-std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
-                                       const std::optional<std::string>& integrator) {
-  std::vector<Override> o;
-  if (rtol) o.push_back({"solver.rtol", toml_value_text(*rtol)});
-  if (atol) o.push_back({"solver.atol", toml_value_text(*atol)});
-  if (integrator) o.push_back({"solver.integrator", "\"" + *integrator + "\""});
-  return o;
-}
-
 std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::object>& rtol,
                               const std::optional<py::object>& atol, const std::optional<std::string>& integrator,
                               const std::string& record) {
   const Recording rec = recording_from(record);
-  const Scene sc = scene.with(solver_overrides(rtol, atol, integrator));
+  const auto sc = scene.snapshot(solver_overrides(rtol, atol, integrator));  // no copy without run() options
   auto out = std::make_shared<PyResult>();
   {
     py::gil_scoped_release free;
     // A coupled run's flow-field files are not kept (the sink drops them as they are made).
-    out->run = simulate(sc, false, rec, [](const std::string&, const std::string&) {});
+    out->run = simulate(*sc, false, rec, [](const std::string&, const std::string&) {});
   }
   return out;
 }
@@ -85,8 +80,9 @@ py::object opt(const std::optional<double>& v) { return v ? py::object(py::float
 
 void bind_run(py::module_& m) {
   py::class_<PyResult, std::shared_ptr<PyResult>>(m, "Result",
-                                                  "What a run measured. Every key of the summary (summary.json) is "
-                                                  "also an attribute: result.Re, result.min_gap_m, …")
+                                                  "What a run measured. The summary's names are attributes with their "
+                                                  "types: result.Re, result.solver.steps, result.contact.law, result.flow "
+                                                  "(None where the run has no such block).")
       .def_property_readonly("e", [](const PyResult& r) { return opt(r.run.summary.e); },
                              "Restitution coefficient by the measure `e_is` names; None without one (see e_missing).")
       .def_property_readonly("St", [](const PyResult& r) { return opt(r.run.summary.St); }, "Stokes number at impact.")
@@ -110,18 +106,28 @@ void bind_run(py::module_& m) {
             return d;
           },
           "The solver's statistics (steps, rhs_evals, …).")
-      .def_property_readonly("bounces", [](PyResult& r) { return r.summary().contains("bounces") ? r.summary()["bounces"] : py::object(py::list()); },
-                             "The contacts (summary.json `bounces`), one dict each.")
+      .def_property_readonly("bounces", [](PyResult& r) { return r.view().attr("bounces"); },
+                             "The contacts (summary.json `bounces`), one imcol.Bounce each.")
       .def_property_readonly("columns", [](const PyResult& r) { return r.run.columns; }, "The trajectory's columns.")
       .def_property_readonly("trajectory", [](PyResult& r) { return r.trajectory(); },
                              "The trajectory samples: column name -> NumPy array (result.trajectory[\"u1\"]).")
-      .def_property_readonly("summary", [](PyResult& r) { return r.summary().attr("copy")(); })
+      .def_property_readonly("summary", [](PyResult& r) { return r.view(); },
+                             "The summary as typed attributes (imcol.Summary); its blocks are also the result's.")
       .def("to_dict", [](PyResult& r) { return py::module_::import("copy").attr("deepcopy")(r.summary()); },
            "The summary as summary.json writes it, as a dict.")
       .def("__getattr__",
            [](PyResult& r, const std::string& name) -> py::object {
-             if (r.summary().contains(name)) return r.summary()[py::str(name)];
+             // The summary's names: result.solver.steps, result.contact.law, result.flow (None without the flow kernel).
+             if (py::hasattr(r.view(), name.c_str())) return r.view().attr(name.c_str());
              throw py::attribute_error("imcol.Result has no attribute '" + name + "'");
+           })
+      .def("__dir__",
+           [](py::object self) {
+             py::set names(py::module_::import("builtins").attr("object").attr("__dir__")(self));
+             for (const auto& n : py::module_::import("builtins").attr("dir")(self.cast<PyResult&>().view())) names.add(n);
+             py::list out(names);
+             out.attr("sort")();
+             return out;
            })
       .def("__repr__", [](const PyResult& r) {
         const auto& s = r.run.summary;

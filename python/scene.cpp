@@ -11,7 +11,7 @@ namespace py = pybind11;
 namespace imcol::python {
 
 PyScene::PyScene(std::string path, std::string text)
-    : path_(std::move(path)), text_(std::move(text)), scene_(parse_scene(text_, path_)) {}
+    : path_(std::move(path)), text_(std::move(text)), scene_(std::make_shared<const Scene>(parse_scene(text_, path_))) {}
 
 PyScene PyScene::load(const std::string& name_or_path) {
   const std::string path = find_scene(name_or_path);
@@ -23,15 +23,17 @@ PyScene PyScene::from_toml(const std::string& text) { return PyScene("<string>",
 void PyScene::set(const std::string& key, const std::string& value_text) {
   auto trial = overrides_;
   trial.push_back(parse_override(key + "=" + value_text));
-  scene_ = parse_scene(text_, path_, trial);
+  scene_ = std::make_shared<const Scene>(parse_scene(text_, path_, trial));
   overrides_ = std::move(trial);
 }
 
-Scene PyScene::with(const std::vector<Override>& extra) const {
+Scene PyScene::with(const std::vector<Override>& extra) const { return *snapshot(extra); }
+
+std::shared_ptr<const Scene> PyScene::snapshot(const std::vector<Override>& extra) const {
   if (extra.empty()) return scene_;
   auto all = overrides_;
   all.insert(all.end(), extra.begin(), extra.end());
-  return parse_scene(text_, path_, all);
+  return std::make_shared<const Scene>(parse_scene(text_, path_, all));
 }
 
 void bind_scene(py::module_& m) {

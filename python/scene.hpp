@@ -2,6 +2,7 @@
 #pragma once
 // imcol.Scene: a scene's TOML text and the overrides set on it, read and checked as the command line reads a scene
 // file and its --set options (core/scene.hpp load_scene / parse_scene).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,11 @@ class PyScene {
 
   /// The scene with `extra` overrides after the scene's own.
   Scene with(const std::vector<Override>& extra) const;
+  /// The same, shared and immutable: the scene itself (no copy) without extra overrides. A run holds it while the GIL
+  /// is released, so a set() meanwhile (which makes a new one) cannot change it under the run.
+  std::shared_ptr<const Scene> snapshot(const std::vector<Override>& extra) const;
 
-  const Scene& scene() const { return scene_; }
+  const Scene& scene() const { return *scene_; }
   const std::string& path() const { return path_; }
   const std::string& text() const { return text_; }
   const std::vector<Override>& overrides() const { return overrides_; }
@@ -31,7 +35,7 @@ class PyScene {
   PyScene(std::string path, std::string text);
   std::string path_, text_;
   std::vector<Override> overrides_;
-  Scene scene_;
+  std::shared_ptr<const Scene> scene_;
 };
 
 }  // namespace imcol::python

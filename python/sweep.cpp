@@ -57,16 +57,6 @@ PySweepResult make_result(const std::string& vary, const std::vector<SweepPoint>
   return r;
 }
 
-/// A tolerance or integrator given to sweep(): an override of the solver key, as --rtol / --atol / --integrator are.
-std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
-                                       const std::optional<std::string>& integrator) {
-  std::vector<Override> o;
-  if (rtol) o.push_back({"solver.rtol", toml_value_text(*rtol)});
-  if (atol) o.push_back({"solver.atol", toml_value_text(*atol)});
-  if (integrator) o.push_back({"solver.integrator", "\"" + *integrator + "\""});
-  return o;
-}
-
 std::vector<double> values_from(const py::handle& values) {
   py::array_t<double, py::array::c_style | py::array::forcecast> a = py::module_::import("numpy").attr("asarray")(values, "float64");
   if (a.ndim() != 1)

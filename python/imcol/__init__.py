@@ -3,11 +3,12 @@
 
     scene = imcol.Scene.load("default").set("fluid.viscosity", 0.05)
     result = imcol.run(scene)
-    result.e, result.St, result.trajectory["u1"]
+    result.e, result.St, result.trajectory["u1"], result.solver.steps
 """
 from ._imcol import (Result, Scene, SolverError, SweepResult, __version__, choices, contact_laws, drag_laws, e_measures,
                      effects, history_kernels, integrators, lubrication_models, run, scenes, sweep, sweep_quantities)
+from ._summary import Bounce, Contact, Event, Flow, Fluid, Solver, Summary, Velocities
 
 __all__ = ["Result", "Scene", "SolverError", "SweepResult", "run", "sweep", "__version__", "choices", "contact_laws",
            "drag_laws", "e_measures", "effects", "history_kernels", "integrators", "lubrication_models", "scenes",
-           "sweep_quantities"]
+           "sweep_quantities", "Summary", "Bounce", "Contact", "Event", "Flow", "Fluid", "Solver", "Velocities"]

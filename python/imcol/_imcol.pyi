@@ -1,0 +1,100 @@
+# SPDX-License-Identifier: BSD-3-Clause
+# Types of the extension module imcol._imcol, for editors and type checkers (the package re-exports these names).
+from typing import Any, Dict, List, Optional, Sequence, Union
+
+import numpy as np
+
+from ._summary import Bounce, Contact, Event, Flow, Fluid, Solver, Summary, Velocities
+
+__version__: str
+
+class SolverError(RuntimeError):
+    """The time integrator failed: what failed, when, and which state components were to blame."""
+
+_Value = Union[str, bool, int, float, Sequence[Union[str, bool, int, float]]]
+
+class Scene:
+    """A scene: a TOML file or text, with keys set on it as the command line's --set does."""
+    @staticmethod
+    def load(name_or_path: str) -> Scene: ...
+    @staticmethod
+    def from_toml(text: str) -> Scene: ...
+    def set(self, key: str, value: _Value) -> Scene: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def path(self) -> str: ...
+    @property
+    def description(self) -> str: ...
+    @property
+    def toml(self) -> str: ...
+    @property
+    def overrides(self) -> List[str]: ...
+    def __copy__(self) -> Scene: ...
+    def __deepcopy__(self, memo: Dict[int, Any]) -> Scene: ...
+
+class Result:
+    """What a run measured; the summary's names are attributes with their types (None where absent)."""
+    @property
+    def e(self) -> Optional[float]: ...
+    @property
+    def St(self) -> Optional[float]: ...
+    @property
+    def measures(self) -> Dict[str, Optional[float]]: ...
+    @property
+    def warnings(self) -> List[str]: ...
+    @property
+    def stats(self) -> Dict[str, Union[int, str]]: ...
+    @property
+    def bounces(self) -> List[Bounce]: ...
+    @property
+    def columns(self) -> List[str]: ...
+    @property
+    def trajectory(self) -> Dict[str, np.ndarray]: ...
+    @property
+    def summary(self) -> Summary: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    # The summary's other names (imcol.Summary):
+    scene: str
+    scene_file: str
+    configuration: str
+    fluid: Optional[Fluid]
+    e_is: str
+    e_missing: Optional[str]
+    e_fit_raw: Optional[float]
+    e_instant: Optional[float]
+    e_instant_gap_m: float
+    e_measures: Optional[Dict[str, Dict[str, Any]]]
+    measures_disagree: Dict[str, float]
+    bounces_mode: str
+    St_convention: str
+    St_B_table_6_1: Optional[float]
+    St_B_eq_6_2: Optional[float]
+    St_L: Optional[float]
+    St_initial: Optional[float]
+    Re: Optional[float]
+    separated: bool
+    at_rest_since_s: Optional[float]
+    t_end_too_short: bool
+    final_phase: Optional[str]
+    contacts: int
+    velocities_m_s: Optional[Velocities]
+    fit_window_s: float
+    min_gap_m: Optional[float]
+    max_contact_force_N: Optional[float]
+    max_history_force_N: Optional[float]
+    group_velocity_m_s: Optional[float]
+    group_velocity_at_s: Optional[float]
+    u1_final_m_s: Optional[float]
+    u2_final_m_s: Optional[float]
+    contact: Optional[Contact]
+    effects: List[str]
+    model: Dict[str, Any]
+    solver: Solver
+    events: List[Event]
+    flow: Optional[Flow]
+    wall_time_s: float
+    setup_time_s: float
+
+def run(scene: Scene, rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None,
+        record: str = "full") -> Result: ...
