@@ -16,4 +16,7 @@ pybind11::object to_python(const nlohmann::ordered_json& j);
 /// TOML; a list or tuple as a TOML array (its strings quoted).
 std::string toml_value_text(const pybind11::handle& value);
 
+/// A string as a TOML basic string (quoted, escaped).
+std::string toml_string(const std::string& s);
+
 }  // namespace imcol::python

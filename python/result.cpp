@@ -55,13 +55,14 @@ Recording recording_from(const std::string& record) {
   throw InputError("imcol.run", "record", "must be full or kinematics (got '" + record + "')");
 }
 
-/// A tolerance or integrator given to run(): an override of the solver key, as --rtol / --atol / --integrator are.
+/// A tolerance or integrator given to run(): an override of the solver key, as --rtol / --atol / --integrator are,
+/// read as --set reads one (a value with a line break is refused, not read as further keys).
 std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
                                        const std::optional<std::string>& integrator) {
   std::vector<Override> o;
-  if (rtol) o.push_back({"solver.rtol", toml_value_text(*rtol)});
-  if (atol) o.push_back({"solver.atol", toml_value_text(*atol)});
-  if (integrator) o.push_back({"solver.integrator", "\"" + *integrator + "\""});
+  if (rtol) o.push_back(parse_override("solver.rtol=" + toml_value_text(*rtol)));
+  if (atol) o.push_back(parse_override("solver.atol=" + toml_value_text(*atol)));
+  if (integrator) o.push_back(parse_override("solver.integrator=" + toml_string(*integrator)));
   return o;
 }
 
