@@ -32,7 +32,7 @@ class InputError : public std::runtime_error {
 /// What a failed time integrator reports, as data (the facts its SolverError's message states, and the state).
 struct SolverFailure {
   std::string integrator;  // cvode | ida
-  int flag = 0;            // the SUNDIALS return flag (CV_TOO_MUCH_WORK = -1, ...); 0: none (the model threw)
+  int flag = 0;            // the SUNDIALS return flag (CV_TOO_MUCH_WORK = -1, ...); 0: none (the model threw outside a solver call)
   std::string flag_name;   // its name, e.g. CV_TOO_MUCH_WORK; empty without a flag
   double time = 0;         // s: the last time the integrator reached
   std::vector<std::string> names;  // the state's components (the model's component names)

@@ -534,8 +534,8 @@ struct Integrator::Impl {
     return std::any_of(g.begin(), g.end(), [](double v) { return v == 0.0; });
   }
 
-  /// An exception from the model: input and solver errors pass through, anything else becomes a
-  /// SolverError that says where it happened.
+  /// An exception from the model: input and solver errors pass through (a solver error given the integrator's facts
+  /// if it has none), anything else becomes a SolverError that says where it happened.
   [[noreturn]] void rethrow_model_error(int flag = 0) {
     const auto err = cb.error;
     cb.error = nullptr;
@@ -543,8 +543,9 @@ struct Integrator::Impl {
       std::rethrow_exception(err);
     } catch (const InputError&) {
       throw;
-    } catch (const SolverError&) {
-      throw;
+    } catch (const SolverError& e) {
+      if (e.failure()) throw;
+      throw SolverError(e.what(), failure(flag));  // the same message, with the integrator's facts
     } catch (const std::exception& e) {
       std::ostringstream os;
       os << to_string(st.method) << ": the model failed near t = " << t << " s: " << e.what();
