@@ -40,7 +40,9 @@ void bind_errors(py::module_& m) {
       "command line's message. When the integrator failed, the facts are attributes too: integrator ('cvode', "
       "'ida'), flag (the SUNDIALS return flag, an int) and flag_name ('CV_TOO_MUCH_WORK'), time (s, the last time "
       "reached), state (component name -> value there), local_errors (the largest weighted local errors, name -> "
-      "value). Each is None where it does not apply (a failed flow step; flag when the model itself failed).";
+      "value; empty when the model itself failed). Each is None where it does not apply: all of them for a failure that is "
+      "not the integrator's (a coupled run's flow kernel or coupling), flag and flag_name when no solver call returned "
+      "a flag.";
   for (const char* a : {"integrator", "flag", "flag_name", "time", "state", "local_errors"}) solver_error.attr(a) = py::none();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
