@@ -429,9 +429,12 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     const auto t0 = WallClock::now();
     try {
       t = integ.advance(t1);
-    } catch (const std::exception& e) {
+    } catch (const SolverError& e) {
       // A contact at an impossible speed (contact.delta_ss) or a stalled integrator after the flow fed the spheres
-      // energy: name the flow coupling first.
+      // energy: name the flow coupling first (the integrator's facts kept).
+      if (watch.energy_exceeded(integ.state())) throw SolverError(watch.energy_message(integ.time(), integ.state(), e.what()), e);
+      throw;
+    } catch (const std::exception& e) {
       if (watch.energy_exceeded(integ.state())) throw SolverError(watch.energy_message(integ.time(), integ.state(), e.what()));
       throw;
     }

@@ -534,38 +534,53 @@ struct Integrator::Impl {
     return std::any_of(g.begin(), g.end(), [](double v) { return v == 0.0; });
   }
 
-  /// An exception from the model: input and solver errors pass through, anything else becomes a
-  /// SolverError that says where it happened.
-  [[noreturn]] void rethrow_model_error() {
+  /// An exception from the model: input and solver errors pass through (a solver error given the integrator's facts
+  /// if it has none), anything else becomes a SolverError that says where it happened.
+  [[noreturn]] void rethrow_model_error(int flag = 0) {
     const auto err = cb.error;
     cb.error = nullptr;
     try {
       std::rethrow_exception(err);
     } catch (const InputError&) {
       throw;
-    } catch (const SolverError&) {
-      throw;
+    } catch (const SolverError& e) {
+      if (e.failure()) throw;
+      throw SolverError(e.what(), failure(flag));  // the same message, with the integrator's facts
     } catch (const std::exception& e) {
       std::ostringstream os;
       os << to_string(st.method) << ": the model failed near t = " << t << " s: " << e.what();
-      throw SolverError(os.str());
+      throw SolverError(os.str(), failure(flag));
     }
   }
+  /// The facts of a failure at (t, y): the integrator, the flag (0: none) and the state.
+  SolverFailure failure(int flag) {
+    SolverFailure f;
+    f.integrator = to_string(st.method);
+    f.flag = flag;
+    if (flag != 0) f.flag_name = be->flag_name(flag);
+    f.time = t;
+    f.names = names;
+    const auto ys = view(y.get());
+    f.state.assign(ys.begin(), ys.end());
+    return f;
+  }
   [[noreturn]] void fail(int flag) {
-    if (cb.error) rethrow_model_error();
-    std::ostringstream os;
-    os << to_string(st.method) << " failed at t = " << t << " s with " << be->flag_name(flag);
-    if (!cb.last_message.empty()) os << " [" << cb.last_message << "]";
+    if (cb.error) rethrow_model_error(flag);
+    SolverFailure f = failure(flag);
     VectorPtr w(N_VClone(y.get())), e(N_VClone(y.get()));
     be->error_vectors(w.get(), e.get());
     auto ws = view(w.get()), es = view(e.get());
     std::vector<std::size_t> idx(ws.size());
     std::iota(idx.begin(), idx.end(), 0);
     std::sort(idx.begin(), idx.end(), [&](auto a, auto b) { return std::abs(ws[a] * es[a]) > std::abs(ws[b] * es[b]); });
-    os << "; largest weighted local errors:";
     for (std::size_t k = 0; k < std::min<std::size_t>(3, idx.size()); ++k)
-      os << " " << names[idx[k]] << "=" << std::abs(ws[idx[k]] * es[idx[k]]);
-    throw SolverError(os.str());
+      f.local_errors.emplace_back(names[idx[k]], std::abs(ws[idx[k]] * es[idx[k]]));
+    std::ostringstream os;
+    os << f.integrator << " failed at t = " << f.time << " s with " << f.flag_name;
+    if (!cb.last_message.empty()) os << " [" << cb.last_message << "]";
+    os << "; largest weighted local errors:";
+    for (const auto& [name, err] : f.local_errors) os << " " << name << "=" << err;
+    throw SolverError(os.str(), std::move(f));
   }
 };
 

@@ -38,11 +38,13 @@ py::object to_python(const nlohmann::ordered_json& j) {
 
 namespace {
 
-std::string quoted(const std::string& s) { return nlohmann::json(s).dump(); }  // JSON strings are TOML basic strings
+std::string quoted(const std::string& s) { return toml_string(s); }
 
-std::string element_text(const py::handle& v);
+constexpr int kMaxDepth = 32;  // lists in lists: a list that holds itself ends here, not in a stack overflow
 
-std::string scalar_text(const py::handle& v, bool bare_str) {
+std::string element_text(const py::handle& v, int depth);
+
+std::string scalar_text(const py::handle& v, bool bare_str, int depth = 0) {
   if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
   if (py::isinstance<py::float_>(v)) {
@@ -55,10 +57,11 @@ std::string scalar_text(const py::handle& v, bool bare_str) {
   }
   if (py::isinstance<py::str>(v)) return bare_str ? v.cast<std::string>() : quoted(v.cast<std::string>());
   if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
+    if (depth >= kMaxDepth) throw py::value_error("a scene value nests lists more than " + std::to_string(kMaxDepth) + " deep");
     std::string s = "[";
     bool first = true;
     for (const auto& e : v) {
-      s += (first ? "" : ", ") + element_text(e);
+      s += (first ? "" : ", ") + element_text(e, depth + 1);
       first = false;
     }
     return s + "]";
@@ -69,7 +72,7 @@ std::string scalar_text(const py::handle& v, bool bare_str) {
                        py::str(py::type::of(v).attr("__name__")).cast<std::string>() + ")");
 }
 
-std::string element_text(const py::handle& v) { return scalar_text(v, false); }
+std::string element_text(const py::handle& v, int depth) { return scalar_text(v, false, depth); }
 
 }  // namespace
 
@@ -78,10 +81,12 @@ std::string toml_value_text(const py::handle& value) { return scalar_text(value,
 std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
                                        const std::optional<std::string>& integrator) {
   std::vector<Override> o;
-  if (rtol) o.push_back({"solver.rtol", toml_value_text(*rtol)});
-  if (atol) o.push_back({"solver.atol", toml_value_text(*atol)});
-  if (integrator) o.push_back({"solver.integrator", "\"" + *integrator + "\""});
+  if (rtol) o.push_back(parse_override("solver.rtol=" + toml_value_text(*rtol)));
+  if (atol) o.push_back(parse_override("solver.atol=" + toml_value_text(*atol)));
+  if (integrator) o.push_back(parse_override("solver.integrator=" + toml_string(*integrator)));
   return o;
 }
+
+std::string toml_string(const std::string& s) { return nlohmann::json(s).dump(); }  // JSON strings are TOML basic strings
 
 }  // namespace imcol::python

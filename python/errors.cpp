@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Errors at the module's boundary: bad input (InputError) raises ValueError with the command line's one-line
-// message (without its "imcol: error: " prefix); a solver failure raises imcol.SolverError with the solver's message.
+// message (without its "imcol: error: " prefix); a solver failure raises imcol.SolverError with the solver's message
+// and, when the integrator failed, its facts as attributes (core/errors.hpp SolverFailure).
 // Anything else a C++ call throws becomes a Python exception (pybind11's translation: RuntimeError, MemoryError).
+#include <pybind11/stl.h>
+
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
 
@@ -9,16 +12,47 @@ namespace py = pybind11;
 
 namespace imcol::python {
 
+namespace {
+
+/// The integrator's facts as the exception's attributes (None where there are none).
+void set_facts(py::object& exc, const SolverFailure* f) {
+  if (!f) return;
+  exc.attr("integrator") = f->integrator;
+  exc.attr("time") = f->time;
+  if (f->flag != 0) {
+    exc.attr("flag") = f->flag;
+    exc.attr("flag_name") = f->flag_name;
+  }
+  py::dict state;
+  for (std::size_t i = 0; i < f->names.size() && i < f->state.size(); ++i) state[py::str(f->names[i])] = f->state[i];
+  exc.attr("state") = state;
+  py::dict errors;
+  for (const auto& [name, err] : f->local_errors) errors[py::str(name)] = err;
+  exc.attr("local_errors") = errors;
+}
+
+}  // namespace
+
 void bind_errors(py::module_& m) {
   static py::exception<SolverError> solver_error(m, "SolverError", PyExc_RuntimeError);
-  solver_error.doc() = "The time integrator failed: what failed, when, and which state components were to blame.";
+  solver_error.doc() =
+      "The time integrator failed: what failed, when, and which state components were to blame. str(error) is the "
+      "command line's message. When the integrator failed, the facts are attributes too: integrator ('cvode', "
+      "'ida'), flag (the SUNDIALS return flag, an int) and flag_name ('CV_TOO_MUCH_WORK'), time (s, the last time "
+      "reached), state (component name -> value there), local_errors (the largest weighted local errors, name -> "
+      "value; empty when the model itself failed). Each is None where it does not apply: all of them for a failure that is "
+      "not the integrator's (a coupled run's flow kernel or coupling), flag and flag_name when no solver call returned "
+      "a flag.";
+  for (const char* a : {"integrator", "flag", "flag_name", "time", "state", "local_errors"}) solver_error.attr(a) = py::none();
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const SolverError& e) {
-      PyErr_SetString(solver_error.ptr(), e.what());
+      py::object exc = py::handle(solver_error.ptr())(e.what());  // an instance, its attributes set before raising
+      set_facts(exc, e.failure());
+      PyErr_SetObject(solver_error.ptr(), exc.ptr());
     }
   });
 }

@@ -68,8 +68,8 @@ std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::obje
   auto out = std::make_shared<PyResult>();
   {
     py::gil_scoped_release free;
-    // A coupled run's flow-field files are not kept (the sink drops them as they are made).
-    out->run = simulate(*sc, false, rec, [](const std::string&, const std::string&) {});
+    // No sink: a coupled run computes no flow fields (nothing would keep them).
+    out->run = simulate(*sc, false, rec);
   }
   return out;
 }
