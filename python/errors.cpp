@@ -12,7 +12,7 @@ namespace py = pybind11;
 
 namespace imcol::python {
 
-namespace {
+namespace errors_impl {  // this file's helpers: named, as the module is one unity unit
 
 /// The integrator's facts as the exception's attributes (None where there are none).
 void set_facts(py::object& exc, const SolverFailure* f) {
@@ -31,9 +31,10 @@ void set_facts(py::object& exc, const SolverFailure* f) {
   exc.attr("local_errors") = errors;
 }
 
-}  // namespace
+}  // namespace errors_impl
 
 void bind_errors(py::module_& m) {
+  using namespace errors_impl;
   // The type is kept by a handle that is never released: a static py::object would drop its reference when the
   // process exits, after the interpreter has been finalized.
   static py::handle solver_error;

@@ -18,7 +18,7 @@ namespace py = pybind11;
 
 namespace imcol::python {
 
-namespace {
+namespace sweep_impl {  // this file's helpers: named, as the module is one unity unit
 
 /// A sweep's points as columns: name -> 1-D array, in sweep.csv's order (`point`, the varied quantity's, then
 /// sweep_columns(): numbers as float64 with NaN where the point has none, words as str arrays).
@@ -96,9 +96,10 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
 
 py::object column(const PySweepResult& r, const std::string& name) { return r.table[py::str(name)]; }
 
-}  // namespace
+}  // namespace sweep_impl
 
 void bind_sweep(py::module_& m) {
+  using namespace sweep_impl;
   py::class_<PySweepResult>(m, "SweepResult",
                             "A sweep's points as NumPy arrays, one per column of sweep.csv (`columns`, `table[name]`); "
                             "every column is also an attribute: r.St_B_eq_6_2, r.steps, …")
