@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // imcol.sweep and imcol.SweepResult: e against St over values of one quantity, as `imcol sweep` runs it: the points'
 // scenes from apps/sweep.hpp sweep_scenes (all checked before anything runs), each point run by run_sweep_point on
-// run_parallel's threads with the GIL released, and sweep.csv's columns (sweep_columns) as NumPy arrays.
+// run_parallel's threads, the GIL released for both, and sweep.csv's columns (sweep_columns) as NumPy arrays.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -78,12 +78,13 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
   std::vector<Override> overrides = scene.overrides();
   for (auto& o : solver_overrides(rtol, atol, integrator)) overrides.push_back(o);
   const auto load = [&](const std::vector<Override>& ov) { return parse_scene(scene.text(), scene.path(), ov); };
-  const Scene base = load(overrides);
-  const std::vector<Scene> scenes = sweep_scenes(load, overrides, base, vary, values);
 
   std::vector<SweepPoint> pts(values.size());
   {
+    // Reading the points' scenes and running them touch no Python object.
     py::gil_scoped_release free;
+    const Scene base = load(overrides);
+    const std::vector<Scene> scenes = sweep_scenes(load, overrides, base, vary, values);
     run_parallel(
         scenes.size(), job_count(jobs, scenes.size()), [&](std::size_t i) { return run_sweep_point(scenes[i], values[i]); },
         [&](std::size_t i, SweepPoint p) {
