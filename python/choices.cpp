@@ -14,7 +14,7 @@ namespace py = pybind11;
 
 namespace imcol::python {
 
-namespace {
+namespace choices_impl {  // this file's helpers: named, as the module is one unity unit
 
 /// Every choice key of a scene -> its allowed values. The keys are the scene reader's (core/scene.cpp,
 /// core/flow_spec.cpp TableReader::choice calls); the values come from the enum each key is read into.
@@ -40,9 +40,10 @@ py::dict scene_choices() {
   return d;
 }
 
-}  // namespace
+}  // namespace choices_impl
 
 void bind_choices(py::module_& m) {
+  using namespace choices_impl;
   m.def("history_kernels", &choice_names<KernelKind>, "history.kernel's values (imcol history --kernels).");
   m.def("integrators", &choice_names<IntegratorMethod>, "solver.integrator's values (imcol.run(integrator=…), --integrator).");
   m.def("contact_laws", &choice_names<ContactLawKind>, "contact.law's values (imcol laws --laws).");

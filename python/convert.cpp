@@ -36,13 +36,12 @@ py::object to_python(const nlohmann::ordered_json& j) {
   return py::none();
 }
 
-namespace {
+namespace convert_impl {  // this file's helpers: named, as the module is one unity unit
 
-std::string quoted(const std::string& s) { return toml_string(s); }
+/// A string as a TOML basic string (quoted, escaped): JSON strings are TOML basic strings.
+std::string toml_string(const std::string& s) { return nlohmann::json(s).dump(); }
 
 constexpr int kMaxDepth = 32;  // lists in lists: a list that holds itself ends here, not in a stack overflow
-
-std::string element_text(const py::handle& v, int depth);
 
 std::string scalar_text(const py::handle& v, bool bare_str, int depth = 0) {
   if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
@@ -55,13 +54,13 @@ std::string scalar_text(const py::handle& v, bool bare_str, int depth = 0) {
     if (r.find_first_of(".eE") == std::string::npos) r += ".0";
     return r;
   }
-  if (py::isinstance<py::str>(v)) return bare_str ? v.cast<std::string>() : quoted(v.cast<std::string>());
+  if (py::isinstance<py::str>(v)) return bare_str ? v.cast<std::string>() : toml_string(v.cast<std::string>());
   if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
     if (depth >= kMaxDepth) throw py::value_error("a scene value nests lists more than " + std::to_string(kMaxDepth) + " deep");
     std::string s = "[";
     bool first = true;
     for (const auto& e : v) {
-      s += (first ? "" : ", ") + element_text(e, depth + 1);
+      s += (first ? "" : ", ") + scalar_text(e, false, depth + 1);
       first = false;
     }
     return s + "]";
@@ -72,21 +71,17 @@ std::string scalar_text(const py::handle& v, bool bare_str, int depth = 0) {
                        py::str(py::type::of(v).attr("__name__")).cast<std::string>() + ")");
 }
 
-std::string element_text(const py::handle& v, int depth) { return scalar_text(v, false, depth); }
+}  // namespace convert_impl
 
-}  // namespace
-
-std::string toml_value_text(const py::handle& value) { return scalar_text(value, true); }
+std::string toml_value_text(const py::handle& value) { return convert_impl::scalar_text(value, true); }
 
 std::vector<Override> solver_overrides(const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
                                        const std::optional<std::string>& integrator) {
   std::vector<Override> o;
   if (rtol) o.push_back(parse_override("solver.rtol=" + toml_value_text(*rtol)));
   if (atol) o.push_back(parse_override("solver.atol=" + toml_value_text(*atol)));
-  if (integrator) o.push_back(parse_override("solver.integrator=" + toml_string(*integrator)));
+  if (integrator) o.push_back(parse_override("solver.integrator=" + convert_impl::toml_string(*integrator)));
   return o;
 }
-
-std::string toml_string(const std::string& s) { return nlohmann::json(s).dump(); }  // JSON strings are TOML basic strings
 
 }  // namespace imcol::python

@@ -24,7 +24,5 @@ std::string toml_value_text(const pybind11::handle& value);
 std::vector<Override> solver_overrides(const std::optional<pybind11::object>& rtol,
                                        const std::optional<pybind11::object>& atol,
                                        const std::optional<std::string>& integrator);
-/// A string as a TOML basic string (quoted, escaped).
-std::string toml_string(const std::string& s);
 
 }  // namespace imcol::python

@@ -12,7 +12,7 @@ namespace py = pybind11;
 
 namespace imcol::python {
 
-namespace {
+namespace errors_impl {  // this file's helpers: named, as the module is one unity unit
 
 /// The integrator's facts as the exception's attributes (None where there are none).
 void set_facts(py::object& exc, const SolverFailure* f) {
@@ -31,11 +31,15 @@ void set_facts(py::object& exc, const SolverFailure* f) {
   exc.attr("local_errors") = errors;
 }
 
-}  // namespace
+}  // namespace errors_impl
 
 void bind_errors(py::module_& m) {
-  static py::exception<SolverError> solver_error(m, "SolverError", PyExc_RuntimeError);
-  solver_error.doc() =
+  using namespace errors_impl;
+  // The type is kept by a handle that is never released: a static py::object would drop its reference when the
+  // process exits, after the interpreter has been finalized.
+  static py::handle solver_error;
+  solver_error = py::exception<SolverError>(m, "SolverError", PyExc_RuntimeError).release();
+  solver_error.attr("__doc__") =
       "The time integrator failed: what failed, when, and which state components were to blame. str(error) is the "
       "command line's message. When the integrator failed, the facts are attributes too: integrator ('cvode', "
       "'ida'), flag (the SUNDIALS return flag, an int) and flag_name ('CV_TOO_MUCH_WORK'), time (s, the last time "
@@ -50,7 +54,7 @@ void bind_errors(py::module_& m) {
     } catch (const InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const SolverError& e) {
-      py::object exc = py::handle(solver_error.ptr())(e.what());  // an instance, its attributes set before raising
+      py::object exc = solver_error(e.what());  // an instance, its attributes set before raising
       set_facts(exc, e.failure());
       PyErr_SetObject(solver_error.ptr(), exc.ptr());
     }

@@ -17,7 +17,7 @@ namespace py = pybind11;
 
 namespace imcol::python {
 
-namespace {
+namespace result_impl {  // this file's helpers: named, as the module is one unity unit
 
 py::dict columns_as_arrays(const RunResult& r);
 
@@ -76,9 +76,10 @@ std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::obje
 
 py::object opt(const std::optional<double>& v) { return v ? py::object(py::float_(*v)) : py::object(py::none()); }
 
-}  // namespace
+}  // namespace result_impl
 
 void bind_run(py::module_& m) {
+  using namespace result_impl;
   py::class_<PyResult, std::shared_ptr<PyResult>>(m, "Result",
                                                   "What a run measured. The summary's names are attributes with their "
                                                   "types: result.Re, result.solver.steps, result.contact.law, result.flow "

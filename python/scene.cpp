@@ -27,8 +27,6 @@ void PyScene::set(const std::string& key, const std::string& value_text) {
   overrides_ = std::move(trial);
 }
 
-Scene PyScene::with(const std::vector<Override>& extra) const { return *snapshot(extra); }
-
 std::shared_ptr<const Scene> PyScene::snapshot(const std::vector<Override>& extra) const {
   if (extra.empty()) return scene_;
   auto all = overrides_;

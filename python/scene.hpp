@@ -20,10 +20,9 @@ class PyScene {
   /// Sets one key as `--set key=value_text` does (the same checks and messages); the scene is unchanged on error.
   void set(const std::string& key, const std::string& value_text);
 
-  /// The scene with `extra` overrides after the scene's own.
-  Scene with(const std::vector<Override>& extra) const;
-  /// The same, shared and immutable: the scene itself (no copy) without extra overrides. A run holds it while the GIL
-  /// is released, so a set() meanwhile (which makes a new one) cannot change it under the run.
+  /// The scene with `extra` overrides after the scene's own, shared and immutable: the scene itself (no copy) without
+  /// extra overrides. A run holds it while the GIL is released, so a set() meanwhile (which makes a new one) cannot
+  /// change it under the run.
   std::shared_ptr<const Scene> snapshot(const std::vector<Override>& extra) const;
 
   const Scene& scene() const { return *scene_; }

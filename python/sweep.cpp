@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // imcol.sweep and imcol.SweepResult: e against St over values of one quantity, as `imcol sweep` runs it: the points'
 // scenes from apps/sweep.hpp sweep_scenes (all checked before anything runs), each point run by run_sweep_point on
-// run_parallel's threads with the GIL released, and sweep.csv's columns (sweep_columns) as NumPy arrays.
+// run_parallel's threads, the GIL released for both, and sweep.csv's columns (sweep_columns) as NumPy arrays.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -18,7 +18,7 @@ namespace py = pybind11;
 
 namespace imcol::python {
 
-namespace {
+namespace sweep_impl {  // this file's helpers: named, as the module is one unity unit
 
 /// A sweep's points as columns: name -> 1-D array, in sweep.csv's order (`point`, the varied quantity's, then
 /// sweep_columns(): numbers as float64 with NaN where the point has none, words as str arrays).
@@ -78,12 +78,13 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
   std::vector<Override> overrides = scene.overrides();
   for (auto& o : solver_overrides(rtol, atol, integrator)) overrides.push_back(o);
   const auto load = [&](const std::vector<Override>& ov) { return parse_scene(scene.text(), scene.path(), ov); };
-  const Scene base = load(overrides);
-  const std::vector<Scene> scenes = sweep_scenes(load, overrides, base, vary, values);
 
   std::vector<SweepPoint> pts(values.size());
   {
+    // Reading the points' scenes and running them touch no Python object.
     py::gil_scoped_release free;
+    const Scene base = load(overrides);
+    const std::vector<Scene> scenes = sweep_scenes(load, overrides, base, vary, values);
     run_parallel(
         scenes.size(), job_count(jobs, scenes.size()), [&](std::size_t i) { return run_sweep_point(scenes[i], values[i]); },
         [&](std::size_t i, SweepPoint p) {
@@ -96,9 +97,10 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
 
 py::object column(const PySweepResult& r, const std::string& name) { return r.table[py::str(name)]; }
 
-}  // namespace
+}  // namespace sweep_impl
 
 void bind_sweep(py::module_& m) {
+  using namespace sweep_impl;
   py::class_<PySweepResult>(m, "SweepResult",
                             "A sweep's points as NumPy arrays, one per column of sweep.csv (`columns`, `table[name]`); "
                             "every column is also an attribute: r.St_B_eq_6_2, r.steps, …")

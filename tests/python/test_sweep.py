@@ -141,3 +141,26 @@ def test_the_gil_is_released_while_the_points_run():
     t.join()
     assert list(out["r"].status) == ["ok"] * 40
     assert ticks[0] > 20
+
+
+def test_the_gil_is_released_while_the_points_scenes_are_read():
+    # Reading 2000 points' scenes takes a tenth of a second or more; another Python thread keeps running meanwhile. The
+    # last point is bad, so the sweep stops (ValueError) before anything runs: only the reading is timed.
+    import threading
+    done, ticks, out = threading.Event(), [0], {}
+
+    def read():
+        try:
+            imcol.sweep("default", vary="diameter", values=[1e-3] * 1999 + [1e3])
+        except ValueError as e:
+            out["error"] = str(e)
+        done.set()
+
+    t = threading.Thread(target=read)
+    t.start()
+    while not done.is_set():
+        ticks[0] += 1
+        done.wait(0.001)
+    t.join()
+    assert "sweep point 1999 (diameter = 1000)" in out["error"]
+    assert ticks[0] > 20
