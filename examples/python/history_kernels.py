@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """e against St with each history kernel (`history.kernel`) on the `default` scene (a steel sphere onto a Zerodur
-wall, Re 40-1100), and each kernel's e minus Basset's.
+wall, Re 33-1140), and each kernel's e minus Basset's.
 
     PYTHONPATH=build/python /usr/bin/python3 examples/python/history_kernels.py --out out/examples
 """

@@ -71,6 +71,11 @@ def cli_sweep_point(tmp_path, scene, velocity, settings):
     return dict(zip(header, rows[0]))
 
 
+def test_every_example_is_checked_below():
+    assert sorted(p.stem for p in EXAMPLES.glob("*.py")) == ["coupled_forces", "history_kernels",
+                                                            "restitution_vs_stokes", "trajectory_forces"]
+
+
 def test_trajectory_forces_equal_imcol_run(example, cli_run):
     got = example("trajectory_forces")
     summary, trajectory = cli_run(got["scene"], *set_options(got["set"]))
@@ -104,7 +109,6 @@ def test_history_kernels_list_and_values_equal_the_cli(example, cli_run):
                                                         "sphere[0].velocity": speeds[point]}))
         assert (got["kernels"][kernel]["e"][point], got["kernels"][kernel]["St"][point]) == (summary["e"],
                                                                                             summary["St"]), kernel
-
 
 
 def test_restitution_vs_stokes_equals_imcol_sweep(example, tmp_path):

@@ -164,3 +164,17 @@ def test_stub_declares_the_summarys_names():
     # and every public name of the extension's Result is in the stub
     public = {n for n in dir(imcol.Result) if not n.startswith("_")}
     assert public <= set(stub), public - set(stub)
+
+
+def test_stub_declares_every_name_of_the_extension():
+    tree = ast.parse(STUB.read_text())
+    top = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    top |= {n.target.id for n in tree.body if isinstance(n, ast.AnnAssign)}
+    from imcol import _imcol
+    public = {n for n in dir(_imcol) if not n.startswith("_")} | {"__version__"}
+    assert public <= top, public - top
+    for cls in ("SweepResult", "SolverError", "Scene"):
+        body = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == cls).body
+        stub = {n.name for n in body if isinstance(n, ast.FunctionDef)} | {n.target.id for n in body if isinstance(n, ast.AnnAssign)}
+        extension = {n for n in dir(getattr(imcol, cls)) if not n.startswith("_")} - set(dir(RuntimeError))
+        assert extension <= stub, (cls, extension - stub)
