@@ -87,6 +87,11 @@ void bind_run(py::module_& m) {
       .def_property_readonly("e", [](const PyResult& r) { return opt(r.run.summary.e); },
                              "Restitution coefficient by the measure `e_is` names; None without one (see e_missing).")
       .def_property_readonly("St", [](const PyResult& r) { return opt(r.run.summary.St); }, "Stokes number at impact.")
+      // Read from the typed summary: timing a loop of runs does not build the summary's Python view.
+      .def_property_readonly("wall_time_s", [](const PyResult& r) { return r.run.summary.wall_time_s; },
+                             "The integration's wall time (s), as summary.json's wall_time_s.")
+      .def_property_readonly("setup_time_s", [](const PyResult& r) { return r.run.summary.setup_time_s; },
+                             "The model's set-up time (s), as summary.json's setup_time_s.")
       .def_property_readonly(
           "measures",
           [](const PyResult& r) {

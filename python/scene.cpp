@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "python/scene.hpp"
 
+#include <algorithm>
+
 #include "core/scene_files.hpp"
 #include "core/toml_reader.hpp"
 #include "python/bindings.hpp"
@@ -25,13 +27,19 @@ void PyScene::set(const std::string& key, const std::string& value_text) {
   trial.push_back(parse_override(key + "=" + value_text));
   scene_ = std::make_shared<const Scene>(parse_scene(text_, path_, trial));
   overrides_ = std::move(trial);
+  last_.reset();  // made with the overrides before this one
 }
 
 std::shared_ptr<const Scene> PyScene::snapshot(const std::vector<Override>& extra) const {
   if (extra.empty()) return scene_;
+  const auto same = [](const Override& a, const Override& b) { return a.key == b.key && a.value == b.value; };
+  if (last_ && std::equal(extra.begin(), extra.end(), last_extra_.begin(), last_extra_.end(), same)) return last_;
   auto all = overrides_;
   all.insert(all.end(), extra.begin(), extra.end());
-  return std::make_shared<const Scene>(parse_scene(text_, path_, all));
+  auto sc = std::make_shared<const Scene>(parse_scene(text_, path_, all));
+  last_extra_ = extra;
+  last_ = sc;
+  return sc;
 }
 
 void bind_scene(py::module_& m) {

@@ -22,7 +22,8 @@ class PyScene {
 
   /// The scene with `extra` overrides after the scene's own, shared and immutable: the scene itself (no copy) without
   /// extra overrides. A run holds it while the GIL is released, so a set() meanwhile (which makes a new one) cannot
-  /// change it under the run.
+  /// change it under the run. With extra overrides the last ones and their scene are kept: a loop of
+  /// run(scene, rtol=…) parses the scene once, not per call. Called with the GIL held (it guards the kept scene).
   std::shared_ptr<const Scene> snapshot(const std::vector<Override>& extra) const;
 
   const Scene& scene() const { return *scene_; }
@@ -35,6 +36,8 @@ class PyScene {
   std::string path_, text_;
   std::vector<Override> overrides_;
   std::shared_ptr<const Scene> scene_;
+  mutable std::vector<Override> last_extra_;  // snapshot()'s last extra overrides and their scene (null: none yet)
+  mutable std::shared_ptr<const Scene> last_;
 };
 
 }  // namespace imcol::python

@@ -57,6 +57,28 @@ def test_set_and_solver_options_match_the_cli(cli_run):
     assert r.e != imcol.run(imcol.Scene.load("default")).e  # the key took effect
 
 
+def test_repeated_solver_options_give_the_fresh_scenes_bits():
+    # run(scene, rtol=…) keeps the scene it parsed for those options: the next call with the same options, with
+    # others, and after set() must each give what a freshly read scene gives.
+    scene = imcol.Scene.load("default")
+    fresh = lambda *keys: imcol.Scene.load("default") if not keys else imcol.Scene.load("default").set(*keys)
+    a = imcol.run(scene, rtol=1e-6)
+    assert imcol.run(scene, rtol=1e-6).e == a.e == imcol.run(fresh("solver.rtol", 1e-6)).e
+    b = imcol.run(scene, rtol=1e-7)
+    assert b.e == imcol.run(fresh("solver.rtol", 1e-7)).e and b.e != a.e
+    assert imcol.run(scene, rtol=1e-6).e == a.e
+    scene.set("fluid.viscosity", 0.05)
+    c = imcol.run(scene, rtol=1e-6)
+    assert c.e == imcol.run(fresh("fluid.viscosity", 0.05), rtol=1e-6).e and c.e != a.e
+    assert c.to_dict()["fluid"]["viscosity_Pa_s"] == 0.05
+
+
+def test_timings_read_without_the_summary_view():
+    r = imcol.run(imcol.Scene.load("default"))
+    assert r.wall_time_s == r.summary.wall_time_s == r.to_dict()["wall_time_s"] > 0
+    assert r.setup_time_s == r.summary.setup_time_s == r.to_dict()["setup_time_s"] >= 0
+
+
 def test_from_toml_is_the_file(cli_run):
     scene = imcol.Scene.load("default")
     r_text = imcol.run(imcol.Scene.from_toml(scene.toml))
