@@ -124,14 +124,17 @@ def test_bad_vary_and_bad_values_raise_value_error_with_the_command_lines_messag
     assert "imcol: error: " + str(bad.value) == err.strip()
 
 
-def test_the_gil_is_released_while_the_points_run():
-    # Another Python thread keeps running during a sweep (with the GIL held it would not run at all until the end).
+def ticks_while(work):
+    """Runs work() in another thread; returns how often this thread woke (every 1 ms) until it ended. With the GIL
+    held by work() this thread would not run at all until the end."""
     import threading
-    done, ticks, out = threading.Event(), [0], {}
+    done, ticks = threading.Event(), [0]
 
     def run():
-        out["r"] = imcol.sweep("default", values=log_values(0.05, 1.0, 40), jobs=1)
-        done.set()
+        try:
+            work()
+        finally:
+            done.set()
 
     t = threading.Thread(target=run)
     t.start()
@@ -139,28 +142,27 @@ def test_the_gil_is_released_while_the_points_run():
         ticks[0] += 1
         done.wait(0.001)
     t.join()
+    return ticks[0]
+
+
+def test_the_gil_is_released_while_the_points_run():
+    out = {}
+    ticks = ticks_while(lambda: out.setdefault("r", imcol.sweep("default", values=log_values(0.05, 1.0, 40), jobs=1)))
     assert list(out["r"].status) == ["ok"] * 40
-    assert ticks[0] > 20
+    assert ticks > 20
 
 
 def test_the_gil_is_released_while_the_points_scenes_are_read():
-    # Reading 2000 points' scenes takes a tenth of a second or more; another Python thread keeps running meanwhile. The
-    # last point is bad, so the sweep stops (ValueError) before anything runs: only the reading is timed.
-    import threading
-    done, ticks, out = threading.Event(), [0], {}
+    # Reading 2000 points' scenes takes a tenth of a second or more. The last point is bad, so the sweep stops
+    # (ValueError) before anything runs: only the reading is timed.
+    out = {}
 
     def read():
         try:
             imcol.sweep("default", vary="diameter", values=[1e-3] * 1999 + [1e3])
         except ValueError as e:
             out["error"] = str(e)
-        done.set()
 
-    t = threading.Thread(target=read)
-    t.start()
-    while not done.is_set():
-        ticks[0] += 1
-        done.wait(0.001)
-    t.join()
+    ticks = ticks_while(read)
     assert "sweep point 1999 (diameter = 1000)" in out["error"]
-    assert ticks[0] > 20
+    assert ticks > 20
