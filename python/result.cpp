@@ -24,7 +24,7 @@ py::dict columns_as_arrays(const RunResult& r);
 /// The run and its Python views, made on first use (a caller reading only e and St pays for neither).
 struct PyResult {
   RunResult run;
-  const py::dict& summary() {  // summary.json as Python
+  const py::object& summary() {  // summary.json as a dict
     if (!summary_) summary_ = to_python(run.summary_json);
     return summary_;
   }
@@ -32,14 +32,13 @@ struct PyResult {
     if (!view_) view_ = py::module_::import("imcol._summary").attr("Summary")(summary());
     return view_;
   }
-  const py::dict& trajectory() {  // column name -> 1-D float64 array
+  const py::object& trajectory() {  // a dict: column name -> 1-D float64 array
     if (!trajectory_) trajectory_ = columns_as_arrays(run);
     return trajectory_;
   }
 
  private:
-  py::dict summary_{py::reinterpret_steal<py::dict>(py::handle())}, trajectory_{py::reinterpret_steal<py::dict>(py::handle())};
-  py::object view_;
+  py::object summary_, view_, trajectory_;  // null until first use
 };
 
 py::dict columns_as_arrays(const RunResult& r) {
