@@ -270,9 +270,7 @@ std::vector<Scene> sweep_scenes(const std::function<Scene(const std::vector<Over
       scenes.push_back(load(ov));
     } catch (const InputError& e) {
       // The same place and key, the point named before the problem.
-      const std::string place = InputError(e.where(), e.key(), "").what(), message = e.what();
-      const std::string problem = message.rfind(place, 0) == 0 ? message.substr(place.size()) : message;
-      throw InputError(e.where(), e.key(), point_name(i, vary, values[i]) + ": " + problem);
+      throw InputError(e.where(), e.key(), point_name(i, vary, values[i]) + ": " + e.problem());
     }
   }
   return scenes;

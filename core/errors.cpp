@@ -38,6 +38,7 @@ std::string compose(const std::string& where, const std::string& key, const std:
 InputError::InputError(std::string where, std::string key, const std::string& problem)
     : std::runtime_error(compose(printable(where), printable(key), printable(problem))),
       where_(printable(std::move(where))),
-      key_(printable(std::move(key))) {}
+      key_(printable(std::move(key))),
+      problem_(printable(problem)) {}
 
 }  // namespace imcol

@@ -24,9 +24,10 @@ class InputError : public std::runtime_error {
   InputError(std::string where, std::string key, const std::string& problem);
   const std::string& where() const { return where_; }
   const std::string& key() const { return key_; }
+  const std::string& problem() const { return problem_; }  // the message without its place and key
 
  private:
-  std::string where_, key_;
+  std::string where_, key_, problem_;
 };
 
 /// What a failed time integrator reports, as data (the facts its SolverError's message states, and the state).
