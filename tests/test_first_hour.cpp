@@ -159,10 +159,14 @@ TEST(FirstHour, AKilledSweepLeavesThePreviousResultWhole) {
   for (int i = 0; i < 3000 && (staged().empty() || !fs::exists(staged()[0] / "sweep.csv")); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ASSERT_EQ(::kill(pid, SIGKILL), 0) << "the sweep finished before it was killed";
-  for (int i = 0; i < 500 && fs::exists("/proc/" + std::to_string(pid) + "/cmdline") &&
-                  slurp("/proc/" + std::to_string(pid) + "/cmdline").find("imcol") != std::string::npos;
-       ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  // Its files (and so its lock) are closed only once it is gone or a zombie: an empty cmdline comes earlier.
+  auto exited = [&] {
+    const std::string stat = slurp("/proc/" + std::to_string(pid) + "/stat");
+    const std::size_t end = stat.rfind(')');
+    return end == std::string::npos || end + 2 >= stat.size() || stat[end + 2] == 'Z' || stat[end + 2] == 'X';
+  };
+  for (int i = 0; i < 3000 && !exited(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(exited()) << "the killed sweep (pid " << pid << ") did not exit";
   EXPECT_TRUE(nlohmann::json::parse(slurp(dir / "sweep.json"))["previous"].get<bool>());
   EXPECT_TRUE(fs::exists(dir / "sweep.png"));
   EXPECT_FALSE(fs::exists(dir / "sweep.csv"));
