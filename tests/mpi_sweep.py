@@ -3,7 +3,8 @@
 """`imcol sweep` over an MPI job against the same sweep on threads: `mpirun -np 3` on six points of the shipped
 scene `default` writes a sweep.csv equal to the threaded one cell for cell (the timing column aside), and its
 sweep.json names the ranks and the points each ran, which add up to the sweep. The same with solver.max_steps so
-small that some points fail: the others still run, both exit 3 and the CSVs (messages included) agree.
+small that some points fail: the others still run, both exit 3 and the CSVs (messages included) agree; and with two
+threads a rank.
 
 Usage: /usr/bin/python3 tests/mpi_sweep.py --imcol BIN --mpirun MPIRUN (run by ctest as mpi_sweep)
 """
@@ -16,8 +17,8 @@ import tempfile
 from pathlib import Path
 
 TIMING = {"wall_time_s"}  # differs from run to run
-SWEEP = ["sweep", "default", "--vary", "velocity", "--from", "0.05", "--to", "1", "--points", "6", "--jobs", "1",
-         "--no-plot", "--no-progress"]
+SWEEP = ["sweep", "default", "--vary", "velocity", "--from", "0.05", "--to", "1", "--points", "6", "--no-plot",
+         "--no-progress"]
 
 
 def read(path):
@@ -64,7 +65,9 @@ def main():
     ap.add_argument("--mpirun", required=True)
     a = ap.parse_args()
     failures = []
-    for label, extra, rc in (("", [], 0), ("failing points: ", ["--set", "solver.max_steps=60"], 3)):
+    cases = (("", ["--jobs", "1"], 0), ("two threads a rank: ", ["--jobs", "2"], 0),
+             ("failing points: ", ["--jobs", "1", "--set", "solver.max_steps=60"], 3))
+    for label, extra, rc in cases:
         failures += [label + f for f in compare(a, extra, rc)]
     for f in failures:
         print("FAIL:", f)
