@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "apps/cluster.hpp"
 #include "apps/dem_export.hpp"
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
@@ -91,6 +92,75 @@ std::string csv_row(std::size_t i, const PointResult& p) {
   }
   csv << "\n";
   return csv.str();
+}
+
+/// Runs point i and formats its CSV row.
+PointResult point_result(const Scene& scene, std::size_t i, double value) {
+  PointResult r;
+  static_cast<SweepPoint&>(r) = run_sweep_point(scene, value);
+  r.done = true;
+  r.row = csv_row(i, r);
+  return r;
+}
+
+nlohmann::json opt_json(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+std::optional<double> json_opt(const nlohmann::json& v) { return v.is_null() ? std::nullopt : std::optional<double>(v.get<double>()); }
+
+/// A finished point as a worker rank sends it to rank 0 (docs/cluster.md): its CSV row as formatted where it ran, and
+/// the summary's values that rank 0's table, sweep.json and export read. JSON numbers read back to the same doubles.
+std::string encode_point(const PointResult& r) {
+  nlohmann::json j;
+  j["ok"] = r.ok;
+  j["value"] = r.value;
+  j["message"] = r.message;
+  j["row"] = r.row;
+  if (r.ok) {
+    const RunSummary& s = r.summary;
+    j["St"] = opt_json(s.St);
+    j["St_B_eq_6_2"] = opt_json(s.St_B_eq_6_2);
+    j["Re"] = opt_json(s.Re);
+    j["e"] = opt_json(s.e);
+    j["U_i1"] = opt_json(s.U_i1);
+    j["U_i2"] = opt_json(s.U_i2);
+    j["steps"] = s.solver.stats.steps;
+    j["wall_time_s"] = s.wall_time_s;
+    j["e_is"] = s.e_is;
+    j["measures_disagree"] = s.measures_disagree;
+    j["St_convention"] = s.St_convention;
+    j["effects"] = s.effects;
+    j["e_dry"] = s.contact ? nlohmann::json(s.contact->e_dry) : nlohmann::json(nullptr);
+  }
+  return j.dump();
+}
+
+PointResult decode_point(const std::string& bytes) {
+  const nlohmann::json j = nlohmann::json::parse(bytes);
+  PointResult r;
+  r.done = true;
+  r.ok = j["ok"].get<bool>();
+  r.value = j["value"].get<double>();
+  r.message = j["message"].get<std::string>();
+  r.row = j["row"].get<std::string>();
+  if (r.ok) {
+    RunSummary& s = r.summary;
+    s.St = json_opt(j["St"]);
+    s.St_B_eq_6_2 = json_opt(j["St_B_eq_6_2"]);
+    s.Re = json_opt(j["Re"]);
+    s.e = json_opt(j["e"]);
+    s.U_i1 = json_opt(j["U_i1"]);
+    s.U_i2 = json_opt(j["U_i2"]);
+    s.solver.stats.steps = j["steps"].get<decltype(s.solver.stats.steps)>();
+    s.wall_time_s = j["wall_time_s"].get<double>();
+    s.e_is = j["e_is"].get<std::string>();
+    s.measures_disagree = j["measures_disagree"].get<std::vector<std::pair<std::string, double>>>();
+    s.St_convention = j["St_convention"].get<std::string>();
+    s.effects = j["effects"].get<std::vector<std::string>>();
+    if (!j["e_dry"].is_null()) {
+      s.contact.emplace();
+      s.contact->e_dry = j["e_dry"].get<double>();
+    }
+  }
+  return r;
 }
 
 std::string sweep_csv(const std::vector<PointResult>& pts, const Quantity& q) {
@@ -314,6 +384,7 @@ struct Tally {
   int finished = 0, failed = 0;
   double wall = 0;
   std::string write_error;  // the first failed write of sweep.csv: the sweep stops taking points and reports it
+  std::vector<int> points_by_rank;  // over an MPI job: the points each rank ran
 };
 
 /// Runs the points on `jobs` threads, rewriting dir/sweep.csv as they finish.
@@ -321,17 +392,12 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
                  const fs::path& dir, int jobs) {
   const bool tty = opt.progress && isatty(STDERR_FILENO);
   Tally tally;
+  tally.points_by_rank.assign(static_cast<std::size_t>(cluster::world().size), 0);
   double last_write = -1;
   const auto start = WallClock::now();
   auto elapsed = [&] { return seconds_since(start); };
 
-  auto run_point = [&](std::size_t i) {
-    PointResult r;
-    static_cast<SweepPoint&>(r) = run_sweep_point(scenes[i], pts[i].value);
-    r.done = true;
-    r.row = csv_row(i, r);
-    return r;
-  };
+  auto run_point = [&](std::size_t i) { return point_result(scenes[i], i, pts[i].value); };
   auto take = [&](std::size_t i, PointResult r) {
     pts[i] = std::move(r);
     ++tally.finished;
@@ -353,7 +419,16 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
     }
     return tally.write_error.empty();  // a failed write stops the sweep taking points
   };
-  run_parallel(pts.size(), jobs, run_point, take);
+  if (cluster::world().size == 1) {
+    run_parallel(pts.size(), jobs, run_point, take);
+  } else {  // over the MPI job's ranks: every point, rank 0's own too, goes through the bytes a worker sends
+    cluster::run_distributed(
+        pts.size(), jobs, [&](std::size_t i) { return encode_point(run_point(i)); },
+        [&](std::size_t i, std::string bytes, int rank) {
+          ++tally.points_by_rank[static_cast<std::size_t>(rank)];
+          return take(i, decode_point(bytes));
+        });
+  }
   tally.wall = elapsed();
   if (tty) std::cerr << "\n";
   return tally;
@@ -363,7 +438,8 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
 nlohmann::ordered_json print_points(const std::vector<PointResult>& pts, const SweepOptions& opt, const Quantity& q,
                                     const std::string& scene_name, int jobs, double& cpu) {
   std::cout << "scene " << scene_name << ": sweep of " << opt.vary << " from " << opt.from << " to " << opt.to << " (" << opt.points
-            << " points, " << opt.spacing << " spacing, " << jobs << " jobs)\n";
+            << " points, " << opt.spacing << " spacing, " << jobs << " jobs"
+            << (cluster::world().size > 1 ? " on each of " + std::to_string(cluster::world().size) + " ranks" : std::string()) << ")\n";
   std::cout << std::setw(14) << q.column << std::setw(10) << "St" << std::setw(9) << "Re" << std::setw(9) << "e" << std::setw(9)
             << "steps" << std::setw(10) << "ms" << "  note\n";
   nlohmann::ordered_json failures = nlohmann::ordered_json::array();
@@ -467,7 +543,11 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
   j["to"] = opt.to;
   j["points"] = opt.points;
   j["spacing"] = opt.spacing;
-  j["jobs"] = out.jobs;
+  j["jobs"] = out.jobs;  // threads per rank
+  if (const int ranks = cluster::world().size; ranks > 1) {
+    j["ranks"] = ranks;
+    j["points_by_rank"] = out.tally.points_by_rank;
+  }
   j["wall_time_s"] = out.tally.wall;
   j["collisions_per_second"] = finite_or_null(out.ok / out.tally.wall);
   j["failures"] = out.failures;
@@ -499,6 +579,12 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   const std::vector<Scene> scenes = sweep_scenes(scene_path, overrides, base, opt.vary, values);
   std::vector<PointResult> pts(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) pts[i].value = values[i];
+  const int jobs = job_count(opt.jobs, pts.size());
+  // Under mpirun, ranks > 0 run points for rank 0 (docs/cluster.md), which alone writes and prints.
+  if (const cluster::World w = cluster::world(); w.rank > 0) {
+    cluster::run_distributed(pts.size(), jobs, [&](std::size_t i) { return encode_point(point_result(scenes[i], i, values[i])); }, {});
+    return 0;
+  }
 
   // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
   // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
@@ -507,7 +593,6 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   write_file_atomic(dir / "sweep.partial",
                     "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
                         "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
-  const int jobs = job_count(opt.jobs, pts.size());
   const Tally tally = run_points(scenes, pts, opt, *q, dir, jobs);
   if (!tally.write_error.empty()) stop_on_write_error(unit, tally, opt);
   const int failed = tally.failed;

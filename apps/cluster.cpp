@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "apps/cluster.hpp"
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "apps/parallel_runs.hpp"
+
+#ifdef IMCOL_MPI
+#include <mpi.h>
+#endif
+
+namespace imcol::cluster {
+
+#ifndef IMCOL_MPI
+
+World world() { return {}; }
+
+void run_distributed(std::size_t n, int jobs, const std::function<std::string(std::size_t)>& work,
+                     const std::function<bool(std::size_t, std::string, int)>& done) {
+  run_parallel(n, jobs, work, [&](std::size_t i, std::string r) { return done(i, std::move(r), 0); });
+}
+
+#else
+
+namespace {
+
+// Messages: a worker sends kAsk (int64 index of the finished run, -1 for none, then its result's bytes); rank 0
+// answers each with kGive (int64 index to run next, -1 for none: the worker asks for nothing more).
+constexpr int kAsk = 1, kGive = 2;
+
+bool started_by_mpirun() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "SLURM_PMIX_MAPPING_SERV"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+World g_world;
+bool g_released = true;  // false while other ranks may wait on this one: leaving then aborts the job
+
+void at_exit() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (finalized) return;
+  // A rank that leaves while the others wait for it (an error before or during the runs) would leave them hanging.
+  if (!g_released) MPI_Abort(MPI_COMM_WORLD, 1);
+  MPI_Finalize();
+}
+
+/// A worker's round trip: the finished run (or none) out, the next index (or -1) back.
+std::int64_t round_trip(std::int64_t finished, const std::string& bytes) {
+  std::vector<char> msg(sizeof finished + bytes.size());
+  std::memcpy(msg.data(), &finished, sizeof finished);
+  std::memcpy(msg.data() + sizeof finished, bytes.data(), bytes.size());
+  MPI_Send(msg.data(), static_cast<int>(msg.size()), MPI_BYTE, 0, kAsk, MPI_COMM_WORLD);
+  std::int64_t next = -1;
+  MPI_Recv(&next, 1, MPI_INT64_T, 0, kGive, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  return next;
+}
+
+/// Ranks > 0: up to `jobs` runs at a time, each on a thread of its own; only this thread calls MPI.
+void worker(int jobs, const std::function<std::string(std::size_t)>& work) {
+  std::mutex mu;
+  std::condition_variable cv;
+  std::vector<std::pair<std::int64_t, std::string>> finished;
+  std::map<std::int64_t, std::thread> running;
+  bool stopped = false;
+  auto start = [&](std::int64_t i) {
+    running.emplace(i, std::thread([&, i] {
+      std::string r = work(static_cast<std::size_t>(i));
+      std::lock_guard lock(mu);
+      finished.emplace_back(i, std::move(r));
+      cv.notify_one();
+    }));
+  };
+  for (;;) {
+    if (!stopped && static_cast<int>(running.size()) < jobs) {
+      const std::int64_t next = round_trip(-1, {});
+      if (next < 0) stopped = true;
+      else start(next);
+      continue;
+    }
+    if (running.empty()) break;
+    std::pair<std::int64_t, std::string> f;
+    {
+      std::unique_lock lock(mu);
+      cv.wait(lock, [&] { return !finished.empty(); });
+      f = std::move(finished.back());
+      finished.pop_back();
+    }
+    running.at(f.first).join();
+    running.erase(f.first);
+    const std::int64_t next = round_trip(f.first, f.second);
+    if (next >= 0) start(next);
+    else stopped = true;
+  }
+}
+
+/// Rank 0: `jobs` threads run indices, while this thread answers the workers (polling, so that a waiting rank 0
+/// does not hold a core).
+void coordinator(std::size_t n, int jobs, const std::function<std::string(std::size_t)>& work,
+                 const std::function<bool(std::size_t, std::string, int)>& done, int size) {
+  std::mutex mu;
+  std::size_t next = 0;
+  auto take = [&]() -> std::int64_t {
+    std::lock_guard lock(mu);
+    return next < n ? static_cast<std::int64_t>(next++) : -1;
+  };
+  auto give = [&](std::size_t i, std::string r, int rank) {
+    std::lock_guard lock(mu);
+    if (!done(i, std::move(r), rank)) next = n;
+  };
+  std::vector<std::thread> threads;
+  for (int j = 0; j < jobs; ++j)
+    threads.emplace_back([&] {
+      for (std::int64_t i = take(); i >= 0; i = take()) give(static_cast<std::size_t>(i), work(static_cast<std::size_t>(i)), 0);
+    });
+  std::vector<bool> stopped(static_cast<std::size_t>(size), false);
+  int n_stopped = 0;
+  long outstanding = 0;  // handed to workers, not yet back
+  std::vector<char> buf;
+  while (n_stopped < size - 1 || outstanding > 0) {
+    int flag = 0;
+    MPI_Status st;
+    MPI_Iprobe(MPI_ANY_SOURCE, kAsk, MPI_COMM_WORLD, &flag, &st);
+    if (!flag) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      continue;
+    }
+    int count = 0;
+    MPI_Get_count(&st, MPI_BYTE, &count);
+    buf.resize(static_cast<std::size_t>(count));
+    MPI_Recv(buf.data(), count, MPI_BYTE, st.MPI_SOURCE, kAsk, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    std::int64_t i = -1;
+    std::memcpy(&i, buf.data(), sizeof i);
+    if (i >= 0) {
+      --outstanding;
+      give(static_cast<std::size_t>(i), std::string(buf.data() + sizeof i, buf.size() - sizeof i), st.MPI_SOURCE);
+    }
+    const std::int64_t j = take();
+    if (j >= 0) ++outstanding;
+    else if (!stopped[static_cast<std::size_t>(st.MPI_SOURCE)]) {
+      stopped[static_cast<std::size_t>(st.MPI_SOURCE)] = true;
+      ++n_stopped;
+    }
+    MPI_Send(&j, 1, MPI_INT64_T, st.MPI_SOURCE, kGive, MPI_COMM_WORLD);
+  }
+  for (auto& t : threads) t.join();
+}
+
+}  // namespace
+
+World world() {
+  static const bool once = [] {
+    if (!started_by_mpirun()) return true;
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &g_world.rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &g_world.size);
+    g_released = g_world.size == 1;
+    std::atexit(at_exit);
+    return true;
+  }();
+  (void)once;
+  return g_world;
+}
+
+void run_distributed(std::size_t n, int jobs, const std::function<std::string(std::size_t)>& work,
+                     const std::function<bool(std::size_t, std::string, int)>& done) {
+  const World w = world();
+  if (w.size == 1) return run_parallel(n, jobs, work, [&](std::size_t i, std::string r) { return done(i, std::move(r), 0); });
+  if (w.rank == 0) coordinator(n, jobs, work, done, w.size);
+  else worker(jobs, work);
+  g_released = true;
+}
+
+#endif
+
+}  // namespace imcol::cluster

@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// Independent runs spread over the ranks of an MPI job (docs/cluster.md): rank 0 hands out run indices on request and
+// takes each finished run's result as bytes; every rank runs its share on its own threads. The only MPI code in imcol.
+// Without mpirun, or built without MPI (IMCOL_MPI off), there is one rank and the runs stay on this process's threads.
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace imcol::cluster {
+
+/// This process's rank and the job's size: {0, 1} unless started by mpirun (or srun) of an MPI build.
+/// The first call starts MPI when the process was started so (MPI ends when the process exits).
+struct World {
+  int rank = 0, size = 1;
+};
+World world();
+
+/// Runs work(i) for i in [0, n) on every rank of world(), each on `jobs` threads, indices handed out one at a time
+/// as threads fall idle. Rank 0 runs done(i, work's bytes, the rank that ran it) for every index, one call at a time, in its own
+/// process; done returns false to hand out no further indices (those started still finish). Ranks > 0 never
+/// call done. Every rank calls this with the same n. work must not throw.
+void run_distributed(std::size_t n, int jobs, const std::function<std::string(std::size_t)>& work,
+                     const std::function<bool(std::size_t, std::string, int)>& done);
+
+}  // namespace imcol::cluster
