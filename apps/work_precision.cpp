@@ -476,8 +476,9 @@ std::vector<RunOutcome> run_all(const Scene& base, const WorkPrecisionOptions& o
     outcomes[i] = decode(bytes);
     ++runs_by_rank[static_cast<std::size_t>(rank)];
     if (w.size > 1) {
-      if (i == 0) progress_line(opt, runs, i, " on rank " + std::to_string(rank));
-      else if (++arrived[(i - 1) / static_cast<std::size_t>(runs.repeat)] == runs.repeat) progress_line(opt, runs, i, " on rank " + std::to_string(rank));
+      if (i == 0) progress_line(opt, runs, i, " (on rank " + std::to_string(rank) + ")");
+      else if (++arrived[(i - 1) / static_cast<std::size_t>(runs.repeat)] == runs.repeat)
+        progress_line(opt, runs, i, (runs.repeat > 1 ? " (its last run on rank " : " (on rank ") + std::to_string(rank) + ")");
     }
     const int f = outcomes[i].failure.kind;
     if (f != RunFailure::none && (i == 0 || f != RunFailure::solver)) {
