@@ -387,6 +387,7 @@ struct Tally {
   std::vector<int> points_by_rank;  // over an MPI job: the points each rank ran
   double take_s = 0, csv_write_s = 0;  // rank 0's time taking points in (decoding, sweep.csv), and writing sweep.csv
   int csv_writes = 0;
+  double bytes = 0;  // the points' results as sent to rank 0
 };
 
 /// Runs the points on `jobs` threads, rewriting dir/sweep.csv as they finish.
@@ -432,6 +433,7 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
         [&](std::size_t i, std::string bytes, int rank) {
           const auto t0 = WallClock::now();
           ++tally.points_by_rank[static_cast<std::size_t>(rank)];
+          tally.bytes += static_cast<double>(bytes.size());
           const bool more = take(i, decode_point(bytes));
           tally.take_s += seconds_since(t0);
           return more;
@@ -557,9 +559,10 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
     j["ranks"] = ranks;
     j["points_by_rank"] = out.tally.points_by_rank;
     // What rank 0 spends on each point beyond running its own (docs/cluster.md, "Scaling"): taking it in (decoding,
-    // rewriting sweep.csv), and the rewrites alone; and loading and checking every point's scene before the start.
+    // rewriting sweep.csv), the rewrites alone, the result's size; and loading and checking every scene at the start.
     const Tally& t = out.tally;
     j["rank0_ms_per_point"] = finite_or_null(1e3 * t.take_s / std::max(1, t.finished));
+    j["bytes_per_point"] = finite_or_null(t.bytes / std::max(1, t.finished));
     j["csv_rewrites"] = t.csv_writes;
     j["csv_rewrite_ms"] = finite_or_null(1e3 * t.csv_write_s / std::max(1, t.csv_writes));
     j["scenes_check_s"] = out.scenes_check_s;
