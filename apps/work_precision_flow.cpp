@@ -124,7 +124,7 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
   std::size_t stop = rungs.size();  // a failed rung ends the command
   cluster::run_distributed(rungs.size(), 1, work, [&](std::size_t i, std::string bytes, int rank) {
     results[i] = decode(bytes);
-    if (w.size > 1) progress(rungs[i], " on rank " + std::to_string(rank));
+    if (w.size > 1) progress(rungs[i], " (on rank " + std::to_string(rank) + ")");
     if (results[i].failure.kind == RunFailure::none) return true;
     stop = std::min(stop, i);
     return false;
