@@ -385,6 +385,9 @@ struct Tally {
   double wall = 0;
   std::string write_error;  // the first failed write of sweep.csv: the sweep stops taking points and reports it
   std::vector<int> points_by_rank;  // over an MPI job: the points each rank ran
+  double take_s = 0, csv_write_s = 0;  // rank 0's time taking points in (decoding, sweep.csv), and writing sweep.csv
+  int csv_writes = 0;
+  double bytes = 0;  // the points' results as sent to rank 0
 };
 
 /// Runs the points on `jobs` threads, rewriting dir/sweep.csv as they finish.
@@ -404,11 +407,14 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
     if (!pts[i].ok) ++tally.failed;
     // Finished points survive what follows: the file is rewritten at most every 0.25 s, and at the end.
     if (tally.write_error.empty() && (tally.finished == opt.points || elapsed() - last_write >= 0.25)) {
+      const auto t0 = WallClock::now();
       try {
         write_file_atomic(dir / "sweep.csv", sweep_csv(pts, q));
       } catch (const std::exception& e) {  // a full disk, a vanished folder: not a crash of the worker thread
         tally.write_error = e.what();
       }
+      tally.csv_write_s += seconds_since(t0);
+      ++tally.csv_writes;
       last_write = elapsed();
     }
     if (tty) {
@@ -425,8 +431,12 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
     cluster::run_distributed(
         pts.size(), jobs, [&](std::size_t i) { return encode_point(run_point(i)); },
         [&](std::size_t i, std::string bytes, int rank) {
+          const auto t0 = WallClock::now();
           ++tally.points_by_rank[static_cast<std::size_t>(rank)];
-          return take(i, decode_point(bytes));
+          tally.bytes += static_cast<double>(bytes.size());
+          const bool more = take(i, decode_point(bytes));
+          tally.take_s += seconds_since(t0);
+          return more;
         });
   }
   tally.wall = elapsed();
@@ -502,6 +512,7 @@ EStatusCounts report_e_status(const std::vector<PointResult>& pts, const Scene& 
 /// What the finished sweep found, for its closing lines and sweep.json.
 struct Outcome {
   int jobs = 0, ok = 0;
+  double scenes_check_s = 0;  // loading and checking every point's scene
   Tally tally;
   nlohmann::ordered_json failures;
   EStatusCounts counts;
@@ -547,6 +558,14 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
   if (const int ranks = cluster::world().size; ranks > 1) {
     j["ranks"] = ranks;
     j["points_by_rank"] = out.tally.points_by_rank;
+    // What rank 0 spends on each point beyond running its own (docs/cluster.md, "Scaling"): taking it in (decoding,
+    // rewriting sweep.csv), the rewrites alone, the result's size; and loading and checking every scene at the start.
+    const Tally& t = out.tally;
+    j["rank0_ms_per_point"] = finite_or_null(1e3 * t.take_s / std::max(1, t.finished));
+    j["bytes_per_point"] = finite_or_null(t.bytes / std::max(1, t.finished));
+    j["csv_rewrites"] = t.csv_writes;
+    j["csv_rewrite_ms"] = finite_or_null(1e3 * t.csv_write_s / std::max(1, t.csv_writes));
+    j["scenes_check_s"] = out.scenes_check_s;
   }
   j["wall_time_s"] = out.tally.wall;
   j["collisions_per_second"] = finite_or_null(out.ok / out.tally.wall);
@@ -576,7 +595,9 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
 
   const Scene base = load_scene(scene_path, overrides);
   const std::vector<double> values = sweep_values(opt);
+  const auto t_scenes = WallClock::now();
   const std::vector<Scene> scenes = sweep_scenes(scene_path, overrides, base, opt.vary, values);
+  const double scenes_check_s = seconds_since(t_scenes);
   std::vector<PointResult> pts(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) pts[i].value = values[i];
   const int jobs = job_count(opt.jobs, pts.size());
@@ -598,7 +619,8 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   const int failed = tally.failed;
 
   // Table, failures, throughput; sweep.json.
-  const Outcome outcome = report_points(pts, opt, *q, base, jobs, tally);
+  Outcome outcome = report_points(pts, opt, *q, base, jobs, tally);
+  outcome.scenes_check_s = scenes_check_s;
   nlohmann::ordered_json j = sweep_json(scene_path, overrides, base, opt, *q, pts, outcome);
   j["run"] = unit.run();
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");

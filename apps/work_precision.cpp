@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -12,8 +15,10 @@
 #include <optional>
 #include <sstream>
 
+#include "apps/cluster.hpp"
 #include "apps/format.hpp"
 #include "apps/plot.hpp"
+#include "apps/run_failure.hpp"
 #include "run/simulate.hpp"
 #include "model/collision_model.hpp"
 #include "core/errors.hpp"
@@ -257,30 +262,6 @@ Scene scene_for(const Scene& base, const Config& c, double rtol, double direct_s
 /// The soe fit tolerance follows rtol (within what the fit supports), so that one knob sets the accuracy.
 double history_tol_for(double rtol) { return std::clamp(rtol, 1e-10, 1e-3); }
 
-/// The reference run (the tightest settings), its metric, its samples and the velocity scale of trajectory errors.
-struct Reference {
-  Config cfg;
-  RunResult run;
-  double value = NAN;
-  Samples samples;
-  double u_scale = 0;
-};
-
-Reference run_reference(const Scene& base, const WorkPrecisionOptions& opt, bool history, bool collision, double D) {
-  Reference ref;
-  ref.cfg = {"cvode-dense", history ? "soe" : "none"};
-  std::cerr << "reference run (cvode dense, rtol = atol = " << opt.ref_rtol << ")\n";
-  ref.run = simulate(scene_for(base, ref.cfg, opt.ref_rtol, NAN, opt.ref_history_tol));
-  ref.value = metric_of(ref.run, collision);
-  if (std::isnan(ref.value))
-    throw SolverError("the reference run has no " + std::string(collision ? "e (no collision by t_end?)" : "final velocity"));
-  ref.samples = samples(ref.run, D);
-  for (const auto& [t, v] : ref.samples)
-    for (std::size_t k = 1; k < v.size(); ++k) ref.u_scale = std::max(ref.u_scale, std::abs(v[k]));
-  if (!(ref.u_scale > 0)) ref.u_scale = 1;
-  return ref;
-}
-
 /// The direct evaluator's base step: the scene's, or the model's automatic step (read off a model built, not run).
 double direct_base_step(const Scene& base, const std::vector<std::string>& evaluators) {
   double h_direct = base.history.direct_step;
@@ -292,54 +273,230 @@ double direct_base_step(const Scene& base, const std::vector<std::string>& evalu
   return h_direct;
 }
 
-/// One rung: `repeat` runs of a setting, their median wall time and the errors against the reference.
-Point measure_rung(const Scene& base, const WorkPrecisionOptions& opt, const Reference& ref, bool collision, double D,
-                   const Config& c, double rtol, double h) {
-  Point p;
-  p.cfg = c;
-  p.rtol = rtol;
-  p.direct_step = h;
-  p.history_tol = c.evaluator == "soe" || c.evaluator == "soe-step" ? history_tol_for(rtol) : NAN;
-  std::cerr << "  " << c.label() << "  rtol " << sci(rtol, 0) << (std::isnan(h) ? "" : "  direct_step " + sci(h)) << "\n";
-  try {
-    const Scene sc = scene_for(base, c, rtol, h, p.history_tol);
-    std::vector<double> times;
-    RunResult r;
-    for (int k = 0; k < opt.repeat; ++k) {
-      r = simulate(sc);
-      times.push_back(r.summary.wall_time_s);
-    }
-    std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-    const SolverStats& sol = r.summary.solver.stats;
-    p.ok = true;
-    p.e = metric_of(r, collision);
-    p.err_e = std::abs(p.e - ref.value);
-    p.err_traj = trajectory_error(samples(r, D), ref.samples, ref.u_scale);
-    p.ms = 1e3 * times[times.size() / 2];
-    p.steps = sol.steps;
-    p.rhs = sol.rhs_evals;
-    p.lin_iters = sol.lin_iters;
-    if (std::isnan(p.e)) p.message = collision ? "no e (no collision by t_end)" : "no final velocity";
-  } catch (const SolverError& ex) {
-    p.message = std::string("solver failure: ") + ex.what();
+/// One setting of a ladder: rtol along --rtols, or for the direct evaluator its step at --direct-rtol.
+struct Rung {
+  Config cfg;
+  double rtol = NAN, direct_step = NAN;
+  double history_tol() const { return cfg.evaluator == "soe" || cfg.evaluator == "soe-step" ? history_tol_for(rtol) : NAN; }
+};
+
+std::vector<Rung> ladder_rungs(const std::vector<Config>& configs, const WorkPrecisionOptions& opt, double h_direct) {
+  std::vector<Rung> rungs;
+  for (const auto& c : configs) {
+    if (c.evaluator == "direct")
+      for (double m : opt.direct_steps) rungs.push_back({c, opt.direct_rtol, m * h_direct});
+    else
+      for (double r : opt.rtols) rungs.push_back({c, r, NAN});
   }
+  return rungs;
+}
+
+/// The runs of the command, numbered: 0 is the reference (the tightest settings), then each rung's --repeat runs
+/// (1 + rung * repeat + k). Each is an independent run (apps/cluster.hpp hands them out, one at a time per rank).
+struct Runs {
+  Config ref_cfg;
+  std::vector<Rung> rungs;
+  int repeat = 1;
+  std::size_t count() const { return 1 + rungs.size() * static_cast<std::size_t>(repeat); }
+  const Rung& rung(std::size_t i) const { return rungs[(i - 1) / static_cast<std::size_t>(repeat)]; }
+  int k(std::size_t i) const { return static_cast<int>((i - 1) % static_cast<std::size_t>(repeat)); }
+};
+
+/// What one run tells: its wall time; for the reference and each rung's last run its metric, solver counts and
+/// output samples. A run that threw says how (`failure`): a SolverError fails its rung (or, the reference's, the
+/// command); anything else ends the command.
+struct RunOutcome {
+  RunFailure failure;
+  double metric = NAN, wall_s = NAN;
+  std::int64_t steps = 0, rhs = 0, lin_iters = 0;
+  Samples samples;
+  std::string solver_json, effects_json;  // the reference's solver block and effects as in its summary.json
+};
+
+/// A run's outcome as bytes (another rank's runs reach rank 0 so): plain doubles, which arrive bit for bit.
+std::string encode(const RunOutcome& o) {
+  std::string s;
+  auto put = [&](auto v) { s.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  auto put_str = [&](const std::string& x) {
+    put(static_cast<std::uint64_t>(x.size()));
+    s += x;
+  };
+  put(static_cast<std::int32_t>(o.failure.kind));
+  for (const auto* x : {&o.failure.what, &o.failure.where, &o.failure.key, &o.failure.problem, &o.solver_json, &o.effects_json}) put_str(*x);
+  put(o.metric), put(o.wall_s), put(o.steps), put(o.rhs), put(o.lin_iters);
+  put(static_cast<std::uint64_t>(o.samples.size()));
+  for (const auto& [t, v] : o.samples) {
+    put(t);
+    put(static_cast<std::uint64_t>(v.size()));
+    for (double x : v) put(x);
+  }
+  return s;
+}
+
+RunOutcome decode(const std::string& s) {
+  std::size_t at = 0;
+  auto get = [&](auto& v) {
+    std::memcpy(&v, s.data() + at, sizeof v);
+    at += sizeof v;
+  };
+  auto get_str = [&](std::string& x) {
+    std::uint64_t n = 0;
+    get(n);
+    x.assign(s, at, n);
+    at += n;
+  };
+  RunOutcome o;
+  std::int32_t kind = 0;
+  get(kind);
+  o.failure.kind = kind;
+  for (auto* x : {&o.failure.what, &o.failure.where, &o.failure.key, &o.failure.problem, &o.solver_json, &o.effects_json}) get_str(*x);
+  get(o.metric), get(o.wall_s), get(o.steps), get(o.rhs), get(o.lin_iters);
+  std::uint64_t n = 0;
+  get(n);
+  for (std::uint64_t r = 0; r < n; ++r) {
+    double t = 0;
+    std::uint64_t m = 0;
+    get(t), get(m);
+    std::vector<double> v(m);
+    for (double& x : v) get(x);
+    o.samples.emplace(t, std::move(v));
+  }
+  return o;
+}
+
+/// Runs run i of `runs` (on whichever rank it was handed to).
+RunOutcome run_one(const Scene& base, const WorkPrecisionOptions& opt, const Runs& runs, bool collision, double D, std::size_t i) {
+  RunOutcome o;
+  try {
+    const bool ref = i == 0;
+    const Scene sc = ref ? scene_for(base, runs.ref_cfg, opt.ref_rtol, NAN, opt.ref_history_tol)
+                         : scene_for(base, runs.rung(i).cfg, runs.rung(i).rtol, runs.rung(i).direct_step, runs.rung(i).history_tol());
+    const RunResult r = simulate(sc);
+    o.wall_s = r.summary.wall_time_s;
+    if (ref || runs.k(i) == runs.repeat - 1) {  // every run of a rung gives the same numbers: its last run's are kept
+      const SolverStats& sol = r.summary.solver.stats;
+      o.metric = metric_of(r, collision);
+      o.steps = sol.steps, o.rhs = sol.rhs_evals, o.lin_iters = sol.lin_iters;
+      o.samples = samples(r, D);
+    }
+    if (ref) {
+      o.solver_json = r.summary_json["solver"].dump();
+      o.effects_json = nlohmann::json(r.summary.effects).dump();
+    }
+  } catch (const std::exception&) {
+    o.failure = RunFailure::current();
+  }
+  return o;
+}
+
+/// The reference run's metric, its samples and the velocity scale of trajectory errors.
+struct Reference {
+  Config cfg;
+  RunOutcome run;
+  double value = NAN;
+  double u_scale = 0;
+};
+
+Reference reference_of(const Config& cfg, RunOutcome run, bool collision) {
+  Reference ref;
+  ref.cfg = cfg;
+  ref.run = std::move(run);
+  ref.value = ref.run.metric;
+  if (std::isnan(ref.value))
+    throw SolverError("the reference run has no " + std::string(collision ? "e (no collision by t_end?)" : "final velocity"));
+  for (const auto& [t, v] : ref.run.samples)
+    for (std::size_t k = 1; k < v.size(); ++k) ref.u_scale = std::max(ref.u_scale, std::abs(v[k]));
+  if (!(ref.u_scale > 0)) ref.u_scale = 1;
+  return ref;
+}
+
+/// One rung from its --repeat runs: their median wall time and the errors against the reference. A run's solver
+/// failure (the first in run order) fails the rung.
+Point point_of(const Runs& runs, std::size_t r, const std::vector<RunOutcome>& outcomes, const Reference& ref, bool collision) {
+  const Rung& g = runs.rungs[r];
+  Point p;
+  p.cfg = g.cfg;
+  p.rtol = g.rtol;
+  p.direct_step = g.direct_step;
+  p.history_tol = g.history_tol();
+  std::vector<double> times;
+  for (int k = 0; k < runs.repeat; ++k) {
+    const RunOutcome& o = outcomes[1 + r * static_cast<std::size_t>(runs.repeat) + static_cast<std::size_t>(k)];
+    if (o.failure.kind == RunFailure::solver) {
+      p.message = "solver failure: " + o.failure.what;
+      return p;
+    }
+    times.push_back(o.wall_s);
+  }
+  std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+  const RunOutcome& last = outcomes[(r + 1) * static_cast<std::size_t>(runs.repeat)];
+  p.ok = true;
+  p.e = last.metric;
+  p.err_e = std::abs(p.e - ref.value);
+  p.err_traj = trajectory_error(last.samples, ref.run.samples, ref.u_scale);
+  p.ms = 1e3 * times[times.size() / 2];
+  p.steps = last.steps;
+  p.rhs = last.rhs;
+  p.lin_iters = last.lin_iters;
+  if (std::isnan(p.e)) p.message = collision ? "no e (no collision by t_end)" : "no final velocity";
   return p;
 }
 
-/// Every configuration's ladder: rtol along --rtols, or for the direct evaluator its step at --direct-rtol.
-std::vector<Point> run_ladders(const Scene& base, const WorkPrecisionOptions& opt, const Reference& ref, bool collision,
-                               const std::vector<Config>& configs, double h_direct) {
-  const double D = base.spheres[0].diameter;
-  std::vector<Point> pts;
-  for (const auto& c : configs) {
-    std::vector<std::pair<double, double>> ladder;  // (rtol, direct step)
-    if (c.evaluator == "direct")
-      for (double m : opt.direct_steps) ladder.push_back({opt.direct_rtol, m * h_direct});
-    else
-      for (double r : opt.rtols) ladder.push_back({r, NAN});
-    for (auto [rtol, h] : ladder) pts.push_back(measure_rung(base, opt, ref, collision, D, c, rtol, h));
+/// The progress line of a run (stderr): the reference's, or a rung's before its first run.
+void progress_line(const WorkPrecisionOptions& opt, const Runs& runs, std::size_t i, const std::string& where) {
+  if (i == 0) {
+    std::cerr << "reference run (cvode dense, rtol = atol = " << opt.ref_rtol << ")" << where << "\n";
+    return;
   }
-  return pts;
+  const Rung& g = runs.rung(i);
+  std::cerr << "  " << g.cfg.label() << "  rtol " << sci(g.rtol, 0) << (std::isnan(g.direct_step) ? "" : "  direct_step " + sci(g.direct_step))
+            << where << "\n";
+}
+
+/// The reference and every rung's runs, spread over the MPI job's ranks (one run at a time per rank, so that wall
+/// times are not shared with another run of this command) or, without MPI, run one after the other. Rank 0 returns
+/// the outcome of every run and the runs each rank ran; other ranks return nothing. A failed reference, or a run that
+/// threw anything but a SolverError, stops the hand-out and is rethrown here (on rank 0).
+std::vector<RunOutcome> run_all(const Scene& base, const WorkPrecisionOptions& opt, const Runs& runs, bool collision, double D,
+                                std::vector<int>& runs_by_rank) {
+  const cluster::World w = cluster::world();
+  const std::size_t n = runs.count();
+  std::vector<RunOutcome> outcomes(n);
+  std::vector<std::exception_ptr> thrown(n);  // set by the thread that ran it, read after all have joined
+  std::vector<int> arrived(runs.rungs.size(), 0);
+  runs_by_rank.assign(static_cast<std::size_t>(w.size), 0);
+  std::size_t stop = n;  // the first run that ends the command
+  auto work = [&](std::size_t i) {
+    if (w.size == 1 && (i == 0 || runs.k(i) == 0)) progress_line(opt, runs, i, "");
+    RunOutcome o = run_one(base, opt, runs, collision, D, i);
+    if (o.failure.thrown) thrown[i] = o.failure.thrown;  // this process's run: rank 0 rethrows the exception itself
+    return encode(o);
+  };
+  auto done = [&](std::size_t i, std::string bytes, int rank) {
+    outcomes[i] = decode(bytes);
+    ++runs_by_rank[static_cast<std::size_t>(rank)];
+    if (w.size > 1) {
+      if (i == 0) progress_line(opt, runs, i, " (on rank " + std::to_string(rank) + ")");
+      else if (++arrived[(i - 1) / static_cast<std::size_t>(runs.repeat)] == runs.repeat)
+        progress_line(opt, runs, i, (runs.repeat > 1 ? " (its last run on rank " : " (on rank ") + std::to_string(rank) + ")");
+    }
+    const int f = outcomes[i].failure.kind;
+    if (f != RunFailure::none && (i == 0 || f != RunFailure::solver)) {
+      stop = std::min(stop, i);
+      return false;
+    }
+    return i > 0 || !std::isnan(outcomes[0].metric);  // a reference without its metric ends the command too
+  };
+  if (w.rank > 0) {
+    cluster::run_distributed(n, 1, work, {});
+    return {};
+  }
+  cluster::run_distributed(n, 1, work, done);
+  if (stop < n) {
+    outcomes[stop].failure.thrown = thrown[stop];
+    outcomes[stop].failure.rethrow();
+  }
+  return outcomes;
 }
 
 /// The reference's own uncertainty, estimated as the error of the same settings one decade looser than the
@@ -357,11 +514,11 @@ double reference_uncertainty(const std::vector<Point>& pts, const WorkPrecisionO
 int work_precision(const std::string& scene_path, const std::vector<Override>& overrides, const WorkPrecisionOptions& opt) {
   check_options(opt);
   Scene base = load_scene(scene_path, overrides);
-  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-work_precision"), base.path);
+  const fs::path fallback = fs::path("out") / (base.name + "-work_precision");
   if (base.has(Effect::flow)) {  // a coupled scene: the ladder is the grid and the flow step
     FlowLadderOptions fo;
     fo.out = opt.out;
-    return work_precision_flow(base, overrides, fo, unit);
+    return work_precision_flow(base, overrides, fo, fallback);
   }
   if (!opt.ladder_options.empty())
     throw InputError("command line", opt.ladder_options.front(),
@@ -378,9 +535,22 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   // Configurations; a combination the solvers cannot do is skipped with its reason.
   std::vector<std::string> skipped;
   const std::vector<Config> configs = configs_for(evaluators, opt, skipped);
-  const Reference ref = run_reference(base, opt, history, collision, D);
-  // The direct evaluator's accuracy is set by its step: its ladder varies the step at a tight rtol.
-  const std::vector<Point> pts = run_ladders(base, opt, ref, collision, configs, direct_base_step(base, evaluators));
+  // The reference (the tightest settings) is run 0, then every rung's runs. The direct evaluator's accuracy is set
+  // by its step: its ladder varies the step at a tight rtol.
+  Runs runs;
+  runs.ref_cfg = {"cvode-dense", history ? "soe" : "none"};
+  runs.rungs = ladder_rungs(configs, opt, direct_base_step(base, evaluators));
+  runs.repeat = opt.repeat;
+  // Under mpirun, ranks > 0 run what rank 0 hands them (docs/cluster.md); rank 0 alone writes and prints.
+  const int ranks = cluster::world().size;
+  std::optional<OutputUnit> unit;
+  if (cluster::world().rank == 0) unit.emplace(opt.out, fallback, base.path);
+  std::vector<int> runs_by_rank;
+  std::vector<RunOutcome> outcomes = run_all(base, opt, runs, collision, D, runs_by_rank);
+  if (cluster::world().rank > 0) return 0;
+  const Reference ref = reference_of(runs.ref_cfg, std::move(outcomes[0]), collision);
+  std::vector<Point> pts;
+  for (std::size_t r = 0; r < runs.rungs.size(); ++r) pts.push_back(point_of(runs, r, outcomes, ref, collision));
   // Fits exclude errors within 10x of the reference's own uncertainty.
   const double ref_unc = reference_uncertainty(pts, opt, ref);
   const double floor = std::max(10 * ref_unc, 1e-15);
@@ -401,20 +571,24 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   j["metric"] = metric;
   j["reference"] = {{"integrator", "cvode-dense"}, {"evaluator", ref_cfg.evaluator}, {"rtol", opt.ref_rtol}, {"atol", opt.ref_rtol},
                     {"history_tolerance", history ? nlohmann::ordered_json(opt.ref_history_tol) : nullptr},
-                    {"value", e_ref}, {"uncertainty", ref_unc}, {"wall_time_s", ref.run.summary.wall_time_s},
-                    {"solver", ref.run.summary_json["solver"]}};  // the reference run's solver block as in its summary.json
+                    {"value", e_ref}, {"uncertainty", ref_unc}, {"wall_time_s", ref.run.wall_s},
+                    {"solver", nlohmann::ordered_json::parse(ref.run.solver_json)}};  // the reference run's solver block as in its summary.json
   j["trajectory_velocity_scale_m_s"] = u_scale;
   j["repeat"] = opt.repeat;
   j["skipped"] = skipped;
   j["observed_order"] = orders;
   j["cheapest"] = cheapest;
-  j["effects"] = ref.run.summary.effects;
-  j["run"] = unit.run();
-  write_file_atomic(unit.dir() / "work_precision.csv", points_csv(pts, metric));
-  write_file_atomic(unit.dir() / "work_precision.json", j.dump(2) + "\n");
-  if (opt.plot) run_plot_script("plot_work_precision.py", unit, "work_precision.png");
-  unit.commit();
-  std::cout << "wrote " << (unit.target() / "work_precision.csv").string() << " and " << (unit.target() / "work_precision.json").string() << "\n";
+  j["effects"] = nlohmann::ordered_json::parse(ref.run.effects_json);
+  if (ranks > 1) {
+    j["ranks"] = ranks;
+    j["runs_by_rank"] = runs_by_rank;
+  }
+  j["run"] = unit->run();
+  write_file_atomic(unit->dir() / "work_precision.csv", points_csv(pts, metric));
+  write_file_atomic(unit->dir() / "work_precision.json", j.dump(2) + "\n");
+  if (opt.plot) run_plot_script("plot_work_precision.py", *unit, "work_precision.png");
+  unit->commit();
+  std::cout << "wrote " << (unit->target() / "work_precision.csv").string() << " and " << (unit->target() / "work_precision.json").string() << "\n";
   return 0;
 }
 

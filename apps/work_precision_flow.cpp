@@ -3,13 +3,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/cluster.hpp"
 #include "apps/format.hpp"
+#include "apps/run_failure.hpp"
 #include "run/json_util.hpp"
 #include "run/simulate.hpp"
 #include "run/summary.hpp"
@@ -25,12 +28,65 @@ struct Rung {
   std::string ladder;
   int cells;
   double cfl;
-  RunResult run;
 };
+
+/// What a rung's run tells rank 0 (as JSON, whose numbers read back to the same doubles, when it ran on another
+/// rank): e, e_instant, the wall time and the flow solver's block; or what it threw.
+struct RungResult {
+  double e = NAN, e_instant = NAN, wall_time_s = NAN, dt = NAN, ms_per_step = NAN, krylov = NAN;
+  long steps = 0;
+  nlohmann::ordered_json flow;  // run::flow_block
+  RunFailure failure;
+};
+
+double num(const nlohmann::ordered_json& v) { return v.is_null() ? NAN : v.get<double>(); }
+
+std::string encode(const RungResult& r) {
+  const nlohmann::ordered_json j = {{"e", r.e}, {"e_instant", r.e_instant}, {"wall_time_s", r.wall_time_s}, {"dt", r.dt},
+                                    {"ms_per_step", r.ms_per_step}, {"krylov", r.krylov}, {"steps", r.steps}, {"flow", r.flow},
+                                    {"failure", r.failure.kind}, {"what", r.failure.what}, {"where", r.failure.where},
+                                    {"key", r.failure.key}, {"problem", r.failure.problem}};
+  return j.dump();  // NaN becomes null
+}
+
+RungResult decode(const std::string& bytes) {
+  const auto j = nlohmann::ordered_json::parse(bytes);
+  RungResult r;
+  r.e = num(j["e"]), r.e_instant = num(j["e_instant"]), r.wall_time_s = num(j["wall_time_s"]), r.dt = num(j["dt"]);
+  r.ms_per_step = num(j["ms_per_step"]), r.krylov = num(j["krylov"]);
+  r.steps = j["steps"].get<long>();
+  r.flow = j["flow"];
+  r.failure.kind = j["failure"].get<int>();
+  r.failure.what = j["what"], r.failure.where = j["where"], r.failure.key = j["key"], r.failure.problem = j["problem"];
+  return r;
+}
+
+RungResult run_rung(const Scene& base, const std::vector<Override>& overrides, const Rung& g) {
+  RungResult out;
+  try {
+    auto ov = overrides;
+    ov.push_back({"flow.cells_per_diameter", std::to_string(g.cells)});
+    std::ostringstream c;
+    c << std::setprecision(17) << g.cfl;
+    ov.push_back({"flow.cfl", c.str()});
+    Scene sc = load_scene(base.path, ov);
+    sc.flow.fields = false;
+    const RunResult run = simulate(sc);
+    const auto& s = run.summary;
+    const FlowSummary& f = s.flow.value();
+    out.e = s.e.value_or(NAN), out.e_instant = s.e_instant.value_or(NAN), out.wall_time_s = s.wall_time_s;
+    out.dt = f.stats.dt, out.ms_per_step = f.ms_per_step, out.krylov = f.krylov_iterations_per_step;
+    out.steps = static_cast<long>(f.stats.steps);
+    out.flow = run::flow_block(f);
+  } catch (const std::exception&) {
+    out.failure = RunFailure::current();
+  }
+  return out;
+}
 
 }  // namespace
 
-int work_precision_flow(const Scene& base, const std::vector<Override>& overrides, const FlowLadderOptions& opt, OutputUnit& unit) {
+int work_precision_flow(const Scene& base, const std::vector<Override>& overrides, const FlowLadderOptions& opt, const std::filesystem::path& fallback) {
   if (opt.cells.size() < 2 || opt.cfls.size() < 2) throw InputError("work-precision", "ladder", "each ladder needs two rungs or more");
   for (int c : opt.cells)
     if (c < 4 || c > 512) throw InputError("--cells", "cells", "cells per diameter must lie in [4, 512]");
@@ -38,25 +94,45 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
     if (!(c > 0 && c <= 1)) throw InputError("--cfls", "cfls", "each cfl must lie in (0, 1]");
   if (base.flow.dt > 0) throw InputError(base.path, "flow.dt", "the step ladder varies flow.cfl: remove flow.dt from the scene");
   std::vector<Rung> rungs;
-  auto run = [&](const std::string& ladder, int cells, double cfl) {
-    auto ov = overrides;
-    ov.push_back({"flow.cells_per_diameter", std::to_string(cells)});
-    std::ostringstream c;
-    c << std::setprecision(17) << cfl;
-    ov.push_back({"flow.cfl", c.str()});
-    Scene sc = load_scene(base.path, ov);
-    sc.flow.fields = false;
-    std::cerr << "  " << ladder << ": " << cells << " cells/D, cfl " << cfl << " ...\n";
-    rungs.push_back({ladder, cells, cfl, simulate(sc)});
-  };
   double u_ref = 0;  // the grid ladder keeps the scene's cfl, or the default cfl(Re) of coupling/step_rule.hpp
   for (const auto& sp : base.spheres) u_ref = std::max(u_ref, std::abs(sp.velocity));
   for (int c : opt.cells) {
     Scene at = base;
     at.flow.cells_per_diameter = c;
-    run("grid", c, base.flow.cfl > 0 ? base.flow.cfl : coupling::flow_step(at, 1.0, u_ref).cfl);
+    rungs.push_back({"grid", c, base.flow.cfl > 0 ? base.flow.cfl : coupling::flow_step(at, 1.0, u_ref).cfl});
   }
-  for (double f : opt.cfls) run("step", base.flow.cells_per_diameter, f);
+  for (double f : opt.cfls) rungs.push_back({"step", base.flow.cells_per_diameter, f});
+
+  // The rungs, spread over the MPI job's ranks (docs/cluster.md) or run one after the other; rank 0 alone writes.
+  const cluster::World w = cluster::world();
+  auto progress = [&](const Rung& g, const std::string& where) {
+    std::cerr << "  " << g.ladder << ": " << g.cells << " cells/D, cfl " << g.cfl << " ..." << where << "\n";
+  };
+  std::vector<std::exception_ptr> thrown(rungs.size());  // this process's runs: rank 0 rethrows the exception itself
+  auto work = [&](std::size_t i) {
+    if (w.size == 1) progress(rungs[i], "");
+    RungResult r = run_rung(base, overrides, rungs[i]);
+    thrown[i] = r.failure.thrown;
+    return encode(r);
+  };
+  if (w.rank > 0) {
+    cluster::run_distributed(rungs.size(), 1, work, {});
+    return 0;
+  }
+  OutputUnit unit(opt.out, fallback, base.path);
+  std::vector<RungResult> results(rungs.size());
+  std::size_t stop = rungs.size();  // a failed rung ends the command
+  cluster::run_distributed(rungs.size(), 1, work, [&](std::size_t i, std::string bytes, int rank) {
+    results[i] = decode(bytes);
+    if (w.size > 1) progress(rungs[i], " (on rank " + std::to_string(rank) + ")");
+    if (results[i].failure.kind == RunFailure::none) return true;
+    stop = std::min(stop, i);
+    return false;
+  });
+  if (stop < rungs.size()) {
+    results[stop].failure.thrown = thrown[stop];
+    results[stop].failure.rethrow();
+  }
 
   std::ostringstream csv;
   csv << "ladder,cells_per_diameter,cfl,dt_s,e,e_error_vs_finest,e_instant,wall_time_s,flow_steps,ms_per_flow_step,krylov_per_step\n";
@@ -66,29 +142,30 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
             << std::setw(11) << "dt s" << std::setw(9) << "e" << std::setw(11) << "|e-e_ref|" << std::setw(9) << "e_inst"
             << std::setw(9) << "wall s" << std::setw(7) << "steps" << std::setw(10) << "ms/step" << "\n";
   for (const char* ladder : {"grid", "step"}) {
-    const Rung* ref = nullptr;
-    for (const auto& r : rungs)
-      if (r.ladder == ladder) ref = &r;
-    const double e_ref = ref->run.summary.e.value_or(NAN);
-    for (const auto& r : rungs) {
-      if (r.ladder != ladder) continue;
-      const auto& s = r.run.summary;
-      const FlowSummary& f = s.flow.value();
-      const double e = s.e.value_or(NAN), err = std::abs(e - e_ref);
-      std::cout << std::left << std::setw(6) << ladder << std::right << std::setw(7) << r.cells << std::setw(7) << r.cfl
-                << std::setw(11) << sci(f.stats.dt, 2) << std::setw(9) << fixed(e, 4) << std::setw(11)
-                << (&r == ref ? std::string("ref") : sci(err, 2)) << std::setw(9) << fixed(s.e_instant.value_or(NAN), 4)
-                << std::setw(9) << fixed(s.wall_time_s, 2) << std::setw(7) << f.stats.steps
-                << std::setw(10) << fixed(f.ms_per_step, 1) << "\n";
-      csv << ladder << "," << r.cells << "," << csv_number(r.cfl) << "," << csv_number(f.stats.dt) << ","
-          << csv_number(e) << "," << csv_number(err) << "," << csv_number(s.e_instant.value_or(NAN)) << ","
-          << csv_number(s.wall_time_s) << "," << f.stats.steps << ","
-          << csv_number(f.ms_per_step) << "," << csv_number(f.krylov_iterations_per_step) << "\n";
-      js["rungs"].push_back({{"ladder", ladder}, {"cells_per_diameter", r.cells}, {"cfl", r.cfl}, {"dt_s", f.stats.dt}, {"e", run::or_null(s.e)},
-                             {"e_error_vs_finest", err}, {"e_instant", run::or_null(s.e_instant)}, {"wall_time_s", s.wall_time_s},
-                             {"flow", run::flow_block(f)}});
+    std::size_t ref = 0;
+    for (std::size_t i = 0; i < rungs.size(); ++i)
+      if (rungs[i].ladder == ladder) ref = i;
+    const double e_ref = results[ref].e;
+    for (std::size_t i = 0; i < rungs.size(); ++i) {
+      const Rung& g = rungs[i];
+      if (g.ladder != ladder) continue;
+      const RungResult& r = results[i];
+      const double e = r.e, err = std::abs(e - e_ref);
+      std::cout << std::left << std::setw(6) << ladder << std::right << std::setw(7) << g.cells << std::setw(7) << g.cfl
+                << std::setw(11) << sci(r.dt, 2) << std::setw(9) << fixed(e, 4) << std::setw(11)
+                << (i == ref ? std::string("ref") : sci(err, 2)) << std::setw(9) << fixed(r.e_instant, 4)
+                << std::setw(9) << fixed(r.wall_time_s, 2) << std::setw(7) << r.steps
+                << std::setw(10) << fixed(r.ms_per_step, 1) << "\n";
+      csv << ladder << "," << g.cells << "," << csv_number(g.cfl) << "," << csv_number(r.dt) << ","
+          << csv_number(e) << "," << csv_number(err) << "," << csv_number(r.e_instant) << ","
+          << csv_number(r.wall_time_s) << "," << r.steps << ","
+          << csv_number(r.ms_per_step) << "," << csv_number(r.krylov) << "\n";
+      js["rungs"].push_back({{"ladder", ladder}, {"cells_per_diameter", g.cells}, {"cfl", g.cfl}, {"dt_s", r.dt}, {"e", e},
+                             {"e_error_vs_finest", err}, {"e_instant", r.e_instant}, {"wall_time_s", r.wall_time_s},
+                             {"flow", r.flow}});
     }
   }
+  if (w.size > 1) js["ranks"] = w.size;
   js["run"] = unit.run();
   write_file_atomic(unit.dir() / "work_precision_flow.csv", csv.str());
   write_file_atomic(unit.dir() / "work_precision_flow.json", js.dump(2) + "\n");
