@@ -161,6 +161,16 @@ calib::Evaluation score(const Inputs& in, const Measurement& m, const std::optio
   }
 }
 
+/// The residuals the objective averages: the window's samples times the measured columns, or the table's rows.
+std::size_t residual_count(const Measurement& m, const std::optional<TrajectoryWindow>& w) {
+  if (const auto* t = std::get_if<MeasuredTrajectory>(&m)) {
+    const auto in = std::count_if(t->t.begin(), t->t.end(),
+                                  [&](double x) { return x >= w->t_contact + w->before && x <= w->t_contact + w->after; });
+    return static_cast<std::size_t>(in) * t->columns.size();
+  }
+  return std::get<MeasuredTable>(m).e.size();
+}
+
 /// "0.024123"; the interval "[0.0221, 0.0262]", an end that reaches the bound written as "open at the bound".
 std::string value_text(double v) {
   std::ostringstream os;
@@ -203,10 +213,22 @@ void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::Se
             << (trajectory ? " m^2" : "") << ")";
   if (res.best_eval.tau) std::cout << ", time offset tau = " << fixed(1e3 * *res.best_eval.tau, 3) << " ms (measurement clock minus simulation)";
   std::cout << "\n";
+  bool open = false;
   for (std::size_t k = 0; k < in.params.size(); ++k) {
     std::cout << in.params[k].key << " = " << value_text(res.best[k]);
-    if (k < res.profiles.size()) std::cout << "  " << interval_text(res.profiles[k], in.params[k], opt.search.factor);
+    if (k < res.profiles.size()) {
+      std::cout << "  " << interval_text(res.profiles[k], in.params[k], opt.search.factor);
+      open = open || (!res.profiles[k].lo && !res.profiles[k].hi);
+    }
     std::cout << "\n";
+  }
+  if (open) {
+    // A residual made of measurement noise: the objective rises by its n-th part where the fit is one standard
+    // deviation off (a change of 1 in chi^2 = n * objective / sigma^2).
+    const std::size_t n = residual_count(in.data, in.window);
+    std::cout << "note: the objective stays within " << value_text(opt.search.factor) << " x the best across the whole range; where the"
+              << " residual is measurement noise, --factor " << value_text(1 + 1.0 / static_cast<double>(n)) << " (1 + 1/n, n = " << n
+              << " residuals) gives the interval of one standard deviation\n";
   }
   if (!val) return;
   std::cout << "validation on " << opt.validate << " (not used in the fit";

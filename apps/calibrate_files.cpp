@@ -38,6 +38,12 @@ std::string cell(double v) {
   return s;
 }
 
+/// Appends the cells to a CSV line, each after a comma.
+template <class... Cells>
+void add_cells(std::string& line, const Cells&... cells) {
+  ((line += ',', line += cells), ...);
+}
+
 /// A word cell: commas and line ends would split it.
 std::string word(std::string w) {
   for (char& c : w)
@@ -67,6 +73,7 @@ json measurement_json(const calib::Measurement& m, const std::optional<calib::Tr
     j["rows"] = t->t.size();
     j["columns"] = t->columns;
     j["window"] = window_json(*t, *w);
+    j["residuals"] = j["window"]["samples"].get<std::size_t>() * t->columns.size();  // the window's samples x columns
     j["tau_max_s"] = w->tau_max;
     return j;
   }
@@ -76,6 +83,7 @@ json measurement_json(const calib::Measurement& m, const std::optional<calib::Tr
   j["rows"] = t.e.size();
   j["columns"] = t.keys;
   j["varied"] = varied_key(t);
+  j["residuals"] = t.e.size();
   return j;
 }
 
@@ -115,15 +123,17 @@ constexpr calib::Stage kStages[] = {calib::Stage::start, calib::Stage::scan, cal
 
 std::string calibration_csv(const CalibrationRecord& rec) {
   std::string out = "index,stage,item";
-  for (const auto& p : rec.params) out += "," + p.key;
+  for (const auto& p : rec.params) add_cells(out, p.key);
   out += ",objective,rms,tau_s,status,message,wall_ms,rank\n";
   const auto& ev = rec.result.evaluations;
   for (std::size_t i = 0; i < ev.size(); ++i) {
     const auto& e = ev[i];
-    out += std::to_string(i) + "," + calib::stage_name(e.stage) + "," + std::to_string(e.item);
-    for (double v : e.values) out += "," + exact(v);
-    out += "," + cell(e.eval.objective) + "," + cell(e.eval.rms) + "," + (e.eval.tau ? cell(*e.eval.tau) : "") + "," +
-           (e.eval.ok ? "ok" : "failed") + "," + word(e.eval.message) + "," + cell(1e3 * e.eval.wall_s) + "," + std::to_string(e.rank) + "\n";
+    out += std::to_string(i);
+    add_cells(out, std::string(calib::stage_name(e.stage)), std::to_string(e.item));
+    for (double v : e.values) add_cells(out, exact(v));
+    add_cells(out, cell(e.eval.objective), cell(e.eval.rms), e.eval.tau ? cell(*e.eval.tau) : std::string(),
+              std::string(e.eval.ok ? "ok" : "failed"), word(e.eval.message), cell(1e3 * e.eval.wall_s), std::to_string(e.rank));
+    out += '\n';
   }
   return out;
 }
@@ -141,26 +151,27 @@ std::string best_csv(const CalibrationRecord& rec) {
       for (std::size_t c = 0; c < run->columns.size(); ++c)
         if (run->columns[c] == "z1" || run->columns[c] == "z2") {
           cols.push_back(c);
-          out += "," + run->columns[c];
+          add_cells(out, run->columns[c]);
         }
     out += "\n";
     if (!run) return out;
     const double tau = best.tau.value_or(0);
     for (const auto& row : run->rows) {
       out += cell(row[0] + tau);
-      for (auto c : cols) out += "," + cell(row[c]);
+      for (auto c : cols) add_cells(out, cell(row[c]));
       out += "\n";
     }
     return out;
   }
   const auto& t = std::get<MeasuredTable>(rec.data);
   out = "line";
-  for (const auto& k : t.keys) out += "," + k;
+  for (const auto& k : t.keys) add_cells(out, k);
   out += ",e_meas,e_sim\n";
   for (std::size_t r = 0; r < t.e.size(); ++r) {
     out += std::to_string(t.lines[r]);
-    for (double v : t.values[r]) out += "," + cell(v);
-    out += "," + cell(t.e[r]) + "," + (r < best.e_sim.size() ? cell(best.e_sim[r]) : "") + "\n";
+    for (double v : t.values[r]) add_cells(out, cell(v));
+    add_cells(out, cell(t.e[r]), r < best.e_sim.size() ? cell(best.e_sim[r]) : std::string());
+    out += '\n';
   }
   return out;
 }

@@ -10,6 +10,7 @@ by the fitted offset tau), the fitted window shaded, as the seed's Fig. 6.8. An 
 measured and fitted. Then one panel per parameter: the objective along it (the profile; without profiles, every
 evaluation), the line factor x best and the interval where the objective stays below it.
 """
+import bisect
 import json
 import math
 import sys
@@ -54,6 +55,35 @@ def plot_trajectory(ax, folder, meta):
     if b.get("ok"):
         title += " (rms %.3g um%s)" % (b["rms"] * 1e6, ", tau = %.3g ms" % (tau * 1e3) if tau is not None else "")
     ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=7, loc="best")
+
+
+def plot_residuals(ax, folder, meta):
+    """Measured minus fitted z of each column at the measured times (um), the window shaded: what the fit leaves."""
+    m = meta["measurement"]
+    measured = read_rows(folder / "measured.csv")
+    best = read_rows(folder / "best.csv")
+    w = m["window"]
+    ax.axvspan(w["from_s"] * 1e3, w["to_s"] * 1e3, color="0.9")
+    ax.axhline(0, color="0.5", lw=0.8)
+    if len(best) < 2:
+        return
+    tb = [num(r, "t") for r in best]
+    for i, col in enumerate(m["columns"]):
+        if col not in best[0]:
+            continue
+        zb = [num(r, col) for r in best]
+        ts, res = [], []
+        for r in measured:
+            t = num(r, "t")
+            j = min(max(bisect.bisect_right(tb, t) - 1, 0), len(tb) - 2)
+            f = (t - tb[j]) / (tb[j + 1] - tb[j])
+            ts.append(t * 1e3)
+            res.append((num(r, col) - (zb[j] + f * (zb[j + 1] - zb[j]))) * 1e6)
+        ax.plot(ts, res, ".", ms=2, color="C%d" % i, label="%s measured - fitted" % col)
+    ax.set_xlabel("t (ms, the measurement's clock)")
+    ax.set_ylabel("residual (um)")
+    ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, loc="best")
 
 
@@ -116,14 +146,19 @@ def main() -> int:
     meta = json.loads((folder / "calibration.json").read_text())
     evaluations = read_rows(folder / "calibration.csv")
     n = len(meta["parameters"])
-    fig, axes = plt.subplots(1, 1 + n, figsize=(6.5 + 4.2 * n, 4.6), squeeze=False)
-    axes = axes[0]
-    if meta["measurement"]["kind"] == "trajectory":
-        plot_trajectory(axes[0], folder, meta)
+    trajectory = meta["measurement"]["kind"] == "trajectory"
+    fig = plt.figure(figsize=(6.5 + 4.2 * n, 6.4 if trajectory else 4.6))
+    grid = fig.add_gridspec(2 if trajectory else 1, 1 + n, height_ratios=[2, 1] if trajectory else [1])
+    if trajectory:
+        top = fig.add_subplot(grid[0, 0])
+        plot_trajectory(top, folder, meta)
+        bottom = fig.add_subplot(grid[1, 0], sharex=top)
+        plot_residuals(bottom, folder, meta)
+        top.set_xlabel("")
     else:
-        plot_table(axes[0], folder, meta)
+        plot_table(fig.add_subplot(grid[0, 0]), folder, meta)
     for k in range(n):
-        plot_profile(axes[1 + k], meta, k, evaluations)
+        plot_profile(fig.add_subplot(grid[:, 1 + k]), meta, k, evaluations)
     fig.tight_layout()
     save_png(fig, folder / "calibration.png")
     return 0

@@ -33,7 +33,10 @@ std::string slurp(const fs::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-fs::path scratch(const std::string& name) { return fs::temp_directory_path() / ("imcol_calcmd_" + std::to_string(::getpid()) + "_" + name); }
+fs::path scratch(std::string name) {
+  std::replace(name.begin(), name.end(), ' ', '_');
+  return fs::temp_directory_path() / ("imcol_calcmd_" + std::to_string(::getpid()) + "_" + name);
+}
 
 Result run_imcol(const std::string& args) {
   const fs::path o = scratch("stdout"), e = scratch("stderr");
@@ -130,7 +133,7 @@ TEST(CalibrateCommand, BadOptionsNameTheOption) {
   expect_refused("window on a table", " --data " + table.string() + kFit + " --window -0.01:0.01", "command line: key '--window'");
   const auto bad_key = write_data("badkey.csv", "sphere[0].speed,e\n0.1,0.5\n0.2,0.6\n");
   expect_refused("table key unknown", " --data " + bad_key.string() + kFit, bad_key.string() + ":2", "sphere[0].speed");
-  expect_refused("fitted key is a column", " --data " + table.string() + " --fit sphere[0].velocity=0.05:0.5", "command line: key '--fit'");
+  expect_refused("fitted key is a column", " --data " + table.string() + " --fit 'sphere[0].velocity=0.05:0.5'", "command line: key '--fit'");
 }
 
 TEST(CalibrateCommand, WritesItsFilesAndTheBestIsTheBestRow) {
