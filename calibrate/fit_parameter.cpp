@@ -62,7 +62,7 @@ FitParameter parse_fit_parameter(const std::string& text, const std::string& sce
     try {
       (void)load_scene(scene_path, ov);
     } catch (const InputError& e) {
-      fail(p.key, "not a numeric scene key that takes " + fmt_number(v) + ": " + e.problem());
+      fail(p.key, "the scene refuses " + p.key + " = " + fmt_number(v) + " (fit only numeric keys, within the scene's limits): " + e.problem());
     }
   }
   return p;

@@ -57,8 +57,8 @@ struct Stages {
     return v;
   }
   std::vector<double> unit_of_values(const std::vector<double>& v) const {
-    std::vector<double> u(v.size());
-    for (std::size_t k = 0; k < v.size(); ++k) u[k] = unit_of(params[k], v[k]);
+    std::vector<double> u(params.size(), 0.5);  // a missing value: the middle of its range
+    for (std::size_t k = 0; k < v.size() && k < params.size(); ++k) u[k] = unit_of(params[k], v[k]);
     return u;
   }
 
