@@ -145,6 +145,7 @@ TEST(CalibrateCommand, WritesItsFilesAndTheBestIsTheBestRow) {
   ASSERT_EQ(r.status, 0) << r.err << r.out;
   for (const char* f : {"calibration.json", "calibration.csv", "measured.csv", "best.csv", "calibration.png"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
+  EXPECT_TRUE(r.err.empty()) << r.err;  // the plot script ran without a warning
   EXPECT_EQ(slurp(out / "measured.csv"), slurp(measurement("gg3462_trajectory.csv")));
   const auto j = nlohmann::json::parse(slurp(out / "calibration.json"));
   const auto rows = read_csv(out / "calibration.csv");
@@ -180,8 +181,10 @@ TEST(CalibrateCommand, FitsAnETableAndValidatesItRowByRow) {
   const auto fit = write_data("e_fit.csv", "# gg3462, delta_ss = 0.024\nsphere[0].velocity,e\n0.08,0.8450\n0.11,0.8723\n0.16,0.8964\n");
   const auto held = write_data("e_held.csv", "sphere[0].velocity,e\n0.095,0.8607\n0.135,0.8864\n");
   const Result r = run_imcol("calibrate gg3462 --data " + fit.string() + kFit + " --scan 4 --starts 1 --max-evals 10 --profile-points 0"
-                             " --no-plot --no-progress --jobs 2 --validate " + held.string() + " --out " + out.string());
+                             " --no-progress --jobs 2 --validate " + held.string() + " --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err << r.out;
+  EXPECT_TRUE(fs::exists(out / "calibration.png"));  // the plot of a table without profiles
+  EXPECT_TRUE(r.err.empty()) << r.err;
   const auto j = nlohmann::json::parse(slurp(out / "calibration.json"));
   EXPECT_EQ(j["measurement"]["kind"], "table");
   ASSERT_EQ(j["validation"]["by_row"].size(), 2u);
