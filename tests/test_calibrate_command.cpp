@@ -157,8 +157,8 @@ TEST(CalibrateCommand, WritesItsFilesAndTheBestIsTheBestRow) {
   const double v = j["best"]["values"]["contact.delta_ss"].get<double>();
   EXPECT_EQ(std::stod(best->at("contact.delta_ss")), v);  // 17 digits: the same double
   EXPECT_NEAR(std::stod(best->at("objective")), j["best"]["objective"].get<double>(), 1e-11 * j["best"]["objective"].get<double>());
-  // Started at 0.006, the fit finds the value the measurement was made with (noise 20 um): the bound is the test of
-  // the engine's own recovery, wide here because this search is short.
+  // Started at 0.006, the fit finds the value the measurement was made with (0.024, noise 2 um): within 0.004, about
+  // the half-width of the interval of one standard deviation of this recording (0.0193 to 0.0256, docs/calibration.md).
   EXPECT_NEAR(v, 0.024, 0.004);
   EXPECT_EQ(j["parameters"][0]["start"].get<double>(), 0.006);
   EXPECT_EQ(j["measurement"]["kind"], "trajectory");
