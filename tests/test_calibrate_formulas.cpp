@@ -3,6 +3,7 @@
 // trajectory (shifted or not), the default window, profile intervals, evaluations as bytes, a deterministic search.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -208,16 +209,38 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
   };
   SearchOptions opt;
   opt.profile_points = 9;
-  const SearchResult serial = search(params, {0.9, 2}, evaluate, opt, test::thread_runner(1));
-  const SearchResult threaded = search(params, {0.9, 2}, evaluate, opt, test::thread_runner(2));
-  ASSERT_EQ(serial.evaluations.size(), threaded.evaluations.size());
-  for (std::size_t i = 0; i < serial.evaluations.size(); ++i) {
-    EXPECT_EQ(serial.evaluations[i].stage, threaded.evaluations[i].stage) << i;
-    EXPECT_EQ(serial.evaluations[i].item, threaded.evaluations[i].item) << i;
-    EXPECT_EQ(serial.evaluations[i].values, threaded.evaluations[i].values) << i;
+  std::size_t progress_calls = 0, last_evaluations = 0;
+  const Progress progress = [&](Stage, std::size_t done, std::size_t items, std::size_t evaluations, double) {
+    ++progress_calls;
+    EXPECT_LE(done, items);
+    EXPECT_GE(evaluations, last_evaluations);
+    last_evaluations = evaluations;
+  };
+  const SearchResult serial = search(params, {0.9, 2}, evaluate, opt, test::thread_runner(1), progress);
+  // One progress line per work item: the start, 17 scan points, 2 local searches, 2 x 9 profile points.
+  EXPECT_EQ(progress_calls, 1u + 17 + 2 + 18);
+  EXPECT_EQ(last_evaluations, serial.evaluations.size());
+  // Items finishing in another order (threads, or ranks handing in last item first), and the stage inputs passing
+  // through share: the same evaluations, in the same order.
+  calib::Runner reversed = test::thread_runner(1);
+  int shares = 0;
+  reversed.run = [](std::size_t n, const std::function<std::string(std::size_t)>& work,
+                    const std::function<void(std::size_t, std::string, int)>& done) {
+    for (std::size_t i = n; i-- > 0;) done(i, work(i), static_cast<int>(i % 3));
+  };
+  reversed.share = [&](std::string&) { ++shares; };
+  for (const calib::Runner& runner : {test::thread_runner(2), reversed}) {
+    const SearchResult other = search(params, {0.9, 2}, evaluate, opt, runner);
+    ASSERT_EQ(serial.evaluations.size(), other.evaluations.size());
+    for (std::size_t i = 0; i < serial.evaluations.size(); ++i) {
+      EXPECT_EQ(serial.evaluations[i].stage, other.evaluations[i].stage) << i;
+      EXPECT_EQ(serial.evaluations[i].item, other.evaluations[i].item) << i;
+      EXPECT_EQ(serial.evaluations[i].values, other.evaluations[i].values) << i;
+    }
+    EXPECT_EQ(serial.best, other.best);
   }
+  EXPECT_EQ(shares, 2);  // the local searches' starts, the profiles' best point
   ASSERT_EQ(serial.best.size(), 2u);
-  EXPECT_EQ(serial.best, threaded.best);
   EXPECT_NEAR(serial.best[0], 0.3, 0.01);
   EXPECT_NEAR(std::log10(serial.best[1] / 20), 0, 0.01);
   EXPECT_LT(serial.best_eval.objective, 1.01e-4);
