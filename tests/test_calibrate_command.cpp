@@ -50,12 +50,15 @@ Result run_imcol(const std::string& args) {
 
 std::string measurement(const std::string& name) { return imcol::data_dir() + "/measurements/" + name; }
 
-/// A measurement file in the scratch folder.
-fs::path write_data(const std::string& name, const std::string& text) {
-  const fs::path p = scratch(name);
-  std::ofstream(p) << text;
-  return p;
-}
+/// A measurement file in the scratch folder, removed when the test ends.
+struct DataFile {
+  fs::path path;
+  DataFile(const std::string& name, const std::string& text) : path(scratch(name)) { std::ofstream(path) << text; }
+  ~DataFile() { fs::remove(path); }
+  DataFile(const DataFile&) = delete;
+  DataFile& operator=(const DataFile&) = delete;
+  std::string string() const { return path.string(); }
+};
 
 const std::string kFit = " --fit contact.delta_ss=0.005:0.05";
 
@@ -97,12 +100,12 @@ std::vector<std::map<std::string, std::string>> read_csv(const fs::path& p) {
 
 TEST(CalibrateCommand, BadMeasurementsNameTheirFileAndLine) {
   // Times not increasing: line 4 (after the header and two rows) goes back.
-  const auto unsorted = write_data("unsorted.csv", "t,z1,z2\n0.000,0,0.016\n0.001,0.0001,0.016\n0.0005,0.0002,0.016\n0.002,0.0003,0.016\n"
+  const DataFile unsorted("unsorted.csv", "t,z1,z2\n0.000,0,0.016\n0.001,0.0001,0.016\n0.0005,0.0002,0.016\n0.002,0.0003,0.016\n"
                                                    "0.003,0.0004,0.016\n0.004,0.0005,0.016\n");
   expect_refused("unsorted", "--data " + unsorted.string() + kFit, unsorted.string() + ":4");
-  const auto nan = write_data("nan.csv", "t,z1,z2\n0.000,0,0.016\n0.001,nan,0.016\n0.002,0.0002,0.016\n0.003,0.0003,0.016\n0.004,0.0004,0.016\n");
+  const DataFile nan("nan.csv", "t,z1,z2\n0.000,0,0.016\n0.001,nan,0.016\n0.002,0.0002,0.016\n0.003,0.0003,0.016\n0.004,0.0004,0.016\n");
   expect_refused("nan", "--data " + nan.string() + kFit, nan.string() + ":3");
-  const auto few = write_data("few.csv", "t,z1,z2\n0.000,0,0.016\n0.001,0.0001,0.016\n");
+  const DataFile few("few.csv", "t,z1,z2\n0.000,0,0.016\n0.001,0.0001,0.016\n");
   expect_refused("too few rows", "--data " + few.string() + kFit, few.string());
   const auto missing = scratch("no_such_file.csv");
   expect_refused("missing file", "--data " + missing.string() + kFit, missing.string());
@@ -128,10 +131,10 @@ TEST(CalibrateCommand, BadOptionsNameTheOption) {
   expect_refused("offset negative", data + " --offset-max -1", "command line: key '--offset-max'");
   expect_refused("factor below 1", data + " --factor 0.5", "command line: key '--factor'");
   expect_refused("one profile point", data + " --profile-points 1", "command line: key '--profile-points'");
-  const auto table = write_data("table.csv", "sphere[0].velocity,e\n0.1,0.5\n0.2,0.6\n0.3,0.7\n");
+  const DataFile table("table.csv", "sphere[0].velocity,e\n0.1,0.5\n0.2,0.6\n0.3,0.7\n");
   expect_refused("validation of the other kind", data + " --validate " + table.string(), "command line: key '--validate'", table.string());
   expect_refused("window on a table", " --data " + table.string() + kFit + " --window -0.01:0.01", "command line: key '--window'");
-  const auto bad_key = write_data("badkey.csv", "sphere[0].speed,e\n0.1,0.5\n0.2,0.6\n");
+  const DataFile bad_key("badkey.csv", "sphere[0].speed,e\n0.1,0.5\n0.2,0.6\n");
   expect_refused("table key unknown", " --data " + bad_key.string() + kFit, bad_key.string() + ":2", "sphere[0].speed");
   expect_refused("fitted key is a column", " --data " + table.string() + " --fit 'sphere[0].velocity=0.05:0.5'", "command line: key '--fit'");
 }
@@ -178,8 +181,8 @@ TEST(CalibrateCommand, FitsAnETableAndValidatesItRowByRow) {
   const fs::path out = scratch("out_table");
   fs::remove_all(out);
   // e of gg3462 (delta_ss = 0.024) at five speeds, by imcol run gg3462 --set sphere[0].velocity=V (4 digits).
-  const auto fit = write_data("e_fit.csv", "# gg3462, delta_ss = 0.024\nsphere[0].velocity,e\n0.08,0.8450\n0.11,0.8723\n0.16,0.8964\n");
-  const auto held = write_data("e_held.csv", "sphere[0].velocity,e\n0.095,0.8607\n0.135,0.8864\n");
+  const DataFile fit("e_fit.csv", "# gg3462, delta_ss = 0.024\nsphere[0].velocity,e\n0.08,0.8450\n0.11,0.8723\n0.16,0.8964\n");
+  const DataFile held("e_held.csv", "sphere[0].velocity,e\n0.095,0.8607\n0.135,0.8864\n");
   const Result r = run_imcol("calibrate gg3462 --data " + fit.string() + kFit + " --scan 4 --starts 1 --max-evals 10 --profile-points 0"
                              " --no-progress --jobs 2 --validate " + held.string() + " --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err << r.out;
