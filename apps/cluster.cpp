@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "apps/cluster.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -29,6 +31,11 @@ void run_distributed(std::size_t n, int jobs, const std::function<std::string(st
   run_parallel(n, jobs, work, [&](std::size_t i, std::string r) { return done(i, std::move(r), 0); });
 }
 
+void share(std::string&) {}
+
+Hold::Hold() : exceptions_(std::uncaught_exceptions()) {}
+Hold::~Hold() = default;
+
 #else
 
 namespace {
@@ -45,6 +52,7 @@ bool started_by_mpirun() {
 
 World g_world;
 bool g_released = true;  // false while other ranks may wait on this one: leaving then aborts the job
+int g_holds = 0;         // live Holds: the rank stays held between their steps
 
 void at_exit() {
   int finalized = 0;
@@ -177,9 +185,37 @@ void run_distributed(std::size_t n, int jobs, const std::function<std::string(st
                      const std::function<bool(std::size_t, std::string, int)>& done) {
   const World w = world();
   if (w.size == 1) return run_parallel(n, jobs, work, [&](std::size_t i, std::string r) { return done(i, std::move(r), 0); });
+  g_released = false;
   if (w.rank == 0) coordinator(n, jobs, work, done, w.size);
   else worker(jobs, work);
-  g_released = true;
+  g_released = g_holds == 0;
+}
+
+void share(std::string& bytes) {
+  const World w = world();
+  if (w.size == 1) return;
+  g_released = false;
+  std::int64_t size = static_cast<std::int64_t>(bytes.size());
+  MPI_Bcast(&size, 1, MPI_INT64_T, 0, MPI_COMM_WORLD);
+  bytes.resize(static_cast<std::size_t>(size));
+  // MPI counts are int: a larger message goes in pieces.
+  constexpr std::int64_t kPiece = 1 << 30;
+  for (std::int64_t at = 0; at < size; at += kPiece)
+    MPI_Bcast(bytes.data() + at, static_cast<int>(std::min(kPiece, size - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+  g_released = g_holds == 0;
+}
+
+Hold::Hold() : exceptions_(std::uncaught_exceptions()) {
+  if (world().size == 1) return;
+  ++g_holds;
+  g_released = false;
+}
+
+Hold::~Hold() {
+  if (world().size == 1) return;
+  --g_holds;
+  // Left by an exception: stay held, so that leaving the process aborts the job.
+  if (std::uncaught_exceptions() == exceptions_) g_released = g_holds == 0;
 }
 
 #endif

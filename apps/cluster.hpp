@@ -23,4 +23,22 @@ World world();
 void run_distributed(std::size_t n, int jobs, const std::function<std::string(std::size_t)>& work,
                      const std::function<bool(std::size_t, std::string, int)>& done);
 
+/// Makes rank 0's `bytes` every rank's (a broadcast of the size, then the bytes). Every rank calls it at the same
+/// point. The identity with one rank.
+void share(std::string& bytes);
+
+/// Several steps in a row (run_distributed, share) during which the other ranks may wait on this one: while a Hold
+/// lives, a rank that leaves by an exception or exit aborts the job instead of leaving the others waiting. Ended
+/// normally (not by an exception), it releases the rank again. Nothing without MPI.
+class Hold {
+ public:
+  Hold();
+  ~Hold();
+  Hold(const Hold&) = delete;
+  Hold& operator=(const Hold&) = delete;
+
+ private:
+  int exceptions_;
+};
+
 }  // namespace imcol::cluster

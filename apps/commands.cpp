@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "apps/calibrate.hpp"
 #include "apps/compare_history.hpp"
 #include "apps/compare_laws.hpp"
 #include "apps/history_sweep.hpp"
@@ -397,6 +398,41 @@ Subcommand add_sweep(CLI::App& app) {
   }};
 }
 
+Subcommand add_calibrate(CLI::App& app) {
+  struct Opt { CommonOptions c; std::string scene; CalibrateOptions k; double offset_max = 0; bool no_plot = false, no_progress = false; };
+  auto o = std::make_shared<Opt>();
+  auto& k = o->k;
+  auto* cal = app.add_subcommand("calibrate", "fit scene keys to a measured trajectory or e table (docs/calibration.md)");
+  add_scene(cal, o->scene);
+  cal->add_option("--data", k.data, "the measurement: a trajectory (t,z1,z2) or an e table (scene keys and e), CSV")
+      ->required()->check(path_rule("--data"));
+  cal->add_option("--fit", k.fits, "a parameter: KEY=LO:HI or KEY=LO:HI:log (a numeric scene key, as --set takes it); repeat for more")
+      ->required()->allow_extra_args(false);
+  cal->add_option("--window", k.window, "trajectory: the fitted window, A:B seconds around the measured contact (A < 0 < B)")
+      ->check(path_rule("--window"));
+  auto* offset = cal->add_option("--offset-max", o->offset_max, "trajectory: bound on the fitted time offset |tau| (s)")
+                     ->check(number_rule("--offset-max", {0, 1e30}));
+  cal->add_option("--scan", k.search.scan, "scan points (default 8 d + 1 for d parameters; 0: only the start)")->check(integer_rule("--scan", 0, 100000));
+  cal->add_option("--starts", k.search.starts, "local searches from the best scan points (default 2)")->check(integer_rule("--starts", 0, 1000));
+  cal->add_option("--max-evals", k.search.max_evals, "evaluations per local search (default 40)")->check(integer_rule("--max-evals", 1, 100000));
+  cal->add_option("--profile-points", k.search.profile_points, "profile points per parameter (default 15; 0: no profiles)")
+      ->check(integer_rule("--profile-points", 0, 10000));
+  cal->add_option("--factor", k.search.factor, "profile interval: where the objective stays within FACTOR x the best (default 2)")
+      ->check(number_rule("--factor", {1, 1e30, true, false}));
+  cal->add_option("--validate", k.validate, "a measurement of the same kind, not fitted: scored under the fitted values")->check(path_rule("--validate"));
+  cal->add_option("--jobs", k.jobs, "parallel evaluations a process (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
+  cal->add_option("--out", k.out, "output directory (default out/<scene name>-calibrate)")->check(path_rule("--out"));
+  cal->add_flag("--no-progress", o->no_progress, "no progress line on the terminal");
+  cal->add_flag("--no-plot", o->no_plot, "skip DIR/calibration.png");
+  add_common(cal, o->c);
+  return {cal, [o, offset] {
+    o->k.plot = !o->no_plot;
+    o->k.progress = !o->no_progress;
+    if (offset->count()) o->k.offset_max = o->offset_max;
+    return calibrate(o->scene, o->c.overrides(), o->k);
+  }};
+}
+
 /// An unknown subcommand is named as such (CLI11 would only say that a subcommand is required): prints the error
 /// and returns false. `found`: argv[1] names a subcommand.
 bool known_subcommand(CLI::App& app, int argc, char** argv, bool& found) {
@@ -440,7 +476,7 @@ int run_cli(int argc, char** argv) {
   app.set_version_flag("--version", std::string("imcol ") + IMCOL_VERSION);
   const std::vector<Subcommand> subcommands = {add_run(app),     add_validate(app), add_bench(app),          add_effects(app),
                                                add_history(app), add_flow(app),     add_work_precision(app), add_sweep(app),
-                                               add_laws(app),    add_scenes(app)};
+                                               add_laws(app),    add_scenes(app),   add_calibrate(app)};
   bool found = false;
   if (!known_subcommand(app, argc, argv, found)) return 2;
 

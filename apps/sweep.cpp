@@ -21,6 +21,7 @@
 #include "apps/output_unit.hpp"
 #include "apps/parallel_runs.hpp"
 #include "apps/plot.hpp"
+#include "run/measured_run.hpp"
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
@@ -266,14 +267,10 @@ SweepPoint run_sweep_point(const Scene& scene, double value) {
   r.value = value;
   try {
     // A point whose collision or rebound window did not fit in t_end is rerun with t_end doubled (twice at most).
-    Scene sc = scene;
-    for (int attempt = 0;; ++attempt) {
-      r.summary = simulate(sc, false, Recording::kinematics).summary;  // e needs no force columns
-      if (attempt == 2 || !r.summary.t_end_too_short) break;
-      sc.solver.t_end *= 2;
-    }
+    RunResult run = simulate_for_e(scene);
+    r.summary = std::move(run.summary);
     r.ok = true;
-    r.message = point_message(r.summary, scene.solver.t_end, sc.solver.t_end);
+    r.message = point_message(r.summary, scene.solver.t_end, run.scene.solver.t_end);
   } catch (const std::exception& e) {
     r.message = e.what();  // a solver failure (or anything else) ends this point only
   }

@@ -6,7 +6,8 @@
 //    the simulation's); the window is [t_c + before, t_c + after] around the measured contact t_c, the time of
 //    the smallest measured gap (to the wall or between the spheres) given the scene's radii;
 //  * e table: the mean square of e_sim - e_meas over the rows (each row one run, measured as imcol sweep measures a
-//    point; a run with no rebound counts as e = 0).
+//    point, solver.t_end doubled at most twice while too short; a run with no rebound, its summary's `separated` false,
+//    counts as e = 0).
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,13 +42,19 @@ struct Evaluation {
   double wall_s = 0;
 };
 
-/// The trajectory objective of a finished run (its columns t, z1, z2).
+/// The trajectory objective of a finished run (its columns t, z1, z2). Samples whose t_k - tau lies before the run's
+/// first row take the first rows' straight line (the approach at constant speed); past its last row, the last value
+/// (a run that ended at rest).
 Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWindow& w, const RunResult& run);
 
 /// Runs `scene` with `values` set (its t_end long enough to cover the window and the offsets) and scores it.
 /// Never throws for a failed run: ok is false then.
 Evaluation evaluate_trajectory(const MeasuredTrajectory& m, const TrajectoryWindow& w, const std::string& scene_path,
                                const std::vector<Override>& overrides);
+/// Every row's scene of an e table (`overrides`, then the row's keys at the row's values) is a valid scene: else
+/// InputError(FILE:LINE of the row, the key the scene reader names, its problem). The one check of a table's keys.
+void check_table_keys(const MeasuredTable& m, const std::string& scene_path, const std::vector<Override>& overrides);
+
 /// Runs each table row's scene (`overrides`, then the row's keys) and scores them. Never throws for a failed run.
 Evaluation evaluate_table(const MeasuredTable& m, const std::string& scene_path, const std::vector<Override>& overrides);
 

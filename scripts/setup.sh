@@ -10,7 +10,7 @@
 # off by default, so that a newer compiler's new warning does not stop a user's build.
 # pybind11-dev (with python3-dev) builds the Python module imcol into build/python/ (CMake option IMCOL_PYTHON).
 # libopenmpi-dev and openmpi-bin: `mpirun -np N imcol sweep` over N ranks (CMake option IMCOL_MPI; docs/cluster.md);
-# libnlopt-cxx-dev: NLopt, bounded derivative-free optimisation (installed; no target links it yet).
+# libnlopt-cxx-dev: NLopt, the bounded derivative-free local search of the calibration (required).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$PWD

@@ -1,0 +1,363 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "apps/calibrate.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <tuple>
+#include <variant>
+
+#include "apps/calibrate_files.hpp"
+#include "apps/calibrate_progress.hpp"
+#include "apps/calibrate_runner.hpp"
+#include "apps/cluster.hpp"
+#include "apps/format.hpp"
+#include "apps/output_unit.hpp"
+#include "apps/parallel_runs.hpp"
+#include "apps/plot.hpp"
+#include "apps/scene_value.hpp"
+#include "core/errors.hpp"
+#include "core/timing.hpp"
+
+namespace imcol {
+
+namespace fs = std::filesystem;
+using calib::FitParameter;
+using calib::MeasuredTable;
+using calib::MeasuredTrajectory;
+using calib::Measurement;
+using calib::TrajectoryWindow;
+
+namespace {
+
+std::optional<double> parse_number(const std::string& s) {
+  const char* c = s.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(c, &end);
+  if (s.empty() || end == c || *end != '\0' || std::isspace(static_cast<unsigned char>(s[0])) || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+/// --window A:B: seconds before (A < 0) and after (B > 0) the measured contact.
+std::pair<double, double> parse_window(const std::string& text) {
+  auto bad = [&](const std::string& why) { throw InputError("command line", "--window", why + " (got '" + text + "')"); };
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) bad("expected A:B, seconds before and after the measured contact (e.g. -0.01:0.02)");
+  const auto a = parse_number(text.substr(0, colon)), b = parse_number(text.substr(colon + 1));
+  if (!a || !b) bad("A and B must be finite numbers (seconds), as in -0.01:0.02");
+  if (!(*a < 0)) bad("A must be negative: the window starts before the measured contact");
+  if (!(*b > 0)) bad("B must be positive: the window ends after the measured contact");
+  return {*a, *b};
+}
+
+const char* kind_of(const Measurement& m) { return std::holds_alternative<MeasuredTrajectory>(m) ? "a trajectory" : "an e table"; }
+
+std::vector<Override> with_values(const std::vector<Override>& overrides, const std::vector<FitParameter>& params,
+                                  const std::vector<double>& values) {
+  std::vector<Override> ov = overrides;
+  for (auto& o : calib::overrides_for(params, values)) ov.push_back(std::move(o));
+  return ov;
+}
+
+/// A table's rows: no fitted key among its columns (a row's value would replace the fitted one), and every row's
+/// scene valid (calib::check_table_keys: InputError naming the row's line).
+void check_table(const MeasuredTable& t, const std::string& scene_path, const std::vector<Override>& overrides,
+                 const std::vector<FitParameter>& params) {
+  for (const auto& p : params)
+    if (std::find(t.keys.begin(), t.keys.end(), p.key) != t.keys.end())
+      throw InputError("command line", "--fit", p.key + " is a column of " + t.path + ": each row sets it, so it cannot be fitted");
+  calib::check_table_keys(t, scene_path, overrides);
+}
+
+/// The search starts at the scene's own values, clamped into the bounds; a key the scene leaves to a default it does
+/// not hold starts at the middle of its range (the geometric middle on a log scale).
+std::vector<StartValue> start_values(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
+                                     const std::vector<FitParameter>& params) {
+  std::vector<StartValue> out;
+  for (const auto& p : params) {
+    StartValue s;
+    if (const auto v = scene_value(scene_path, overrides, base, p.key)) {
+      s.scene = *v;
+      s.value = std::clamp(*v, p.lo, p.hi);
+      s.from = *v == s.value ? "scene" : "scene, clamped to the bounds";
+    } else {
+      s.value = calib::value_of(p, 0.5);
+      s.from = "middle of the bounds (the scene does not set the key)";
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+/// Every input, read and checked on every rank before anything runs.
+struct Inputs {
+  Scene base;
+  std::vector<FitParameter> params;
+  std::vector<StartValue> start;
+  Measurement data;
+  std::optional<TrajectoryWindow> window;
+  std::optional<Measurement> held_out;  // --validate
+  std::optional<TrajectoryWindow> held_window;
+};
+
+Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
+  Inputs in;
+  in.base = load_scene(scene_path, overrides);
+  if (opt.fits.empty()) throw InputError("command line", "--fit", "give at least one parameter: --fit KEY=LO:HI[:log]");
+  for (const auto& f : opt.fits) {
+    FitParameter p = calib::parse_fit_parameter(f, scene_path, in.base, overrides);
+    for (const auto& q : in.params)
+      if (q.key == p.key) throw InputError("command line", "--fit", p.key + " is given twice");
+    in.params.push_back(p);
+  }
+  const auto& so = opt.search;
+  if (so.profile_points == 1) throw InputError("command line", "--profile-points", "must be 0 (no profiles) or at least 2 (got 1)");
+  in.data = calib::read_measurement(opt.data);
+  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
+  std::optional<double> before, after;
+  if (!trajectory && (!opt.window.empty() || opt.offset_max))
+    throw InputError("command line", opt.window.empty() ? "--offset-max" : "--window",
+                     "applies to a trajectory; " + opt.data + " is an e table");
+  if (!opt.window.empty()) std::tie(before, after) = parse_window(opt.window);
+  if (trajectory) in.window = calib::trajectory_window(std::get<MeasuredTrajectory>(in.data), in.base, before, after, opt.offset_max);
+  else check_table(std::get<MeasuredTable>(in.data), scene_path, overrides, in.params);
+  if (!opt.validate.empty()) {
+    in.held_out = calib::read_measurement(opt.validate);
+    if (in.held_out->index() != in.data.index())
+      throw InputError("command line", "--validate",
+                       opt.validate + " is " + kind_of(*in.held_out) + " but " + opt.data + " (--data) is " + kind_of(in.data) +
+                           ": the validation is a measurement of the same kind");
+    if (trajectory)
+      in.held_window = calib::trajectory_window(std::get<MeasuredTrajectory>(*in.held_out), in.base, before, after, opt.offset_max);
+    else
+      check_table(std::get<MeasuredTable>(*in.held_out), scene_path, overrides, in.params);
+  }
+  in.start = start_values(scene_path, overrides, in.base, in.params);
+  return in;
+}
+
+/// Scores one set of values on the measurement; never throws (a failure is an evaluation that is not ok).
+calib::Evaluation score(const Inputs& in, const Measurement& m, const std::optional<TrajectoryWindow>& w, const std::string& scene_path,
+                        const std::vector<Override>& overrides, const std::vector<double>& values) {
+  try {
+    const auto ov = with_values(overrides, in.params, values);
+    if (const auto* t = std::get_if<MeasuredTrajectory>(&m)) return calib::evaluate_trajectory(*t, *w, scene_path, ov);
+    return calib::evaluate_table(std::get<MeasuredTable>(m), scene_path, ov);
+  } catch (const std::exception& e) {
+    calib::Evaluation ev;
+    ev.objective = ev.rms = INFINITY;
+    ev.message = e.what();
+    return ev;
+  }
+}
+
+/// The residuals the objective averages: the window's samples times the measured columns, or the table's rows.
+std::size_t residual_count(const Measurement& m, const std::optional<TrajectoryWindow>& w) {
+  if (const auto* t = std::get_if<MeasuredTrajectory>(&m)) {
+    const auto in = std::count_if(t->t.begin(), t->t.end(),
+                                  [&](double x) { return x >= w->t_contact + w->before && x <= w->t_contact + w->after; });
+    return static_cast<std::size_t>(in) * t->columns.size();
+  }
+  return std::get<MeasuredTable>(m).e.size();
+}
+
+/// "0.024123"; the interval "[0.0221, 0.0262]", an end that reaches the bound written as "open at the bound".
+std::string value_text(double v) {
+  std::ostringstream os;
+  os << std::setprecision(6) << v;
+  return os.str();
+}
+
+std::string interval_text(const calib::Profile& p, const FitParameter& f, double factor) {
+  auto end = [&](const std::optional<double>& v, double bound) {
+    return v ? value_text(*v) : "open at " + std::string(bound == f.lo ? "lo " : "hi ") + value_text(bound);
+  };
+  return "[" + end(p.lo, f.lo) + ", " + end(p.hi, f.hi) + "] (objective within " + value_text(factor) + " x the best)";
+}
+
+/// The closing lines on stdout: the stages, the best values with their intervals, the validation.
+void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::SearchResult& res, const StageTimes& times,
+                  const Validation* val, double wall, int jobs, int ranks) {
+  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
+  const std::string unit = trajectory ? " m" : "";
+  std::cout << std::left << std::setw(10) << "stage" << std::right << std::setw(12) << "evaluations" << std::setw(8) << "failed"
+            << std::setw(14) << "best rms" << std::setw(10) << "wall s" << "\n";
+  for (const auto stage : {calib::Stage::start, calib::Stage::scan, calib::Stage::local, calib::Stage::profile}) {
+    int n = 0, failed = 0;
+    double best = INFINITY;
+    for (const auto& e : res.evaluations)
+      if (e.stage == stage) {
+        ++n;
+        if (!e.eval.ok) ++failed;
+        else best = std::min(best, e.eval.rms);
+      }
+    if (!n) continue;
+    const double t = times.wall(stage);
+    std::cout << std::left << std::setw(10) << calib::stage_name(stage) << std::right << std::setw(12) << n << std::setw(8) << failed
+              << std::setw(14) << sci(best, 3) << std::setw(10) << (std::isfinite(t) ? fixed(t, 2) : "-") << "\n";
+  }
+  std::cout << res.evaluations.size() << " evaluations (" << res.failed << " failed) in " << fixed(wall, 2) << " s on " << jobs
+            << (jobs == 1 ? " thread" : " threads") << (ranks > 1 ? " on each of " + std::to_string(ranks) + " ranks" : std::string()) << "\n";
+  if (!res.best_eval.ok) return;
+  std::cout << "best: rms " << sci(res.best_eval.rms, 3) << unit << " (objective " << sci(res.best_eval.objective, 3)
+            << (trajectory ? " m^2" : "") << ")";
+  if (res.best_eval.tau) std::cout << ", time offset tau = " << fixed(1e3 * *res.best_eval.tau, 3) << " ms (measurement clock minus simulation)";
+  std::cout << "\n";
+  bool open = false;
+  for (std::size_t k = 0; k < in.params.size(); ++k) {
+    std::cout << in.params[k].key << " = " << value_text(res.best[k]);
+    if (k < res.profiles.size()) {
+      std::cout << "  " << interval_text(res.profiles[k], in.params[k], opt.search.factor);
+      open = open || (!res.profiles[k].lo && !res.profiles[k].hi);
+    }
+    std::cout << "\n";
+  }
+  if (open) {
+    // A residual made of measurement noise: the objective rises by its n-th part where the fit is one standard
+    // deviation off (a change of 1 in chi^2 = n * objective / sigma^2).
+    const std::size_t n = residual_count(in.data, in.window);
+    std::cout << "note: the objective stays within " << value_text(opt.search.factor) << " x the best across the whole range; where the"
+              << " residual is measurement noise, --factor " << value_text(1 + 1.0 / static_cast<double>(n)) << " (1 + 1/n, n = " << n
+              << " residuals) gives the interval of one standard deviation\n";
+  }
+  if (!val) return;
+  std::cout << "validation on " << opt.validate << " (not used in the fit";
+  if (trajectory) std::cout << "; the time offset refitted";
+  std::cout << "): ";
+  if (!val->eval.ok) {
+    std::cout << "failed: " << val->eval.message << "\n";
+    return;
+  }
+  std::cout << "rms " << sci(val->eval.rms, 3) << unit;
+  if (val->eval.tau) std::cout << ", tau = " << fixed(1e3 * *val->eval.tau, 3) << " ms";
+  std::cout << "\n";
+  if (const auto* t = std::get_if<MeasuredTable>(&*in.held_out))
+    for (std::size_t r = 0; r < t->e.size(); ++r) {
+      std::cout << "  " << t->path << ":" << t->lines[r] << ":";
+      for (std::size_t k = 0; k < t->keys.size(); ++k) std::cout << " " << t->keys[k] << " = " << value_text(t->values[r][k]);
+      const double sim = r < val->eval.e_sim.size() ? val->eval.e_sim[r] : NAN;
+      std::cout << ": e_meas " << fixed(t->e[r], 4) << ", e_sim " << (std::isfinite(sim) ? fixed(sim, 4) : "-") << "\n";
+    }
+}
+
+}  // namespace
+
+int calibrate(const std::string& scene_path, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
+  const Inputs in = read_inputs(scene_path, overrides, opt);
+
+  // MPI starts here, every rank having checked the same inputs. Rank 0 alone writes: its output folder is taken
+  // now, and a refusal (another run writing it, a folder imcol did not write) ends every rank.
+  const cluster::World world = cluster::world();
+  std::optional<OutputUnit> unit;
+  std::exception_ptr refused;
+  std::string refused_flag;
+  if (world.rank == 0) {
+    try {
+      unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path);
+    } catch (...) {
+      refused = std::current_exception();
+      refused_flag = "refused";
+    }
+  }
+  cluster::share(refused_flag);
+  if (!refused_flag.empty()) {
+    if (refused) std::rethrow_exception(refused);
+    return 2;
+  }
+
+  const int jobs = job_count(opt.jobs, 1u << 20);  // threads a rank (each stage uses at most one per work item)
+  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
+  std::vector<double> start;
+  for (const auto& s : in.start) start.push_back(s.value);
+  ProgressLine progress(world.rank == 0 && opt.progress && isatty(STDERR_FILENO), in.params.size(), opt.search,
+                        jobs * world.size, trajectory ? "m" : "");
+  auto evaluate = [&](const std::vector<double>& values) {
+    calib::Evaluation e = score(in, in.data, in.window, scene_path, overrides, values);
+    progress.add_evaluation(e.wall_s);
+    return e;
+  };
+  const auto t0 = WallClock::now();
+  calib::SearchResult res;
+  {
+    cluster::Hold hold;  // the ranks wait on each other from stage to stage
+    res = calib::search(in.params, start, evaluate, opt.search, cluster_runner(opt.jobs),
+                        world.rank == 0 ? progress.callback() : calib::Progress{});
+  }
+  const double wall = seconds_since(t0);
+  progress.finish();
+  if (world.rank > 0) return 0;
+
+  sort_evaluations(res);
+  // The fitted run, for best.csv and its summary's blocks; the hold-out under the fitted values.
+  std::optional<RunResult> best_run;
+  std::string best_run_error;
+  if (res.best_eval.ok && trajectory) {
+    try {
+      best_run = fitted_trajectory_run(*in.window, scene_path, with_values(overrides, in.params, res.best));
+      // The same run the search scored: the same objective (best.csv shows what was fitted).
+      const double again = calib::trajectory_objective(std::get<MeasuredTrajectory>(in.data), *in.window, *best_run).objective;
+      if (!(std::abs(again - res.best_eval.objective) <= 1e-9 * res.best_eval.objective))
+        std::cerr << "imcol: warning: the fitted run scored again gives objective " << again << " against the search's "
+                  << res.best_eval.objective << "; best.csv holds the run made again\n";
+    } catch (const std::exception& e) {
+      best_run_error = e.what();
+    }
+  }
+  std::optional<Validation> val;
+  if (in.held_out && res.best_eval.ok) {
+    val.emplace();
+    val->eval = score(in, *in.held_out, in.held_window, scene_path, overrides, res.best);
+  }
+
+  std::cout << "scene " << in.base.name << ": calibrating";
+  for (const auto& p : in.params) std::cout << " " << p.key;
+  std::cout << " against " << opt.data << " (" << kind_of(in.data) << ")\n";
+  print_result(in, opt, res, progress.stage_times(), val ? &*val : nullptr, wall, jobs, world.size);
+
+  const fs::path& dir = unit->dir();
+  CalibrationRecord rec;
+  rec.scene_path = scene_path;
+  rec.overrides = overrides;
+  rec.base = in.base;
+  rec.params = in.params;
+  rec.start = in.start;
+  rec.data = in.data;
+  rec.window = in.window;
+  rec.held_out = in.held_out;
+  rec.held_window = in.held_window;
+  rec.search = opt.search;
+  rec.result = res;
+  rec.validation = val ? &*val : nullptr;
+  rec.best_run = best_run ? &*best_run : nullptr;
+  rec.best_run_error = best_run_error;
+  rec.wall_s = wall;
+  rec.jobs = jobs;
+  rec.ranks = world.size;
+  rec.stage_times = progress.stage_times();
+  write_calibration_files(dir, rec, unit->run());
+  if (opt.plot) {
+    std::cout.flush();
+    run_plot_script("plot_calibration.py", *unit, "calibration.png");
+  }
+  unit->commit();
+  const fs::path& target = unit->target();
+  std::cout << "wrote " << (target / "calibration.json").string() << ", calibration.csv, measured.csv and best.csv\n";
+  if (!res.best_eval.ok) {
+    std::cout.flush();
+    std::cerr << "imcol: error: no evaluation succeeded; their reasons are in " << (target / "calibration.csv").string() << " (status, message)\n";
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace imcol

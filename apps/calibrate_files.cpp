@@ -1,0 +1,289 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "apps/calibrate_files.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <variant>
+
+#include "apps/sweep.hpp"
+#include "core/errors.hpp"
+#include "core/number_text.hpp"
+#include "core/report.hpp"
+
+namespace imcol {
+
+namespace fs = std::filesystem;
+using calib::MeasuredTable;
+using calib::MeasuredTrajectory;
+using json = nlohmann::ordered_json;
+
+namespace {
+
+json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json opt_json(const std::optional<double>& v) { return v ? finite_or_null(*v) : json(nullptr); }
+
+/// A double that reads back to itself (17 significant digits), for TOML and the CSV's parameter values.
+std::string exact(double v) {
+  std::string s;
+  append_number(s, v, 17);
+  return s;
+}
+
+/// A CSV cell: 12 significant digits; empty for a missing (non-finite) value.
+std::string cell(double v) {
+  std::string s;
+  if (std::isfinite(v)) append_number(s, v, 12);
+  return s;
+}
+
+/// Appends the cells to a CSV line, each after a comma.
+template <class... Cells>
+void add_cells(std::string& line, const Cells&... cells) {
+  ((line += ',', line += cells), ...);
+}
+
+/// A word cell: commas and line ends would split it.
+std::string word(std::string w) {
+  for (char& c : w)
+    if (c == ',' || c == '\n' || c == '\r') c = ';';
+  return w;
+}
+
+json window_json(const MeasuredTrajectory& m, const calib::TrajectoryWindow& w) {
+  const double from = w.t_contact + w.before, to = w.t_contact + w.after;
+  const auto samples = std::count_if(m.t.begin(), m.t.end(), [&](double t) { return t >= from && t <= to; });
+  return {{"t_contact_s", w.t_contact}, {"before_s", w.before}, {"after_s", w.after}, {"from_s", from}, {"to_s", to}, {"samples", samples}};
+}
+
+/// The table column that varies across the rows (the first; the first column if none does).
+std::string varied_key(const MeasuredTable& t) {
+  for (std::size_t k = 0; k < t.keys.size(); ++k)
+    for (const auto& row : t.values)
+      if (row[k] != t.values.front()[k]) return t.keys[k];
+  return t.keys.empty() ? "" : t.keys.front();
+}
+
+json measurement_json(const calib::Measurement& m, const std::optional<calib::TrajectoryWindow>& w) {
+  json j;
+  if (const auto* t = std::get_if<MeasuredTrajectory>(&m)) {
+    j["path"] = t->path;
+    j["kind"] = "trajectory";
+    j["rows"] = t->t.size();
+    j["columns"] = t->columns;
+    j["window"] = window_json(*t, *w);
+    j["residuals"] = j["window"]["samples"].get<std::size_t>() * t->columns.size();  // the window's samples x columns
+    j["tau_max_s"] = w->tau_max;
+    return j;
+  }
+  const auto& t = std::get<MeasuredTable>(m);
+  j["path"] = t.path;
+  j["kind"] = "table";
+  j["rows"] = t.e.size();
+  j["columns"] = t.keys;
+  j["varied"] = varied_key(t);
+  j["residuals"] = t.e.size();
+  return j;
+}
+
+json evaluation_json(const calib::Evaluation& e) {
+  json j;
+  j["ok"] = e.ok;
+  j["objective"] = finite_or_null(e.objective);
+  j["rms"] = finite_or_null(e.rms);
+  if (e.tau) j["tau_s"] = *e.tau;
+  if (!e.message.empty()) j["message"] = e.message;
+  return j;
+}
+
+json validation_json(const CalibrationRecord& rec) {
+  json j = measurement_json(*rec.held_out, rec.held_window);
+  j.update(evaluation_json(rec.validation->eval));
+  if (std::holds_alternative<MeasuredTrajectory>(*rec.held_out)) {
+    j["tau_refitted"] = true;  // the offset belongs to the measurement, not to the parameters
+    return j;
+  }
+  const auto& t = std::get<MeasuredTable>(*rec.held_out);
+  json rows = json::array();
+  for (std::size_t r = 0; r < t.e.size(); ++r) {
+    json row;
+    row["line"] = t.lines[r];
+    for (std::size_t k = 0; k < t.keys.size(); ++k) row[t.keys[k]] = t.values[r][k];
+    row["e_meas"] = t.e[r];
+    const auto& sim = rec.validation->eval.e_sim;
+    row["e_sim"] = r < sim.size() ? finite_or_null(sim[r]) : json(nullptr);
+    rows.push_back(row);
+  }
+  j["by_row"] = rows;
+  return j;
+}
+
+constexpr calib::Stage kStages[] = {calib::Stage::start, calib::Stage::scan, calib::Stage::local, calib::Stage::profile};
+
+std::string calibration_csv(const CalibrationRecord& rec) {
+  std::string out = "index,stage,item";
+  for (const auto& p : rec.params) add_cells(out, p.key);
+  out += ",objective,rms,tau_s,status,message,wall_ms,rank\n";
+  const auto& ev = rec.result.evaluations;
+  for (std::size_t i = 0; i < ev.size(); ++i) {
+    const auto& e = ev[i];
+    out += std::to_string(i);
+    add_cells(out, std::string(calib::stage_name(e.stage)), std::to_string(e.item));
+    for (double v : e.values) add_cells(out, exact(v));
+    add_cells(out, cell(e.eval.objective), cell(e.eval.rms), e.eval.tau ? cell(*e.eval.tau) : std::string(),
+              std::string(e.eval.ok ? "ok" : "failed"), word(e.eval.message), cell(1e3 * e.eval.wall_s), std::to_string(e.rank));
+    out += '\n';
+  }
+  return out;
+}
+
+/// best.csv: a trajectory's fitted run on the measurement's clock (t + tau), its z columns; a table's rows with the
+/// measured and the fitted e.
+std::string best_csv(const CalibrationRecord& rec) {
+  std::string out;
+  const auto& best = rec.result.best_eval;
+  if (std::holds_alternative<MeasuredTrajectory>(rec.data)) {
+    const RunResult* run = rec.best_run;
+    std::vector<std::size_t> cols;
+    out = "t";
+    if (run)
+      for (std::size_t c = 0; c < run->columns.size(); ++c)
+        if (run->columns[c] == "z1" || run->columns[c] == "z2") {
+          cols.push_back(c);
+          add_cells(out, run->columns[c]);
+        }
+    out += "\n";
+    if (!run) return out;
+    const double tau = best.tau.value_or(0);
+    for (const auto& row : run->rows) {
+      out += cell(row[0] + tau);
+      for (auto c : cols) add_cells(out, cell(row[c]));
+      out += "\n";
+    }
+    return out;
+  }
+  const auto& t = std::get<MeasuredTable>(rec.data);
+  out = "line";
+  for (const auto& k : t.keys) add_cells(out, k);
+  out += ",e_meas,e_sim\n";
+  for (std::size_t r = 0; r < t.e.size(); ++r) {
+    out += std::to_string(t.lines[r]);
+    for (double v : t.values[r]) add_cells(out, cell(v));
+    add_cells(out, cell(t.e[r]), r < best.e_sim.size() ? cell(best.e_sim[r]) : std::string());
+    out += '\n';
+  }
+  return out;
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path + " to copy it into the output folder");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+void sort_evaluations(calib::SearchResult& r) {
+  std::stable_sort(r.evaluations.begin(), r.evaluations.end(), [](const calib::EvaluationRecord& a, const calib::EvaluationRecord& b) {
+    if (a.stage != b.stage) return a.stage < b.stage;
+    return a.item < b.item;
+  });
+}
+
+RunResult fitted_trajectory_run(const calib::TrajectoryWindow& w, const std::string& scene_path, const std::vector<Override>& overrides) {
+  std::vector<Override> ov = overrides;
+  std::string t_end = exact(w.t_contact + w.after + w.tau_max);
+  if (t_end.find_first_of(".eEn") == std::string::npos) t_end += ".0";
+  ov.push_back({"solver.t_end", t_end});
+  ov.push_back({"measure.bounces", "\"all\""});
+  return simulate(load_scene(scene_path, ov), false, Recording::kinematics);
+}
+
+json calibration_json(const CalibrationRecord& rec) {
+  const auto& res = rec.result;
+  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(rec.data);
+  json j = scene_json(rec.scene_path, rec.overrides, rec.base);
+  j["measurement"] = measurement_json(rec.data, rec.window);
+  j["objective"] = trajectory
+                       ? json{{"is", "mean square of z_sim(t - tau) - z_meas(t) over the window's samples and the measured columns, "
+                                     "minimised over the time offset tau in [-tau_max, tau_max]"},
+                              {"unit", "m^2"},
+                              {"rms_unit", "m"}}
+                       : json{{"is", "mean square of e_sim - e_meas over the rows"}, {"unit", "1"}, {"rms_unit", "1"}};
+  json params = json::array();
+  for (std::size_t k = 0; k < rec.params.size(); ++k) {
+    const auto& p = rec.params[k];
+    const auto& s = rec.start[k];
+    params.push_back({{"key", p.key}, {"lo", p.lo}, {"hi", p.hi}, {"scale", p.scale == calib::Scale::log ? "log" : "linear"},
+                      {"start", s.value}, {"scene_value", opt_json(s.scene)}, {"start_from", s.from}});
+  }
+  j["parameters"] = params;
+  const auto& so = rec.search;
+  const int d = static_cast<int>(rec.params.size());
+  j["search"] = {{"scan", so.scan < 0 ? 8 * d + 1 : so.scan}, {"starts", so.starts}, {"max_evals", so.max_evals}, {"xtol", so.xtol},
+                 {"profile_points", so.profile_points}, {"factor", so.factor}};
+  json best = evaluation_json(res.best_eval);
+  json values = json::object();
+  for (std::size_t k = 0; k < rec.params.size() && k < res.best.size(); ++k) values[rec.params[k].key] = res.best[k];
+  best["values"] = values;
+  j["best"] = best;
+  json by_stage = json::object(), stage_wall = json::object();
+  for (auto s : kStages) {
+    const auto n = std::count_if(res.evaluations.begin(), res.evaluations.end(), [s](const auto& e) { return e.stage == s; });
+    if (!n) continue;
+    by_stage[calib::stage_name(s)] = n;
+    stage_wall[calib::stage_name(s)] = finite_or_null(rec.stage_times.wall(s));
+  }
+  std::vector<int> by_rank(static_cast<std::size_t>(std::max(1, rec.ranks)), 0);
+  for (const auto& e : res.evaluations)
+    if (e.rank >= 0 && static_cast<std::size_t>(e.rank) < by_rank.size()) ++by_rank[static_cast<std::size_t>(e.rank)];
+  j["evaluations"] = {{"count", res.evaluations.size()}, {"failed", res.failed}, {"by_stage", by_stage}, {"by_rank", by_rank},
+                      {"stage_wall_s", stage_wall}, {"file", "calibration.csv"}};
+  json profiles = json::array();
+  for (std::size_t k = 0; k < res.profiles.size() && k < rec.params.size(); ++k) {
+    const auto& p = res.profiles[k];
+    json obj = json::array();
+    for (double v : p.objective) obj.push_back(finite_or_null(v));
+    profiles.push_back({{"key", rec.params[k].key},
+                        {"values", p.values},
+                        {"objective", obj},
+                        {"factor", so.factor},
+                        {"threshold", finite_or_null(so.factor * res.best_eval.objective)},
+                        {"interval", {{"lo", opt_json(p.lo)}, {"hi", opt_json(p.hi)}}}});
+  }
+  j["profiles"] = profiles;  // an interval end null: the objective stays within the factor up to the bound
+  if (rec.validation) j["validation"] = validation_json(rec);
+  j["wall_time_s"] = rec.wall_s;
+  j["jobs"] = rec.jobs;  // threads a rank
+  j["ranks"] = rec.ranks;
+  if (rec.best_run) {
+    const auto& s = rec.best_run->summary_json;
+    json br;
+    for (const char* key : {"effects", "model", "solver", "e", "wall_time_s"})
+      if (s.contains(key)) br[key] = s[key];
+    j["best_run"] = br;
+  } else if (!trajectory) {  // one run a row: the effects they share; their solver statistics are in no one run
+    json effects = json::array();
+    for (Effect e : rec.base.effects) effects.push_back(to_string(e));
+    j["best_run"] = {{"effects", effects}, {"solver", nullptr}};
+  } else {
+    j["best_run"] = nullptr;
+    if (!rec.best_run_error.empty()) j["best_run_error"] = rec.best_run_error;
+  }
+  return j;
+}
+
+void write_calibration_files(const fs::path& dir, const CalibrationRecord& rec, const json& run) {
+  const std::string data_path = std::visit([](const auto& m) { return m.path; }, rec.data);
+  write_file_atomic(dir / "measured.csv", file_text(data_path));
+  write_file_atomic(dir / "calibration.csv", calibration_csv(rec));
+  write_file_atomic(dir / "best.csv", best_csv(rec));
+  json j = calibration_json(rec);
+  j["run"] = run;
+  write_file_atomic(dir / "calibration.json", j.dump(2) + "\n");
+}
+
+}  // namespace imcol

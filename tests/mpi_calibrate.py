@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""`imcol calibrate` over an MPI job against the same calibration on threads: `mpirun -np 3` on a short search of
+the shipped scene gg3462 writes a calibration.csv equal to the threaded one cell for cell (the timing and rank
+columns aside), and a calibration.json with the same best, the same profiles and 3 ranks whose evaluations add up.
+Once for a trajectory (data/measurements/gg3462_trajectory.csv, one thread a rank), once for an e table (two
+threads a rank).
+
+Usage: /usr/bin/python3 tests/mpi_calibrate.py --imcol BIN --mpirun MPIRUN --data DATA_DIR (run by ctest as mpi_calibrate)
+"""
+import argparse
+import csv
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+IGNORED = {"wall_ms", "rank"}  # where and how long an evaluation ran
+SEARCH = ["--fit", "contact.delta_ss=0.005:0.05", "--set", "contact.delta_ss=0.006", "--scan", "6", "--starts", "2",
+          "--max-evals", "12", "--profile-points", "5", "--no-plot", "--no-progress"]
+TABLE = "sphere[0].velocity,e\n0.08,0.8450\n0.11,0.8723\n0.16,0.8964\n"
+
+
+def read(path):
+    with open(path, newline="") as f:
+        return list(csv.reader(f))
+
+
+def compare(a, data, jobs):
+    failures = []
+    with tempfile.TemporaryDirectory(prefix="imcol_mpi_calibrate_") as tmp:
+        tmp = Path(tmp)
+        if data is None:
+            data = tmp / "e.csv"
+            data.write_text(TABLE)
+        runs = {"threads": [a.imcol], "mpi": [a.mpirun, "--allow-run-as-root", "--oversubscribe", "-np", "3", a.imcol]}
+        for name, cmd in runs.items():
+            p = subprocess.run([*cmd, "calibrate", "gg3462", "--data", str(data), *SEARCH, "--jobs", str(jobs),
+                                "--out", str(tmp / name)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=240)
+            if p.returncode != 0:
+                return [f"{name} exited {p.returncode}: {p.stderr.strip()}"]
+        threads, mpi = read(tmp / "threads" / "calibration.csv"), read(tmp / "mpi" / "calibration.csv")
+        if threads[0] != mpi[0]:
+            failures.append(f"headers differ: {threads[0]} vs {mpi[0]}")
+        if len(threads) < 10 or len(mpi) != len(threads):
+            failures.append(f"rows: threads {len(threads) - 1}, mpi {len(mpi) - 1}")
+        for r, (t, m) in enumerate(zip(threads[1:], mpi[1:]), start=1):
+            for name, x, y in zip(threads[0], t, m):
+                if name not in IGNORED and x != y:
+                    failures.append(f"row {r} column {name}: threads '{x}' vs mpi '{y}'")
+        jt = json.loads((tmp / "threads" / "calibration.json").read_text())
+        jm = json.loads((tmp / "mpi" / "calibration.json").read_text())
+        for key in ("best", "profiles", "parameters", "measurement"):
+            if jt[key] != jm[key]:
+                failures.append(f"calibration.json {key}: threads {jt[key]} vs mpi {jm[key]}")
+        ev = jm["evaluations"]
+        if jm["ranks"] != 3 or len(ev["by_rank"]) != 3 or sum(ev["by_rank"]) != ev["count"] or ev["count"] != len(mpi) - 1:
+            failures.append(f"mpi calibration.json: ranks {jm['ranks']}, by_rank {ev['by_rank']}, count {ev['count']}")
+        if jt["ranks"] != 1 or jt["evaluations"]["by_rank"] != [jt["evaluations"]["count"]]:
+            failures.append(f"threaded calibration.json: ranks {jt['ranks']}, by_rank {jt['evaluations']['by_rank']}")
+        if not any(r[-1] != "0" for r in mpi[1:]):
+            failures.append("no evaluation ran on a rank other than 0")
+    return failures
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--imcol", required=True)
+    ap.add_argument("--mpirun", required=True)
+    ap.add_argument("--data", required=True)
+    a = ap.parse_args()
+    failures = []
+    for label, data, jobs in (("trajectory: ", Path(a.data) / "measurements" / "gg3462_trajectory.csv", 1),
+                              ("e table, two threads a rank: ", None, 2)):
+        failures += [label + f for f in compare(a, data, jobs)]
+    for f in failures:
+        print("FAIL:", f)
+    print("ok" if not failures else f"{len(failures)} failures")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
