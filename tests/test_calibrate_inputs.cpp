@@ -22,10 +22,20 @@ namespace {
 
 std::string gg3462() { return data_dir() + "/scenes/gg3462.toml"; }
 
-/// A measurement file with `text` in a folder of this process's own.
+/// A folder of this process's own, removed when the tests end.
+struct ScratchDir {
+  fs::path path = fs::temp_directory_path() / ("imcol_calibrate_inputs_" + std::to_string(::getpid()));
+  ScratchDir() { fs::create_directories(path); }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+/// A measurement file with `text` in the scratch folder.
 std::string file_with(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / ("imcol_calibrate_inputs_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  static const ScratchDir scratch;
+  const fs::path& dir = scratch.path;
   const fs::path p = dir / name;
   std::ofstream(p) << text;
   return p.string();
