@@ -9,21 +9,18 @@ threads a rank.
 Usage: /usr/bin/python3 tests/mpi_sweep.py --imcol BIN --mpirun MPIRUN (run by ctest as mpi_sweep)
 """
 import argparse
-import csv
 import json
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from mpi_compare import csv_differences, mpi_command, read  # noqa: E402
+
 TIMING = {"wall_time_s"}  # differs from run to run
 SWEEP = ["sweep", "default", "--vary", "velocity", "--from", "0.05", "--to", "1", "--points", "6", "--no-plot",
          "--no-progress"]
-
-
-def read(path):
-    with open(path, newline="") as f:
-        return list(csv.reader(f))
 
 
 def compare(a, extra, rc):
@@ -31,21 +28,16 @@ def compare(a, extra, rc):
     failures = []
     with tempfile.TemporaryDirectory(prefix="imcol_mpi_sweep_") as tmp:
         tmp = Path(tmp)
-        runs = {"threads": [a.imcol], "mpi": [a.mpirun, "--allow-run-as-root", "--oversubscribe", "-np", "3", a.imcol]}
+        runs = {"threads": [a.imcol], "mpi": mpi_command(a, 3)}
         for name, cmd in runs.items():
             got = subprocess.run([*cmd, *SWEEP, *extra, "--out", str(tmp / name)], stdout=subprocess.DEVNULL,
                                  stderr=subprocess.DEVNULL, timeout=120).returncode
             if got != rc:
                 return [f"{name} exited {got} (expected {rc})"]
         threads, mpi = read(tmp / "threads" / "sweep.csv"), read(tmp / "mpi" / "sweep.csv")
-        if threads[0] != mpi[0]:
-            failures.append(f"headers differ: {threads[0]} vs {mpi[0]}")
-        if len(threads) != 7 or len(mpi) != len(threads):
-            failures.append(f"rows: threads {len(threads) - 1}, mpi {len(mpi) - 1} (expected 6 each)")
-        for r, (t, m) in enumerate(zip(threads[1:], mpi[1:]), start=1):
-            for name, x, y in zip(threads[0], t, m):
-                if name not in TIMING and x != y:
-                    failures.append(f"row {r} column {name}: threads '{x}' vs mpi '{y}'")
+        if len(threads) != 7:
+            failures.append(f"rows: threads {len(threads) - 1} (expected 6)")
+        failures += csv_differences(threads, mpi, TIMING, ("threads", "mpi"))
         j = json.loads((tmp / "mpi" / "sweep.json").read_text())
         if j.get("ranks") != 3 or len(j.get("points_by_rank", [])) != 3 or sum(j["points_by_rank"]) != 6:
             failures.append(f"sweep.json: ranks {j.get('ranks')}, points_by_rank {j.get('points_by_rank')} (expected 3 ranks, 6 points)")
