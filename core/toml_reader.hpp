@@ -41,11 +41,13 @@ inline std::string read_scene_file(const std::string& path) {
   return text;
 }
 
+/// The place an error names for a value that has no line in the scene file: an override (--set, --rtol, ...).
+inline constexpr const char* kOverridePlace = "command line (--set/--rtol/--atol/--integrator)";
+
 class TableReader {
  public:
   /// `unsourced`: the place named for a value that has no line in the file (a command-line override).
-  TableReader(const toml::table& t, std::string prefix, const std::string& file,
-              std::string unsourced = "command line (--set/--rtol/--atol/--integrator)")
+  TableReader(const toml::table& t, std::string prefix, const std::string& file, std::string unsourced = kOverridePlace)
       : t_(t), prefix_(std::move(prefix)), file_(file), unsourced_(std::move(unsourced)) {}
 
   std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }

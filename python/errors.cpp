@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "core/errors.hpp"
+#include "core/toml_reader.hpp"
 #include "python/bindings.hpp"
 
 namespace py = pybind11;
@@ -13,6 +14,9 @@ namespace py = pybind11;
 namespace imcol::python {
 
 namespace errors_impl {  // this file's helpers: named, as the module is one unity unit
+
+/// The place a ValueError names for a value given through the module (the program's is the command line).
+constexpr const char* kPythonOverridePlace = "imcol (Scene.set, or rtol/atol/integrator of run or sweep)";
 
 /// The integrator's facts as the exception's attributes (None where there are none).
 void set_facts(py::object& exc, const SolverFailure* f) {
@@ -52,7 +56,11 @@ void bind_errors(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      // A value given through the module has no command line: name the calls that take values instead.
+      if (e.where() == kOverridePlace)
+        PyErr_SetString(PyExc_ValueError, InputError(kPythonOverridePlace, e.key(), e.problem()).what());
+      else
+        PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const SolverError& e) {
       py::object exc = solver_error(e.what());  // an instance, its attributes set before raising
       set_facts(exc, e.failure());

@@ -94,6 +94,10 @@ def test_kinematics_recording():
     assert kin.e == full.e
 
 
+CLI_PLACE = "command line (--set/--rtol/--atol/--integrator)"
+PYTHON_PLACE = "imcol (Scene.set, or rtol/atol/integrator of run or sweep)"
+
+
 @pytest.mark.parametrize("key,value,cli", [
     ("fluid.viscosity", -1.0, "fluid.viscosity=-1"),
     ("solver.rtol", "abc", "solver.rtol=abc"),
@@ -106,7 +110,9 @@ def test_bad_set_has_the_clis_message(key, value, cli):
     scene = imcol.Scene.load("default")
     with pytest.raises(ValueError) as e:
         scene.set(key, value)
-    assert err.strip() == "imcol: error: " + str(e.value)
+    # The same message, but for its place: the module's calls instead of the command line's options.
+    assert "command line" not in str(e.value)
+    assert err.strip() == "imcol: error: " + str(e.value).replace(PYTHON_PLACE, CLI_PLACE)
     assert scene.overrides == []  # unchanged by a refused key
 
 
@@ -125,7 +131,7 @@ def test_toml_syntax_error_names_the_line():
 
 def test_bad_run_options():
     scene = imcol.Scene.load("default")
-    with pytest.raises(ValueError, match="key 'solver.rtol'"):
+    with pytest.raises(ValueError, match=r"^imcol \(Scene.set, or rtol/atol/integrator of run or sweep\): key 'solver.rtol'"):
         imcol.run(scene, rtol=2.0)
     with pytest.raises(ValueError, match="key 'solver.integrator'"):
         imcol.run(scene, integrator="euler")
