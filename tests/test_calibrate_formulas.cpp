@@ -209,6 +209,7 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
   };
   SearchOptions opt;
   opt.profile_points = 9;
+  opt.factor = 2;
   std::size_t progress_calls = 0, last_evaluations = 0;
   const Progress progress = [&](Stage, std::size_t done, std::size_t items, std::size_t evaluations, double) {
     ++progress_calls;
@@ -217,8 +218,9 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
     last_evaluations = evaluations;
   };
   const SearchResult serial = search(params, {0.9, 2}, evaluate, opt, test::thread_runner(1), progress);
-  // One progress line per work item: the start, 17 scan points, 2 local searches, 2 x 9 profile points.
-  EXPECT_EQ(progress_calls, 1u + 17 + 2 + 18);
+  // One progress line per work item: the start, 17 scan points, 2 local searches, 2 x 9 profile points, 4 rounds of
+  // the 4 interval ends.
+  EXPECT_EQ(progress_calls, 1u + 17 + 2 + 18 + 16);
   EXPECT_EQ(last_evaluations, serial.evaluations.size());
   // Items finishing in another order (threads, or ranks handing in last item first), and the stage inputs passing
   // through share: the same evaluations, in the same order.
@@ -239,7 +241,7 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
     }
     EXPECT_EQ(serial.best, other.best);
   }
-  EXPECT_EQ(shares, 2);  // the local searches' starts, the profiles' best point
+  EXPECT_EQ(shares, 2 + 4);  // the local searches' starts, the profiles' best point, each edge round's points
   ASSERT_EQ(serial.best.size(), 2u);
   EXPECT_NEAR(serial.best[0], 0.3, 0.01);
   EXPECT_NEAR(std::log10(serial.best[1] / 20), 0, 0.01);
