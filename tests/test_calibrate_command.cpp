@@ -173,7 +173,7 @@ TEST(CalibrateCommand, WritesItsFilesAndTheBestIsTheBestRow) {
   EXPECT_EQ(std::stod(best->at("contact.delta_ss")), v);  // 17 digits: the same double
   EXPECT_NEAR(std::stod(best->at("objective")), j["best"]["objective"].get<double>(), 1e-11 * j["best"]["objective"].get<double>());
   // Started at 0.006, the fit finds the value the measurement was made with (0.024, noise 2 um): within 0.004, about
-  // the half-width of the interval of one standard deviation of this recording (0.0193 to 0.0256, docs/calibration.md).
+  // a third of this recording's 95 % interval (0.0154 to 0.0284, docs/calibration.md).
   EXPECT_NEAR(v, 0.024, 0.004);
   // The interval's rule: 95 % confidence, n the window's samples x 2 columns, p = delta_ss and the time offset.
   const auto& rule = j["profiles"][0]["factor_rule"];
