@@ -99,6 +99,16 @@ std::vector<StartValue> start_values(const std::string& scene_path, const std::v
   return out;
 }
 
+/// The residuals the objective averages: the window's samples times the measured columns, or the table's rows.
+std::size_t residual_count(const Measurement& m, const std::optional<TrajectoryWindow>& w) {
+  if (const auto* t = std::get_if<MeasuredTrajectory>(&m)) {
+    const auto in = std::count_if(t->t.begin(), t->t.end(),
+                                  [&](double x) { return x >= w->t_contact + w->before && x <= w->t_contact + w->after; });
+    return static_cast<std::size_t>(in) * t->columns.size();
+  }
+  return std::get<MeasuredTable>(m).e.size();
+}
+
 /// Every input, read and checked on every rank before anything runs.
 struct Inputs {
   Scene base;
@@ -142,6 +152,14 @@ Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& o
     else
       check_table(std::get<MeasuredTable>(*in.held_out), scene_path, overrides, in.params);
   }
+  // The default interval estimates the noise from the best fit's residuals: more of them than fitted parameters.
+  const std::size_t n = residual_count(in.data, in.window), p = in.params.size() + (trajectory ? 1 : 0);
+  if (so.profile_points > 0 && !so.factor && n <= p)
+    throw InputError(opt.data, "",
+                     std::to_string(n) + " residuals" + (trajectory ? " in the window" : "") + " for " + std::to_string(p) +
+                         " fitted parameters" + (trajectory ? " (the time offset among them)" : "") +
+                         ": too few to fit them and estimate the noise for the confidence interval; give more data, or "
+                         "--factor F to set the interval's factor directly");
   in.start = start_values(scene_path, overrides, in.base, in.params);
   return in;
 }
@@ -161,16 +179,6 @@ calib::Evaluation score(const Inputs& in, const Measurement& m, const std::optio
   }
 }
 
-/// The residuals the objective averages: the window's samples times the measured columns, or the table's rows.
-std::size_t residual_count(const Measurement& m, const std::optional<TrajectoryWindow>& w) {
-  if (const auto* t = std::get_if<MeasuredTrajectory>(&m)) {
-    const auto in = std::count_if(t->t.begin(), t->t.end(),
-                                  [&](double x) { return x >= w->t_contact + w->before && x <= w->t_contact + w->after; });
-    return static_cast<std::size_t>(in) * t->columns.size();
-  }
-  return std::get<MeasuredTable>(m).e.size();
-}
-
 /// "0.024123"; the interval "[0.0221, 0.0262]", an end that reaches the bound written as "open at the bound".
 std::string value_text(double v) {
   std::ostringstream os;
@@ -178,11 +186,14 @@ std::string value_text(double v) {
   return os.str();
 }
 
-std::string interval_text(const calib::Profile& p, const FitParameter& f, double factor) {
+std::string interval_text(const calib::Profile& p, const FitParameter& f, const calib::FactorRule& rule) {
   auto end = [&](const std::optional<double>& v, double bound) {
     return v ? value_text(*v) : "open at " + std::string(bound == f.lo ? "lo " : "hi ") + value_text(bound);
   };
-  return "[" + end(p.lo, f.lo) + ", " + end(p.hi, f.hi) + "] (objective within " + value_text(factor) + " x the best)";
+  std::string why = rule.given ? "objective within " + value_text(rule.factor) + " x the best"
+                               : value_text(100 * rule.confidence) + " % confidence: objective within " + value_text(rule.factor) +
+                                     " x the best";
+  return "[" + end(p.lo, f.lo) + ", " + end(p.hi, f.hi) + "] (" + why + ")";
 }
 
 /// The closing lines on stdout: the stages, the best values with their intervals, the validation.
@@ -192,7 +203,7 @@ void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::Se
   const std::string unit = trajectory ? " m" : "";
   std::cout << std::left << std::setw(10) << "stage" << std::right << std::setw(12) << "evaluations" << std::setw(8) << "failed"
             << std::setw(14) << "best rms" << std::setw(10) << "wall s" << "\n";
-  for (const auto stage : {calib::Stage::start, calib::Stage::scan, calib::Stage::local, calib::Stage::profile}) {
+  for (const auto stage : {calib::Stage::start, calib::Stage::scan, calib::Stage::local, calib::Stage::profile, calib::Stage::edge}) {
     int n = 0, failed = 0;
     double best = INFINITY;
     for (const auto& e : res.evaluations)
@@ -213,22 +224,28 @@ void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::Se
             << (trajectory ? " m^2" : "") << ")";
   if (res.best_eval.tau) std::cout << ", time offset tau = " << fixed(1e3 * *res.best_eval.tau, 3) << " ms (measurement clock minus simulation)";
   std::cout << "\n";
-  bool open = false;
   for (std::size_t k = 0; k < in.params.size(); ++k) {
     std::cout << in.params[k].key << " = " << value_text(res.best[k]);
-    if (k < res.profiles.size()) {
-      std::cout << "  " << interval_text(res.profiles[k], in.params[k], opt.search.factor);
-      open = open || (!res.profiles[k].lo && !res.profiles[k].hi);
-    }
+    if (k < res.profiles.size()) std::cout << "  " << interval_text(res.profiles[k], in.params[k], res.rule);
     std::cout << "\n";
   }
-  if (open) {
-    // A residual made of measurement noise: the objective rises by its n-th part where the fit is one standard
-    // deviation off (a change of 1 in chi^2 = n * objective / sigma^2).
-    const std::size_t n = residual_count(in.data, in.window);
-    std::cout << "note: the objective stays within " << value_text(opt.search.factor) << " x the best across the whole range; where the"
-              << " residual is measurement noise, --factor " << value_text(1 + 1.0 / static_cast<double>(n)) << " (1 + 1/n, n = " << n
-              << " residuals) gives the interval of one standard deviation\n";
+  for (std::size_t k = 0; k < res.profiles.size() && k < in.params.size(); ++k)
+    if (!res.profiles[k].lo && !res.profiles[k].hi)
+      std::cout << "note: the objective stays within " << value_text(res.rule.factor) << " x the best across the whole range of "
+                << in.params[k].key << ": the measurement does not determine it"
+                << (res.rule.given ? " within this factor" : " at this confidence") << "\n";
+  // An interval narrower than a few of its ends' last brackets (the profile spacing halved --refine times, in the unit
+  // cube) has crude ends: the line through a bracket's ends misses a curved profile's crossing.
+  const int points = opt.search.profile_points, rounds = opt.search.refine;
+  for (std::size_t k = 0; k < res.profiles.size() && k < in.params.size() && points > 1; ++k) {
+    const auto& pr = res.profiles[k];
+    if (!pr.lo || !pr.hi) continue;
+    const double width = calib::unit_of(in.params[k], *pr.hi) - calib::unit_of(in.params[k], *pr.lo);
+    const double bracket = std::ldexp(1.0 / (points - 1), -rounds);
+    if (width < 4 * bracket)
+      std::cout << "note: the interval of " << in.params[k].key << " is narrower than 4 of its ends' last brackets; --refine "
+                << rounds + static_cast<int>(std::ceil(std::log2(4 * bracket / std::max(width, 1e-12 * bracket)))) + 2
+                << " makes the brackets a sixteenth of it\n";
   }
   if (!val) return;
   std::cout << "validation on " << opt.validate << " (not used in the fit";
@@ -290,7 +307,9 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   calib::SearchResult res;
   {
     cluster::Hold hold;  // the ranks wait on each other from stage to stage
-    res = calib::search(in.params, start, evaluate, opt.search, cluster_runner(opt.jobs),
+    calib::SearchOptions so = opt.search;
+    so.inner_parameters = trajectory ? 1 : 0;  // the time offset tau, fitted in every evaluation
+    res = calib::search(in.params, start, evaluate, so, cluster_runner(opt.jobs),
                         world.rank == 0 ? progress.callback() : calib::Progress{});
   }
   const double wall = seconds_since(t0);
@@ -336,6 +355,7 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   rec.held_out = in.held_out;
   rec.held_window = in.held_window;
   rec.search = opt.search;
+  rec.search.inner_parameters = trajectory ? 1 : 0;
   rec.result = res;
   rec.validation = val ? &*val : nullptr;
   rec.best_run = best_run ? &*best_run : nullptr;

@@ -119,7 +119,7 @@ json validation_json(const CalibrationRecord& rec) {
   return j;
 }
 
-constexpr calib::Stage kStages[] = {calib::Stage::start, calib::Stage::scan, calib::Stage::local, calib::Stage::profile};
+constexpr calib::Stage kStages[] = {calib::Stage::start, calib::Stage::scan, calib::Stage::local, calib::Stage::profile, calib::Stage::edge};
 
 std::string calibration_csv(const CalibrationRecord& rec) {
   std::string out = "index,stage,item";
@@ -224,7 +224,8 @@ json calibration_json(const CalibrationRecord& rec) {
   const auto& so = rec.search;
   const int d = static_cast<int>(rec.params.size());
   j["search"] = {{"scan", so.scan < 0 ? 8 * d + 1 : so.scan}, {"starts", so.starts}, {"max_evals", so.max_evals}, {"xtol", so.xtol},
-                 {"profile_points", so.profile_points}, {"factor", so.factor}};
+                 {"profile_points", so.profile_points}, {"factor", opt_json(so.factor)},
+                 {"confidence", so.factor ? json(nullptr) : json(so.confidence)}, {"refine", so.refine}};
   json best = evaluation_json(res.best_eval);
   json values = json::object();
   for (std::size_t k = 0; k < rec.params.size() && k < res.best.size(); ++k) values[rec.params[k].key] = res.best[k];
@@ -243,6 +244,9 @@ json calibration_json(const CalibrationRecord& rec) {
   j["evaluations"] = {{"count", res.evaluations.size()}, {"failed", res.failed}, {"by_stage", by_stage}, {"by_rank", by_rank},
                       {"stage_wall_s", stage_wall}, {"file", "calibration.csv"}};
   json profiles = json::array();
+  const auto& rule = res.rule;
+  const json factor_rule = rule.given ? json{{"kind", "given"}}
+                                      : json{{"kind", "confidence"}, {"confidence", rule.confidence}, {"q", rule.q}, {"n", rule.n}, {"p", rule.p}};
   for (std::size_t k = 0; k < res.profiles.size() && k < rec.params.size(); ++k) {
     const auto& p = res.profiles[k];
     json obj = json::array();
@@ -250,8 +254,9 @@ json calibration_json(const CalibrationRecord& rec) {
     profiles.push_back({{"key", rec.params[k].key},
                         {"values", p.values},
                         {"objective", obj},
-                        {"factor", so.factor},
-                        {"threshold", finite_or_null(so.factor * res.best_eval.objective)},
+                        {"factor", finite_or_null(rule.factor)},
+                        {"factor_rule", factor_rule},
+                        {"threshold", finite_or_null(rule.threshold)},
                         {"interval", {{"lo", opt_json(p.lo)}, {"hi", opt_json(p.hi)}}}});
   }
   j["profiles"] = profiles;  // an interval end null: the objective stays within the factor up to the bound

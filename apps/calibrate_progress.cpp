@@ -40,7 +40,8 @@ calib::Progress ProgressLine::callback() {
 /// The time left: the stage's remaining items at the pace of its finished ones (or, before one has finished, as
 /// the later stages are estimated), then the later stages: each work item one evaluation (scan, the profile of one
 /// parameter), or a local search of up to --max-evals evaluations (the profile of several parameters: a short one,
-/// taken as a quarter of that), run `workers` at a time. A guide, not a promise: local searches often stop early.
+/// taken as a quarter of that), run `workers` at a time; the edges as `refine` rounds of 2 d profile points. A guide,
+/// not a promise: local searches often stop early.
 double ProgressLine::time_left(calib::Stage s, std::size_t done, std::size_t items, double t) const {
   const double t_eval = eval_count_ ? eval_wall_ / static_cast<double>(eval_count_) : 0;
   auto rounds = [&](double n) { return std::ceil(n / workers_); };
@@ -48,6 +49,7 @@ double ProgressLine::time_left(calib::Stage s, std::size_t done, std::size_t ite
   const double profile_evals = d_ > 1 ? std::max(1.0, local_evals / 4) : 1.0;
   const double profile_items = opt_.profile_points > 0 ? static_cast<double>(d_) * opt_.profile_points : 0;
   const double local_items = opt_.starts;
+  const double edge_items = opt_.profile_points > 0 ? 2.0 * static_cast<double>(d_) : 0;  // at most, each round
   double left = 0;
   // This stage, from the end of the one before it.
   StageTimes before = times_;
@@ -59,7 +61,8 @@ double ProgressLine::time_left(calib::Stage s, std::size_t done, std::size_t ite
   left += per_item * static_cast<double>(items - std::min(done, items));
   // The stages after it.
   if (s == calib::Stage::start || s == calib::Stage::scan) left += rounds(local_items) * local_evals * t_eval;
-  if (s != calib::Stage::profile) left += rounds(profile_items) * profile_evals * t_eval;
+  if (s != calib::Stage::profile && s != calib::Stage::edge) left += rounds(profile_items) * profile_evals * t_eval;
+  if (s != calib::Stage::edge) left += opt_.refine * rounds(edge_items) * profile_evals * t_eval;
   return left;
 }
 

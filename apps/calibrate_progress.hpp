@@ -14,7 +14,7 @@ namespace imcol {
 
 /// When each stage ended (s after the search began; NaN: the stage did not run).
 struct StageTimes {
-  std::array<double, 4> end;  // by calib::Stage
+  std::array<double, 5> end;  // by calib::Stage
   /// The stage's wall time: from the end of the stage before it (or the start) to its own end; NaN if it did not run.
   double wall(calib::Stage s) const;
 };

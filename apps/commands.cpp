@@ -399,7 +399,7 @@ Subcommand add_sweep(CLI::App& app) {
 }
 
 Subcommand add_calibrate(CLI::App& app) {
-  struct Opt { CommonOptions c; std::string scene; CalibrateOptions k; double offset_max = 0; bool no_plot = false, no_progress = false; };
+  struct Opt { CommonOptions c; std::string scene; CalibrateOptions k; double offset_max = 0, factor = 2; bool no_plot = false, no_progress = false; };
   auto o = std::make_shared<Opt>();
   auto& k = o->k;
   auto* cal = app.add_subcommand("calibrate", "fit scene keys to a measured trajectory or e table (docs/calibration.md)");
@@ -417,15 +417,23 @@ Subcommand add_calibrate(CLI::App& app) {
   cal->add_option("--max-evals", k.search.max_evals, "evaluations per local search (default 40)")->check(integer_rule("--max-evals", 1, 100000));
   cal->add_option("--profile-points", k.search.profile_points, "profile points per parameter (default 15; 0: no profiles)")
       ->check(integer_rule("--profile-points", 0, 10000));
-  cal->add_option("--factor", k.search.factor, "profile interval: where the objective stays within FACTOR x the best (default 2)")
-      ->check(number_rule("--factor", {1, 1e30, true, false}));
+  auto* factor = cal->add_option("--factor", o->factor, "profile interval: where the objective stays within FACTOR x the best (replaces --confidence)")
+                     ->check(number_rule("--factor", {1, 1e30, true, false}));
+  auto* confidence = cal->add_option("--confidence", k.search.confidence,
+                                     "profile interval: the confidence interval at this probability under Gaussian noise (default 0.95)")
+                         ->check(number_rule("--confidence", {0, 1, true, true}));
+  cal->add_option("--refine", k.search.refine, "bisection rounds refining each interval end (default 4; 0: none)")
+      ->check(integer_rule("--refine", 0, 60));
   cal->add_option("--validate", k.validate, "a measurement of the same kind, not fitted: scored under the fitted values")->check(path_rule("--validate"));
   cal->add_option("--jobs", k.jobs, "parallel evaluations a process (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
   cal->add_option("--out", k.out, "output directory (default out/<scene name>-calibrate)")->check(path_rule("--out"));
   cal->add_flag("--no-progress", o->no_progress, "no progress line on the terminal");
   cal->add_flag("--no-plot", o->no_plot, "skip DIR/calibration.png");
   add_common(cal, o->c);
-  return {cal, [o, offset] {
+  return {cal, [o, offset, factor, confidence] {
+    if (factor->count() && confidence->count())
+      throw InputError("command line", "--confidence", "give either --confidence (the interval at a probability) or --factor (the factor itself), not both");
+    if (factor->count()) o->k.search.factor = o->factor;
     o->k.plot = !o->no_plot;
     o->k.progress = !o->no_progress;
     if (offset->count()) o->k.offset_max = o->offset_max;

@@ -24,6 +24,7 @@ std::string evaluations_to_bytes(const std::vector<ValuedEvaluation>& evals) {
                  {"objective", number(ev.objective)},
                  {"rms", number(ev.rms)},
                  {"tau", ev.tau ? number(*ev.tau) : nlohmann::json(nullptr)},
+                 {"residuals", ev.residuals},
                  {"e_sim", e_sim},
                  {"message", ev.message},
                  {"wall_s", ev.wall_s}});
@@ -41,6 +42,7 @@ std::vector<ValuedEvaluation> evaluations_from_bytes(const std::string& bytes) {
     ev.objective = number_or(j.at("objective"), inf);
     ev.rms = number_or(j.at("rms"), inf);
     if (j.at("tau").is_number()) ev.tau = j["tau"].get<double>();
+    ev.residuals = j.at("residuals").get<std::size_t>();
     for (const auto& e : j.at("e_sim")) ev.e_sim.push_back(number_or(e, nan));
     ev.message = j.at("message").get<std::string>();
     ev.wall_s = j.at("wall_s").get<double>();

@@ -8,6 +8,7 @@
 //  * e table: the mean square of e_sim - e_meas over the rows (each row one run, measured as imcol sweep measures a
 //    point, solver.t_end doubled at most twice while too short; a run with no rebound, its summary's `separated` false,
 //    counts as e = 0).
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +38,7 @@ struct Evaluation {
   double objective = 0;        // mean square residual (m^2 or e^2); +inf when !ok
   double rms = 0;              // sqrt(objective), in m or e
   std::optional<double> tau;   // s, the fitted offset (trajectory)
+  std::size_t residuals = 0;   // n, the residuals the mean is taken over (window samples x columns, or table rows)
   std::vector<double> e_sim;   // per table row (table); NaN where a run failed
   std::string message;         // why it failed (solver failure, input error of a row's scene)
   double wall_s = 0;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <mutex>
 
+#include "calibrate/confidence.hpp"
 #include "calibrate/evaluation_bytes.hpp"
 #include "calibrate/local_search.hpp"
 #include "calibrate/profile.hpp"
@@ -20,6 +21,7 @@ const char* stage_name(Stage s) {
     case Stage::scan: return "scan";
     case Stage::local: return "local";
     case Stage::profile: return "profile";
+    case Stage::edge: return "edge";
   }
   return "?";
 }
@@ -172,56 +174,131 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
   const std::size_t P = opt.profile_points > 0 ? static_cast<std::size_t>(opt.profile_points) : 0;
   auto profile_u = [&](std::size_t p) { return P == 1 ? 0.5 : static_cast<double>(p) / static_cast<double>(P - 1); };
   const int profile_evals = std::max(10, opt.max_evals / 4);  // per profile point, d > 1
-  std::vector<std::vector<EvaluationRecord>> profile_items;
-  if (P > 0)
-    profile_items = st.run(
+  // One profile point: parameter j at u_j, the others at their best (one parameter) or re-optimised from there.
+  auto profile_point = [&](std::size_t j, double uj, const std::function<double(const std::vector<double>&)>& eval) {
+    std::vector<double> u = u_best;
+    u[j] = uj;
+    if (d == 1) {
+      eval(u);
+      return;
+    }
+    std::vector<double> others;
+    for (std::size_t k = 0; k < d; ++k)
+      if (k != j) others.push_back(u_best[k]);
+    local_search(others, profile_evals, opt.xtol, step, [&](const std::vector<double>& o) {
+      std::vector<double> full(d);
+      for (std::size_t k = 0, m = 0; k < d; ++k) full[k] = k == j ? uj : o[m++];
+      return eval(full);
+    });
+  };
+  // A work item's best objective (+inf: none succeeded).
+  auto item_best = [](const std::vector<EvaluationRecord>& item) {
+    double f = std::numeric_limits<double>::infinity();
+    for (const auto& r : item)
+      if (r.eval.ok) f = std::min(f, r.eval.objective);
+    return f;
+  };
+  // (u_j, objective) of each parameter's profile: its points and, later, the refined ends' points (rank 0).
+  std::vector<std::vector<std::pair<double, double>>> pts(d);
+  if (P > 0) {
+    const auto items = st.run(
         Stage::profile, d * P, [](std::size_t) { return Stage::profile; }, [](std::size_t i) { return static_cast<int>(i); },
-        [&](std::size_t i, const auto& eval) {
-          const std::size_t j = i / P;
-          std::vector<double> u = u_best;
-          u[j] = profile_u(i % P);
-          if (d == 1) {
-            eval(u);
-            return;
-          }
-          std::vector<double> others;
-          for (std::size_t k = 0; k < d; ++k)
-            if (k != j) others.push_back(u_best[k]);
-          local_search(others, profile_evals, opt.xtol, step, [&](const std::vector<double>& o) {
-            std::vector<double> full(d);
-            for (std::size_t k = 0, m = 0; k < d; ++k) full[k] = k == j ? u[j] : o[m++];
-            return eval(full);
-          });
-        });
+        [&](std::size_t i, const auto& eval) { profile_point(i / P, profile_u(i % P), eval); });
+    for (std::size_t i = 0; i < items.size(); ++i) pts[i / P].emplace_back(profile_u(i % P), item_best(items[i]));
+  }
+  if (P == 0) {
+    for (const auto& r : result.evaluations) result.failed += !r.eval.ok;
+    if (const EvaluationRecord* b = st.best_record()) result.best = b->values, result.best_eval = b->eval;
+    return result;
+  }
 
-  // The best of all evaluations, and each profile's interval within factor × best.
+  // The threshold: factor × the best so far, the factor given or 1 + q / (n - p) (rank 0 decides; the others follow
+  // the shared brackets).
+  FactorRule& rule = result.rule;
+  rule.given = opt.factor.has_value();
+  rule.p = d + static_cast<std::size_t>(std::max(0, opt.inner_parameters));
+  if (!rule.given) {
+    rule.confidence = opt.confidence;
+    rule.q = chi2_1_quantile(opt.confidence);
+  }
+  auto set_threshold = [&](const EvaluationRecord* b) {
+    if (!b) return;
+    rule.n = b->eval.residuals;
+    rule.factor = rule.given ? *opt.factor : confidence_factor(opt.confidence, rule.n, rule.p);
+    rule.threshold = rule.factor * b->eval.objective;
+  };
+  set_threshold(st.best_record());
+
+  // 4. Edges: per parameter and side, the bracket (u inside, u outside) of the interval's end where it is finite;
+  // each round evaluates the brackets' middles as profile points and keeps the half that holds the crossing.
+  struct Bracket {
+    std::size_t j;
+    double in, out;
+  };
+  std::vector<Bracket> brackets;
+  if (st.best_record()) {
+    const std::vector<double> ub = st.unit_of_values(st.best_record()->values);
+    for (std::size_t j = 0; j < d; ++j) {
+      auto p = pts[j];
+      p.emplace_back(ub[j], st.best_record()->eval.objective);
+      std::stable_sort(p.begin(), p.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
+      std::size_t m = 0;
+      for (std::size_t i = 1; i < p.size(); ++i)
+        if (p[i].second < p[m].second) m = i;
+      if (!(p[m].second <= rule.threshold)) continue;
+      for (std::size_t i = m; i-- > 0;)
+        if (!(p[i].second <= rule.threshold)) {
+          brackets.push_back({j, p[i + 1].first, p[i].first});
+          break;
+        }
+      for (std::size_t i = m + 1; i < p.size(); ++i)
+        if (!(p[i].second <= rule.threshold)) {
+          brackets.push_back({j, p[i - 1].first, p[i].first});
+          break;
+        }
+    }
+  }
+  int edge_item = 0;
+  for (int round = 0; round < opt.refine; ++round) {
+    // This round's points (j, u_j), rank 0's, made every rank's.
+    std::vector<std::vector<double>> mids;
+    for (const auto& b : brackets) mids.push_back({static_cast<double>(b.j), 0.5 * (b.in + b.out)});
+    mids = st.share(mids);
+    if (mids.empty()) break;
+    const int first = edge_item;
+    const auto items = st.run(
+        Stage::edge, mids.size(), [](std::size_t) { return Stage::edge; }, [first](std::size_t i) { return first + static_cast<int>(i); },
+        [&](std::size_t i, const auto& eval) { profile_point(static_cast<std::size_t>(mids[i][0]), mids[i][1], eval); });
+    edge_item += static_cast<int>(mids.size());
+    for (std::size_t i = 0; i < items.size() && i < brackets.size(); ++i) {
+      const double f = item_best(items[i]);
+      pts[brackets[i].j].emplace_back(mids[i][1], f);
+      (f <= rule.threshold ? brackets[i].in : brackets[i].out) = mids[i][1];
+    }
+  }
+
+  // The best of all evaluations, and each profile's interval within factor × best: the profile's points and the
+  // refined ends' (an end's last bracket holds no other point, so the end is interpolated inside it).
   for (const auto& r : result.evaluations) result.failed += !r.eval.ok;
   const EvaluationRecord* b = st.best_record();
   if (!b) return result;
   result.best = b->values;
   result.best_eval = b->eval;
-  if (P == 0) return result;
+  set_threshold(b);
   const std::vector<double> ub = st.unit_of_values(result.best);
-  const double threshold = opt.factor * result.best_eval.objective;
   for (std::size_t j = 0; j < d; ++j) {
-    // (u_j, objective): each profile point's best evaluation, and the overall best.
-    std::vector<std::pair<double, double>> pts{{ub[j], result.best_eval.objective}};
-    for (std::size_t p = 0; p < P; ++p) {
-      double f = std::numeric_limits<double>::infinity();
-      for (const auto& r : profile_items[j * P + p])
-        if (r.eval.ok) f = std::min(f, r.eval.objective);
-      pts.emplace_back(profile_u(p), f);
-    }
-    std::stable_sort(pts.begin(), pts.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
+    auto p = pts[j];
+    p.emplace_back(ub[j], result.best_eval.objective);
+    std::stable_sort(p.begin(), p.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
     std::vector<double> u, f;
     Profile prof;
-    for (const auto& [x, y] : pts) {
+    for (const auto& [x, y] : p) {
       u.push_back(x);
       f.push_back(y);
       prof.values.push_back(value_of(params[j], x));
       prof.objective.push_back(y);
     }
-    const auto [lo, hi] = profile_interval(u, f, threshold);
+    const auto [lo, hi] = profile_interval(u, f, rule.threshold);
     if (lo) prof.lo = value_of(params[j], *lo);
     if (hi) prof.hi = value_of(params[j], *hi);
     result.profiles.push_back(std::move(prof));

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The search `imcol calibrate` runs, on the unit cube of the parameters (calibrate/fit_parameter.hpp), in three
+// The search `imcol calibrate` runs, on the unit cube of the parameters (calibrate/fit_parameter.hpp), in
 // stages whose work items are independent and may run anywhere (threads, MPI ranks):
 //  1. scan: `scan` points (a grid for one parameter, a Halton set for more) and the scene's own values (the start);
 //  2. local: bounded derivative-free local searches (NLopt LN_BOBYQA) from the best `starts` points of stage 1, each
 //     one work item (its evaluations run one after another);
 //  3. profile: for each parameter, `profile_points` values across its bounds, the others re-optimised (a short local
-//     search from the best) when there are more than one; the interval where the objective stays within `factor`
-//     times the best.
+//     search from the best) when there are more than one; the interval where the objective stays within a factor
+//     of the best (calibrate/confidence.hpp, or given);
+//  4. edge: each finite end of an interval refined by bisection between the profile point inside and its neighbour
+//     outside, `refine` rounds (one work item per end and round, a profile point each), the end interpolated
+//     linearly inside the last bracket.
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -25,10 +28,13 @@ struct SearchOptions {
   int max_evals = 40;           // per local search
   double xtol = 1e-3;           // local searches stop when a step changes u by less than this
   int profile_points = 15;      // per parameter; 0 = no profiles
-  double factor = 2;            // profile interval: objective <= factor * best
+  std::optional<double> factor; // profile interval: objective <= factor * best; none: from `confidence`
+  double confidence = 0.95;     // the default factor 1 + q / (n - p), q the chi^2(1) quantile at this probability
+  int inner_parameters = 0;     // parameters each evaluation fits itself (a trajectory's time offset: 1), counted in p
+  int refine = 4;               // bisection rounds for each finite interval end; 0 = none
 };
 
-enum class Stage { start, scan, local, profile };
+enum class Stage { start, scan, local, profile, edge };
 const char* stage_name(Stage s);
 
 /// One evaluation of the search, in the order done.
@@ -41,8 +47,18 @@ struct EvaluationRecord {
 };
 
 struct Profile {
-  std::vector<double> values, objective;  // along the parameter (others at their best or re-optimised)
+  std::vector<double> values, objective;  // along the parameter (others at their best or re-optimised), the refined
+                                          // ends' points among them, sorted by value
   std::optional<double> lo, hi;           // the interval within factor * best; none: it reaches the bound
+};
+
+/// How the profile threshold was chosen: factor × the best objective.
+struct FactorRule {
+  bool given = false;        // SearchOptions::factor; else the confidence rule
+  double confidence = 0, q = 0;  // the rule's probability and chi^2(1) quantile
+  std::size_t n = 0, p = 0;  // residuals of the best evaluation; fitted parameters (the inner ones among them)
+  double factor = 0;
+  double threshold = 0;      // factor × the best objective
 };
 
 struct SearchResult {
@@ -50,6 +66,7 @@ struct SearchResult {
   Evaluation best_eval;
   std::vector<EvaluationRecord> evaluations;
   std::vector<Profile> profiles;          // per parameter (empty without profiles)
+  FactorRule rule;                        // with profiles
   int failed = 0;                         // evaluations that failed
 };
 
@@ -65,7 +82,7 @@ struct Runner {
 /// Progress after each finished work item: the stage, items done and in the stage, evaluations so far, best so far.
 using Progress = std::function<void(Stage, std::size_t done, std::size_t items, std::size_t evaluations, double best)>;
 
-/// Runs the three stages. `evaluate(values)` scores one set of parameter values; it must be thread-safe and must
+/// Runs the stages. `evaluate(values)` scores one set of parameter values; it must be thread-safe and must
 /// not throw. Every rank calls search with the same arguments; the result is complete on rank 0 only.
 SearchResult search(const std::vector<FitParameter>& params, const std::vector<double>& start,
                     const std::function<Evaluation(const std::vector<double>&)>& evaluate, const SearchOptions& opt,

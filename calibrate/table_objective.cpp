@@ -60,6 +60,7 @@ Evaluation evaluate_table(const MeasuredTable& m, const std::string& scene_path,
     sum += d * d;
   }
   ev.ok = ev.message.empty();
+  ev.residuals = m.e.size();
   ev.objective = ev.ok ? sum / static_cast<double>(m.e.size()) : std::numeric_limits<double>::infinity();
   ev.rms = std::sqrt(ev.objective);
   ev.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -116,7 +116,8 @@ Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWin
   std::size_t k0 = 0, k1 = 0;  // the window's samples [k0, k1)
   while (k0 < m.t.size() && m.t[k0] < w.t_contact + w.before) ++k0;
   for (k1 = k0; k1 < m.t.size() && m.t[k1] <= w.t_contact + w.after;) ++k1;
-  const double count = static_cast<double>((k1 - k0) * m.columns.size());
+  ev.residuals = (k1 - k0) * m.columns.size();
+  const double count = static_cast<double>(ev.residuals);
   auto f = [&](double tau) {
     double sum = 0;
     for (std::size_t c = 0; c < m.columns.size(); ++c) {

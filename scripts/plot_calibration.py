@@ -8,7 +8,8 @@ Usage: /usr/bin/python3 scripts/plot_calibration.py DIR
 A trajectory: the measured z of each sphere (points) and the fitted run on the measurement's clock (lines, shifted
 by the fitted offset tau), the fitted window shaded, as the seed's Fig. 6.8. An e table: e against the varied key,
 measured and fitted. Then one panel per parameter: the objective along it (the profile; without profiles, every
-evaluation), the line factor x best and the interval where the objective stays below it.
+evaluation), the line factor x best (its confidence, if that set it) and the interval where the objective stays
+below it.
 """
 import bisect
 import json
@@ -121,7 +122,11 @@ def plot_profile(ax, meta, k, evaluations):
         if pts:
             ax.plot(*zip(*pts), "o-", ms=3, color="C0", label="profile")
         if pr.get("threshold"):
-            ax.axhline(pr["threshold"], color="C3", lw=0.9, ls="--", label="%g x best" % pr["factor"])
+            rule = pr.get("factor_rule") or {}
+            label = "%.6g x best" % pr["factor"]
+            if rule.get("kind") == "confidence":
+                label = "%g %% confidence: %s" % (100 * rule["confidence"], label)
+            ax.axhline(pr["threshold"], color="C3", lw=0.9, ls="--", label=label)
         lo = pr["interval"]["lo"]
         hi = pr["interval"]["hi"]
         ax.axvspan(p["lo"] if lo is None else lo, p["hi"] if hi is None else hi, color="C2", alpha=0.12,

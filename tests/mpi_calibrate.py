@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """`imcol calibrate` over an MPI job against the same calibration on threads: `mpirun -np 3` on a short search of
 the shipped scene gg3462 writes a calibration.csv equal to the threaded one cell for cell (the timing and rank
-columns aside), and a calibration.json with the same best, the same profiles and 3 ranks whose evaluations add up.
+columns aside; the refined interval ends among them), and a calibration.json with the same best, the same profiles
+and 3 ranks whose evaluations add up.
 Once for a trajectory (data/measurements/gg3462_trajectory.csv, one thread a rank), once for an e table (two
 threads a rank).
 
@@ -51,6 +52,8 @@ def compare(a, data, jobs):
             failures.append(f"mpi calibration.json: ranks {jm['ranks']}, by_rank {ev['by_rank']}, count {ev['count']}")
         if jt["ranks"] != 1 or jt["evaluations"]["by_rank"] != [jt["evaluations"]["count"]]:
             failures.append(f"threaded calibration.json: ranks {jt['ranks']}, by_rank {jt['evaluations']['by_rank']}")
+        if not any(r[1] == "edge" for r in mpi[1:]):
+            failures.append("no evaluation refined an interval end (stage edge)")
         if not any(r[-1] != "0" for r in mpi[1:]):
             failures.append("no evaluation ran on a rank other than 0")
     return failures

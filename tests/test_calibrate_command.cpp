@@ -130,6 +130,11 @@ TEST(CalibrateCommand, BadOptionsNameTheOption) {
   expect_refused("window not numbers", data + " --window a:b", "command line: key '--window'");
   expect_refused("offset negative", data + " --offset-max -1", "command line: key '--offset-max'");
   expect_refused("factor below 1", data + " --factor 0.5", "command line: key '--factor'");
+  expect_refused("factor and confidence", data + " --factor 1.01 --confidence 0.9", "command line: key '--confidence'", "--factor");
+  expect_refused("confidence 0", data + " --confidence 0", "command line: key '--confidence'");
+  expect_refused("confidence 1", data + " --confidence 1", "command line: key '--confidence'");
+  expect_refused("confidence above 1", data + " --confidence 95", "command line: key '--confidence'");
+  expect_refused("refine negative", data + " --refine -1", "command line: key '--refine'");
   expect_refused("one profile point", data + " --profile-points 1", "command line: key '--profile-points'");
   const DataFile table("table.csv", "sphere[0].velocity,e\n0.1,0.5\n0.2,0.6\n0.3,0.7\n");
   expect_refused("validation of the other kind", data + " --validate " + table.string(), "command line: key '--validate'", table.string());
@@ -137,6 +142,13 @@ TEST(CalibrateCommand, BadOptionsNameTheOption) {
   const DataFile bad_key("badkey.csv", "sphere[0].speed,e\n0.1,0.5\n0.2,0.6\n");
   expect_refused("table key unknown", " --data " + bad_key.string() + kFit, bad_key.string() + ":2", "sphere[0].speed");
   expect_refused("fitted key is a column", " --data " + table.string() + " --fit 'sphere[0].velocity=0.05:0.5'", "command line: key '--fit'");
+  // Two rows for two parameters: no residual left to estimate the noise of the default (confidence) interval.
+  const DataFile two_rows("two_rows.csv", "sphere[0].velocity,e\n0.1,0.5\n0.2,0.6\n");
+  expect_refused("too few residuals", " --data " + two_rows.string() + kFit + " --fit contact.e_dry=0.8:1", two_rows.string(), "2 residuals");
+  // A trajectory: 5 samples of one column for 4 parameters and the time offset.
+  const DataFile five("five.csv", "t,z1\n0,0\n0.001,1e-4\n0.002,2e-4\n0.003,3e-4\n0.004,4e-4\n");
+  expect_refused("too few residuals trajectory", " --data " + five.string() + kFit + " --fit contact.e_dry=0.8:1 --fit fluid.viscosity=1e-3:1e-2"
+                 " --fit fluid.density=900:1100 --window -0.01:0.01", five.string(), "5 residuals");
 }
 
 TEST(CalibrateCommand, WritesItsFilesAndTheBestIsTheBestRow) {
@@ -161,8 +173,17 @@ TEST(CalibrateCommand, WritesItsFilesAndTheBestIsTheBestRow) {
   EXPECT_EQ(std::stod(best->at("contact.delta_ss")), v);  // 17 digits: the same double
   EXPECT_NEAR(std::stod(best->at("objective")), j["best"]["objective"].get<double>(), 1e-11 * j["best"]["objective"].get<double>());
   // Started at 0.006, the fit finds the value the measurement was made with (0.024, noise 2 um): within 0.004, about
-  // the half-width of the interval of one standard deviation of this recording (0.0193 to 0.0256, docs/calibration.md).
+  // a third of this recording's 95 % interval (0.0154 to 0.0284, docs/calibration.md).
   EXPECT_NEAR(v, 0.024, 0.004);
+  // The interval's rule: 95 % confidence, n the window's samples x 2 columns, p = delta_ss and the time offset.
+  const auto& rule = j["profiles"][0]["factor_rule"];
+  EXPECT_EQ(rule["kind"], "confidence");
+  EXPECT_EQ(rule["confidence"].get<double>(), 0.95);
+  EXPECT_NEAR(rule["q"].get<double>(), 3.841459, 1e-6);
+  EXPECT_EQ(rule["n"].get<std::size_t>(), 2 * j["measurement"]["window"]["samples"].get<std::size_t>());
+  EXPECT_EQ(rule["p"].get<int>(), 2);
+  EXPECT_NEAR(j["profiles"][0]["factor"].get<double>(), 1 + 3.841459 / (rule["n"].get<double>() - 2), 1e-9);
+  EXPECT_GT(j["evaluations"]["by_stage"].value("edge", 0), 0);
   EXPECT_EQ(j["parameters"][0]["start"].get<double>(), 0.006);
   EXPECT_EQ(j["measurement"]["kind"], "trajectory");
   EXPECT_EQ(j["profiles"].size(), 1u);

@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The calibration engine's identities: the parameter map and its overrides, the trajectory objective on a run's own
-// trajectory (shifted or not), the default window, profile intervals, evaluations as bytes, a deterministic search.
+// trajectory (shifted or not), the default window, profile intervals, evaluations as bytes, a deterministic search,
+// the confidence factor, and refined interval ends against the exact ones of a quadratic objective.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <limits>
 
+#include "calibrate/confidence.hpp"
 #include "calibrate/evaluation_bytes.hpp"
 #include "calibrate/fit_parameter.hpp"
 #include "calibrate/objective.hpp"
@@ -174,6 +177,7 @@ TEST(CalibrateFormulas, EvaluationsTravelAsBytesUnchanged) {
   a.tau = -2.5e-3 / 7;
   a.e_sim = {0.8, std::numeric_limits<double>::quiet_NaN(), 0.1 / 3};
   a.wall_s = 0.0123;
+  a.residuals = 1402;
   Evaluation b;
   b.objective = std::numeric_limits<double>::infinity();
   b.rms = b.objective;
@@ -190,6 +194,7 @@ TEST(CalibrateFormulas, EvaluationsTravelAsBytesUnchanged) {
   EXPECT_TRUE(std::isnan(back[0].second.e_sim[1]));
   EXPECT_EQ(back[0].second.e_sim[2], 0.1 / 3);
   EXPECT_EQ(back[0].second.wall_s, 0.0123);
+  EXPECT_EQ(back[0].second.residuals, 1402u);
   EXPECT_FALSE(back[1].second.ok);
   EXPECT_TRUE(std::isinf(back[1].second.objective));
   EXPECT_FALSE(back[1].second.tau);
@@ -209,6 +214,7 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
   };
   SearchOptions opt;
   opt.profile_points = 9;
+  opt.factor = 2;
   std::size_t progress_calls = 0, last_evaluations = 0;
   const Progress progress = [&](Stage, std::size_t done, std::size_t items, std::size_t evaluations, double) {
     ++progress_calls;
@@ -217,8 +223,9 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
     last_evaluations = evaluations;
   };
   const SearchResult serial = search(params, {0.9, 2}, evaluate, opt, test::thread_runner(1), progress);
-  // One progress line per work item: the start, 17 scan points, 2 local searches, 2 x 9 profile points.
-  EXPECT_EQ(progress_calls, 1u + 17 + 2 + 18);
+  // One progress line per work item: the start, 17 scan points, 2 local searches, 2 x 9 profile points, 4 rounds of
+  // the 4 interval ends.
+  EXPECT_EQ(progress_calls, 1u + 17 + 2 + 18 + 16);
   EXPECT_EQ(last_evaluations, serial.evaluations.size());
   // Items finishing in another order (threads, or ranks handing in last item first), and the stage inputs passing
   // through share: the same evaluations, in the same order.
@@ -239,7 +246,7 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
     }
     EXPECT_EQ(serial.best, other.best);
   }
-  EXPECT_EQ(shares, 2);  // the local searches' starts, the profiles' best point
+  EXPECT_EQ(shares, 2 + 4);  // the local searches' starts, the profiles' best point, each edge round's points
   ASSERT_EQ(serial.best.size(), 2u);
   EXPECT_NEAR(serial.best[0], 0.3, 0.01);
   EXPECT_NEAR(std::log10(serial.best[1] / 20), 0, 0.01);
@@ -256,4 +263,112 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
   EXPECT_GT(*pa.hi, 0.3);
   EXPECT_LT(*pa.hi, 0.32);
   EXPECT_GT(serial.failed, 0);  // the scan's points with a >= 0.95
+}
+
+TEST(CalibrateFormulas, ChiSquareQuantileAndConfidenceFactor) {
+  EXPECT_NEAR(chi2_1_quantile(0.95), 3.841459, 1e-6);
+  EXPECT_NEAR(chi2_1_quantile(0.6827), 1.0, 1e-3);  // one standard deviation: P(|Z| < 1) = 0.682689
+  EXPECT_NEAR(chi2_1_quantile(0.99), 6.634897, 1e-6);
+  for (double y : {-0.9, -0.3, 0.1, 0.5, 0.999}) EXPECT_NEAR(std::erf(erf_inverse(y)), y, 1e-15) << y;
+  EXPECT_NEAR(confidence_factor(0.95, 1402, 2), 1 + 3.841459 / 1400, 1e-9);
+  EXPECT_TRUE(std::isinf(confidence_factor(0.95, 2, 2)));  // no residual left to estimate the noise
+}
+
+namespace {
+
+/// A least-squares objective of known shape, no simulation: J = J0 (1 + (x - x0)' A (x - x0)) over n residuals.
+struct Quadratic {
+  std::vector<double> x0;
+  std::vector<std::vector<double>> a;
+  double j0 = 1e-6;
+  std::size_t n = 40;
+  Evaluation operator()(const std::vector<double>& v) const {
+    double q = 0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      for (std::size_t k = 0; k < v.size(); ++k) q += (v[i] - x0[i]) * a[i][k] * (v[k] - x0[k]);
+    Evaluation ev;
+    ev.ok = true;
+    ev.objective = j0 * (1 + q);
+    ev.rms = std::sqrt(ev.objective);
+    ev.residuals = n;
+    return ev;
+  }
+};
+
+/// The profile of J along x_j (the other minimised) is J0 (1 + c (x_j - x0_j)^2), c = 1 / (A^-1)_jj; its interval
+/// within factor × best: x0_j ± sqrt((threshold / J0 - 1) / c).
+std::pair<double, double> exact_interval(const Quadratic& f, std::size_t j, double threshold) {
+  double c = f.a[0][0];
+  if (f.a.size() == 2) {
+    const double det = f.a[0][0] * f.a[1][1] - f.a[0][1] * f.a[1][0];
+    c = det / f.a[1 - j][1 - j];
+  }
+  const double h = std::sqrt((threshold / f.j0 - 1) / c);
+  return {f.x0[j] - h, f.x0[j] + h};
+}
+
+}  // namespace
+
+// The refined ends against the exact interval: 15 profile points on [0, 1] are 1/14 = 0.071 apart; 4 bisection rounds
+// leave a bracket of 0.0045, and a line through a parabola's two points of that bracket crosses the threshold within
+// h^2 / (8 w) of its crossing (w the interval's half-width, 0.15 here): 1.7e-5. The ends must be within 5e-5, 1400 times
+// finer than the profile's spacing; without the refinement they are not.
+TEST(CalibrateFormulas, RefinedIntervalMatchesTheExactOneInOneParameter) {
+  Quadratic f;
+  f.x0 = {0.4137};
+  f.n = 40;
+  const double factor = confidence_factor(0.95, f.n, 1);
+  f.a = {{(factor - 1) / (0.15 * 0.15)}};  // the interval's half-width about 0.15
+  const std::vector<FitParameter> params{{"x", 0, 1, Scale::linear}};
+  SearchOptions opt;  // the defaults: 95 % confidence, 15 profile points, 4 rounds
+  const SearchResult r = search(params, {0.9}, f, opt, test::thread_runner(2));
+  ASSERT_EQ(r.profiles.size(), 1u);
+  EXPECT_FALSE(r.rule.given);
+  EXPECT_EQ(r.rule.n, 40u);
+  EXPECT_EQ(r.rule.p, 1u);
+  EXPECT_NEAR(r.rule.factor, factor, 1e-15);
+  EXPECT_EQ(r.rule.threshold, r.rule.factor * r.best_eval.objective);
+  const auto [lo, hi] = exact_interval(f, 0, r.rule.threshold);
+  ASSERT_TRUE(r.profiles[0].lo && r.profiles[0].hi);
+  EXPECT_NEAR(*r.profiles[0].lo, lo, 5e-5);
+  EXPECT_NEAR(*r.profiles[0].hi, hi, 5e-5);
+  std::cout << "d = 1: ends off the exact ones by " << *r.profiles[0].lo - lo << ", " << *r.profiles[0].hi - hi << "\n";
+  // Refined points join the profile, sorted; 2 ends x 4 rounds, one evaluation each.
+  const auto edge = std::count_if(r.evaluations.begin(), r.evaluations.end(), [](const auto& e) { return e.stage == Stage::edge; });
+  EXPECT_EQ(edge, 8);
+  EXPECT_EQ(r.profiles[0].values.size(), 15u + 1 + 8);
+  EXPECT_TRUE(std::is_sorted(r.profiles[0].values.begin(), r.profiles[0].values.end()));
+  // Without refinement the linear interpolation between profile points misses by far more.
+  opt.refine = 0;
+  const SearchResult coarse = search(params, {0.9}, f, opt, test::thread_runner(2));
+  ASSERT_TRUE(coarse.profiles[0].lo && coarse.profiles[0].hi);
+  std::cout << "d = 1 unrefined: off by " << *coarse.profiles[0].lo - lo << ", " << *coarse.profiles[0].hi - hi << "\n";
+  EXPECT_GT(std::max(std::abs(*coarse.profiles[0].lo - lo), std::abs(*coarse.profiles[0].hi - hi)), 10 * 5e-5);
+}
+
+// Two correlated parameters: each profile point and refined end re-optimises the other (a short local search), so
+// the profile lies a little above the exact one where that search stops (xtol 1e-3 in u: about b (1e-3)^2 in J/J0,
+// 4e-6, a shift of 4e-6 / (2 c w) ~ 3e-6 in the end); with the bisection's 1.7e-5 the ends must lie within 1e-4 of
+// the exact ones, 700 times finer than the spacing.
+TEST(CalibrateFormulas, RefinedIntervalMatchesTheExactOneInTwoParameters) {
+  Quadratic f;
+  f.x0 = {0.4137, 0.5821};
+  f.n = 60;
+  const double factor = confidence_factor(0.95, f.n, 2);
+  const double c = (factor - 1) / (0.15 * 0.15);  // profile curvature of x: half-width 0.15
+  f.a = {{c + 1.0, 2.0}, {2.0, 4.0}};             // c = a00 - a01^2 / a11
+  const std::vector<FitParameter> params{{"x", 0, 1, Scale::linear}, {"y", 0, 1, Scale::linear}};
+  const SearchResult r = search(params, {0.9, 0.1}, f, SearchOptions{}, test::thread_runner(2));
+  ASSERT_EQ(r.profiles.size(), 2u);
+  EXPECT_EQ(r.rule.p, 2u);
+  EXPECT_NEAR(r.rule.factor, factor, 1e-15);
+  for (std::size_t j = 0; j < 2; ++j) {
+    const auto [lo, hi] = exact_interval(f, j, r.rule.threshold);
+    ASSERT_TRUE(r.profiles[j].lo && r.profiles[j].hi) << j;
+    EXPECT_NEAR(*r.profiles[j].lo, lo, 1e-4) << j;
+    EXPECT_NEAR(*r.profiles[j].hi, hi, 1e-4) << j;
+    std::cout << "d = 2, parameter " << j << ": ends off the exact ones by " << *r.profiles[j].lo - lo << ", " << *r.profiles[j].hi - hi
+              << "\n";
+  }
+  EXPECT_GT(std::count_if(r.evaluations.begin(), r.evaluations.end(), [](const auto& e) { return e.stage == Stage::edge; }), 8);
 }

@@ -64,7 +64,9 @@ Timed fit_delta_ss(const MeasuredTrajectory& m, const SearchOptions& opt) {
     for (const auto& o : overrides_for(params, v)) ov.push_back(o);
     return evaluate_trajectory(m, w, scene, ov);
   };
-  SearchResult r = search(params, {sc.contact.delta_ss}, evaluate, opt, test::thread_runner(2));
+  SearchOptions o = opt;
+  o.inner_parameters = 1;  // the time offset
+  SearchResult r = search(params, {sc.contact.delta_ss}, evaluate, o, test::thread_runner(2));
   return {std::move(r), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
 }
 
@@ -83,8 +85,8 @@ void report(const char* what, const Timed& t) {
 // larger delta_ss starts the contact earlier but with a smaller e, and the two nearly cancel): the trajectory at
 // delta_ss = 0.005 differs from the one at 0.024 by 0.25 µm rms over the default window, at 0.022 by 0.036 µm. The
 // least-squares standard error of delta_ss from N = 240 residuals (2 kHz, z1 and z2) of noise sigma is about
-// sigma / (sqrt(N) * 18 µm) = 0.00036 at sigma = 0.1 µm: the bound 0.002 is about 5.6 standard errors; the profile's
-// factor-2 interval (mean square within twice the best, i.e. a misfit up to sigma) is much wider and must hold 0.024.
+// sigma / (sqrt(N) * 18 µm) = 0.00036 at sigma = 0.1 µm: the bound 0.002 is about 5.6 standard errors; the default
+// profile interval (95 % confidence, about 1.96 standard errors either side) must hold 0.024.
 constexpr double kTrajectoryNoise = 0.1e-6;  // m
 constexpr double kClockOffset = 0.0017;       // s, the measurement's clock ahead of the simulation's
 
@@ -92,8 +94,13 @@ void expect_recovered(const SearchResult& r) {
   ASSERT_EQ(r.best.size(), 1u);
   EXPECT_NEAR(r.best[0], 0.024, 0.002);
   ASSERT_EQ(r.profiles.size(), 1u);
-  EXPECT_LT(r.profiles[0].lo.value_or(0.005), 0.024);
-  EXPECT_GT(r.profiles[0].hi.value_or(0.05), 0.024);
+  EXPECT_FALSE(r.rule.given);
+  EXPECT_EQ(r.rule.confidence, 0.95);
+  EXPECT_EQ(r.rule.p, 2u);  // delta_ss and the time offset
+  EXPECT_EQ(r.rule.n, r.best_eval.residuals);
+  ASSERT_TRUE(r.profiles[0].lo && r.profiles[0].hi);  // the measurement determines delta_ss at 0.1 um of noise
+  EXPECT_LT(*r.profiles[0].lo, 0.024);
+  EXPECT_GT(*r.profiles[0].hi, 0.024);
   ASSERT_TRUE(r.best_eval.tau);
   EXPECT_NEAR(*r.best_eval.tau, kClockOffset, 1e-5);
 }
@@ -116,7 +123,7 @@ TEST(CalibrateRecovery, DeltaSsFromANoisyTrajectoryLocalOnly) {
 }
 
 // A camera's 20 µm of noise is 80 times the whole effect of delta_ss on the window: the calibration must say that it
-// cannot tell, its profile staying within the factor over the whole range.
+// cannot tell, its profile staying within the 95 % confidence factor over the whole range.
 TEST(CalibrateRecovery, DeltaSsUndeterminedUnderCameraNoise) {
   const MeasuredTrajectory m = synthetic_trajectory(20e-6, kClockOffset);
   SearchOptions opt;
@@ -171,7 +178,7 @@ TEST(CalibrateRecovery, DeltaSsAndEDryFromANoisyETable) {
     return evaluate_table(m, scene, ov);
   };
   SearchOptions opt;
-  opt.profile_points = 0;
+  opt.profile_points = 9;
   const SearchResult r = search(params, {sc.contact.delta_ss, sc.contact.e_dry}, evaluate, opt, test::thread_runner(2));
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_EQ(r.best.size(), 2u);
@@ -180,4 +187,15 @@ TEST(CalibrateRecovery, DeltaSsAndEDryFromANoisyETable) {
   EXPECT_NEAR(r.best[0], 0.024, 0.005);
   EXPECT_NEAR(r.best[1], 0.95, 0.0055);
   EXPECT_EQ(r.failed, 0);
+  // The default interval (95 % confidence, n = 7 rows, p = 2) of each holds the truth.
+  EXPECT_EQ(r.rule.n, 7u);
+  EXPECT_EQ(r.rule.p, 2u);
+  ASSERT_EQ(r.profiles.size(), 2u);
+  const double truth[] = {0.024, 0.95};
+  for (std::size_t k = 0; k < 2; ++k) {
+    std::cout << "  interval " << k << ": [" << r.profiles[k].lo.value_or(NAN) << ", " << r.profiles[k].hi.value_or(NAN) << "]\n";
+    ASSERT_TRUE(r.profiles[k].lo && r.profiles[k].hi) << k;  // seven rows determine both
+    EXPECT_LT(*r.profiles[k].lo, truth[k]) << k;
+    EXPECT_GT(*r.profiles[k].hi, truth[k]) << k;
+  }
 }
