@@ -234,19 +234,11 @@ void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::Se
       std::cout << "note: the objective stays within " << value_text(res.rule.factor) << " x the best across the whole range of "
                 << in.params[k].key << ": the measurement does not determine it"
                 << (res.rule.given ? " within this factor" : " at this confidence") << "\n";
-  // An interval narrower than a few of its ends' last brackets (the profile spacing halved --refine times, in the unit
-  // cube) has crude ends: the line through a bracket's ends misses a curved profile's crossing.
-  const int points = opt.search.profile_points, rounds = opt.search.refine;
-  for (std::size_t k = 0; k < res.profiles.size() && k < in.params.size() && points > 1; ++k) {
-    const auto& pr = res.profiles[k];
-    if (!pr.lo || !pr.hi) continue;
-    const double width = calib::unit_of(in.params[k], *pr.hi) - calib::unit_of(in.params[k], *pr.lo);
-    const double bracket = std::ldexp(1.0 / (points - 1), -rounds);
-    if (width < 4 * bracket)
-      std::cout << "note: the interval of " << in.params[k].key << " is narrower than 4 of its ends' last brackets; --refine "
-                << rounds + static_cast<int>(std::ceil(std::log2(4 * bracket / std::max(width, 1e-12 * bracket)))) + 2
-                << " makes the brackets a sixteenth of it\n";
-  }
+  for (std::size_t k = 0; k < res.profiles.size() && k < in.params.size(); ++k)
+    if (!res.profiles[k].resolved)
+      std::cout << "note: after " << opt.search.refine << " rounds (--refine) an end of the interval of " << in.params[k].key
+                << " still lies in a bracket wider than " << value_text(opt.search.refine_to)
+                << " of the interval (--refine-to): raise --refine for sharper ends\n";
   if (!val) return;
   std::cout << "validation on " << opt.validate << " (not used in the fit";
   if (trajectory) std::cout << "; the time offset refitted";

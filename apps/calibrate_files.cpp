@@ -225,7 +225,7 @@ json calibration_json(const CalibrationRecord& rec) {
   const int d = static_cast<int>(rec.params.size());
   j["search"] = {{"scan", so.scan < 0 ? 8 * d + 1 : so.scan}, {"starts", so.starts}, {"max_evals", so.max_evals}, {"xtol", so.xtol},
                  {"profile_points", so.profile_points}, {"factor", opt_json(so.factor)},
-                 {"confidence", so.factor ? json(nullptr) : json(so.confidence)}, {"refine", so.refine}};
+                 {"confidence", so.factor ? json(nullptr) : json(so.confidence)}, {"refine", so.refine}, {"refine_to", so.refine_to}};
   json best = evaluation_json(res.best_eval);
   json values = json::object();
   for (std::size_t k = 0; k < rec.params.size() && k < res.best.size(); ++k) values[rec.params[k].key] = res.best[k];
@@ -257,7 +257,7 @@ json calibration_json(const CalibrationRecord& rec) {
                         {"factor", finite_or_null(rule.factor)},
                         {"factor_rule", factor_rule},
                         {"threshold", finite_or_null(rule.threshold)},
-                        {"interval", {{"lo", opt_json(p.lo)}, {"hi", opt_json(p.hi)}}}});
+                        {"interval", {{"lo", opt_json(p.lo)}, {"hi", opt_json(p.hi)}, {"resolved", p.resolved}}}});
   }
   j["profiles"] = profiles;  // an interval end null: the objective stays within the factor up to the bound
   if (rec.validation) j["validation"] = validation_json(rec);

@@ -422,8 +422,11 @@ Subcommand add_calibrate(CLI::App& app) {
   auto* confidence = cal->add_option("--confidence", k.search.confidence,
                                      "profile interval: the confidence interval at this probability under Gaussian noise (default 0.95)")
                          ->check(number_rule("--confidence", {0, 1, true, true}));
-  cal->add_option("--refine", k.search.refine, "bisection rounds refining each interval end (default 4; 0: none)")
+  cal->add_option("--refine", k.search.refine, "most bisection rounds refining each interval end (default 16; 0: none)")
       ->check(integer_rule("--refine", 0, 60));
+  cal->add_option("--refine-to", k.search.refine_to,
+                  "refine an interval end until its bracket is this fraction of the interval's width (default 1/64)")
+      ->check(number_rule("--refine-to", {0, 1, true, true}));
   cal->add_option("--validate", k.validate, "a measurement of the same kind, not fitted: scored under the fitted values")->check(path_rule("--validate"));
   cal->add_option("--jobs", k.jobs, "parallel evaluations a process (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
   cal->add_option("--out", k.out, "output directory (default out/<scene name>-calibrate)")->check(path_rule("--out"));

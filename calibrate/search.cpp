@@ -236,8 +236,9 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
     double in, out;
   };
   std::vector<Bracket> brackets;
+  std::vector<double> ub;  // the best point when the brackets were set
   if (st.best_record()) {
-    const std::vector<double> ub = st.unit_of_values(st.best_record()->values);
+    ub = st.unit_of_values(st.best_record()->values);
     for (std::size_t j = 0; j < d; ++j) {
       auto p = pts[j];
       p.emplace_back(ub[j], st.best_record()->eval.objective);
@@ -258,22 +259,33 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
         }
     }
   }
+  // A bracket is fine enough once it is refine_to of its interval's width, which is at least the span of the
+  // interval's inside points (its ends' inside points and the best).
+  auto too_wide = [&](const Bracket& b) {
+    double lo = ub[b.j], hi = ub[b.j];
+    for (const auto& c : brackets)
+      if (c.j == b.j) lo = std::min(lo, c.in), hi = std::max(hi, c.in);
+    return std::abs(b.out - b.in) > opt.refine_to * (hi - lo);
+  };
   int edge_item = 0;
   for (int round = 0; round < opt.refine; ++round) {
-    // This round's points (j, u_j), rank 0's, made every rank's.
+    // This round's points (bracket, j, u_j) of the brackets still too wide, rank 0's, made every rank's.
     std::vector<std::vector<double>> mids;
-    for (const auto& b : brackets) mids.push_back({static_cast<double>(b.j), 0.5 * (b.in + b.out)});
+    for (std::size_t k = 0; k < brackets.size(); ++k)
+      if (too_wide(brackets[k])) mids.push_back({static_cast<double>(k), static_cast<double>(brackets[k].j), 0.5 * (brackets[k].in + brackets[k].out)});
     mids = st.share(mids);
     if (mids.empty()) break;
     const int first = edge_item;
     const auto items = st.run(
         Stage::edge, mids.size(), [](std::size_t) { return Stage::edge; }, [first](std::size_t i) { return first + static_cast<int>(i); },
-        [&](std::size_t i, const auto& eval) { profile_point(static_cast<std::size_t>(mids[i][0]), mids[i][1], eval); });
+        [&](std::size_t i, const auto& eval) { profile_point(static_cast<std::size_t>(mids[i][1]), mids[i][2], eval); });
     edge_item += static_cast<int>(mids.size());
-    for (std::size_t i = 0; i < items.size() && i < brackets.size(); ++i) {
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      const auto k = static_cast<std::size_t>(mids[i][0]);
+      if (k >= brackets.size()) continue;  // rank 0 alone holds the brackets (items is empty elsewhere)
       const double f = item_best(items[i]);
-      pts[brackets[i].j].emplace_back(mids[i][1], f);
-      (f <= rule.threshold ? brackets[i].in : brackets[i].out) = mids[i][1];
+      pts[brackets[k].j].emplace_back(mids[i][2], f);
+      (f <= rule.threshold ? brackets[k].in : brackets[k].out) = mids[i][2];
     }
   }
 
@@ -285,10 +297,10 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
   result.best = b->values;
   result.best_eval = b->eval;
   set_threshold(b);
-  const std::vector<double> ub = st.unit_of_values(result.best);
+  const std::vector<double> u_final = st.unit_of_values(result.best);
   for (std::size_t j = 0; j < d; ++j) {
     auto p = pts[j];
-    p.emplace_back(ub[j], result.best_eval.objective);
+    p.emplace_back(u_final[j], result.best_eval.objective);
     std::stable_sort(p.begin(), p.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
     std::vector<double> u, f;
     Profile prof;
@@ -301,6 +313,8 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
     const auto [lo, hi] = profile_interval(u, f, rule.threshold);
     if (lo) prof.lo = value_of(params[j], *lo);
     if (hi) prof.hi = value_of(params[j], *hi);
+    for (const auto& b : brackets)
+      if (b.j == j && too_wide(b)) prof.resolved = false;
     result.profiles.push_back(std::move(prof));
   }
   return result;

@@ -9,8 +9,8 @@
 //     search from the best) when there are more than one; the interval where the objective stays within a factor
 //     of the best (calibrate/confidence.hpp, or given);
 //  4. edge: each finite end of an interval refined by bisection between the profile point inside and its neighbour
-//     outside, `refine` rounds (one work item per end and round, a profile point each), the end interpolated
-//     linearly inside the last bracket.
+//     outside until the bracket is `refine_to` of the interval's width, `refine` rounds at most (one work item per
+//     end still too wide and round, a profile point each), the end interpolated linearly inside the last bracket.
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -31,7 +31,8 @@ struct SearchOptions {
   std::optional<double> factor; // profile interval: objective <= factor * best; none: from `confidence`
   double confidence = 0.95;     // the default factor 1 + q / (n - p), q the chi^2(1) quantile at this probability
   int inner_parameters = 0;     // parameters each evaluation fits itself (a trajectory's time offset: 1), counted in p
-  int refine = 4;               // bisection rounds for each finite interval end; 0 = none
+  int refine = 16;              // most bisection rounds for each finite interval end; 0 = none
+  double refine_to = 1.0 / 64;  // an end is refined until its bracket is this fraction of the interval's width
 };
 
 enum class Stage { start, scan, local, profile, edge };
@@ -50,6 +51,7 @@ struct Profile {
   std::vector<double> values, objective;  // along the parameter (others at their best or re-optimised), the refined
                                           // ends' points among them, sorted by value
   std::optional<double> lo, hi;           // the interval within factor * best; none: it reaches the bound
+  bool resolved = true;                   // every finite end's last bracket within refine_to of the interval's width
 };
 
 /// How the profile threshold was chosen: factor × the best objective.

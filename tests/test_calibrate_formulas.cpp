@@ -215,6 +215,8 @@ TEST(CalibrateFormulas, SearchIsDeterministicAndFindsAQuadraticsMinimum) {
   SearchOptions opt;
   opt.profile_points = 9;
   opt.factor = 2;
+  opt.refine = 4;
+  opt.refine_to = 0;  // every round refines every end: a count known in advance
   std::size_t progress_calls = 0, last_evaluations = 0;
   const Progress progress = [&](Stage, std::size_t done, std::size_t items, std::size_t evaluations, double) {
     ++progress_calls;
@@ -309,10 +311,11 @@ std::pair<double, double> exact_interval(const Quadratic& f, std::size_t j, doub
 
 }  // namespace
 
-// The refined ends against the exact interval: 15 profile points on [0, 1] are 1/14 = 0.071 apart; 4 bisection rounds
-// leave a bracket of 0.0045, and a line through a parabola's two points of that bracket crosses the threshold within
-// h^2 / (8 w) of its crossing (w the interval's half-width, 0.15 here): 1.7e-5. The ends must be within 5e-5, 1400 times
-// finer than the profile's spacing; without the refinement they are not.
+// The refined ends against the exact interval: 15 profile points on [0, 1] are 1/14 = 0.071 apart; bisection until a
+// bracket is 1/64 of the interval (0.3 wide here) takes 4 rounds or 5 (the width is known from the inside points) and
+// leaves a bracket h of 0.0045 or less, and a line through a parabola's two points of that bracket crosses the threshold
+// within h^2 / (8 w) of its crossing (w the interval's half-width, 0.15): 1.7e-5. The ends must be within 5e-5, 1400
+// times finer than the profile's spacing; without the refinement they are not.
 TEST(CalibrateFormulas, RefinedIntervalMatchesTheExactOneInOneParameter) {
   Quadratic f;
   f.x0 = {0.4137};
@@ -320,7 +323,7 @@ TEST(CalibrateFormulas, RefinedIntervalMatchesTheExactOneInOneParameter) {
   const double factor = confidence_factor(0.95, f.n, 1);
   f.a = {{(factor - 1) / (0.15 * 0.15)}};  // the interval's half-width about 0.15
   const std::vector<FitParameter> params{{"x", 0, 1, Scale::linear}};
-  SearchOptions opt;  // the defaults: 95 % confidence, 15 profile points, 4 rounds
+  SearchOptions opt;  // the defaults: 95 % confidence, 15 profile points, brackets to 1/64 of the interval
   const SearchResult r = search(params, {0.9}, f, opt, test::thread_runner(2));
   ASSERT_EQ(r.profiles.size(), 1u);
   EXPECT_FALSE(r.rule.given);
@@ -333,10 +336,12 @@ TEST(CalibrateFormulas, RefinedIntervalMatchesTheExactOneInOneParameter) {
   EXPECT_NEAR(*r.profiles[0].lo, lo, 5e-5);
   EXPECT_NEAR(*r.profiles[0].hi, hi, 5e-5);
   std::cout << "d = 1: ends off the exact ones by " << *r.profiles[0].lo - lo << ", " << *r.profiles[0].hi - hi << "\n";
-  // Refined points join the profile, sorted; 2 ends x 4 rounds, one evaluation each.
+  // Refined points join the profile, sorted; 2 ends x 4 or 5 rounds, one evaluation each.
   const auto edge = std::count_if(r.evaluations.begin(), r.evaluations.end(), [](const auto& e) { return e.stage == Stage::edge; });
-  EXPECT_EQ(edge, 8);
-  EXPECT_EQ(r.profiles[0].values.size(), 15u + 1 + 8);
+  EXPECT_GE(edge, 8);
+  EXPECT_LE(edge, 10);
+  EXPECT_TRUE(r.profiles[0].resolved);
+  EXPECT_EQ(r.profiles[0].values.size(), 15u + 1 + static_cast<std::size_t>(edge));
   EXPECT_TRUE(std::is_sorted(r.profiles[0].values.begin(), r.profiles[0].values.end()));
   // Without refinement the linear interpolation between profile points misses by far more.
   opt.refine = 0;
@@ -344,6 +349,32 @@ TEST(CalibrateFormulas, RefinedIntervalMatchesTheExactOneInOneParameter) {
   ASSERT_TRUE(coarse.profiles[0].lo && coarse.profiles[0].hi);
   std::cout << "d = 1 unrefined: off by " << *coarse.profiles[0].lo - lo << ", " << *coarse.profiles[0].hi - hi << "\n";
   EXPECT_GT(std::max(std::abs(*coarse.profiles[0].lo - lo), std::abs(*coarse.profiles[0].hi - hi)), 10 * 5e-5);
+}
+
+// A narrow interval (0.004 wide, 18 times narrower than the profile's spacing) is refined until its brackets are 1/64
+// of it: 6.3e-5 or less, so that the line through a bracket misses the crossing by h^2 / (8 w) < 2.5e-7; the ends must
+// lie within 1e-6. With at most 4 rounds the brackets stay 0.0045 wide and the profile says its ends are not resolved.
+TEST(CalibrateFormulas, ANarrowIntervalIsRefinedUntilItsEndsAreResolved) {
+  Quadratic f;
+  f.x0 = {0.4137};
+  f.n = 40;
+  const double factor = confidence_factor(0.95, f.n, 1);
+  f.a = {{(factor - 1) / (0.002 * 0.002)}};  // half-width 0.002
+  const std::vector<FitParameter> params{{"x", 0, 1, Scale::linear}};
+  SearchOptions opt;
+  const SearchResult r = search(params, {0.9}, f, opt, test::thread_runner(2));
+  const auto [lo, hi] = exact_interval(f, 0, r.rule.threshold);
+  ASSERT_TRUE(r.profiles[0].lo && r.profiles[0].hi);
+  EXPECT_NEAR(*r.profiles[0].lo, lo, 1e-6);
+  EXPECT_NEAR(*r.profiles[0].hi, hi, 1e-6);
+  EXPECT_TRUE(r.profiles[0].resolved);
+  const auto edge = std::count_if(r.evaluations.begin(), r.evaluations.end(), [](const auto& e) { return e.stage == Stage::edge; });
+  std::cout << "narrow interval: " << edge << " edge evaluations, ends off by " << *r.profiles[0].lo - lo << ", "
+            << *r.profiles[0].hi - hi << "\n";
+  EXPECT_LE(edge, 2 * opt.refine);
+  opt.refine = 4;
+  const SearchResult few = search(params, {0.9}, f, opt, test::thread_runner(2));
+  EXPECT_FALSE(few.profiles[0].resolved);
 }
 
 // Two correlated parameters: each profile point and refined end re-optimises the other (a short local search), so
