@@ -135,6 +135,8 @@ TEST(CalibrateCommand, BadOptionsNameTheOption) {
   expect_refused("confidence 1", data + " --confidence 1", "command line: key '--confidence'");
   expect_refused("confidence above 1", data + " --confidence 95", "command line: key '--confidence'");
   expect_refused("refine negative", data + " --refine -1", "command line: key '--refine'");
+  expect_refused("refine-to 0", data + " --refine-to 0", "command line: key '--refine-to'");
+  expect_refused("refine-to 1", data + " --refine-to 1", "command line: key '--refine-to'");
   expect_refused("one profile point", data + " --profile-points 1", "command line: key '--profile-points'");
   const DataFile table("table.csv", "sphere[0].velocity,e\n0.1,0.5\n0.2,0.6\n0.3,0.7\n");
   expect_refused("validation of the other kind", data + " --validate " + table.string(), "command line: key '--validate'", table.string());
