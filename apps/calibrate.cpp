@@ -314,7 +314,8 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   std::string best_run_error;
   if (res.best_eval.ok && trajectory) {
     try {
-      best_run = fitted_trajectory_run(*in.window, scene_path, with_values(overrides, in.params, res.best));
+      best_run = simulate(calib::trajectory_scene(*in.window, scene_path, with_values(overrides, in.params, res.best)), false,
+                          Recording::kinematics);
       // The same run the search scored: the same objective (best.csv shows what was fitted).
       const double again = calib::trajectory_objective(std::get<MeasuredTrajectory>(in.data), *in.window, *best_run).objective;
       if (!(std::abs(again - res.best_eval.objective) <= 1e-9 * res.best_eval.objective))

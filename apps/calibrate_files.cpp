@@ -193,15 +193,6 @@ void sort_evaluations(calib::SearchResult& r) {
   });
 }
 
-RunResult fitted_trajectory_run(const calib::TrajectoryWindow& w, const std::string& scene_path, const std::vector<Override>& overrides) {
-  std::vector<Override> ov = overrides;
-  std::string t_end = exact(w.t_contact + w.after + w.tau_max);
-  if (t_end.find_first_of(".eEn") == std::string::npos) t_end += ".0";
-  ov.push_back({"solver.t_end", t_end});
-  ov.push_back({"measure.bounces", "\"all\""});
-  return simulate(load_scene(scene_path, ov), false, Recording::kinematics);
-}
-
 json calibration_json(const CalibrationRecord& rec) {
   const auto& res = rec.result;
   const bool trajectory = std::holds_alternative<MeasuredTrajectory>(rec.data);

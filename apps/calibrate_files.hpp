@@ -56,10 +56,6 @@ struct CalibrationRecord {
 /// own in the order it made them.
 void sort_evaluations(calib::SearchResult& r);
 
-/// The run the trajectory objective scores for these overrides (the fitted values among them), recorded in full
-/// kinematics: as calib::evaluate_trajectory runs it.
-RunResult fitted_trajectory_run(const calib::TrajectoryWindow& w, const std::string& scene_path, const std::vector<Override>& overrides);
-
 /// calibration.json's content, all but its `run` block.
 nlohmann::ordered_json calibration_json(const CalibrationRecord& rec);
 

@@ -49,6 +49,10 @@ struct Evaluation {
 /// (a run that ended at rest).
 Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWindow& w, const RunResult& run);
 
+/// The scene evaluate_trajectory runs: the scene file with `overrides`, its t_end covering the window's end at the
+/// largest offset, every bounce followed. Throws InputError.
+Scene trajectory_scene(const TrajectoryWindow& w, const std::string& scene_path, const std::vector<Override>& overrides);
+
 /// Runs `scene` with `values` set (its t_end long enough to cover the window and the offsets) and scores it.
 /// Never throws for a failed run: ok is false then.
 Evaluation evaluate_trajectory(const MeasuredTrajectory& m, const TrajectoryWindow& w, const std::string& scene_path,

@@ -160,18 +160,21 @@ Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWin
   return ev;
 }
 
+Scene trajectory_scene(const TrajectoryWindow& w, const std::string& scene_path, const std::vector<Override>& overrides) {
+  // The run covers the window's end at the largest offset, and follows every bounce (measure.bounces = "first"
+  // would end it soon after the first rebound); a run that ends at rest earlier holds its last value.
+  std::vector<Override> ov = overrides;
+  ov.push_back({"solver.t_end", float_text(w.t_contact + w.after + w.tau_max)});
+  ov.push_back({"measure.bounces", "\"all\""});
+  return load_scene(scene_path, ov);
+}
+
 Evaluation evaluate_trajectory(const MeasuredTrajectory& m, const TrajectoryWindow& w, const std::string& scene_path,
                                const std::vector<Override>& overrides) {
   const auto t0 = std::chrono::steady_clock::now();
   Evaluation ev;
   try {
-    // The run covers the window's end at the largest offset, and follows every bounce (measure.bounces = "first"
-    // would end it soon after the first rebound); a run that ends at rest earlier holds its last value.
-    std::vector<Override> ov = overrides;
-    ov.push_back({"solver.t_end", float_text(w.t_contact + w.after + w.tau_max)});
-    ov.push_back({"measure.bounces", "\"all\""});
-    const Scene sc = load_scene(scene_path, ov);
-    ev = trajectory_objective(m, w, simulate(sc, false, Recording::kinematics));
+    ev = trajectory_objective(m, w, simulate(trajectory_scene(w, scene_path, overrides), false, Recording::kinematics));
   } catch (const std::exception& e) {
     ev = Evaluation{};
     ev.message = e.what();
