@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "apps/parallel_runs.hpp"
+#include "apps/run_failure.hpp"
 
 #ifdef IMCOL_MPI
 #include <mpi.h>
@@ -219,5 +220,21 @@ Hold::~Hold() {
 }
 
 #endif
+
+int on_rank0(const std::function<void()>& step) {
+  RunFailure failure;
+  std::string status;  // rank 0's exit status when step threw
+  if (world().rank == 0) {
+    try {
+      step();
+    } catch (const std::exception&) {
+      failure = RunFailure::current();
+      status = std::to_string(failure.kind == RunFailure::input ? 2 : failure.kind == RunFailure::solver ? 3 : 1);
+    }
+  }
+  share(status);
+  if (failure.thrown) std::rethrow_exception(failure.thrown);
+  return status.empty() ? 0 : std::stoi(status);
+}
 
 }  // namespace imcol::cluster

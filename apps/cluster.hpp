@@ -27,6 +27,12 @@ void run_distributed(std::size_t n, int jobs, const std::function<std::string(st
 /// point. The identity with one rank.
 void share(std::string& bytes);
 
+/// Runs `step` on rank 0 alone (taking its output folder, say) and tells every rank whether it threw, so that no
+/// rank waits on a rank 0 that has left: rank 0 rethrows the exception; the other ranks get the exit status rank 0
+/// leaves with (2 for an InputError, 3 for a SolverError, else 1) and should leave with it. 0 on every rank when
+/// step did not throw. Every rank calls it at the same point.
+int on_rank0(const std::function<void()>& step);
+
 /// Several steps in a row (run_distributed, share) during which the other ranks may wait on this one: while a Hold
 /// lives, a rank that leaves by an exception or exit aborts the job instead of leaving the others waiting. Ended
 /// normally (not by an exception), it releases the rank again. Nothing without MPI.

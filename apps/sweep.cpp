@@ -12,6 +12,7 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -598,28 +599,32 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   std::vector<PointResult> pts(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) pts[i].value = values[i];
   const int jobs = job_count(opt.jobs, pts.size());
-  // Under mpirun, ranks > 0 run points for rank 0 (docs/cluster.md), which alone writes and prints.
-  if (const cluster::World w = cluster::world(); w.rank > 0) {
+  // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
+  // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
+  // Under mpirun, rank 0 alone takes the folder, writes and prints; a refused folder ends every rank.
+  std::optional<OutputUnit> unit;
+  const int refused = cluster::on_rank0([&] {
+    unit.emplace(opt.out, fs::path("out") / (base.name + "-sweep_" + opt.vary), base.path);
+    write_file_atomic(unit->dir() / "sweep.partial",
+                      "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
+                          "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
+  });
+  if (refused) return refused;
+  // Under mpirun, ranks > 0 run points for rank 0 (docs/cluster.md).
+  if (cluster::world().rank > 0) {
     cluster::run_distributed(pts.size(), jobs, [&](std::size_t i) { return encode_point(point_result(scenes[i], i, values[i])); }, {});
     return 0;
   }
-
-  // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
-  // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
-  OutputUnit unit(opt.out, fs::path("out") / (base.name + "-sweep_" + opt.vary), base.path);
-  const fs::path& dir = unit.dir();
-  write_file_atomic(dir / "sweep.partial",
-                    "sweep in progress or interrupted (pid " + std::to_string(::getpid()) +
-                        "): sweep.csv holds only the points finished so far; a complete sweep removes this file and writes sweep.json\n");
+  const fs::path& dir = unit->dir();
   const Tally tally = run_points(scenes, pts, opt, *q, dir, jobs);
-  if (!tally.write_error.empty()) stop_on_write_error(unit, tally, opt);
+  if (!tally.write_error.empty()) stop_on_write_error(*unit, tally, opt);
   const int failed = tally.failed;
 
   // Table, failures, throughput; sweep.json.
   Outcome outcome = report_points(pts, opt, *q, base, jobs, tally);
   outcome.scenes_check_s = scenes_check_s;
   nlohmann::ordered_json j = sweep_json(scene_path, overrides, base, opt, *q, pts, outcome);
-  j["run"] = unit.run();
+  j["run"] = unit->run();
   write_file_atomic(dir / "sweep.json", j.dump(2) + "\n");
   fs::remove(dir / "sweep.partial");
   std::string dem_line;
@@ -627,15 +632,15 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
     const std::optional<double> e_dry = j.contains("e_dry") ? std::optional<double>(j["e_dry"].get<double>()) : std::nullopt;
     dem_line = export_dem(dir, base, {scene_path, opt.vary, q->column, e_dry}, dem_points(pts));
   }
-  if (opt.plot) run_plot_script("plot_sweep.py", unit, "sweep.png");
-  unit.commit();
+  if (opt.plot) run_plot_script("plot_sweep.py", *unit, "sweep.png");
+  unit->commit();
   if (!dem_line.empty()) std::cout << dem_line << "\n";
-  std::cout << "wrote " << (unit.target() / "sweep.csv").string() << " and " << (unit.target() / "sweep.json").string()
+  std::cout << "wrote " << (unit->target() / "sweep.csv").string() << " and " << (unit->target() / "sweep.json").string()
             << (dem_line.empty() ? "" : ", dem.csv, dem_table.csv, dem.json") << "\n";
   if (failed) {  // stdout may go to a file or a pipe: the failure is also said where errors go
     std::cout.flush();
     std::cerr << "imcol: error: " << failed << " of " << opt.points << " sweep points failed; their reasons are in "
-              << (unit.target() / "sweep.json").string() << " (failures) and " << (unit.target() / "sweep.csv").string() << " (status, message)\n";
+              << (unit->target() / "sweep.json").string() << " (failures) and " << (unit->target() / "sweep.csv").string() << " (status, message)\n";
   }
   return failed ? 3 : 0;
 }

@@ -544,7 +544,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   // Under mpirun, ranks > 0 run what rank 0 hands them (docs/cluster.md); rank 0 alone writes and prints.
   const int ranks = cluster::world().size;
   std::optional<OutputUnit> unit;
-  if (cluster::world().rank == 0) unit.emplace(opt.out, fallback, base.path);
+  if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fallback, base.path); })) return refused;
   std::vector<int> runs_by_rank;
   std::vector<RunOutcome> outcomes = run_all(base, opt, runs, collision, D, runs_by_rank);
   if (cluster::world().rank > 0) return 0;

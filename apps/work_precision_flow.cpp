@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "apps/cluster.hpp"
@@ -115,11 +116,12 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
     thrown[i] = r.failure.thrown;
     return encode(r);
   };
+  std::optional<OutputUnit> unit;
+  if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fallback, base.path); })) return refused;
   if (w.rank > 0) {
     cluster::run_distributed(rungs.size(), 1, work, {});
     return 0;
   }
-  OutputUnit unit(opt.out, fallback, base.path);
   std::vector<RungResult> results(rungs.size());
   std::size_t stop = rungs.size();  // a failed rung ends the command
   cluster::run_distributed(rungs.size(), 1, work, [&](std::size_t i, std::string bytes, int rank) {
@@ -166,11 +168,11 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
     }
   }
   if (w.size > 1) js["ranks"] = w.size;
-  js["run"] = unit.run();
-  write_file_atomic(unit.dir() / "work_precision_flow.csv", csv.str());
-  write_file_atomic(unit.dir() / "work_precision_flow.json", js.dump(2) + "\n");
-  unit.commit();
-  std::cout << "wrote " << (unit.target() / "work_precision_flow.csv").string() << " and .json\n";
+  js["run"] = unit->run();
+  write_file_atomic(unit->dir() / "work_precision_flow.csv", csv.str());
+  write_file_atomic(unit->dir() / "work_precision_flow.json", js.dump(2) + "\n");
+  unit->commit();
+  std::cout << "wrote " << (unit->target() / "work_precision_flow.csv").string() << " and .json\n";
   return 0;
 }
 

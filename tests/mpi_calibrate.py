@@ -5,7 +5,7 @@ the shipped scene gg3462 writes a calibration.csv equal to the threaded one cell
 columns aside; the refined interval ends among them), and a calibration.json with the same best, the same profiles
 and 3 ranks whose evaluations add up.
 Once for a trajectory (data/measurements/gg3462_trajectory.csv, one thread a rank), once for an e table (two
-threads a rank).
+threads a rank). An --out folder rank 0 refuses ends every rank with exit 2.
 
 Usage: /usr/bin/python3 tests/mpi_calibrate.py --imcol BIN --mpirun MPIRUN --data DATA_DIR (run by ctest as mpi_calibrate)
 """
@@ -17,7 +17,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mpi_compare import csv_differences, mpi_command, read  # noqa: E402
+from mpi_compare import csv_differences, mpi_command, read, refused_out  # noqa: E402
 
 IGNORED = {"wall_ms", "rank"}  # where and how long an evaluation ran
 SEARCH = ["--fit", "contact.delta_ss=0.005:0.05", "--set", "contact.delta_ss=0.006", "--scan", "6", "--starts", "2",
@@ -66,9 +66,11 @@ def main():
     ap.add_argument("--data", required=True)
     a = ap.parse_args()
     failures = []
-    for label, data, jobs in (("trajectory: ", Path(a.data) / "measurements" / "gg3462_trajectory.csv", 1),
+    trajectory = Path(a.data) / "measurements" / "gg3462_trajectory.csv"
+    for label, data, jobs in (("trajectory: ", trajectory, 1),
                               ("e table, two threads a rank: ", None, 2)):
         failures += [label + f for f in compare(a, data, jobs)]
+    failures += refused_out(a, ["calibrate", "gg3462", "--data", str(trajectory), *SEARCH, "--jobs", "1"], 3)
     for f in failures:
         print("FAIL:", f)
     print("ok" if not failures else f"{len(failures)} failures")

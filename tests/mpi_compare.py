@@ -1,7 +1,10 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""What the MPI tests (tests/mpi_*.py) share: the command of an MPI job, and the cell-for-cell comparison of a CSV
-that one process wrote with the one the MPI job wrote."""
+"""What the MPI tests (tests/mpi_*.py) share: the command of an MPI job, the cell-for-cell comparison of a CSV
+that one process wrote with the one the MPI job wrote, and an output folder that rank 0 refuses."""
 import csv
+import subprocess
+import tempfile
+from pathlib import Path
 
 
 def read(path):
@@ -27,3 +30,20 @@ def csv_differences(one, mpi, ignored, labels=("one process", "mpi")):
             if name not in ignored and u != v:
                 failures.append(f"row {r} column {name}: {labels[0]} '{u}' vs {labels[1]} '{v}'")
     return failures
+
+
+def refused_out(a, args, ranks):
+    """The MPI job of `args` (a command line without --out) writing to a folder that holds a file imcol did not
+    write: rank 0 refuses the folder, and the job must end with exit 2 and rank 0's error line (not abort, nor leave
+    the other ranks waiting). Returns the differences found."""
+    with tempfile.TemporaryDirectory(prefix="imcol_mpi_refused_") as tmp:
+        out = Path(tmp) / "taken"
+        out.mkdir()
+        (out / "notes.txt").write_text("not imcol's\n")
+        p = subprocess.run([*mpi_command(a, ranks), *args, "--out", str(out)], stdout=subprocess.DEVNULL,
+                           stderr=subprocess.PIPE, text=True, timeout=120)
+        if p.returncode != 2 or "imcol: error: command line: key '--out'" not in p.stderr:
+            return [f"a refused --out: exit {p.returncode} (expected 2), stderr {p.stderr.strip()[-400:]!r}"]
+        if (out / "notes.txt").read_text() != "not imcol's\n":
+            return ["a refused --out: the folder's file was changed"]
+    return []

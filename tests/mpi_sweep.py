@@ -4,7 +4,7 @@
 scene `default` writes a sweep.csv equal to the threaded one cell for cell (the timing column aside), and its
 sweep.json names the ranks and the points each ran, which add up to the sweep. The same with solver.max_steps so
 small that some points fail: the others still run, both exit 3 and the CSVs (messages included) agree; and with two
-threads a rank.
+threads a rank. An --out folder rank 0 refuses ends every rank with exit 2.
 
 Usage: /usr/bin/python3 tests/mpi_sweep.py --imcol BIN --mpirun MPIRUN (run by ctest as mpi_sweep)
 """
@@ -16,7 +16,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mpi_compare import csv_differences, mpi_command, read  # noqa: E402
+from mpi_compare import csv_differences, mpi_command, read, refused_out  # noqa: E402
 
 TIMING = {"wall_time_s"}  # differs from run to run
 SWEEP = ["sweep", "default", "--vary", "velocity", "--from", "0.05", "--to", "1", "--points", "6", "--no-plot",
@@ -61,6 +61,7 @@ def main():
              ("failing points: ", ["--jobs", "1", "--set", "solver.max_steps=60"], 3))
     for label, extra, rc in cases:
         failures += [label + f for f in compare(a, extra, rc)]
+    failures += refused_out(a, [*SWEEP, "--jobs", "1"], 3)
     for f in failures:
         print("FAIL:", f)
     print("ok" if not failures else f"{len(failures)} failures")

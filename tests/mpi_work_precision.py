@@ -5,7 +5,7 @@ of the shipped scene gg3462 (two tolerances, three history evaluators, --repeat 
 to the one-process run's cell for cell (the timing column aside), and its work_precision.json names the ranks and the
 runs each ran (the reference and every setting's runs). With solver.max_steps so small that some settings fail,
 those stay failed rows (same messages) and both exit 0; with the reference itself failing, both exit 3 with the
-same error line.
+same error line. An --out folder rank 0 refuses ends every rank with exit 2.
 
 Usage: /usr/bin/python3 tests/mpi_work_precision.py --imcol BIN --mpirun MPIRUN (run by ctest as mpi_work_precision)
 """
@@ -17,7 +17,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mpi_compare import csv_differences, mpi_command, read  # noqa: E402
+from mpi_compare import csv_differences, mpi_command, read, refused_out  # noqa: E402
 
 TIMING = {"median_wall_ms"}  # differs from run to run
 WP = ["work-precision", "gg3462", "--no-plot"]
@@ -80,6 +80,7 @@ def main():
     failures = []
     for label, extra, rc, runs in cases:
         failures += [label + f for f in compare(a, extra, rc, runs)]
+    failures += refused_out(a, [*WP, *LADDER], RANKS)
     for f in failures:
         print("FAIL:", f)
     print("ok" if not failures else f"{len(failures)} failures")
