@@ -125,7 +125,7 @@ Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& o
   in.base = load_scene(scene_path, overrides);
   if (opt.fits.empty()) throw InputError("command line", "--fit", "give at least one parameter: --fit KEY=LO:HI[:log]");
   for (const auto& f : opt.fits) {
-    FitParameter p = calib::parse_fit_parameter(f, scene_path, in.base, overrides);
+    FitParameter p = calib::parse_fit_parameter(f, scene_path, overrides);
     for (const auto& q : in.params)
       if (q.key == p.key) throw InputError("command line", "--fit", p.key + " is given twice");
     in.params.push_back(p);

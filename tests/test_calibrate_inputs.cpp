@@ -49,8 +49,7 @@ std::string read_error(const std::string& name, const std::string& text) {
 const std::string kGood = "# t in s, z in m\nt,z1,z2\n0,0,0.016\n0.001,1e-4,0.016\n0.002,2e-4,0.016\n0.003,3e-4,0.016\n0.004,4e-4,0.016\n";
 
 std::string fit_error(const std::string& text) {
-  const Scene sc = load_scene(gg3462());
-  return input_error_of([&] { (void)parse_fit_parameter(text, gg3462(), sc); });
+  return input_error_of([&] { (void)parse_fit_parameter(text, gg3462()); });
 }
 
 }  // namespace
@@ -194,13 +193,12 @@ TEST(CalibrateInputs, ATableValueTheSceneRefuses) {
 }
 
 TEST(CalibrateInputs, FitParsesBoundsAndScale) {
-  const Scene sc = load_scene(gg3462());
-  const FitParameter p = parse_fit_parameter("contact.delta_ss=0.005:0.05", gg3462(), sc);
+  const FitParameter p = parse_fit_parameter("contact.delta_ss=0.005:0.05", gg3462());
   EXPECT_EQ(p.key, "contact.delta_ss");
   EXPECT_EQ(p.lo, 0.005);
   EXPECT_EQ(p.hi, 0.05);
   EXPECT_EQ(p.scale, Scale::linear);
-  EXPECT_EQ(parse_fit_parameter("fluid.viscosity=1e-3:1e-2:log", gg3462(), sc).scale, Scale::log);
+  EXPECT_EQ(parse_fit_parameter("fluid.viscosity=1e-3:1e-2:log", gg3462()).scale, Scale::log);
 }
 
 TEST(CalibrateInputs, FitAStringKey) {
