@@ -102,9 +102,8 @@ std::vector<StartValue> start_values(const std::string& scene_path, const std::v
 /// The residuals the objective averages: the window's samples times the measured columns, or the table's rows.
 std::size_t residual_count(const Measurement& m, const std::optional<TrajectoryWindow>& w) {
   if (const auto* t = std::get_if<MeasuredTrajectory>(&m)) {
-    const auto in = std::count_if(t->t.begin(), t->t.end(),
-                                  [&](double x) { return x >= w->t_contact + w->before && x <= w->t_contact + w->after; });
-    return static_cast<std::size_t>(in) * t->columns.size();
+    const auto [k0, k1] = calib::window_rows(*t, *w);
+    return (k1 - k0) * t->columns.size();
   }
   return std::get<MeasuredTable>(m).e.size();
 }

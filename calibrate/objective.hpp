@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calibrate/measurement.hpp"
@@ -31,6 +32,9 @@ struct TrajectoryWindow {
 /// window throws InputError naming the option or the file.
 TrajectoryWindow trajectory_window(const MeasuredTrajectory& m, const Scene& scene, std::optional<double> before,
                                    std::optional<double> after, std::optional<double> tau_max);
+
+/// The window's samples: the rows [first, second) of `m`, those with t in [t_contact + before, t_contact + after].
+std::pair<std::size_t, std::size_t> window_rows(const MeasuredTrajectory& m, const TrajectoryWindow& w);
 
 /// One objective evaluation's outcome.
 struct Evaluation {
