@@ -29,7 +29,7 @@ struct TrajectoryWindow {
 /// The default window for a trajectory on `scene`: one diameter of travel at the approach speed before the measured
 /// contact and two after, clipped to the record; tau_max half of that travel time. `before`/`after`/`tau_max`
 /// given (the options --window A:B, --offset-max T) replace the defaults. Fewer than kMinTrajectoryRows samples in the
-/// window throws InputError naming the option or the file.
+/// window throws InputError naming the option or the file; a z2 column on a one-sphere scene, naming the header line.
 TrajectoryWindow trajectory_window(const MeasuredTrajectory& m, const Scene& scene, std::optional<double> before,
                                    std::optional<double> after, std::optional<double> tau_max);
 

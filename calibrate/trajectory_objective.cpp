@@ -65,6 +65,9 @@ TrajectoryWindow trajectory_window(const MeasuredTrajectory& m, const Scene& sce
                                    std::optional<double> after, std::optional<double> tau_max) {
   TrajectoryWindow w;
   if (!scene.has_target()) throw InputError(scene.path, "", "a trajectory fit needs a target: a second sphere or a wall");
+  if (!scene.two_spheres() && column(m, "z2"))
+    throw InputError(m.path + ":" + std::to_string(m.header_line), "z2",
+                     "the scene " + scene.path + " has one sphere: its run has no z2 (measure sphere 1 as z1)");
   std::size_t kc = 0;
   for (std::size_t k = 1; k < m.t.size(); ++k)
     if (measured_gap(m, scene, k) < measured_gap(m, scene, kc)) kc = k;

@@ -268,3 +268,13 @@ TEST(CalibrateInputs, TrajectoryWindowWithTooFewSamples) {
   EXPECT_NE(e.find("key '--window'"), std::string::npos) << e;
   EXPECT_NE(e.find("at least 5"), std::string::npos) << e;
 }
+
+TEST(CalibrateInputs, TrajectoryZ2ForASceneWithOneSphere) {
+  // A wall scene's run has no z2: the column is refused before anything runs, naming the header line.
+  const auto tr = std::get<MeasuredTrajectory>(read_measurement(file_with("z2_wall.csv", kGood)));
+  const Scene sc = load_scene(data_dir() + "/scenes/bouncing_steel.toml");
+  ASSERT_FALSE(sc.two_spheres());
+  const std::string e = input_error_of([&] { (void)trajectory_window(tr, sc, std::nullopt, std::nullopt, std::nullopt); });
+  EXPECT_NE(e.find("z2_wall.csv:2: key 'z2'"), std::string::npos) << e;
+  EXPECT_NE(e.find("one sphere"), std::string::npos) << e;
+}
