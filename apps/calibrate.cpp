@@ -4,14 +4,12 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <mutex>
 #include <sstream>
 #include <tuple>
 #include <variant>
@@ -42,7 +40,6 @@ namespace {
 std::optional<double> parse_number(const std::string& s) {
   const char* c = s.c_str();
   char* end = nullptr;
-  errno = 0;
   const double v = std::strtod(c, &end);
   if (s.empty() || end == c || *end != '\0' || std::isspace(static_cast<unsigned char>(s[0])) || !std::isfinite(v)) return std::nullopt;
   return v;
