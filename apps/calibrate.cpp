@@ -4,14 +4,12 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <mutex>
 #include <sstream>
 #include <tuple>
 #include <variant>
@@ -42,7 +40,6 @@ namespace {
 std::optional<double> parse_number(const std::string& s) {
   const char* c = s.c_str();
   char* end = nullptr;
-  errno = 0;
   const double v = std::strtod(c, &end);
   if (s.empty() || end == c || *end != '\0' || std::isspace(static_cast<unsigned char>(s[0])) || !std::isfinite(v)) return std::nullopt;
   return v;
@@ -102,9 +99,8 @@ std::vector<StartValue> start_values(const std::string& scene_path, const std::v
 /// The residuals the objective averages: the window's samples times the measured columns, or the table's rows.
 std::size_t residual_count(const Measurement& m, const std::optional<TrajectoryWindow>& w) {
   if (const auto* t = std::get_if<MeasuredTrajectory>(&m)) {
-    const auto in = std::count_if(t->t.begin(), t->t.end(),
-                                  [&](double x) { return x >= w->t_contact + w->before && x <= w->t_contact + w->after; });
-    return static_cast<std::size_t>(in) * t->columns.size();
+    const auto [k0, k1] = calib::window_rows(*t, *w);
+    return (k1 - k0) * t->columns.size();
   }
   return std::get<MeasuredTable>(m).e.size();
 }
@@ -125,7 +121,7 @@ Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& o
   in.base = load_scene(scene_path, overrides);
   if (opt.fits.empty()) throw InputError("command line", "--fit", "give at least one parameter: --fit KEY=LO:HI[:log]");
   for (const auto& f : opt.fits) {
-    FitParameter p = calib::parse_fit_parameter(f, scene_path, in.base, overrides);
+    FitParameter p = calib::parse_fit_parameter(f, scene_path, overrides);
     for (const auto& q : in.params)
       if (q.key == p.key) throw InputError("command line", "--fit", p.key + " is given twice");
     in.params.push_back(p);

@@ -53,7 +53,8 @@ std::string word(std::string w) {
 
 json window_json(const MeasuredTrajectory& m, const calib::TrajectoryWindow& w) {
   const double from = w.t_contact + w.before, to = w.t_contact + w.after;
-  const auto samples = std::count_if(m.t.begin(), m.t.end(), [&](double t) { return t >= from && t <= to; });
+  const auto [k0, k1] = calib::window_rows(m, w);
+  const std::size_t samples = k1 - k0;
   return {{"t_contact_s", w.t_contact}, {"before_s", w.before}, {"after_s", w.after}, {"from_s", from}, {"to_s", to}, {"samples", samples}};
 }
 

@@ -37,9 +37,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
 
 }  // namespace
 
-FitParameter parse_fit_parameter(const std::string& text, const std::string& scene_path, const Scene& base,
-                                 const std::vector<Override>& overrides) {
-  (void)base;  // the scene read with `overrides`: the check below reads it again with the key set
+FitParameter parse_fit_parameter(const std::string& text, const std::string& scene_path, const std::vector<Override>& overrides) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0) fail("", "expected KEY=LO:HI or KEY=LO:HI:log, got '" + text + "'");
   FitParameter p;

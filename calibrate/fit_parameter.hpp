@@ -18,9 +18,9 @@ struct FitParameter {
 };
 
 /// Reads "KEY=LO:HI" or "KEY=LO:HI:log". Checks the bounds (finite, LO < HI, LO > 0 for log) and that KEY is a numeric
-/// key of `base` (a scene read from `scene_path` with `overrides`, the --set ones): setting it to LO and to HI, after
-/// `overrides`, must give a valid scene. Throws InputError("command line", "--fit", ...) naming the key and the problem.
-FitParameter parse_fit_parameter(const std::string& text, const std::string& scene_path, const Scene& base,
+/// key of the scene `scene_path`: setting it to LO and to HI, after `overrides` (the --set ones), must give a valid
+/// scene. Throws InputError("command line", "--fit", ...) naming the key and the problem.
+FitParameter parse_fit_parameter(const std::string& text, const std::string& scene_path,
                                  const std::vector<Override>& overrides = {});
 
 /// u in [0, 1] → the key's value, and back (clamped to [0, 1]).

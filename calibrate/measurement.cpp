@@ -79,6 +79,7 @@ Measurement read_measurement(const std::string& path) {
             throw InputError(where, header[i], "unknown column of a trajectory (expected t, then z1 and/or z2, in m)");
         if (header.size() < 2) throw InputError(where, "", "a trajectory needs a column z1 or z2 after t");
         tr.path = path;
+        tr.header_line = lineno;
         tr.columns.assign(header.begin() + 1, header.end());
         tr.z.resize(tr.columns.size());
       } else if (e_it != header.end()) {

@@ -21,6 +21,7 @@ struct MeasuredTrajectory {
   std::vector<std::string> columns;       // "z1", "z2" (those present, in file order)
   std::vector<std::vector<double>> z;     // z[c][k]: column c at t[k], m
   std::vector<int> lines;                 // the file line of each row
+  int header_line = 0;                    // the file line of the header
 };
 
 struct MeasuredTable {

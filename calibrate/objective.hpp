@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calibrate/measurement.hpp"
@@ -28,9 +29,12 @@ struct TrajectoryWindow {
 /// The default window for a trajectory on `scene`: one diameter of travel at the approach speed before the measured
 /// contact and two after, clipped to the record; tau_max half of that travel time. `before`/`after`/`tau_max`
 /// given (the options --window A:B, --offset-max T) replace the defaults. Fewer than kMinTrajectoryRows samples in the
-/// window throws InputError naming the option or the file.
+/// window throws InputError naming the option or the file; a z2 column on a one-sphere scene, naming the header line.
 TrajectoryWindow trajectory_window(const MeasuredTrajectory& m, const Scene& scene, std::optional<double> before,
                                    std::optional<double> after, std::optional<double> tau_max);
+
+/// The window's samples: the rows [first, second) of `m`, those with t in [t_contact + before, t_contact + after].
+std::pair<std::size_t, std::size_t> window_rows(const MeasuredTrajectory& m, const TrajectoryWindow& w);
 
 /// One objective evaluation's outcome.
 struct Evaluation {

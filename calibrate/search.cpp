@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
 
 #include "calibrate/confidence.hpp"
 #include "calibrate/evaluation_bytes.hpp"
@@ -227,21 +226,25 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
     rule.factor = rule.given ? *opt.factor : confidence_factor(opt.confidence, rule.n, rule.p);
     rule.threshold = rule.factor * b->eval.objective;
   };
-  set_threshold(st.best_record());
 
-  // 4. Edges: per parameter and side, the bracket (u inside, u outside) of the interval's end where it is finite;
-  // each round evaluates the brackets' middles as profile points and keeps the half that holds the crossing.
+  // 4. Edges: per parameter and side, the bracket (u inside, u outside) of the interval's end where it is finite,
+  // set from the profile's points so far and the threshold of the best so far (an edge point may improve the best,
+  // which lowers the threshold); each round evaluates the brackets' middles as profile points, which join the profile.
   struct Bracket {
     std::size_t j;
     double in, out;
   };
   std::vector<Bracket> brackets;
   std::vector<double> ub;  // the best point when the brackets were set
-  if (st.best_record()) {
-    ub = st.unit_of_values(st.best_record()->values);
+  auto set_brackets = [&] {
+    brackets.clear();
+    const EvaluationRecord* b = st.best_record();
+    if (!b) return;  // none succeeded, or a rank other than 0: rank 0's brackets come shared
+    set_threshold(b);
+    ub = st.unit_of_values(b->values);
     for (std::size_t j = 0; j < d; ++j) {
       auto p = pts[j];
-      p.emplace_back(ub[j], st.best_record()->eval.objective);
+      p.emplace_back(ub[j], b->eval.objective);
       std::stable_sort(p.begin(), p.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
       std::size_t m = 0;
       for (std::size_t i = 1; i < p.size(); ++i)
@@ -258,7 +261,7 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
           break;
         }
     }
-  }
+  };
   // A bracket is fine enough once it is refine_to of its interval's width, which is at least the span of the
   // interval's inside points (its ends' inside points and the best).
   auto too_wide = [&](const Bracket& b) {
@@ -268,25 +271,21 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
     return std::abs(b.out - b.in) > opt.refine_to * (hi - lo);
   };
   int edge_item = 0;
-  for (int round = 0; round < opt.refine; ++round) {
-    // This round's points (bracket, j, u_j) of the brackets still too wide, rank 0's, made every rank's.
+  for (int round = 0;; ++round) {
+    set_brackets();
+    if (round >= opt.refine) break;
+    // This round's points (j, u_j) of the brackets still too wide, rank 0's, made every rank's.
     std::vector<std::vector<double>> mids;
-    for (std::size_t k = 0; k < brackets.size(); ++k)
-      if (too_wide(brackets[k])) mids.push_back({static_cast<double>(k), static_cast<double>(brackets[k].j), 0.5 * (brackets[k].in + brackets[k].out)});
+    for (const auto& b : brackets)
+      if (too_wide(b)) mids.push_back({static_cast<double>(b.j), 0.5 * (b.in + b.out)});
     mids = st.share(mids);
     if (mids.empty()) break;
     const int first = edge_item;
     const auto items = st.run(
         Stage::edge, mids.size(), [](std::size_t) { return Stage::edge; }, [first](std::size_t i) { return first + static_cast<int>(i); },
-        [&](std::size_t i, const auto& eval) { profile_point(static_cast<std::size_t>(mids[i][1]), mids[i][2], eval); });
+        [&](std::size_t i, const auto& eval) { profile_point(static_cast<std::size_t>(mids[i][0]), mids[i][1], eval); });
     edge_item += static_cast<int>(mids.size());
-    for (std::size_t i = 0; i < items.size(); ++i) {
-      const auto k = static_cast<std::size_t>(mids[i][0]);
-      if (k >= brackets.size()) continue;  // rank 0 alone holds the brackets (items is empty elsewhere)
-      const double f = item_best(items[i]);
-      pts[brackets[k].j].emplace_back(mids[i][2], f);
-      (f <= rule.threshold ? brackets[k].in : brackets[k].out) = mids[i][2];
-    }
+    for (std::size_t i = 0; i < items.size(); ++i) pts[static_cast<std::size_t>(mids[i][0])].emplace_back(mids[i][1], item_best(items[i]));
   }
 
   // The best of all evaluations, and each profile's interval within factor × best: the profile's points and the
@@ -296,7 +295,6 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
   if (!b) return result;
   result.best = b->values;
   result.best_eval = b->eval;
-  set_threshold(b);
   const std::vector<double> u_final = st.unit_of_values(result.best);
   for (std::size_t j = 0; j < d; ++j) {
     auto p = pts[j];

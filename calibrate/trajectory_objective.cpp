@@ -65,6 +65,9 @@ TrajectoryWindow trajectory_window(const MeasuredTrajectory& m, const Scene& sce
                                    std::optional<double> after, std::optional<double> tau_max) {
   TrajectoryWindow w;
   if (!scene.has_target()) throw InputError(scene.path, "", "a trajectory fit needs a target: a second sphere or a wall");
+  if (!scene.two_spheres() && column(m, "z2"))
+    throw InputError(m.path + ":" + std::to_string(m.header_line), "z2",
+                     "the scene " + scene.path + " has one sphere: its run has no z2 (measure sphere 1 as z1)");
   std::size_t kc = 0;
   for (std::size_t k = 1; k < m.t.size(); ++k)
     if (measured_gap(m, scene, k) < measured_gap(m, scene, kc)) kc = k;
@@ -84,8 +87,8 @@ TrajectoryWindow trajectory_window(const MeasuredTrajectory& m, const Scene& sce
     throw InputError("command line", "--window", "A = " + fmt_number(*before) + " s must be below B = " + fmt_number(*after) + " s");
   if (!(w.tau_max >= 0) || !std::isfinite(w.tau_max))
     throw InputError("command line", "--offset-max", "needs a finite number >= 0, got " + fmt_number(w.tau_max));
-  std::size_t n = 0;
-  for (double t : m.t) n += t >= w.t_contact + w.before && t <= w.t_contact + w.after;
+  const auto [k0, k1] = window_rows(m, w);
+  const std::size_t n = k1 - k0;
   if (n < kMinTrajectoryRows) {
     const std::string problem = std::to_string(n) + " samples in the window [" + fmt_number(w.t_contact + w.before) + ", " +
                                 fmt_number(w.t_contact + w.after) + "] s around the measured contact at " + fmt_number(w.t_contact) +
@@ -94,6 +97,13 @@ TrajectoryWindow trajectory_window(const MeasuredTrajectory& m, const Scene& sce
     throw InputError(m.path, "", problem);
   }
   return w;
+}
+
+std::pair<std::size_t, std::size_t> window_rows(const MeasuredTrajectory& m, const TrajectoryWindow& w) {
+  std::size_t k0 = 0, k1 = 0;
+  while (k0 < m.t.size() && m.t[k0] < w.t_contact + w.before) ++k0;
+  for (k1 = k0; k1 < m.t.size() && m.t[k1] <= w.t_contact + w.after;) ++k1;
+  return {k0, k1};
 }
 
 Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWindow& w, const RunResult& run) {
@@ -113,9 +123,7 @@ Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWin
     ev.message = "the run recorded fewer than two rows";
     return ev;
   }
-  std::size_t k0 = 0, k1 = 0;  // the window's samples [k0, k1)
-  while (k0 < m.t.size() && m.t[k0] < w.t_contact + w.before) ++k0;
-  for (k1 = k0; k1 < m.t.size() && m.t[k1] <= w.t_contact + w.after;) ++k1;
+  const auto [k0, k1] = window_rows(m, w);
   ev.residuals = (k1 - k0) * m.columns.size();
   const double count = static_cast<double>(ev.residuals);
   auto f = [&](double tau) {

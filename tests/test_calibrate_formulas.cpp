@@ -377,6 +377,46 @@ TEST(CalibrateFormulas, ANarrowIntervalIsRefinedUntilItsEndsAreResolved) {
   EXPECT_FALSE(few.profiles[0].resolved);
 }
 
+// An edge point that improves the best lowers the threshold, so the interval's ends move: the brackets follow them.
+// A dip (J0 / 2, 1e-9 wide) at the first edge point, which no evaluation before the edges meets: the interval shrinks
+// about it. An interval said to be resolved has, about each finite end, neighbouring profile points at most refine_to
+// of the interval's width apart.
+TEST(CalibrateFormulas, TheBracketsFollowABestFoundAtAnEdge) {
+  Quadratic q;
+  q.x0 = {0.4137};
+  q.n = 40;
+  q.a = {{(confidence_factor(0.95, q.n, 1) - 1) / (0.15 * 0.15)}};
+  const std::vector<FitParameter> params{{"x", 0, 1, Scale::linear}};
+  const SearchOptions opt;
+  const SearchResult plain = search(params, {0.9}, q, opt, test::thread_runner(1));
+  const auto first_edge = std::find_if(plain.evaluations.begin(), plain.evaluations.end(), [](const auto& e) { return e.stage == Stage::edge; });
+  ASSERT_NE(first_edge, plain.evaluations.end());
+  const double dip = first_edge->values[0];
+  const double kWidth = 1e-9;
+  for (auto e = plain.evaluations.begin(); e != first_edge; ++e) ASSERT_GT(std::abs(e->values[0] - dip), kWidth);
+  auto dipped = [&](const std::vector<double>& v) {
+    Evaluation ev = q(v);
+    if (std::abs(v[0] - dip) <= kWidth) ev.objective = q.j0 / 2, ev.rms = std::sqrt(ev.objective);
+    return ev;
+  };
+  const SearchResult r = search(params, {0.9}, dipped, opt, test::thread_runner(1));
+  ASSERT_EQ(r.best.size(), 1u);
+  EXPECT_EQ(r.best_eval.objective, q.j0 / 2);
+  EXPECT_EQ(r.rule.threshold, r.rule.factor * q.j0 / 2);
+  ASSERT_EQ(r.profiles.size(), 1u);
+  const Profile& p = r.profiles[0];
+  ASSERT_TRUE(p.lo && p.hi);
+  EXPECT_LE(*p.lo, dip);
+  EXPECT_GE(*p.hi, dip);
+  EXPECT_LT(*p.hi - *p.lo, 0.01);  // about the dip alone: the parabola's floor lies above the lowered threshold
+  if (p.resolved)
+    for (const double end : {*p.lo, *p.hi}) {
+      const auto above = std::upper_bound(p.values.begin(), p.values.end(), end);
+      ASSERT_TRUE(above != p.values.begin() && above != p.values.end()) << end;
+      EXPECT_LE(*above - *(above - 1), opt.refine_to * (*p.hi - *p.lo)) << "the profile points about the end " << end;
+    }
+}
+
 // Two correlated parameters: each profile point and refined end re-optimises the other (a short local search), so
 // the profile lies a little above the exact one where that search stops (xtol 1e-3 in u: about b (1e-3)^2 in J/J0,
 // 4e-6, a shift of 4e-6 / (2 c w) ~ 3e-6 in the end); with the bisection's 1.7e-5 the ends must lie within 1e-4 of

@@ -57,7 +57,7 @@ Timed fit_delta_ss(const MeasuredTrajectory& m, const SearchOptions& opt) {
   const std::string scene = gg3462();
   const std::vector<Override> base{{"contact.delta_ss", "0.006"}};  // the distant start
   const Scene sc = load_scene(scene, base);
-  const std::vector<FitParameter> params{parse_fit_parameter("contact.delta_ss=0.005:0.05", scene, sc, base)};
+  const std::vector<FitParameter> params{parse_fit_parameter("contact.delta_ss=0.005:0.05", scene, base)};
   const TrajectoryWindow w = trajectory_window(m, sc, std::nullopt, std::nullopt, std::nullopt);
   auto evaluate = [&](const std::vector<double>& v) {
     std::vector<Override> ov = base;
@@ -170,8 +170,8 @@ TEST(CalibrateRecovery, DeltaSsAndEDryFromANoisyETable) {
   const std::vector<Override> base{{"contact.delta_ss", "0.006"}, {"contact.e_dry", "0.85"}};  // a distant start
   const Scene sc = load_scene(scene, base);
   check_table_keys(m, scene, base);
-  const std::vector<FitParameter> params{parse_fit_parameter("contact.delta_ss=0.005:0.05", scene, sc, base),
-                                         parse_fit_parameter("contact.e_dry=0.8:1", scene, sc, base)};
+  const std::vector<FitParameter> params{parse_fit_parameter("contact.delta_ss=0.005:0.05", scene, base),
+                                         parse_fit_parameter("contact.e_dry=0.8:1", scene, base)};
   auto evaluate = [&](const std::vector<double>& v) {
     std::vector<Override> ov = base;
     for (const auto& o : overrides_for(params, v)) ov.push_back(o);
