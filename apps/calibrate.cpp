@@ -264,21 +264,8 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   // now, and a refusal (another run writing it, a folder imcol did not write) ends every rank.
   const cluster::World world = cluster::world();
   std::optional<OutputUnit> unit;
-  std::exception_ptr refused;
-  std::string refused_flag;
-  if (world.rank == 0) {
-    try {
-      unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path);
-    } catch (...) {
-      refused = std::current_exception();
-      refused_flag = "refused";
-    }
-  }
-  cluster::share(refused_flag);
-  if (!refused_flag.empty()) {
-    if (refused) std::rethrow_exception(refused);
-    return 2;
-  }
+  if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path); }))
+    return refused;
 
   const int jobs = job_count(opt.jobs, 1u << 20);  // threads a rank (each stage uses at most one per work item)
   const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
