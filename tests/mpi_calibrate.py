@@ -9,7 +9,6 @@ threads a rank). An --out folder rank 0 refuses ends every rank with exit 2.
 
 Usage: /usr/bin/python3 tests/mpi_calibrate.py --imcol BIN --mpirun MPIRUN --data DATA_DIR (run by ctest as mpi_calibrate)
 """
-import argparse
 import json
 import subprocess
 import sys
@@ -17,7 +16,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mpi_compare import csv_differences, mpi_command, read, refused_out  # noqa: E402
+from mpi_compare import arguments, csv_differences, mpi_command, read, refused_out, report  # noqa: E402
 
 IGNORED = {"wall_ms", "rank"}  # where and how long an evaluation ran
 SEARCH = ["--fit", "contact.delta_ss=0.005:0.05", "--set", "contact.delta_ss=0.006", "--scan", "6", "--starts", "2",
@@ -60,21 +59,14 @@ def compare(a, data, jobs):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--imcol", required=True)
-    ap.add_argument("--mpirun", required=True)
-    ap.add_argument("--data", required=True)
-    a = ap.parse_args()
+    a = arguments("--data")
     failures = []
     trajectory = Path(a.data) / "measurements" / "gg3462_trajectory.csv"
     for label, data, jobs in (("trajectory: ", trajectory, 1),
                               ("e table, two threads a rank: ", None, 2)):
         failures += [label + f for f in compare(a, data, jobs)]
     failures += refused_out(a, ["calibrate", "gg3462", "--data", str(trajectory), *SEARCH, "--jobs", "1"], 3)
-    for f in failures:
-        print("FAIL:", f)
-    print("ok" if not failures else f"{len(failures)} failures")
-    return 1 if failures else 0
+    return report(failures)
 
 
 if __name__ == "__main__":

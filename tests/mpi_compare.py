@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """What the MPI tests (tests/mpi_*.py) share: the command of an MPI job, the cell-for-cell comparison of a CSV
 that one process wrote with the one the MPI job wrote, and an output folder that rank 0 refuses."""
+import argparse
 import csv
 import subprocess
 import tempfile
@@ -47,3 +48,19 @@ def refused_out(a, args, ranks):
         if (out / "notes.txt").read_text() != "not imcol's\n":
             return ["a refused --out: the folder's file was changed"]
     return []
+
+
+def arguments(*required):
+    """The command line of an MPI test: --imcol BIN --mpirun MPIRUN and the `required` options."""
+    ap = argparse.ArgumentParser()
+    for name in ("--imcol", "--mpirun", *required):
+        ap.add_argument(name, required=True)
+    return ap.parse_args()
+
+
+def report(failures):
+    """Prints the failures (or ok); the test's exit status."""
+    for f in failures:
+        print("FAIL:", f)
+    print("ok" if not failures else f"{len(failures)} failures")
+    return 1 if failures else 0

@@ -8,7 +8,6 @@ threads a rank. An --out folder rank 0 refuses ends every rank with exit 2.
 
 Usage: /usr/bin/python3 tests/mpi_sweep.py --imcol BIN --mpirun MPIRUN (run by ctest as mpi_sweep)
 """
-import argparse
 import json
 import subprocess
 import sys
@@ -16,7 +15,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mpi_compare import csv_differences, mpi_command, read, refused_out  # noqa: E402
+from mpi_compare import arguments, csv_differences, mpi_command, read, refused_out, report  # noqa: E402
 
 TIMING = {"wall_time_s"}  # differs from run to run
 SWEEP = ["sweep", "default", "--vary", "velocity", "--from", "0.05", "--to", "1", "--points", "6", "--no-plot",
@@ -52,20 +51,14 @@ def compare(a, extra, rc):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--imcol", required=True)
-    ap.add_argument("--mpirun", required=True)
-    a = ap.parse_args()
+    a = arguments()
     failures = []
     cases = (("", ["--jobs", "1"], 0), ("two threads a rank: ", ["--jobs", "2"], 0),
              ("failing points: ", ["--jobs", "1", "--set", "solver.max_steps=60"], 3))
     for label, extra, rc in cases:
         failures += [label + f for f in compare(a, extra, rc)]
     failures += refused_out(a, [*SWEEP, "--jobs", "1"], 3)
-    for f in failures:
-        print("FAIL:", f)
-    print("ok" if not failures else f"{len(failures)} failures")
-    return 1 if failures else 0
+    return report(failures)
 
 
 if __name__ == "__main__":

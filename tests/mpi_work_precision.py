@@ -9,7 +9,6 @@ same error line. An --out folder rank 0 refuses ends every rank with exit 2.
 
 Usage: /usr/bin/python3 tests/mpi_work_precision.py --imcol BIN --mpirun MPIRUN (run by ctest as mpi_work_precision)
 """
-import argparse
 import json
 import subprocess
 import sys
@@ -17,7 +16,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mpi_compare import csv_differences, mpi_command, read, refused_out  # noqa: E402
+from mpi_compare import arguments, csv_differences, mpi_command, read, refused_out, report  # noqa: E402
 
 TIMING = {"median_wall_ms"}  # differs from run to run
 WP = ["work-precision", "gg3462", "--no-plot"]
@@ -68,10 +67,7 @@ def compare(a, extra, rc, runs):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--imcol", required=True)
-    ap.add_argument("--mpirun", required=True)
-    a = ap.parse_args()
+    a = arguments()
     # Settings: soe-step on 2 integrators, soe on 3, direct on 2 (one step each) = 2*2 + 3*2 + 2 = 12.
     cases = (("", [*LADDER, "--repeat", "2"], 0, 1 + 12 * 2),
              ("failing settings: ", ["--repeat", "1", "--rtols", "1e-3,1e-6", "--ref-rtol", "1e-4", "--evaluators", "soe-step,soe",
@@ -81,10 +77,7 @@ def main():
     for label, extra, rc, runs in cases:
         failures += [label + f for f in compare(a, extra, rc, runs)]
     failures += refused_out(a, [*WP, *LADDER], RANKS)
-    for f in failures:
-        print("FAIL:", f)
-    print("ok" if not failures else f"{len(failures)} failures")
-    return 1 if failures else 0
+    return report(failures)
 
 
 if __name__ == "__main__":
