@@ -4,7 +4,6 @@
 // the best row of calibration.csv; the plot script draws calibration.png.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,35 +17,21 @@
 #include <vector>
 
 #include "core/materials.hpp"
+#include "tests/imcol_process.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+using imcol::test::slurp;
+using Result = imcol::test::Outcome;
 
 fs::path scratch(std::string name) {
   std::replace(name.begin(), name.end(), ' ', '_');
   return fs::temp_directory_path() / ("imcol_calcmd_" + std::to_string(::getpid()) + "_" + name);
 }
 
-Result run_imcol(const std::string& args) {
-  const fs::path o = scratch("stdout"), e = scratch("stderr");
-  const std::string cmd = std::string(IMCOL_BINARY) + " " + args + " >" + o.string() + " 2>" + e.string();
-  const int raw = std::system(cmd.c_str());
-  Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(o), slurp(e)};
-  fs::remove(o);
-  fs::remove(e);
-  return r;
-}
+Result run_imcol(const std::string& args) { return imcol::test::run_imcol(args, scratch("run")); }
 
 std::string measurement(const std::string& name) { return imcol::data_dir() + "/measurements/" + name; }
 

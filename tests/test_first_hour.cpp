@@ -20,33 +20,20 @@
 
 #include "apps/plot.hpp"
 #include "core/materials.hpp"
+#include "tests/imcol_process.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Outcome {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using imcol::test::Outcome;
+using imcol::test::slurp;
 
 fs::path tmp(const std::string& name) { return fs::temp_directory_path() / ("imcol_fh_" + std::to_string(::getpid()) + "_" + name); }
 
 /// Runs `imcol ARGS` (from the source tree, so that scene paths may be relative) and keeps stdout and stderr.
 Outcome run_imcol(const std::string& args) {
-  const fs::path o = tmp("stdout"), e = tmp("stderr");
-  const std::string cmd = "cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && " + IMCOL_BINARY + " " + args + " >" +
-                          o.string() + " 2>" + e.string();
-  const int raw = std::system(cmd.c_str());
-  Outcome r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(o), slurp(e)};
-  fs::remove(o);
-  fs::remove(e);
-  return r;
+  return imcol::test::run_imcol(args, tmp("run"), fs::path(imcol::data_dir()).parent_path().string());
 }
 
 void expect_input_error(const Outcome& r, const std::string& place, const std::string& problem) {

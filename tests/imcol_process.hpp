@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The imcol program run by a test (IMCOL_BINARY, set by tests/CMakeLists.txt): its exit status, stdout and stderr.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace imcol::test {
+
+struct Outcome {
+  int status;  // the exit status; -1 when the process did not exit (a signal)
+  std::string out, err;
+};
+
+/// A file's whole content ("" when it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Runs `imcol ARGS` in folder `dir` (empty: the test's own), its stdout and stderr kept through the files
+/// SCRATCH.stdout and SCRATCH.stderr, which it removes.
+inline Outcome run_imcol(const std::string& args, const std::filesystem::path& scratch, const std::string& dir = "") {
+  const std::filesystem::path o = scratch.string() + ".stdout", e = scratch.string() + ".stderr";
+  std::string cmd = dir.empty() ? std::string() : "cd '" + dir + "' && ";
+  cmd += std::string(IMCOL_BINARY) + " " + args + " >" + o.string() + " 2>" + e.string();
+  const int raw = std::system(cmd.c_str());
+  Outcome r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(o), slurp(e)};
+  std::filesystem::remove(o);
+  std::filesystem::remove(e);
+  return r;
+}
+
+}  // namespace imcol::test
