@@ -31,6 +31,7 @@
 #include "apps/validate.hpp"
 #include "apps/work_precision.hpp"
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "core/timing.hpp"
 #include "core/materials.hpp"
 #include "core/report.hpp"
@@ -108,9 +109,7 @@ int cmd_bench(const std::string& scene_path, const std::vector<double>& rtols, i
   std::string name;
   for (double rt : rtols) {
     auto ov = c.overrides();
-    std::ostringstream v;
-    v << std::setprecision(17) << rt;
-    ov.push_back({"solver.rtol", v.str()});
+    ov.push_back({"solver.rtol", toml_float(rt)});
     Scene sc = load_scene(scene_path, ov);
     name = sc.name;
     std::vector<double> times, calls;  // the integration (wall_time_s) and the whole simulate() call

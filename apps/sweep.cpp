@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -19,6 +18,7 @@
 #include "apps/cluster.hpp"
 #include "apps/dem_export.hpp"
 #include "apps/format.hpp"
+#include "core/number_text.hpp"
 #include "apps/output_unit.hpp"
 #include "apps/parallel_runs.hpp"
 #include "apps/plot.hpp"
@@ -33,14 +33,6 @@ namespace imcol {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// A TOML float literal that reads back to the same double.
-std::string toml_float(double v) {
-  char buf[40];
-  std::string s(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
 
 struct Quantity {
   const char* name;

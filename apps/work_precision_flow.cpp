@@ -18,6 +18,7 @@
 #include "run/simulate.hpp"
 #include "run/summary.hpp"
 #include "core/errors.hpp"
+#include "core/number_text.hpp"
 #include "core/report.hpp"
 #include "coupling/step_rule.hpp"
 
@@ -67,9 +68,7 @@ RungResult run_rung(const Scene& base, const std::vector<Override>& overrides, c
   try {
     auto ov = overrides;
     ov.push_back({"flow.cells_per_diameter", std::to_string(g.cells)});
-    std::ostringstream c;
-    c << std::setprecision(17) << g.cfl;
-    ov.push_back({"flow.cfl", c.str()});
+    ov.push_back({"flow.cfl", toml_float(g.cfl)});
     Scene sc = load_scene(base.path, ov);
     sc.flow.fields = false;
     const RunResult run = simulate(sc);

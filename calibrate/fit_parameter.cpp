@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "calibrate/float_text.hpp"
+#include "core/number_text.hpp"
 #include "core/errors.hpp"
 
 namespace imcol::calib {
@@ -56,7 +56,7 @@ FitParameter parse_fit_parameter(const std::string& text, const std::string& sce
   // scene refuses fails here).
   for (double v : {p.lo, p.hi}) {
     std::vector<Override> ov = overrides;
-    ov.push_back({p.key, float_text(v)});
+    ov.push_back({p.key, toml_float(v)});
     try {
       (void)load_scene(scene_path, ov);
     } catch (const InputError& e) {
@@ -82,7 +82,7 @@ double unit_of(const FitParameter& p, double value) {
 
 std::vector<Override> overrides_for(const std::vector<FitParameter>& params, const std::vector<double>& values) {
   std::vector<Override> ov;
-  for (std::size_t i = 0; i < params.size() && i < values.size(); ++i) ov.push_back({params[i].key, float_text(values[i])});
+  for (std::size_t i = 0; i < params.size() && i < values.size(); ++i) ov.push_back({params[i].key, toml_float(values[i])});
   return ov;
 }
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "calibrate/float_text.hpp"
+#include "core/number_text.hpp"
 #include "calibrate/objective.hpp"
 #include "core/errors.hpp"
 #include "run/measured_run.hpp"
@@ -17,7 +17,7 @@ namespace {
 /// Row r's scene overrides: `overrides`, then the row's keys.
 std::vector<Override> row_overrides(const MeasuredTable& m, std::size_t r, const std::vector<Override>& overrides) {
   std::vector<Override> ov = overrides;
-  for (std::size_t k = 0; k < m.keys.size(); ++k) ov.push_back({m.keys[k], float_text(m.values[r][k])});
+  for (std::size_t k = 0; k < m.keys.size(); ++k) ov.push_back({m.keys[k], toml_float(m.values[r][k])});
   return ov;
 }
 

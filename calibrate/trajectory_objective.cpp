@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "calibrate/objective.hpp"
-#include "calibrate/float_text.hpp"
+#include "core/number_text.hpp"
 #include "core/errors.hpp"
 
 namespace imcol::calib {
@@ -172,7 +172,7 @@ Scene trajectory_scene(const TrajectoryWindow& w, const std::string& scene_path,
   // The run covers the window's end at the largest offset, and follows every bounce (measure.bounces = "first"
   // would end it soon after the first rebound); a run that ends at rest earlier holds its last value.
   std::vector<Override> ov = overrides;
-  ov.push_back({"solver.t_end", float_text(w.t_contact + w.after + w.tau_max)});
+  ov.push_back({"solver.t_end", toml_float(w.t_contact + w.after + w.tau_max)});
   ov.push_back({"measure.bounces", "\"all\""});
   return load_scene(scene_path, ov);
 }
