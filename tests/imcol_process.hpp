@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The imcol program run by a test (IMCOL_BINARY, set by tests/CMakeLists.txt): its exit status, stdout and stderr.
+#include <spawn.h>
+#include <unistd.h>
 #include <sys/wait.h>
 
 #include <cstdlib>
@@ -33,6 +35,18 @@ inline Outcome run_imcol(const std::string& args, const std::filesystem::path& s
   std::filesystem::remove(o);
   std::filesystem::remove(e);
   return r;
+}
+
+/// Starts `imcol ARGS` in folder `dir` as a child of the test, its output discarded; returns its pid (-1 when it
+/// cannot start). The caller waits for it with waitpid, which returns only once all its threads, and so its files
+/// and locks, are gone.
+inline pid_t start_imcol(const std::string& args, const std::string& dir) {
+  const std::string cmd = "cd '" + dir + "' && exec " + std::string(IMCOL_BINARY) + " " + args + " >/dev/null 2>&1";
+  char sh[] = "/bin/sh", c[] = "-c";
+  std::string body = cmd;
+  char* argv[] = {sh, c, body.data(), nullptr};
+  pid_t pid = -1;
+  return ::posix_spawn(&pid, "/bin/sh", nullptr, nullptr, argv, environ) == 0 ? pid : -1;
 }
 
 }  // namespace imcol::test

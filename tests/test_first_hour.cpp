@@ -28,6 +28,7 @@ namespace {
 
 using imcol::test::Outcome;
 using imcol::test::slurp;
+using imcol::test::start_imcol;
 
 fs::path tmp(const std::string& name) { return fs::temp_directory_path() / ("imcol_fh_" + std::to_string(::getpid()) + "_" + name); }
 
@@ -129,14 +130,11 @@ TEST(FirstHour, AKilledSweepLeavesThePreviousResultWhole) {
   fs::create_directories(dir);
   std::ofstream(dir / "sweep.json") << "{\"previous\": true}\n";
   std::ofstream(dir / "sweep.png") << "previous";
-  // Started in the background; killed (-9) once its partial sweep.csv is there.
-  const fs::path pid_file = tmp("sweep.pid");
-  const std::string cmd = "cd '" + fs::path(imcol::data_dir()).parent_path().string() + "' && { " + IMCOL_BINARY +
-                          " sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 4000 --jobs 1 --no-plot"
-                          " --no-progress --out " + dir.string() + " >/dev/null 2>&1 & echo $! > " + pid_file.string() + "; }";
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
-  const pid_t pid = std::stoi(slurp(pid_file));
-  fs::remove(pid_file);
+  // Started as a child of the test; killed (-9) once its partial sweep.csv is there.
+  const pid_t pid = start_imcol("sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 4000 --jobs 1 --no-plot"
+                                " --no-progress --out " + dir.string(),
+                                fs::path(imcol::data_dir()).parent_path().string());
+  ASSERT_GT(pid, 0) << "cannot start imcol";
   auto staged = [&] {
     std::vector<fs::path> v;
     for (const auto& f : fs::directory_iterator(dir.parent_path()))
@@ -145,15 +143,11 @@ TEST(FirstHour, AKilledSweepLeavesThePreviousResultWhole) {
   };
   for (int i = 0; i < 3000 && (staged().empty() || !fs::exists(staged()[0] / "sweep.csv")); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  ASSERT_EQ(::kill(pid, SIGKILL), 0) << "the sweep finished before it was killed";
-  // Its files (and so its lock) are closed only once it is gone or a zombie: an empty cmdline comes earlier.
-  auto exited = [&] {
-    const std::string stat = slurp("/proc/" + std::to_string(pid) + "/stat");
-    const std::size_t end = stat.rfind(')');
-    return end == std::string::npos || end + 2 >= stat.size() || stat[end + 2] == 'Z' || stat[end + 2] == 'X';
-  };
-  for (int i = 0; i < 3000 && !exited(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  ASSERT_TRUE(exited()) << "the killed sweep (pid " << pid << ") did not exit";
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  // Reaped only once every thread is gone, and with them its files and its lock (a zombie leader can come earlier).
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "the sweep finished before it was killed";
   EXPECT_TRUE(nlohmann::json::parse(slurp(dir / "sweep.json"))["previous"].get<bool>());
   EXPECT_TRUE(fs::exists(dir / "sweep.png"));
   EXPECT_FALSE(fs::exists(dir / "sweep.csv"));
