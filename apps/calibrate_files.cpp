@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
 #include "core/report.hpp"
+#include "run/json_util.hpp"
 
 namespace imcol {
 
@@ -20,9 +21,6 @@ using calib::MeasuredTrajectory;
 using json = nlohmann::ordered_json;
 
 namespace {
-
-json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-json opt_json(const std::optional<double>& v) { return v ? finite_or_null(*v) : json(nullptr); }
 
 /// A double that reads back to itself (17 significant digits), for TOML and the CSV's parameter values.
 std::string exact(double v) {
@@ -91,8 +89,8 @@ json measurement_json(const calib::Measurement& m, const std::optional<calib::Tr
 json evaluation_json(const calib::Evaluation& e) {
   json j;
   j["ok"] = e.ok;
-  j["objective"] = finite_or_null(e.objective);
-  j["rms"] = finite_or_null(e.rms);
+  j["objective"] = run::finite_or_null(e.objective);
+  j["rms"] = run::finite_or_null(e.rms);
   if (e.tau) j["tau_s"] = *e.tau;
   if (!e.message.empty()) j["message"] = e.message;
   return j;
@@ -113,7 +111,7 @@ json validation_json(const CalibrationRecord& rec) {
     for (std::size_t k = 0; k < t.keys.size(); ++k) row[t.keys[k]] = t.values[r][k];
     row["e_meas"] = t.e[r];
     const auto& sim = rec.validation->eval.e_sim;
-    row["e_sim"] = r < sim.size() ? finite_or_null(sim[r]) : json(nullptr);
+    row["e_sim"] = r < sim.size() ? run::finite_or_null(sim[r]) : json(nullptr);
     rows.push_back(row);
   }
   j["by_row"] = rows;
@@ -210,13 +208,13 @@ json calibration_json(const CalibrationRecord& rec) {
     const auto& p = rec.params[k];
     const auto& s = rec.start[k];
     params.push_back({{"key", p.key}, {"lo", p.lo}, {"hi", p.hi}, {"scale", p.scale == calib::Scale::log ? "log" : "linear"},
-                      {"start", s.value}, {"scene_value", opt_json(s.scene)}, {"start_from", s.from}});
+                      {"start", s.value}, {"scene_value", run::finite_or_null(s.scene)}, {"start_from", s.from}});
   }
   j["parameters"] = params;
   const auto& so = rec.search;
   const int d = static_cast<int>(rec.params.size());
   j["search"] = {{"scan", so.scan < 0 ? 8 * d + 1 : so.scan}, {"starts", so.starts}, {"max_evals", so.max_evals}, {"xtol", so.xtol},
-                 {"profile_points", so.profile_points}, {"factor", opt_json(so.factor)},
+                 {"profile_points", so.profile_points}, {"factor", run::finite_or_null(so.factor)},
                  {"confidence", so.factor ? json(nullptr) : json(so.confidence)}, {"refine", so.refine}, {"refine_to", so.refine_to}};
   json best = evaluation_json(res.best_eval);
   json values = json::object();
@@ -228,7 +226,7 @@ json calibration_json(const CalibrationRecord& rec) {
     const auto n = std::count_if(res.evaluations.begin(), res.evaluations.end(), [s](const auto& e) { return e.stage == s; });
     if (!n) continue;
     by_stage[calib::stage_name(s)] = n;
-    stage_wall[calib::stage_name(s)] = finite_or_null(rec.stage_times.wall(s));
+    stage_wall[calib::stage_name(s)] = run::finite_or_null(rec.stage_times.wall(s));
   }
   std::vector<int> by_rank(static_cast<std::size_t>(std::max(1, rec.ranks)), 0);
   for (const auto& e : res.evaluations)
@@ -242,14 +240,14 @@ json calibration_json(const CalibrationRecord& rec) {
   for (std::size_t k = 0; k < res.profiles.size() && k < rec.params.size(); ++k) {
     const auto& p = res.profiles[k];
     json obj = json::array();
-    for (double v : p.objective) obj.push_back(finite_or_null(v));
+    for (double v : p.objective) obj.push_back(run::finite_or_null(v));
     profiles.push_back({{"key", rec.params[k].key},
                         {"values", p.values},
                         {"objective", obj},
-                        {"factor", finite_or_null(rule.factor)},
+                        {"factor", run::finite_or_null(rule.factor)},
                         {"factor_rule", factor_rule},
-                        {"threshold", finite_or_null(rule.threshold)},
-                        {"interval", {{"lo", opt_json(p.lo)}, {"hi", opt_json(p.hi)}, {"resolved", p.resolved}}}});
+                        {"threshold", run::finite_or_null(rule.threshold)},
+                        {"interval", {{"lo", run::finite_or_null(p.lo)}, {"hi", run::finite_or_null(p.hi)}, {"resolved", p.resolved}}}});
   }
   j["profiles"] = profiles;  // an interval end null: the objective stays within the factor up to the bound
   if (rec.validation) j["validation"] = validation_json(rec);

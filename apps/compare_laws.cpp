@@ -19,6 +19,7 @@
 #include "core/errors.hpp"
 #include "core/report.hpp"
 #include "run/simulate.hpp"
+#include "run/json_util.hpp"
 
 namespace imcol {
 
@@ -269,8 +270,6 @@ std::string laws_csv(const std::vector<LawRow>& rows, const std::string& column)
   return csv.str();
 }
 
-Json number_or_null(const std::optional<double>& v) { return v && std::isfinite(*v) ? Json(*v) : Json(nullptr); }
-
 /// One row of laws.json.
 Json law_json(const LawRow& r, const std::vector<LawRow>& rows) {
   Json j;
@@ -283,22 +282,22 @@ Json law_json(const LawRow& r, const std::vector<LawRow>& rows) {
   j["message"] = r.message.empty() ? Json(nullptr) : Json(r.message);
   if (!r.ran()) return j;
   const auto& s = r.run.summary;
-  j["e"] = number_or_null(s.e);
-  j["e_minus_e_ramp"] = number_or_null(minus(s.e, ramp_e(rows, r.point)));
-  j["St"] = number_or_null(s.St);
-  j["contact_time_s"] = number_or_null(contact_time(r));
-  j["max_contact_force_N"] = number_or_null(peak_force(r));
-  j["max_overlap_m"] = number_or_null(max_overlap(r));
-  j["min_gap_m"] = number_or_null(s.min_gap_m);
-  j["impact_speed_m_s"] = number_or_null(s.contact ? s.contact->impact_speed_m_s : std::nullopt);
+  j["e"] = run::finite_or_null(s.e);
+  j["e_minus_e_ramp"] = run::finite_or_null(minus(s.e, ramp_e(rows, r.point)));
+  j["St"] = run::finite_or_null(s.St);
+  j["contact_time_s"] = run::finite_or_null(contact_time(r));
+  j["max_contact_force_N"] = run::finite_or_null(peak_force(r));
+  j["max_overlap_m"] = run::finite_or_null(max_overlap(r));
+  j["min_gap_m"] = run::finite_or_null(s.min_gap_m);
+  j["impact_speed_m_s"] = run::finite_or_null(s.contact ? s.contact->impact_speed_m_s : std::nullopt);
   j["steps"] = s.solver.stats.steps;
   j["rhs_evals"] = s.solver.stats.rhs_evals;
   j["cpu_time_s"] = r.cpu_s;
   j["wall_time_s"] = s.wall_time_s;
   j["setup_time_s"] = s.setup_time_s;
   Json jm = Json::object(), jn = Json::object(), model = Json::object();
-  for (const auto& [k, v] : measures(r)) jm[k] = number_or_null(v);
-  for (const auto& [k, v] : law_numbers(r)) jn[k] = number_or_null(v);
+  for (const auto& [k, v] : measures(r)) jm[k] = run::finite_or_null(v);
+  for (const auto& [k, v] : law_numbers(r)) jn[k] = run::finite_or_null(v);
   for (const auto& [k, v] : s.model)
     if (k.rfind("contact.", 0) == 0) model[k] = v;
   j["e_measures"] = jm;

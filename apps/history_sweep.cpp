@@ -20,6 +20,7 @@
 #include "core/report.hpp"
 #include "core/timing.hpp"
 #include "run/simulate.hpp"
+#include "run/json_util.hpp"
 
 namespace imcol {
 
@@ -128,8 +129,6 @@ void print_table(const std::vector<Cell>& cells, const std::vector<Series>& seri
   }
 }
 
-Json number_or_null(const std::optional<double>& v) { return v && std::isfinite(*v) ? Json(*v) : Json(nullptr); }
-
 /// history_sweep.json, all but its `run` block.
 Json sweep_json(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base, const SweepOptions& sw,
                 const char* column, const std::vector<Series>& series, const std::vector<Cell>& cells, int jobs, double wall) {
@@ -156,7 +155,7 @@ Json sweep_json(const std::string& scene_path, const std::vector<Override>& over
   for (const auto& c : cells) {
     const auto& s = c.summary;
     rows.push_back({{"point", c.point}, {"value", c.value}, {"kernel", c.series.kernel}, {"evaluator", c.series.evaluator},
-                    {"status", c.status}, {"St", number_or_null(if_ok(c, s.St))}, {"e", number_or_null(if_ok(c, s.e))},
+                    {"status", c.status}, {"St", run::finite_or_null(if_ok(c, s.St))}, {"e", run::finite_or_null(if_ok(c, s.e))},
                     {"message", c.message.empty() ? Json(nullptr) : Json(c.message)}});
   }
   j["rows"] = rows;

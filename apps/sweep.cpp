@@ -27,6 +27,7 @@
 #include "core/errors.hpp"
 #include "core/report.hpp"
 #include "core/timing.hpp"
+#include "run/json_util.hpp"
 
 namespace imcol {
 
@@ -51,8 +52,6 @@ struct PointResult : SweepPoint {
   bool done = false;
   std::string row;  // CSV
 };
-
-nlohmann::ordered_json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
 
 /// What became of e at a point that ran: measured (the named measures agree within measure.disagreement),
 /// measures_disagree (the message names them), or not_measured (the message says why).
@@ -97,7 +96,6 @@ PointResult point_result(const Scene& scene, std::size_t i, double value) {
   return r;
 }
 
-nlohmann::json opt_json(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
 std::optional<double> json_opt(const nlohmann::json& v) { return v.is_null() ? std::nullopt : std::optional<double>(v.get<double>()); }
 
 /// A finished point as a worker rank sends it to rank 0 (docs/cluster.md): its CSV row as formatted where it ran, and
@@ -110,12 +108,12 @@ std::string encode_point(const PointResult& r) {
   j["row"] = r.row;
   if (r.ok) {
     const RunSummary& s = r.summary;
-    j["St"] = opt_json(s.St);
-    j["St_B_eq_6_2"] = opt_json(s.St_B_eq_6_2);
-    j["Re"] = opt_json(s.Re);
-    j["e"] = opt_json(s.e);
-    j["U_i1"] = opt_json(s.U_i1);
-    j["U_i2"] = opt_json(s.U_i2);
+    j["St"] = run::finite_or_null(s.St);
+    j["St_B_eq_6_2"] = run::finite_or_null(s.St_B_eq_6_2);
+    j["Re"] = run::finite_or_null(s.Re);
+    j["e"] = run::finite_or_null(s.e);
+    j["U_i1"] = run::finite_or_null(s.U_i1);
+    j["U_i2"] = run::finite_or_null(s.U_i2);
     j["steps"] = s.solver.stats.steps;
     j["wall_time_s"] = s.wall_time_s;
     j["e_is"] = s.e_is;
@@ -551,14 +549,14 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
     // What rank 0 spends on each point beyond running its own (docs/cluster.md, "Scaling"): taking it in (decoding,
     // rewriting sweep.csv), the rewrites alone, the result's size; and loading and checking every scene at the start.
     const Tally& t = out.tally;
-    j["rank0_ms_per_point"] = finite_or_null(1e3 * t.take_s / std::max(1, t.finished));
-    j["bytes_per_point"] = finite_or_null(t.bytes / std::max(1, t.finished));
+    j["rank0_ms_per_point"] = run::finite_or_null(1e3 * t.take_s / std::max(1, t.finished));
+    j["bytes_per_point"] = run::finite_or_null(t.bytes / std::max(1, t.finished));
     j["csv_rewrites"] = t.csv_writes;
-    j["csv_rewrite_ms"] = finite_or_null(1e3 * t.csv_write_s / std::max(1, t.csv_writes));
+    j["csv_rewrite_ms"] = run::finite_or_null(1e3 * t.csv_write_s / std::max(1, t.csv_writes));
     j["scenes_check_s"] = out.scenes_check_s;
   }
   j["wall_time_s"] = out.tally.wall;
-  j["collisions_per_second"] = finite_or_null(out.ok / out.tally.wall);
+  j["collisions_per_second"] = run::finite_or_null(out.ok / out.tally.wall);
   j["failures"] = out.failures;
   // The first point that ran says what every point shares (a failed first point says nothing).
   const auto ran = std::find_if(pts.begin(), pts.end(), [](const PointResult& p) { return p.ok; });

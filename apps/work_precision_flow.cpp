@@ -26,7 +26,7 @@ namespace imcol {
 
 namespace {
 
-struct Rung {
+struct FlowRung {
   std::string ladder;
   int cells;
   double cfl;
@@ -34,7 +34,7 @@ struct Rung {
 
 /// What a rung's run tells rank 0 (as JSON, whose numbers read back to the same doubles, when it ran on another
 /// rank): e, e_instant, the wall time and the flow solver's block; or what it threw.
-struct RungResult {
+struct FlowRungResult {
   double e = NAN, e_instant = NAN, wall_time_s = NAN, dt = NAN, ms_per_step = NAN, krylov = NAN;
   long steps = 0;
   nlohmann::ordered_json flow;  // run::flow_block
@@ -43,7 +43,7 @@ struct RungResult {
 
 double num(const nlohmann::ordered_json& v) { return v.is_null() ? NAN : v.get<double>(); }
 
-std::string encode(const RungResult& r) {
+std::string encode_flow_rung(const FlowRungResult& r) {
   const nlohmann::ordered_json j = {{"e", r.e}, {"e_instant", r.e_instant}, {"wall_time_s", r.wall_time_s}, {"dt", r.dt},
                                     {"ms_per_step", r.ms_per_step}, {"krylov", r.krylov}, {"steps", r.steps}, {"flow", r.flow},
                                     {"failure", r.failure.kind}, {"what", r.failure.what}, {"where", r.failure.where},
@@ -51,9 +51,9 @@ std::string encode(const RungResult& r) {
   return j.dump();  // NaN becomes null
 }
 
-RungResult decode(const std::string& bytes) {
+FlowRungResult decode_flow_rung(const std::string& bytes) {
   const auto j = nlohmann::ordered_json::parse(bytes);
-  RungResult r;
+  FlowRungResult r;
   r.e = num(j["e"]), r.e_instant = num(j["e_instant"]), r.wall_time_s = num(j["wall_time_s"]), r.dt = num(j["dt"]);
   r.ms_per_step = num(j["ms_per_step"]), r.krylov = num(j["krylov"]);
   r.steps = j["steps"].get<long>();
@@ -63,8 +63,8 @@ RungResult decode(const std::string& bytes) {
   return r;
 }
 
-RungResult run_rung(const Scene& base, const std::vector<Override>& overrides, const Rung& g) {
-  RungResult out;
+FlowRungResult run_flow_rung(const Scene& base, const std::vector<Override>& overrides, const FlowRung& g) {
+  FlowRungResult out;
   try {
     auto ov = overrides;
     ov.push_back({"flow.cells_per_diameter", std::to_string(g.cells)});
@@ -93,7 +93,7 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
   for (double c : opt.cfls)
     if (!(c > 0 && c <= 1)) throw InputError("--cfls", "cfls", "each cfl must lie in (0, 1]");
   if (base.flow.dt > 0) throw InputError(base.path, "flow.dt", "the step ladder varies flow.cfl: remove flow.dt from the scene");
-  std::vector<Rung> rungs;
+  std::vector<FlowRung> rungs;
   double u_ref = 0;  // the grid ladder keeps the scene's cfl, or the default cfl(Re) of coupling/step_rule.hpp
   for (const auto& sp : base.spheres) u_ref = std::max(u_ref, std::abs(sp.velocity));
   for (int c : opt.cells) {
@@ -105,15 +105,15 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
 
   // The rungs, spread over the MPI job's ranks (docs/cluster.md) or run one after the other; rank 0 alone writes.
   const cluster::World w = cluster::world();
-  auto progress = [&](const Rung& g, const std::string& where) {
+  auto progress = [&](const FlowRung& g, const std::string& where) {
     std::cerr << "  " << g.ladder << ": " << g.cells << " cells/D, cfl " << g.cfl << " ..." << where << "\n";
   };
   std::vector<std::exception_ptr> thrown(rungs.size());  // this process's runs: rank 0 rethrows the exception itself
   auto work = [&](std::size_t i) {
     if (w.size == 1) progress(rungs[i], "");
-    RungResult r = run_rung(base, overrides, rungs[i]);
+    FlowRungResult r = run_flow_rung(base, overrides, rungs[i]);
     thrown[i] = r.failure.thrown;
-    return encode(r);
+    return encode_flow_rung(r);
   };
   std::optional<OutputUnit> unit;
   if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fallback, base.path); })) return refused;
@@ -121,10 +121,10 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
     cluster::run_distributed(rungs.size(), 1, work, {});
     return 0;
   }
-  std::vector<RungResult> results(rungs.size());
+  std::vector<FlowRungResult> results(rungs.size());
   std::size_t stop = rungs.size();  // a failed rung ends the command
   cluster::run_distributed(rungs.size(), 1, work, [&](std::size_t i, std::string bytes, int rank) {
-    results[i] = decode(bytes);
+    results[i] = decode_flow_rung(bytes);
     if (w.size > 1) progress(rungs[i], " (on rank " + std::to_string(rank) + ")");
     if (results[i].failure.kind == RunFailure::none) return true;
     stop = std::min(stop, i);
@@ -148,9 +148,9 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
       if (rungs[i].ladder == ladder) ref = i;
     const double e_ref = results[ref].e;
     for (std::size_t i = 0; i < rungs.size(); ++i) {
-      const Rung& g = rungs[i];
+      const FlowRung& g = rungs[i];
       if (g.ladder != ladder) continue;
-      const RungResult& r = results[i];
+      const FlowRungResult& r = results[i];
       const double e = r.e, err = std::abs(e - e_ref);
       std::cout << std::left << std::setw(6) << ladder << std::right << std::setw(7) << g.cells << std::setw(7) << g.cfl
                 << std::setw(11) << sci(r.dt, 2) << std::setw(9) << fixed(e, 4) << std::setw(11)

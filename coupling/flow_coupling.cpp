@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -16,15 +17,11 @@
 
 namespace imcol::coupling {
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
-
 FlowCoupling::FlowCoupling(model::CollisionModel& model, const Scene& sc) : model_(model), sc_(sc) {
   n_ = sc.spheres.size();
   for (std::size_t m = 0; m < n_; ++m) {
     radius_[m] = 0.5 * sc.spheres[m].diameter;
-    volume_[m] = 4.0 / 3.0 * kPi * std::pow(radius_[m], 3);
+    volume_[m] = 4.0 / 3.0 * std::numbers::pi * std::pow(radius_[m], 3);
   }
   D_ = sc.spheres[0].diameter;
   rho_ = sc.fluid->density;

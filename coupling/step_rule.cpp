@@ -3,13 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 namespace imcol::coupling {
 
 namespace {
 constexpr double kP0 = 5600;  // Re·N below which cfl 0.5 (docs/coupling.md "The flow step")
-constexpr double kPi = 3.14159265358979323846;
 
 FlowStep make_step(const Scene& sc, double h, const ReferenceSpeed& ref) {
   FlowStep s;
@@ -57,8 +57,8 @@ double default_cfl(double re, int cells) { return 0.5 * std::min(1.0, std::sqrt(
 
 double relaxation_time(const Scene& sc, std::size_t m) {
   const auto& s = sc.spheres[m];
-  const double a = 0.5 * s.diameter, V = 4.0 / 3.0 * kPi * a * a * a;
-  return (s.density + 0.5 * sc.fluid->density) * V / (6 * kPi * sc.fluid->viscosity * a);
+  const double a = 0.5 * s.diameter, V = 4.0 / 3.0 * std::numbers::pi * a * a * a;
+  return (s.density + 0.5 * sc.fluid->density) * V / (6 * std::numbers::pi * sc.fluid->viscosity * a);
 }
 
 FlowStep flow_step(const Scene& sc, double h) { return make_step(sc, h, reference_speed(sc)); }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// A Runner for the calibration engine's tests: work items on a few threads of this process, done one at a time.
+// For the calibration engine's tests: the shipped scene they calibrate, and a Runner that does work items on a few
+// threads of this process, one at a time.
 #include <atomic>
 #include <cstddef>
 #include <mutex>
@@ -9,8 +10,12 @@
 #include <vector>
 
 #include "calibrate/search.hpp"
+#include "core/materials.hpp"
 
 namespace imcol::test {
+
+/// The shipped scene of the seed's case gg3462.
+inline std::string gg3462() { return data_dir() + "/scenes/gg3462.toml"; }
 
 inline calib::Runner thread_runner(int threads) {
   calib::Runner r;

@@ -25,16 +25,14 @@
 #include "core/materials.hpp"
 #include "core/scene.hpp"
 #include "flow/flow_scene.hpp"
+#include "tests/imcol_process.hpp"
 
 namespace fs = std::filesystem;
+using imcol::test::Outcome;
+using imcol::test::slurp;
 using namespace imcol;
 
 namespace {
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 fs::path source_dir() { return fs::path(data_dir()).parent_path(); }
 
@@ -259,11 +257,6 @@ TEST(BadValues, EveryFlowSceneKeyRefusesEachBadValueNamingTheKey) {
 
 namespace {
 
-struct Outcome {
-  int status;
-  std::string err;
-};
-
 Outcome run_binary(const std::vector<std::string>& args, int slot) {
   const fs::path errf = fs::temp_directory_path() / ("imcol_badopt_err_" + std::to_string(::getpid()) + "_" + std::to_string(slot));
   std::string cmd = "timeout 20 " + std::string(IMCOL_BINARY);
@@ -276,7 +269,7 @@ Outcome run_binary(const std::vector<std::string>& args, int slot) {
   const int raw = std::system(cmd.c_str());
   std::string err = slurp(errf);
   fs::remove(errf);
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, err};
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, "", err};
 }
 
 /// The options a subcommand's --help lists (positionals excluded).

@@ -21,10 +21,9 @@
 
 using namespace imcol;
 using namespace imcol::calib;
+using imcol::test::gg3462;
 
 namespace {
-
-std::string gg3462() { return data_dir() + "/scenes/gg3462.toml"; }
 
 /// A run's z1 and z2 as a measured trajectory, its clock shifted by `shift` (s).
 MeasuredTrajectory as_measurement(const RunResult& run, double shift) {

@@ -11,16 +11,16 @@
 #include "calibrate/measurement.hpp"
 #include "calibrate/objective.hpp"
 #include "core/materials.hpp"
+#include "tests/calibrate_runner.hpp"
 #include "tests/input_error.hpp"
 
 using namespace imcol;
 using namespace imcol::calib;
+using imcol::test::gg3462;
 using imcol::test::input_error_of;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string gg3462() { return data_dir() + "/scenes/gg3462.toml"; }
 
 /// A folder of this process's own, removed when the tests end.
 struct ScratchDir {

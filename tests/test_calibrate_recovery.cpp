@@ -18,11 +18,10 @@
 
 using namespace imcol;
 using namespace imcol::calib;
+using imcol::test::gg3462;
 
 
 namespace {
-
-std::string gg3462() { return data_dir() + "/scenes/gg3462.toml"; }
 
 /// gg3462 at δ_SS = 0.024 seen by a 2 kHz camera (every 5th row of the 0.1 ms trajectory): z1 and z2 with Gaussian
 /// noise of sigma (m, seeded) on a clock `offset` (s) ahead of the simulation's.

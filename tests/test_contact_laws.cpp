@@ -21,7 +21,7 @@ using namespace imcol;
 
 namespace {
 
-RunResult run(const std::string& toml, std::vector<Override> ov = {}) { return simulate(parse_scene(toml, "test.toml", ov)); }
+RunResult run_toml(const std::string& toml, std::vector<Override> ov = {}) { return simulate(parse_scene(toml, "test.toml", ov)); }
 
 std::string law_line(const std::string& law) { return "law = \"" + law + "\"\n"; }
 
@@ -91,8 +91,8 @@ TEST(ContactLaws, HertzForceNeverPulls) {
 TEST(ContactLaws, DryCollisionReturnsDryRestitution) {
   for (const char* law : {"ramp", "hertz"}) {
     for (double e_dry : {0.97, 0.9, 0.5}) {
-      const auto w = run(dry_wall(law, e_dry));
-      const auto p = run(dry_pair(law, e_dry, 0.1));
+      const auto w = run_toml(dry_wall(law, e_dry));
+      const auto p = run_toml(dry_pair(law, e_dry, 0.1));
       std::printf("dry %s e_dry = %.2f: e(wall) - e_dry = %.2e, e(pair) - e_dry = %.2e\n", law, e_dry,
                   w.summary_json["e"].get<double>() - e_dry, p.summary_json["e"].get<double>() - e_dry);
       EXPECT_NEAR(w.summary_json["e"].get<double>(), e_dry, 1e-6) << law;
@@ -107,7 +107,7 @@ TEST(ContactLaws, HertzContactTimeAndEnergyBalance) {
   // Undamped (e_dry = 1), a dry steel pair: the contact lasts Hertz's t_c = 2.943 ξ_max/U and the elastic work up to the
   // peak compression, (2/5) k ξ_max^{5/2}, equals the relative kinetic energy ½ m* U² at impact.
   for (double u : {0.05, 0.3, 1.0}) {
-    const auto r = run(dry_pair("hertz", 1.0, u));
+    const auto r = run_toml(dry_pair("hertz", 1.0, u));
     const auto& c = r.summary_json["contact"];
     const double U = c["impact_speed_m_s"].get<double>();
     const double m_star = 0.5 * steel_mass(0.0127), a_star = 0.5 * 0.0127 / 2;
@@ -134,12 +134,12 @@ TEST(ContactLaws, StartInsideTheZoneAtOneMetrePerSecond) {
   const std::string scene = test::fluid(0.01) + test::sphere("steel", 0.0127, 0.0, 1.0) +
                             test::sphere("steel", 0.0127, 0.0127 + 1e-5, 0.0) + "[solver]\nt_end = 0.02\n";
   try {
-    run(scene);
+    run_toml(scene);
     ADD_FAILURE() << "the ramp took a start it cannot store";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("sphere[0].position"), std::string::npos) << e.what();
   }
-  const auto r = run(scene, {{"contact.law", "\"hertz\""}});
+  const auto r = run_toml(scene, {{"contact.law", "\"hertz\""}});
   EXPECT_EQ(r.summary_json["contact"]["law"].get<std::string>(), "hertz");
   EXPECT_EQ(r.summary_json["contact"]["t_contact_s"].get<double>(), 0.0);
   EXPECT_TRUE(r.summary_json["separated"].get<bool>());

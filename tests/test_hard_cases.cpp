@@ -31,18 +31,18 @@ std::vector<std::string> hard_scenes() {
 
 std::string path_of(const std::string& name) { return data_dir() + "/scenes/hard/" + name + ".toml"; }
 
-struct Outcome {
+struct HardOutcome {
   RunResult run;
   double e = NAN;
   bool finite = true;  // every trajectory value
   bool warned_energy = false;
 };
 
-Outcome run(const std::string& name, const std::string& integrator, double rtol) {
+HardOutcome run_hard(const std::string& name, const std::string& integrator, double rtol) {
   std::ostringstream r;
   r << rtol;
   const Scene sc = load_scene(path_of(name), {{"solver.integrator", "\"" + integrator + "\""}, {"solver.rtol", r.str()}, {"solver.atol", r.str()}});
-  Outcome o{simulate(sc)};
+  HardOutcome o{simulate(sc)};
   const auto& s = o.run.summary_json;
   if (!s["e"].is_null()) o.e = s["e"].get<double>();
   for (const auto& row : o.run.rows)
@@ -51,7 +51,7 @@ Outcome run(const std::string& name, const std::string& integrator, double rtol)
   return o;
 }
 
-double e_dry(const Outcome& o) { return o.run.summary_json["contact"]["e_dry"].get<double>(); }
+double e_dry(const HardOutcome& o) { return o.run.summary_json["contact"]["e_dry"].get<double>(); }
 
 class HardCase : public ::testing::TestWithParam<std::string> {};
 
@@ -62,9 +62,9 @@ TEST(HardCases, SuiteIsPresent) { EXPECT_GE(hard_scenes().size(), 12u); }
 TEST_P(HardCase, FiniteBoundedAgreeingAndConverging) {
   const std::string name = GetParam();
   std::vector<double> rtols = {1e-6, 1e-8, 1e-10, 1e-12};
-  std::vector<Outcome> cv;
-  for (double r : rtols) cv.push_back(run(name, "cvode", r));
-  const Outcome ida = run(name, "ida", 1e-10);
+  std::vector<HardOutcome> cv;
+  for (double r : rtols) cv.push_back(run_hard(name, "cvode", r));
+  const HardOutcome ida = run_hard(name, "ida", 1e-10);
   for (std::size_t k = 0; k < cv.size(); ++k) {
     const auto& o = cv[k];
     SCOPED_TRACE("cvode rtol " + std::to_string(rtols[k]));
@@ -98,19 +98,19 @@ INSTANTIATE_TEST_SUITE_P(Scenes, HardCase, ::testing::ValuesIn(hard_scenes()),
 
 TEST(HardCases, ExpectedPhysics) {
   // St ~ 0.1: the sphere stops in lubrication, never touches, e = 0.
-  const Outcome v = run("viscous_st01", "cvode", 1e-8);
+  const HardOutcome v = run_hard("viscous_st01", "cvode", 1e-8);
   EXPECT_EQ(v.e, 0.0);
   EXPECT_EQ(v.run.summary_json["contacts"].get<int>(), 0);
   EXPECT_GT(v.run.summary_json["min_gap_m"].get<double>(), 0.0);
   EXPECT_NEAR(v.run.summary_json["St_initial"].get<double>(), 0.11, 0.01);
   // Near-dry: e within 1e-3 of e_dry.
-  const Outcome h = run("heavy_sphere", "cvode", 1e-10);
+  const HardOutcome h = run_hard("heavy_sphere", "cvode", 1e-10);
   EXPECT_NEAR(h.e, e_dry(h), 1e-3);
   // A start inside the contact zone says so.
-  const Outcome s = run("start_inside_contact_zone", "cvode", 1e-8);
+  const HardOutcome s = run_hard("start_inside_contact_zone", "cvode", 1e-8);
   EXPECT_NE(s.run.summary_json["warnings"].dump().find("started inside the contact zone"), std::string::npos);
   // Re ~ 1000 with Schiller-Naumann drag.
-  EXPECT_NEAR(run("re1000_schiller_naumann", "cvode", 1e-8).run.summary_json["Re"].get<double>(), 1000, 50);
+  EXPECT_NEAR(run_hard("re1000_schiller_naumann", "cvode", 1e-8).run.summary_json["Re"].get<double>(), 1000, 50);
 }
 
 TEST(HardCases, TooFastForTheGapLeftIsAClearInputError) {
@@ -129,12 +129,12 @@ TEST(HardCases, LooseAndTightTolerancesEndCleanly) {
   // run warns that energy was created. rtol 1e-13 must agree with 1e-12.
   for (const auto& name : hard_scenes()) {
     SCOPED_TRACE(name);
-    const Outcome loose = run(name, "cvode", 1e-3);
+    const HardOutcome loose = run_hard(name, "cvode", 1e-3);
     EXPECT_TRUE(loose.finite);
     ASSERT_TRUE(std::isfinite(loose.e));
     EXPECT_GE(loose.e, 0.0);
     EXPECT_TRUE(loose.e <= e_dry(loose) || loose.warned_energy) << loose.e;
-    const Outcome tight = run(name, "cvode", 1e-13), ref = run(name, "cvode", 1e-12);
+    const HardOutcome tight = run_hard(name, "cvode", 1e-13), ref = run_hard(name, "cvode", 1e-12);
     EXPECT_TRUE(tight.finite);
     EXPECT_NEAR(tight.e, ref.e, 1e-8);
   }

@@ -23,8 +23,11 @@
 #include "apps/output_unit.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
+#include "tests/imcol_process.hpp"
 
 namespace fs = std::filesystem;
+using imcol::test::Outcome;
+using imcol::test::slurp;
 using imcol::OutputUnit;
 
 namespace {
@@ -35,21 +38,11 @@ fs::path fresh(const std::string& name) {
   return p;
 }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-struct Outcome {
-  int status;  // exit status, or -signal
-  std::string err;
-};
-
 Outcome run_shell(const std::string& cmd) {
   const fs::path errf = fs::temp_directory_path() / ("imcol_unit_err_" + std::to_string(::getpid()) + "_" +
                                                      std::to_string(std::hash<std::string>{}(cmd)));
   const int raw = std::system((cmd + " >/dev/null 2>" + errf.string()).c_str());
-  Outcome o{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(errf)};
+  Outcome o{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, "", slurp(errf)};
   fs::remove(errf);
   return o;
 }

@@ -351,17 +351,17 @@ void check_scene(const Scene& sc, const std::string& context) {
   }
 }
 
-struct Outcome {
+struct FuzzOutcome {
   bool accepted = false;
   std::string key, problem;
 };
 
 /// Parses; fails the test on anything but a validated Scene or a well-formed InputError.
-Outcome run_case(const std::string& text, const std::vector<std::string>& overrides, const std::string& what) {
+FuzzOutcome run_case(const std::string& text, const std::vector<std::string>& overrides, const std::string& what) {
   std::string context = "case: " + what + "\n--- text (lines cut at 100 bytes) ---\n";
   std::istringstream in(text);
   for (std::string l; std::getline(in, l);) context += l.substr(0, 100) + (l.size() > 100 ? "...\n" : "\n");
-  Outcome o;
+  FuzzOutcome o;
   try {
     std::vector<Override> ov;
     for (const auto& s : overrides) ov.push_back(parse_override(s));
@@ -384,7 +384,7 @@ Outcome run_case(const std::string& text, const std::vector<std::string>& overri
 
 struct Counts {
   long accepted = 0, rejected = 0;
-  void add(const Outcome& o) { ++(o.accepted ? accepted : rejected); }
+  void add(const FuzzOutcome& o) { ++(o.accepted ? accepted : rejected); }
   long total() const { return accepted + rejected; }
 };
 
@@ -435,7 +435,7 @@ TEST(SceneFuzz, ExtremeNumbersAreReadOrRejectedAtTheirKey) {
         auto mutated = lines;
         set_value(mutated[i], x.text);
         const std::string key = full_key(lines[i]);
-        const Outcome o = run_case(join(mutated), {}, key + " = " + x.text);
+        const FuzzOutcome o = run_case(join(mutated), {}, key + " = " + x.text);
         c.add(o);
         if (lines[i].key == "modes" || lines[i].key == "max_steps") {  // integers
           const bool integer = std::string(x.text).find_first_of(".eEna") == std::string::npos;
@@ -492,7 +492,7 @@ TEST(SceneFuzz, CertainlyInvalidScenesAreRejectedAtTheirKey) {
       return std::any_of(lines.begin(), lines.end(), [&](const Line& l) { return l.table == t; });
     };
     auto expect_rejected = [&](const std::string& text, const std::string& key, const std::string& problem) {
-      const Outcome o = run_case(text, {}, key + ": " + problem);
+      const FuzzOutcome o = run_case(text, {}, key + ": " + problem);
       c.add(o);
       EXPECT_FALSE(o.accepted) << key << " (" << problem << ")\n" << text;
       EXPECT_EQ(o.key, key) << o.problem << "\n" << text;

@@ -12,15 +12,12 @@
 #include <unistd.h>
 
 #include "core/materials.hpp"
+#include "tests/imcol_process.hpp"
 
 namespace fs = std::filesystem;
+using imcol::test::slurp;
 
 namespace {
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// The first ```toml block after `marker` in the Markdown file `doc` (relative to the source tree).
 std::string toml_block(const std::string& doc, const std::string& marker) {
