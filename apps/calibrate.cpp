@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -23,6 +25,7 @@
 #include "apps/parallel_runs.hpp"
 #include "apps/plot.hpp"
 #include "apps/scene_value.hpp"
+#include "calibrate/evaluation_cache.hpp"
 #include "core/errors.hpp"
 #include "core/timing.hpp"
 
@@ -114,7 +117,45 @@ struct Inputs {
   std::optional<TrajectoryWindow> window;
   std::optional<Measurement> held_out;  // --validate
   std::optional<TrajectoryWindow> held_window;
+  calib::CacheContext cache_context;     // --cache: what its evaluations depend on,
+  std::string cache_text;                // the file's content on this process ("" when new),
+  calib::EvaluationCache cache;          // and its evaluations
 };
+
+/// A file's whole content; "" when it is not there. InputError naming `option` when it cannot be read.
+std::string text_of(const std::string& path, const std::string& option) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return "";
+  if (fs::is_directory(path, ec)) throw InputError("command line", option, "'" + path + "' is a folder, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("command line", option, "cannot read '" + path + "'");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The cache file can be appended to (or made): checked on every rank before anything runs, as rank 0 appends later.
+void check_cache_writable(const std::string& path) {
+  std::error_code ec;
+  const fs::path p(path);
+  const fs::path folder = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  if (!fs::exists(p, ec) && !fs::is_directory(folder, ec))
+    throw InputError("command line", "--cache", "the folder of '" + path + "' does not exist");
+  if (::access(fs::exists(p, ec) ? path.c_str() : folder.c_str(), W_OK) != 0)
+    throw InputError("command line", "--cache", "'" + path + "' cannot be written: " + std::strerror(errno));
+}
+
+/// What the evaluations of a calibration with these inputs depend on.
+calib::CacheContext cache_context(const Inputs& in, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
+  calib::CacheContext c;
+  c.imcol_version = IMCOL_VERSION;
+  c.scene_text = text_of(in.base.path, "--cache");
+  c.measurement_text = text_of(opt.data, "--data");
+  for (const auto& o : overrides) c.overrides.push_back(o.key + "=" + o.value);
+  for (const auto& p : in.params) c.fit_keys.push_back(p.key);
+  if (in.window) c.window = {in.window->t_contact, in.window->before, in.window->after, in.window->tau_max};
+  return c;
+}
 
 Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
   Inputs in;
@@ -157,6 +198,12 @@ Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& o
                          ": too few to fit them and estimate the noise for the confidence interval; give more data, or "
                          "--factor F to set the interval's factor directly");
   in.start = start_values(scene_path, overrides, in.base, in.params);
+  if (!opt.cache.empty()) {
+    in.cache_context = cache_context(in, overrides, opt);
+    in.cache_text = text_of(opt.cache, "--cache");
+    check_cache_writable(opt.cache);
+    in.cache = calib::EvaluationCache(opt.cache, in.cache_text, in.cache_context);
+  }
   return in;
 }
 
@@ -258,7 +305,7 @@ void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::Se
 }  // namespace
 
 int calibrate(const std::string& scene_path, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
-  const Inputs in = read_inputs(scene_path, overrides, opt);
+  Inputs in = read_inputs(scene_path, overrides, opt);
 
   // MPI starts here, every rank having checked the same inputs. Rank 0 alone writes: its output folder is taken
   // now, and a refusal (another run writing it, a folder imcol did not write) ends every rank.
@@ -266,6 +313,14 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   std::optional<OutputUnit> unit;
   if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path); }))
     return refused;
+  // The cache as rank 0 read it is every rank's (rank 0 alone appends to it, from here on).
+  std::optional<calib::CacheWriter> cache_writer;
+  if (!opt.cache.empty()) {
+    std::string text = in.cache_text;
+    cluster::share(text);
+    if (world.rank > 0) in.cache = calib::EvaluationCache(opt.cache, text, in.cache_context);
+    if (const int refused = cluster::on_rank0([&] { cache_writer.emplace(opt.cache, in.cache, in.cache_context); })) return refused;
+  }
 
   const int jobs = job_count(opt.jobs, 1u << 20);  // threads a rank (each stage uses at most one per work item)
   const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
@@ -274,6 +329,7 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   ProgressLine progress(world.rank == 0 && opt.progress && isatty(STDERR_FILENO), in.params.size(), opt.search,
                         jobs * world.size, trajectory ? "m" : "");
   auto evaluate = [&](const std::vector<double>& values) {
+    if (auto held = in.cache.find(values)) return *held;
     calib::Evaluation e = score(in, in.data, in.window, scene_path, overrides, values);
     progress.add_evaluation(e.wall_s);
     return e;
@@ -284,8 +340,15 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
     cluster::Hold hold;  // the ranks wait on each other from stage to stage
     calib::SearchOptions so = opt.search;
     so.inner_parameters = trajectory ? 1 : 0;  // the time offset tau, fitted in every evaluation
-    res = calib::search(in.params, start, evaluate, so, cluster_runner(opt.jobs),
-                        world.rank == 0 ? progress.callback() : calib::Progress{});
+    calib::Runner runner = cluster_runner(opt.jobs);
+    if (cache_writer) runner.run = [run = runner.run, &cache_writer](std::size_t n, const std::function<std::string(std::size_t)>& work,
+                                                                    const std::function<void(std::size_t, std::string, int)>& done) {
+      run(n, work, [&](std::size_t i, std::string bytes, int rank) {
+        cache_writer->add_item(bytes);  // before the search uses it: a kill after this loses nothing
+        done(i, std::move(bytes), rank);
+      });
+    };
+    res = calib::search(in.params, start, evaluate, so, runner, world.rank == 0 ? progress.callback() : calib::Progress{});
   }
   const double wall = seconds_since(t0);
   progress.finish();
@@ -340,6 +403,15 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   rec.jobs = jobs;
   rec.ranks = world.size;
   rec.stage_times = progress.stage_times();
+  if (cache_writer) {
+    rec.cache.emplace();
+    rec.cache->path = opt.cache;
+    rec.cache->held = in.cache.size();
+    for (const auto& e : res.evaluations) rec.cache->reused += in.cache.contains(e.values) ? 1 : 0;
+    rec.cache->added = cache_writer->added();
+    std::cout << "cache " << opt.cache << ": " << rec.cache->reused << " of " << res.evaluations.size()
+              << " evaluations taken from it, " << rec.cache->added << " added\n";
+  }
   write_calibration_files(dir, rec, unit->run());
   if (opt.plot) {
     std::cout.flush();

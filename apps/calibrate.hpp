@@ -19,6 +19,7 @@ struct CalibrateOptions {
   std::optional<double> offset_max;  // --offset-max T: s, bound on the fitted time offset
   calib::SearchOptions search;
   std::string validate;              // --validate: a measurement of the same kind, scored under the fitted values
+  std::string cache;                 // --cache: a file of evaluations, taken from and added to (calibrate/evaluation_cache.hpp)
   int jobs = 0;                      // threads a rank; 0 = all cores
   std::string out;                   // default out/<scene name>-calibrate
   bool plot = true, progress = true;

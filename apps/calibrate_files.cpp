@@ -233,6 +233,8 @@ json calibration_json(const CalibrationRecord& rec) {
     if (e.rank >= 0 && static_cast<std::size_t>(e.rank) < by_rank.size()) ++by_rank[static_cast<std::size_t>(e.rank)];
   j["evaluations"] = {{"count", res.evaluations.size()}, {"failed", res.failed}, {"by_stage", by_stage}, {"by_rank", by_rank},
                       {"stage_wall_s", stage_wall}, {"file", "calibration.csv"}};
+  j["cache"] = rec.cache ? json{{"path", rec.cache->path}, {"held", rec.cache->held}, {"reused", rec.cache->reused}, {"added", rec.cache->added}}
+                         : json(nullptr);
   json profiles = json::array();
   const auto& rule = res.rule;
   const json factor_rule = rule.given ? json{{"kind", "given"}}

@@ -50,6 +50,11 @@ struct CalibrationRecord {
   double wall_s = 0;
   int jobs = 1, ranks = 1;
   StageTimes stage_times;
+  struct Cache {
+    std::string path;
+    std::size_t held = 0, reused = 0, added = 0;  // evaluations in the file at the start, taken from it, appended
+  };
+  std::optional<Cache> cache;  // --cache
 };
 
 /// The evaluations in an order that does not depend on where or when they ran: by stage, then work item, each item's

@@ -427,6 +427,10 @@ Subcommand add_calibrate(CLI::App& app) {
                   "refine an interval end until its bracket is this fraction of the interval's width (default 1/64)")
       ->check(number_rule("--refine-to", {0, 1, true, true}));
   cal->add_option("--validate", k.validate, "a measurement of the same kind, not fitted: scored under the fitted values")->check(path_rule("--validate"));
+  cal->add_option("--cache", k.cache,
+                  "a file of evaluations: those it holds are not run again, new ones are added (resume a killed calibration, "
+                  "or rerun with more profile points)")
+      ->check(path_rule("--cache"));
   cal->add_option("--jobs", k.jobs, "parallel evaluations a process (default: all cores)")->check(integer_rule("--jobs", 0, 1024));
   cal->add_option("--out", k.out, "output directory (default out/<scene name>-calibrate)")->check(path_rule("--out"));
   cal->add_flag("--no-progress", o->no_progress, "no progress line on the terminal");

@@ -5,7 +5,8 @@ the shipped scene gg3462 writes a calibration.csv equal to the threaded one cell
 columns aside; the refined interval ends among them), and a calibration.json with the same best, the same profiles
 and 3 ranks whose evaluations add up.
 Once for a trajectory (data/measurements/gg3462_trajectory.csv, one thread a rank), once for an e table (two
-threads a rank). An --out folder rank 0 refuses ends every rank with exit 2.
+threads a rank). An --out folder rank 0 refuses ends every rank with exit 2. A --cache file that an MPI job wrote
+serves a threaded run every evaluation (none added, the same calibration.csv), and the MPI job run again too.
 
 Usage: /usr/bin/python3 tests/mpi_calibrate.py --imcol BIN --mpirun MPIRUN --data DATA_DIR (run by ctest as mpi_calibrate)
 """
@@ -58,6 +59,26 @@ def compare(a, data, jobs):
     return failures
 
 
+def cache_check(a, data):
+    failures = []
+    with tempfile.TemporaryDirectory(prefix="imcol_mpi_calibrate_cache_") as tmp:
+        tmp = Path(tmp)
+        cache = tmp / "evaluations.cache"
+        for name, cmd in (("mpi", mpi_command(a, 3)), ("threads", [a.imcol]), ("mpi_again", mpi_command(a, 3))):
+            p = subprocess.run([*cmd, "calibrate", "gg3462", "--data", str(data), *SEARCH, "--jobs", "1", "--cache", str(cache),
+                                "--out", str(tmp / name)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=240)
+            if p.returncode != 0:
+                return [f"{name} with --cache exited {p.returncode}: {p.stderr.strip()}"]
+            j = json.loads((tmp / name / "calibration.json").read_text())
+            count, c = j["evaluations"]["count"], j["cache"]
+            want = {"reused": 0, "added": c["added"]} if name == "mpi" else {"reused": count, "added": 0}
+            if c["reused"] != want["reused"] or c["added"] != want["added"] or (name == "mpi" and not 0 < c["added"] <= count):
+                failures.append(f"{name}: cache {c} for {count} evaluations")
+        failures += csv_differences(read(tmp / "mpi" / "calibration.csv"), read(tmp / "threads" / "calibration.csv"), IGNORED,
+                                    ("mpi", "threads from its cache"))
+    return failures
+
+
 def main():
     a = arguments("--data")
     failures = []
@@ -65,6 +86,7 @@ def main():
     for label, data, jobs in (("trajectory: ", trajectory, 1),
                               ("e table, two threads a rank: ", None, 2)):
         failures += [label + f for f in compare(a, data, jobs)]
+    failures += ["cache: " + f for f in cache_check(a, trajectory)]
     failures += refused_out(a, ["calibrate", "gg3462", "--data", str(trajectory), *SEARCH, "--jobs", "1"], 3)
     return report(failures)
 

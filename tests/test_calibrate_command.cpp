@@ -134,6 +134,11 @@ TEST(CalibrateCommand, BadOptionsNameTheOption) {
   expect_refused("too few residuals", " --data " + two_rows.string() + kFit + " --fit contact.e_dry=0.8:1", two_rows.string(), "2 residuals");
   // A trajectory: 5 samples of one column for 4 parameters and the time offset.
   const DataFile five("five.csv", "t,z1\n0,0\n0.001,1e-4\n0.002,2e-4\n0.003,3e-4\n0.004,4e-4\n");
+  // --cache: its folder missing, a folder, a file that is not a cache (left as it was).
+  expect_refused("cache folder missing", data + " --cache /nonexistent_imcol_folder/x.cache", "command line: key '--cache'", "does not exist");
+  expect_refused("cache a folder", data + " --cache " + fs::temp_directory_path().string(), "command line: key '--cache'", "is a folder");
+  expect_refused("cache not a cache", data + " --cache " + table.string(), table.string() + ":1: key '--cache'", "not an imcol calibrate cache");
+  EXPECT_EQ(slurp(table.path), "sphere[0].velocity,e\n0.1,0.5\n0.2,0.6\n0.3,0.7\n");
   expect_refused("too few residuals trajectory", " --data " + five.string() + kFit + " --fit contact.e_dry=0.8:1 --fit fluid.viscosity=1e-3:1e-2"
                  " --fit fluid.density=900:1100 --window -0.01:0.01", five.string(), "5 residuals");
 }
@@ -208,4 +213,72 @@ TEST(CalibrateCommand, FitsAnETableAndValidatesItRowByRow) {
   EXPECT_EQ(best[1].at("e_meas"), "0.8723");
   EXPECT_FALSE(best[1].at("e_sim").empty());
   fs::remove_all(out);
+}
+
+// --cache: a second run takes every evaluation from the file and writes the same calibration.csv; a run killed
+// part-way (its file cut inside a line) is resumed, running only what the file lost; another scene setting is refused.
+TEST(CalibrateCommand, ACacheReplaysTheSearchAndResumesAKilledOne) {
+  const fs::path cache = scratch("evaluations.cache");
+  fs::remove(cache);
+  const std::string args = "calibrate gg3462 --data " + measurement("gg3462_trajectory.csv") + kFit +
+                           " --scan 4 --starts 1 --max-evals 10 --profile-points 5 --refine 3 --jobs 2 --no-plot --no-progress"
+                           " --cache " + cache.string() + " --out ";
+  auto calibrate_into = [&](const std::string& name, const std::string& more = "") {
+    const fs::path out = scratch(name);
+    fs::remove_all(out);
+    const Result r = run_imcol(args + out.string() + more);
+    EXPECT_EQ(r.status, 0) << name << ": " << r.err << r.out;
+    auto j = nlohmann::json::parse(slurp(out / "calibration.json"));
+    auto rows = read_csv(out / "calibration.csv");
+    for (auto& row : rows) row.erase("wall_ms");
+    fs::remove_all(out);
+    return std::make_pair(j, rows);
+  };
+  const auto [first, first_rows] = calibrate_into("cache_first");
+  const std::size_t count = first["evaluations"]["count"].get<std::size_t>();
+  EXPECT_EQ(first["cache"]["held"], 0);
+  EXPECT_EQ(first["cache"]["reused"], 0);
+  const std::size_t added = first["cache"]["added"].get<std::size_t>();
+  EXPECT_GT(added, count / 2);
+  EXPECT_LE(added, count);  // a point the search meets twice is run twice, and written once
+
+  const auto [again, again_rows] = calibrate_into("cache_again");
+  EXPECT_EQ(again["cache"]["held"].get<std::size_t>(), added);
+  EXPECT_EQ(again["cache"]["reused"].get<std::size_t>(), count);
+  EXPECT_EQ(again["cache"]["added"], 0);
+  EXPECT_EQ(again_rows, first_rows);
+  EXPECT_EQ(again["best"], first["best"]);
+
+  // A kill: the header, the first half of the items, and half of the next item's line.
+  std::vector<std::string> lines;
+  {
+    std::istringstream in(slurp(cache));
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+  }
+  ASSERT_GE(lines.size(), 4u);
+  const std::size_t kept = lines.size() / 2;
+  {
+    std::ofstream out(cache, std::ios::trunc);
+    for (std::size_t k = 0; k < kept; ++k) out << lines[k] << '\n';
+    out << lines[kept].substr(0, lines[kept].size() / 2);
+  }
+  const auto [resumed, resumed_rows] = calibrate_into("cache_resumed");
+  const std::size_t held = resumed["cache"]["held"].get<std::size_t>();
+  EXPECT_LT(held, added);
+  EXPECT_GT(resumed["cache"]["reused"].get<std::size_t>(), 0u);
+  EXPECT_EQ(resumed["cache"]["added"].get<std::size_t>(), added - held);
+  EXPECT_EQ(resumed_rows, first_rows);
+  EXPECT_EQ(resumed["best"], first["best"]);
+  EXPECT_EQ(calibrate_into("cache_whole_again").first["cache"]["reused"].get<std::size_t>(), count);
+
+  const std::string before = slurp(cache);
+  const fs::path out = scratch("cache_refused");
+  const Result r = run_imcol(args + out.string() + " --set contact.e_dry=0.9");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err, "imcol: error: " + cache.string() +
+                       ":1: key '--cache': made for another calibration (not the same overrides (--set and the tolerance options)): "
+                       "remove the file, or give another --cache\n");
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_EQ(slurp(cache), before);
+  fs::remove(cache);
 }
