@@ -122,16 +122,16 @@ struct Inputs {
   calib::EvaluationCache cache;          // and its evaluations
 };
 
-/// A file's whole content; "" when it is not there. InputError naming `option` when it cannot be read.
-std::string text_of(const std::string& path, const std::string& option) {
+/// The cache file's content; "" when it is not there yet.
+std::string cache_file_text(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return "";
-  if (fs::is_directory(path, ec)) throw InputError("command line", option, "'" + path + "' is a folder, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("command line", option, "cannot read '" + path + "'");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
+  if (fs::is_directory(path, ec)) throw InputError("command line", "--cache", "'" + path + "' is a folder, not a file");
+  try {
+    return file_text(path);
+  } catch (const std::runtime_error& e) {
+    throw InputError("command line", "--cache", e.what());
+  }
 }
 
 /// The cache file can be appended to (or made): checked on every rank before anything runs, as rank 0 appends later.
@@ -149,8 +149,8 @@ void check_cache_writable(const std::string& path) {
 calib::CacheContext cache_context(const Inputs& in, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
   calib::CacheContext c;
   c.imcol_version = IMCOL_VERSION;
-  c.scene_text = text_of(in.base.path, "--cache");
-  c.measurement_text = text_of(opt.data, "--data");
+  c.scene_text = file_text(in.base.path);  // both read before: a failure now is one of I/O
+  c.measurement_text = file_text(opt.data);
   for (const auto& o : overrides) c.overrides.push_back(o.key + "=" + o.value);
   for (const auto& p : in.params) c.fit_keys.push_back(p.key);
   if (in.window) c.window = {in.window->t_contact, in.window->before, in.window->after, in.window->tau_max};
@@ -200,7 +200,7 @@ Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& o
   in.start = start_values(scene_path, overrides, in.base, in.params);
   if (!opt.cache.empty()) {
     in.cache_context = cache_context(in, overrides, opt);
-    in.cache_text = text_of(opt.cache, "--cache");
+    in.cache_text = cache_file_text(opt.cache);
     check_cache_writable(opt.cache);
     in.cache = calib::EvaluationCache(opt.cache, in.cache_text, in.cache_context);
   }

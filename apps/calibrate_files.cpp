@@ -175,15 +175,15 @@ std::string best_csv(const CalibrationRecord& rec) {
   return out;
 }
 
+}  // namespace
+
 std::string file_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path + " to copy it into the output folder");
+  if (!in) throw std::runtime_error("cannot read " + path);
   std::ostringstream s;
-  s << in.rdbuf();
+  s << in.rdbuf();  // an empty file sets only s's failbit: its text is ""
   return s.str();
 }
-
-}  // namespace
 
 void sort_evaluations(calib::SearchResult& r) {
   std::stable_sort(r.evaluations.begin(), r.evaluations.end(), [](const calib::EvaluationRecord& a, const calib::EvaluationRecord& b) {

@@ -61,6 +61,10 @@ struct CalibrationRecord {
 /// own in the order it made them.
 void sort_evaluations(calib::SearchResult& r);
 
+/// A file's whole content (the measurement copied into the folder, the texts a --cache depends on); std::runtime_error
+/// when it cannot be read.
+std::string file_text(const std::string& path);
+
 /// calibration.json's content, all but its `run` block.
 nlohmann::ordered_json calibration_json(const CalibrationRecord& rec);
 

@@ -83,7 +83,6 @@ EvaluationCache::EvaluationCache(const std::string& path, const std::string& tex
       for (auto& [values, ev] : evaluations_from_bytes(line)) entries_.emplace(std::move(values), std::move(ev));
     } catch (const std::exception&) {
       if (last_unended) {  // the last write of a killed run
-        cut_short_ = true;
         unended_ = false;
         whole_bytes_ = text.size() - line.size();
         break;

@@ -48,12 +48,12 @@ class EvaluationCache {
   bool has_header() const { return has_header_; }
   std::size_t bytes() const { return bytes_; }              // the text read
   std::size_t whole_bytes() const { return whole_bytes_; }  // the text up to the end of its last whole line
-  bool cut_short() const { return cut_short_; }             // a last line was left out
+  bool cut_short() const { return whole_bytes_ < bytes_; }  // a last line was left out
   bool unended() const { return unended_; }                 // a whole last line lacks its newline
 
  private:
   std::map<std::vector<double>, Evaluation> entries_;
-  bool has_header_ = false, cut_short_ = false, unended_ = false;
+  bool has_header_ = false, unended_ = false;
   std::size_t bytes_ = 0, whole_bytes_ = 0;
 };
 

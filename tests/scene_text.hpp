@@ -3,19 +3,14 @@
 // Scene-file text for the tests: one builder per TOML table, so that fixtures are not copied around.
 #include <gtest/gtest.h>
 
-#include <charconv>
 #include <string>
+
+#include "core/number_text.hpp"
 
 namespace imcol::test {
 
 /// Shortest round-trip form, with ".0" on whole numbers so that TOML reads a float.
-inline std::string num(double v) {
-  char buf[32];
-  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
-  std::string s(buf, end);
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
+inline std::string num(double v) { return toml_float(v); }
 
 inline std::string fluid(double viscosity, double density = 1000.0) {
   return "[fluid]\ndensity = " + num(density) + "\nviscosity = " + num(viscosity) + "\n";
