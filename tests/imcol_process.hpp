@@ -41,10 +41,9 @@ inline Outcome run_imcol(const std::string& args, const std::filesystem::path& s
 /// cannot start). The caller waits for it with waitpid, which returns only once all its threads, and so its files
 /// and locks, are gone.
 inline pid_t start_imcol(const std::string& args, const std::string& dir) {
-  const std::string cmd = "cd '" + dir + "' && exec " + std::string(IMCOL_BINARY) + " " + args + " >/dev/null 2>&1";
+  std::string cmd = "cd '" + dir + "' && exec " + std::string(IMCOL_BINARY) + " " + args + " >/dev/null 2>&1";
   char sh[] = "/bin/sh", c[] = "-c";
-  std::string body = cmd;
-  char* argv[] = {sh, c, body.data(), nullptr};
+  char* argv[] = {sh, c, cmd.data(), nullptr};
   pid_t pid = -1;
   return ::posix_spawn(&pid, "/bin/sh", nullptr, nullptr, argv, environ) == 0 ? pid : -1;
 }
