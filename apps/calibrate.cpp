@@ -27,7 +27,9 @@
 #include "apps/scene_value.hpp"
 #include "calibrate/evaluation_cache.hpp"
 #include "core/errors.hpp"
+#include "core/text_file.hpp"
 #include "core/timing.hpp"
+#include "core/toml_reader.hpp"
 
 namespace imcol {
 
@@ -113,6 +115,7 @@ struct Inputs {
   Scene base;
   std::vector<FitParameter> params;
   std::vector<StartValue> start;
+  std::string data_text;  // the measurement file's text, as read once
   Measurement data;
   std::optional<TrajectoryWindow> window;
   std::optional<Measurement> held_out;  // --validate
@@ -122,16 +125,11 @@ struct Inputs {
   calib::EvaluationCache cache;          // and its evaluations
 };
 
-/// The cache file's content; "" when it is not there yet.
+/// The cache file's content; "" when it is not there yet. A regular file of at most calib::kMaxCacheBytes.
 std::string cache_file_text(const std::string& path) {
   std::error_code ec;
-  if (!fs::exists(path, ec)) return "";
-  if (fs::is_directory(path, ec)) throw InputError("command line", "--cache", "'" + path + "' is a folder, not a file");
-  try {
-    return file_text(path);
-  } catch (const std::runtime_error& e) {
-    throw InputError("command line", "--cache", e.what());
-  }
+  if (!fs::exists(fs::symlink_status(path, ec))) return "";
+  return read_text_file(path, "cache", calib::kMaxCacheBytes, "", "--cache");
 }
 
 /// The cache file can be appended to (or made): checked on every rank before anything runs, as rank 0 appends later.
@@ -146,11 +144,11 @@ void check_cache_writable(const std::string& path) {
 }
 
 /// What the evaluations of a calibration with these inputs depend on.
-calib::CacheContext cache_context(const Inputs& in, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
+calib::CacheContext cache_context(const Inputs& in, const std::vector<Override>& overrides) {
   calib::CacheContext c;
   c.imcol_version = IMCOL_VERSION;
-  c.scene_text = file_text(in.base.path);  // both read before: a failure now is one of I/O
-  c.measurement_text = file_text(opt.data);
+  c.scene_text = read_scene_file(in.base.path);
+  c.measurement_text = in.data_text;
   for (const auto& o : overrides) c.overrides.push_back(o.key + "=" + o.value);
   for (const auto& p : in.params) c.fit_keys.push_back(p.key);
   if (in.window) c.window = {in.window->t_contact, in.window->before, in.window->after, in.window->tau_max};
@@ -169,7 +167,8 @@ Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& o
   }
   const auto& so = opt.search;
   if (so.profile_points == 1) throw InputError("command line", "--profile-points", "must be 0 (no profiles) or at least 2 (got 1)");
-  in.data = calib::read_measurement(opt.data);
+  in.data_text = read_text_file(opt.data, "measurement", calib::kMaxMeasurementBytes, "CSV");
+  in.data = calib::parse_measurement(opt.data, in.data_text);
   const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
   std::optional<double> before, after;
   if (!trajectory && (!opt.window.empty() || opt.offset_max))
@@ -199,7 +198,7 @@ Inputs read_inputs(const std::string& scene_path, const std::vector<Override>& o
                          "--factor F to set the interval's factor directly");
   in.start = start_values(scene_path, overrides, in.base, in.params);
   if (!opt.cache.empty()) {
-    in.cache_context = cache_context(in, overrides, opt);
+    in.cache_context = cache_context(in, overrides);
     in.cache_text = cache_file_text(opt.cache);
     check_cache_writable(opt.cache);
     in.cache = calib::EvaluationCache(opt.cache, in.cache_text, in.cache_context);
@@ -390,6 +389,7 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   rec.params = in.params;
   rec.start = in.start;
   rec.data = in.data;
+  rec.data_text = in.data_text;
   rec.window = in.window;
   rec.held_out = in.held_out;
   rec.held_window = in.held_window;

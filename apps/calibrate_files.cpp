@@ -89,8 +89,9 @@ json measurement_json(const calib::Measurement& m, const std::optional<calib::Tr
 json evaluation_json(const calib::Evaluation& e) {
   json j;
   j["ok"] = e.ok;
-  j["objective"] = run::finite_or_null(e.objective);
-  j["rms"] = run::finite_or_null(e.rms);
+  // A failed evaluation (or none at all: no best when none succeeded) has no objective.
+  j["objective"] = e.ok ? run::finite_or_null(e.objective) : json(nullptr);
+  j["rms"] = e.ok ? run::finite_or_null(e.rms) : json(nullptr);
   if (e.tau) j["tau_s"] = *e.tau;
   if (!e.message.empty()) j["message"] = e.message;
   return j;
@@ -176,14 +177,6 @@ std::string best_csv(const CalibrationRecord& rec) {
 }
 
 }  // namespace
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path);
-  std::ostringstream s;
-  s << in.rdbuf();  // an empty file sets only s's failbit: its text is ""
-  return s.str();
-}
 
 void sort_evaluations(calib::SearchResult& r) {
   std::stable_sort(r.evaluations.begin(), r.evaluations.end(), [](const calib::EvaluationRecord& a, const calib::EvaluationRecord& b) {
@@ -274,8 +267,7 @@ json calibration_json(const CalibrationRecord& rec) {
 }
 
 void write_calibration_files(const fs::path& dir, const CalibrationRecord& rec, const json& run) {
-  const std::string data_path = std::visit([](const auto& m) { return m.path; }, rec.data);
-  write_file_atomic(dir / "measured.csv", file_text(data_path));
+  write_file_atomic(dir / "measured.csv", rec.data_text);
   write_file_atomic(dir / "calibration.csv", calibration_csv(rec));
   write_file_atomic(dir / "best.csv", best_csv(rec));
   json j = calibration_json(rec);

@@ -39,6 +39,7 @@ struct CalibrationRecord {
   std::vector<calib::FitParameter> params;
   std::vector<StartValue> start;
   calib::Measurement data;
+  std::string data_text;  // the measurement file's text (measured.csv)
   std::optional<calib::TrajectoryWindow> window;
   std::optional<calib::Measurement> held_out;
   std::optional<calib::TrajectoryWindow> held_window;
@@ -60,10 +61,6 @@ struct CalibrationRecord {
 /// The evaluations in an order that does not depend on where or when they ran: by stage, then work item, each item's
 /// own in the order it made them.
 void sort_evaluations(calib::SearchResult& r);
-
-/// A file's whole content (the measurement copied into the folder, the texts a --cache depends on); std::runtime_error
-/// when it cannot be read.
-std::string file_text(const std::string& path);
 
 /// calibration.json's content, all but its `run` block.
 nlohmann::ordered_json calibration_json(const CalibrationRecord& rec);

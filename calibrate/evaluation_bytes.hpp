@@ -13,6 +13,9 @@ namespace imcol::calib {
 using ValuedEvaluation = std::pair<std::vector<double>, Evaluation>;  // parameter values, their evaluation
 
 std::string evaluations_to_bytes(const std::vector<ValuedEvaluation>& evals);
+/// The evaluations that evaluations_to_bytes wrote. std::invalid_argument, saying which evaluation and field, for bytes
+/// it could not have written: not a non-empty JSON list, a field missing or of another type, parameter values that
+/// are not finite, an evaluation that succeeded without a finite objective and rms >= 0.
 std::vector<ValuedEvaluation> evaluations_from_bytes(const std::string& bytes);
 
 /// Points of the unit cube (the stages' inputs) as bytes and back.

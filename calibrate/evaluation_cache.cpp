@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -36,6 +37,11 @@ const std::pair<const char*, const char*> kFields[] = {
     {"measurement_text_hash", "measurement file's text (--data)"},
     {"window", "trajectory window (--window, --offset-max, the measured contact)"},
 };
+
+/// The message of a damaged line: what is wrong, and what to do.
+std::string damaged(const std::string& problem) {
+  return problem + "; the file is damaged: remove it, or give another --cache";
+}
 
 }  // namespace
 
@@ -79,16 +85,22 @@ EvaluationCache::EvaluationCache(const std::string& path, const std::string& tex
       has_header_ = true;
       continue;
     }
+    std::vector<ValuedEvaluation> evals;
     try {
-      for (auto& [values, ev] : evaluations_from_bytes(line)) entries_.emplace(std::move(values), std::move(ev));
-    } catch (const std::exception&) {
-      if (last_unended) {  // the last write of a killed run
+      evals = evaluations_from_bytes(line);
+    } catch (const std::exception& e) {
+      if (last_unended && !nlohmann::json::accept(line)) {  // the last write of a killed run, cut inside its JSON
         unended_ = false;
         whole_bytes_ = text.size() - line.size();
         break;
       }
-      throw InputError(where, "--cache", "not a line of evaluations; the file is damaged: remove it, or give another --cache");
+      throw InputError(where, "--cache", damaged(std::string("not a line of evaluations (") + e.what() + ")"));
     }
+    for (std::size_t i = 0; i < evals.size(); ++i)
+      if (evals[i].first.size() != context.fit_keys.size())
+        throw InputError(where, "--cache", damaged("evaluation " + std::to_string(i + 1) + " has " + std::to_string(evals[i].first.size()) +
+                                                   " parameter values for " + std::to_string(context.fit_keys.size()) + " fitted keys"));
+    for (auto& [values, ev] : evals) entries_.emplace(std::move(values), std::move(ev));
   }
 }
 
@@ -108,6 +120,11 @@ CacheWriter::CacheWriter(const std::string& path, const EvaluationCache& read, c
     : held_(read.keys()) {
   lock_fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (lock_fd_ < 0) throw InputError("command line", "--cache", "cannot open '" + path + "': " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(lock_fd_, &st) != 0 || !S_ISREG(st.st_mode)) {  // made another kind of file since it was read
+    ::close(lock_fd_);
+    throw InputError(path, "--cache", "is not a regular file (a cache is a text file)");
+  }
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     ::close(lock_fd_);
     throw InputError("command line", "--cache", "'" + path + "' is in use by another imcol calibrate: wait for it, or give another --cache");

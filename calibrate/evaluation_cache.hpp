@@ -7,6 +7,7 @@
 // of running it; the search is deterministic, so a calibration killed part-way, or run again with more profile
 // points or refinement rounds, runs only the evaluations it has not seen.
 #include <cstddef>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -19,6 +20,9 @@
 #include "calibrate/evaluation_bytes.hpp"
 
 namespace imcol::calib {
+
+/// The largest cache file read (256 MiB: about a million evaluations of a trajectory fit).
+inline constexpr std::uintmax_t kMaxCacheBytes = std::uintmax_t{256} << 20;
 
 /// What a cache's evaluations depend on; each field's value is compared as it is (texts by a hash).
 struct CacheContext {
@@ -37,8 +41,10 @@ class EvaluationCache {
  public:
   EvaluationCache() = default;
   /// `text` is the file `path`'s content ("" for a file not there yet). InputError (the file, its header or line)
-  /// for a header made for another context, naming what differs, or a line that is not an item's evaluations; a last
-  /// line without its newline that does not read (a write a kill cut short) is left out, and a writer drops it.
+  /// for a header made for another context, naming what differs, or a line that is not an item's evaluations (not
+  /// JSON, a field missing or of another type, a succeeded evaluation without a finite objective >= 0, another count
+  /// of parameter values than the fitted keys), naming the evaluation and field; a last line without its newline that
+  /// is not JSON (a write a kill cut short) is left out, and a writer drops it.
   EvaluationCache(const std::string& path, const std::string& text, const CacheContext& context);
 
   std::optional<Evaluation> find(const std::vector<double>& values) const;

@@ -60,6 +60,9 @@ FitParameter parse_fit_parameter(const std::string& text, const std::string& sce
     try {
       (void)load_scene(scene_path, ov);
     } catch (const InputError& e) {
+      // The scene reader refuses a fractional value of an integer key: no value of the search would do.
+      if (e.key() == p.key && e.problem() == "must be an integer")
+        fail(p.key, "integer keys cannot be fitted (" + p.key + " is an integer; fit only keys that take any number)");
       fail(p.key, "the scene refuses " + p.key + " = " + fmt_number(v) + " (fit only numeric keys, within the scene's limits): " + e.problem());
     }
   }

@@ -5,9 +5,10 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 
 #include "core/errors.hpp"
+#include "core/text_file.hpp"
 
 namespace imcol::calib {
 
@@ -35,6 +36,9 @@ double number(const std::string& cell, const std::string& where, const std::stri
   const double v = std::strtod(cell.c_str(), &end);
   if (end != cell.c_str() + cell.size()) throw InputError(where, column, "not a number: '" + cell + "'");
   if (!std::isfinite(v)) throw InputError(where, column, "not a finite number: '" + cell + "'");
+  // The scene reader's range for any number: beyond it a residual's square, or its sum, would overflow.
+  if (std::abs(v) > 1e30 || (v != 0 && std::abs(v) < 1e-30))
+    throw InputError(where, column, "out of range: " + cell + " (a measured value is 0 or of magnitude in [1e-30, 1e30])");
   return v;
 }
 
@@ -48,8 +52,13 @@ bool key_like(const std::string& k) {
 }  // namespace
 
 Measurement read_measurement(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the measurement file");
+  return parse_measurement(path, read_text_file(path, "measurement", kMaxMeasurementBytes, "CSV"));
+}
+
+Measurement parse_measurement(const std::string& path, const std::string& text) {
+  // A UTF-8 byte order mark (spreadsheets write one) is not part of the first column's name.
+  constexpr char kBom[] = "\xEF\xBB\xBF";
+  std::istringstream in(text.rfind(kBom, 0) == 0 ? text.substr(3) : text);
   std::string line;
   int lineno = 0;
   std::vector<std::string> header;
@@ -60,11 +69,11 @@ Measurement read_measurement(const std::string& path) {
   std::size_t e_col = 0;
   while (std::getline(in, line)) {
     ++lineno;
-    const std::string text = trim(line);
-    if (text.empty() || text[0] == '#') continue;
+    const std::string row = trim(line);
+    if (row.empty() || row[0] == '#') continue;
     const std::string where = path + ":" + std::to_string(lineno);
     if (header.empty()) {
-      header = cells(text);
+      header = cells(row);
       header_line = lineno;
       for (std::size_t i = 0; i < header.size(); ++i) {
         if (header[i].empty()) throw InputError(where, "", "column " + std::to_string(i + 1) + " has no name");
@@ -96,7 +105,7 @@ Measurement read_measurement(const std::string& path) {
       }
       continue;
     }
-    const auto c = cells(text);
+    const auto c = cells(row);
     if (c.size() != header.size())
       throw InputError(where, "", std::to_string(c.size()) + " cells, the header (line " + std::to_string(header_line) + ") has " +
                                       std::to_string(header.size()));

@@ -7,6 +7,7 @@
 //    is one run of the scene with those keys set; at least kMinTableRows rows.
 // The kind is told by the header: `t` first → trajectory; an `e` column → table.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <variant>
 #include <vector>
@@ -14,6 +15,8 @@
 namespace imcol::calib {
 
 inline constexpr std::size_t kMinTrajectoryRows = 5, kMinTableRows = 2;
+/// The largest measurement file read (64 MiB: about a million rows of a trajectory with two columns).
+inline constexpr std::uintmax_t kMaxMeasurementBytes = std::uintmax_t{64} << 20;
 
 struct MeasuredTrajectory {
   std::string path;
@@ -34,8 +37,13 @@ struct MeasuredTable {
 
 using Measurement = std::variant<MeasuredTrajectory, MeasuredTable>;
 
-/// Reads a measurement file. Bad input (a missing file, an unknown column, a cell that is not a finite number,
-/// times not strictly increasing, too few rows, e outside [0, 1]) throws InputError(path:line, column, problem).
+/// Reads a measurement file: a regular file of at most kMaxMeasurementBytes (core/text_file.hpp), then
+/// parse_measurement. Bad input (a missing file, a directory, a device or FIFO, a larger file) throws InputError(path).
 Measurement read_measurement(const std::string& path);
+
+/// Reads the measurement `text` of file `path`; a leading UTF-8 byte order mark is skipped. Bad input (an unknown
+/// column, a cell that is not a finite number or lies outside 0 and [1e-30, 1e30] in magnitude, times not strictly
+/// increasing, too few rows, e outside [0, 1]) throws InputError(path:line, column, problem).
+Measurement parse_measurement(const std::string& path, const std::string& text);
 
 }  // namespace imcol::calib

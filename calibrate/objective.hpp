@@ -6,8 +6,8 @@
 //    the simulation's); the window is [t_c + before, t_c + after] around the measured contact t_c, the time of
 //    the smallest measured gap (to the wall or between the spheres) given the scene's radii;
 //  * e table: the mean square of e_sim - e_meas over the rows (each row one run, measured as imcol sweep measures a
-//    point, solver.t_end doubled at most twice while too short; a run with no rebound, its summary's `separated` false,
-//    counts as e = 0).
+//    point, solver.t_end doubled at most twice while too short; a run with no rebound has e = 0 in its summary; a run
+//    without e, such as one with no collision by t_end, makes the evaluation fail with its reason).
 #include <cstddef>
 #include <optional>
 #include <string>

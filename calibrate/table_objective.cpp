@@ -21,6 +21,17 @@ std::vector<Override> row_overrides(const MeasuredTable& m, std::size_t r, const
   return ov;
 }
 
+/// Why a row has no e, as imcol sweep says it of a point: the summary's reason, and the longer t_end tried in vain.
+std::string e_missing_message(const RunSummary& s, double t_end_scene, double t_end_run) {
+  std::string why = s.e_missing.value_or("e is undefined");
+  const std::string hint = " (raise solver.t_end)";
+  const bool extended = t_end_run != t_end_scene;
+  if (const auto k = why.find(hint); k != std::string::npos && extended) why.erase(k, hint.size());
+  std::string out = "e not measured: " + why;
+  if (extended && s.t_end_too_short) out += "; still so with solver.t_end raised to " + fmt_number(t_end_run) + " s";
+  return out;
+}
+
 }  // namespace
 
 void check_table_keys(const MeasuredTable& m, const std::string& scene_path, const std::vector<Override>& overrides) {
@@ -45,14 +56,12 @@ Evaluation evaluate_table(const MeasuredTable& m, const std::string& scene_path,
   for (std::size_t r = 0; r < m.e.size(); ++r) {
     const std::string row = m.path + ":" + std::to_string(m.lines[r]);
     try {
-      const RunSummary s = simulate_for_e(load_scene(scene_path, row_overrides(m, r, overrides))).summary;
-      if (s.e) {
-        ev.e_sim[r] = *s.e;
-      } else if (!s.separated) {
-        ev.e_sim[r] = 0;  // no rebound (summary `separated` false: the spheres never parted), even with t_end raised
-      } else if (ev.message.empty()) {
-        ev.message = row + ": e is undefined: " + s.e_missing.value_or("not measured");
-      }
+      const Scene scene = load_scene(scene_path, row_overrides(m, r, overrides));
+      const RunResult run = simulate_for_e(scene);
+      // A collision without a rebound has e = 0 in the summary; a run without e (no collision by t_end, a rebound
+      // cut short) has no e to compare: the evaluation fails.
+      if (run.summary.e) ev.e_sim[r] = *run.summary.e;
+      else if (ev.message.empty()) ev.message = row + ": " + e_missing_message(run.summary, scene.solver.t_end, run.scene.solver.t_end);
     } catch (const std::exception& e) {
       if (ev.message.empty()) ev.message = row + ": " + e.what();
     }

@@ -16,30 +16,14 @@
 
 #include "core/choices.hpp"
 #include "core/errors.hpp"
+#include "core/text_file.hpp"
 
 namespace imcol {
 
-/// The text of a scene file: a regular file of at most 1 MiB (a directory, a device such as /dev/zero or
+/// The text of a scene file: a regular file of at most 1 MiB (a directory, a device such as /dev/zero, a FIFO or
 /// a huge file is refused with exit status 2 before anything is read into memory).
-inline std::string read_scene_file(const std::string& path) {
-  namespace fs = std::filesystem;
-  constexpr std::uintmax_t kMaxBytes = 1u << 20;
-  std::error_code ec;
-  const auto st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) throw InputError(path, "", "cannot open the scene file (no such file)");
-  if (fs::is_directory(st)) throw InputError(path, "", "is a directory, not a scene file");
-  if (!fs::is_regular_file(st)) throw InputError(path, "", "is not a regular file (a scene is a TOML text file)");
-  const auto size = fs::file_size(path, ec);
-  if (ec) throw InputError(path, "", "cannot read the scene file: " + ec.message());
-  if (size > kMaxBytes)
-    throw InputError(path, "", "the scene file has " + std::to_string(size) + " bytes, more than the 1 MiB a scene may have");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "", "cannot open the scene file");
-  std::string text(static_cast<std::size_t>(size), '\0');
-  in.read(text.data(), static_cast<std::streamsize>(size));
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  return text;
-}
+inline constexpr std::uintmax_t kMaxSceneBytes = 1u << 20;
+inline std::string read_scene_file(const std::string& path) { return read_text_file(path, "scene", kMaxSceneBytes, "TOML"); }
 
 /// The place an error names for a value that has no line in the scene file: an override (--set, --rtol, ...).
 inline constexpr const char* kOverridePlace = "command line (--set/--rtol/--atol/--integrator)";

@@ -6,7 +6,10 @@
 
 #include <unistd.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -32,6 +35,16 @@ fs::path scratch(std::string name) {
 }
 
 Result run_imcol(const std::string& args) { return imcol::test::run_imcol(args, scratch("run")); }
+
+/// imcol ARGS killed after 60 s (exit status 137): a command that waits for ever fails the test instead of hanging it.
+Result run_bounded(const std::string& args) {
+  const fs::path o = scratch("bounded.stdout"), e = scratch("bounded.stderr");
+  const int raw = std::system(("timeout -s KILL 60 " + std::string(IMCOL_BINARY) + " " + args + " >" + o.string() + " 2>" + e.string()).c_str());
+  Result r{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(o), slurp(e)};
+  fs::remove(o);
+  fs::remove(e);
+  return r;
+}
 
 std::string measurement(const std::string& name) { return imcol::data_dir() + "/measurements/" + name; }
 
@@ -136,11 +149,78 @@ TEST(CalibrateCommand, BadOptionsNameTheOption) {
   const DataFile five("five.csv", "t,z1\n0,0\n0.001,1e-4\n0.002,2e-4\n0.003,3e-4\n0.004,4e-4\n");
   // --cache: its folder missing, a folder, a file that is not a cache (left as it was).
   expect_refused("cache folder missing", data + " --cache /nonexistent_imcol_folder/x.cache", "command line: key '--cache'", "does not exist");
-  expect_refused("cache a folder", data + " --cache " + fs::temp_directory_path().string(), "command line: key '--cache'", "is a folder");
+  expect_refused("cache a folder", data + " --cache " + fs::temp_directory_path().string(),
+                 fs::temp_directory_path().string() + ": key '--cache': is a directory, not a cache file");
   expect_refused("cache not a cache", data + " --cache " + table.string(), table.string() + ":1: key '--cache'", "not an imcol calibrate cache");
   EXPECT_EQ(slurp(table.path), "sphere[0].velocity,e\n0.1,0.5\n0.2,0.6\n0.3,0.7\n");
   expect_refused("too few residuals trajectory", " --data " + five.string() + kFit + " --fit contact.e_dry=0.8:1 --fit fluid.viscosity=1e-3:1e-2"
                  " --fit fluid.density=900:1100 --window -0.01:0.01", five.string(), "5 residuals");
+}
+
+TEST(CalibrateCommand, FilesThatAreNotRegularAreRefusedAtOnce) {
+  // /dev/zero never ends (read whole, it took 45 s and 16.8 GB before "no header line"); a FIFO without a writer
+  // blocks its reader for ever; /dev/null reads as an empty cache. Each is refused before it is opened: with
+  // `timeout` around the command, a reader that waits is killed (exit status 137) instead of hanging the test.
+  const fs::path fifo = scratch("fifo");
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string fit = " --data " + measurement("gg3462_trajectory.csv") + kFit;
+  const std::pair<std::string, std::string> cases[] = {
+      {" --data /dev/zero" + kFit, "/dev/zero: is not a regular file (a measurement is a CSV text file)"},
+      {" --data " + fifo.string() + kFit, fifo.string() + ": is not a regular file (a measurement is a CSV text file)"},
+      {" --data " + fs::temp_directory_path().string() + kFit, fs::temp_directory_path().string() + ": is a directory, not a measurement file"},
+      {fit + " --validate /dev/zero", "/dev/zero: is not a regular file (a measurement is a CSV text file)"},
+      {fit + " --cache /dev/null", "/dev/null: key '--cache': is not a regular file (a cache is a text file)"},
+      {fit + " --cache " + fifo.string(), fifo.string() + ": key '--cache': is not a regular file"},
+  };
+  for (const auto& [args, message] : cases) {
+    const fs::path out = scratch("out_not_regular");
+    const auto t0 = std::chrono::steady_clock::now();
+    const Result r = run_bounded("calibrate gg3462 --no-plot --no-progress --out " + out.string() + args);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("imcol: error: " + message, 0), 0u) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_LT(seconds, 20.0) << args;  // the start-up and the scene's checks: well under a second unloaded
+    EXPECT_FALSE(fs::exists(out));
+  }
+  fs::remove(fifo);
+}
+
+TEST(CalibrateCommand, MisleadingInputsAreNamedPlainly) {
+  const std::string data = " --data " + measurement("gg3462_trajectory.csv");
+  expect_refused("integer key", data + " --fit solver.max_steps=1000:100000", "command line: key '--fit'",
+                 "parameter 'solver.max_steps': integer keys cannot be fitted");
+  const DataFile huge("huge_z.csv", "t,z1\n0,0\n0.001,1e308\n0.002,2e-4\n0.003,3e-4\n0.004,4e-4\n");
+  expect_refused("z out of range", " --data " + huge.string() + kFit, huge.string() + ":3: key 'z1'", "out of range");
+}
+
+// Runs that never reach their target have no e: every evaluation fails with sweep's reason (never e = 0), the command
+// exits 3, and calibration.json's best has no objective.
+TEST(CalibrateCommand, RunsWithoutACollisionFailTheirEvaluations) {
+  const fs::path out = scratch("out_no_collision");
+  fs::remove_all(out);
+  const DataFile table("e_short.csv", "sphere[0].velocity,e\n0.08,0.8450\n0.11,0.8723\n0.16,0.8964\n");
+  const Result r = run_imcol("calibrate gg3462 --data " + table.string() + " --fit solver.t_end=1e-6:1e-5 --scan 2 --starts 1"
+                             " --max-evals 3 --profile-points 0 --no-plot --no-progress --jobs 2 --out " + out.string());
+  EXPECT_EQ(r.status, 3) << r.err << r.out;
+  EXPECT_NE(r.err.find("no evaluation succeeded"), std::string::npos) << r.err;
+  const auto rows = read_csv(out / "calibration.csv");
+  ASSERT_FALSE(rows.empty());
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("status"), "failed");
+    EXPECT_TRUE(row.at("objective").empty());
+    EXPECT_EQ(row.at("message").rfind(table.string() + ":2: e not measured: no collision by t_end", 0), 0u) << row.at("message");
+  }
+  const auto j = nlohmann::json::parse(slurp(out / "calibration.json"));
+  EXPECT_FALSE(j["best"]["ok"].get<bool>());
+  EXPECT_TRUE(j["best"]["objective"].is_null()) << j["best"];
+  EXPECT_TRUE(j["best"]["rms"].is_null()) << j["best"];
+  EXPECT_EQ(j["evaluations"]["failed"], j["evaluations"]["count"]);
+  const auto best = read_csv(out / "best.csv");
+  ASSERT_EQ(best.size(), 3u);
+  EXPECT_TRUE(best[0].at("e_sim").empty());
+  fs::remove_all(out);
 }
 
 TEST(CalibrateCommand, WritesItsFilesAndTheBestIsTheBestRow) {

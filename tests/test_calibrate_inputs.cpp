@@ -2,8 +2,10 @@
 // Bad input to the calibration engine: the measurement reader and --fit, one test each; every one an InputError
 // naming the place (FILE:LINE, or the command line) and the key.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -11,6 +13,7 @@
 #include "calibrate/measurement.hpp"
 #include "calibrate/objective.hpp"
 #include "core/materials.hpp"
+#include "core/toml_reader.hpp"
 #include "tests/calibrate_runner.hpp"
 #include "tests/input_error.hpp"
 
@@ -277,4 +280,79 @@ TEST(CalibrateInputs, TrajectoryZ2ForASceneWithOneSphere) {
   const std::string e = input_error_of([&] { (void)trajectory_window(tr, sc, std::nullopt, std::nullopt, std::nullopt); });
   EXPECT_NE(e.find("z2_wall.csv:2: key 'z2'"), std::string::npos) << e;
   EXPECT_NE(e.find("one sphere"), std::string::npos) << e;
+}
+
+TEST(CalibrateInputs, WhatIsNotARegularFileIsRefusedBeforeItIsOpened) {
+  // A directory, a device that never ends, a FIFO without a writer (opening it would wait for ever): each refused at
+  // once, naming the file.
+  const auto t0 = std::chrono::steady_clock::now();
+  const fs::path dir = fs::path(file_with("probe.csv", "")).parent_path();
+  std::string e = input_error_of([&] { (void)read_measurement(dir.string()); });
+  EXPECT_EQ(e, dir.string() + ": is a directory, not a measurement file") << e;
+  e = input_error_of([] { (void)read_measurement("/dev/zero"); });
+  EXPECT_EQ(e, "/dev/zero: is not a regular file (a measurement is a CSV text file)") << e;
+  const fs::path fifo = dir / "fifo.csv";
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  e = input_error_of([&] { (void)read_measurement(fifo.string()); });
+  EXPECT_EQ(e, fifo.string() + ": is not a regular file (a measurement is a CSV text file)") << e;
+  // The scene reader is the same reader, with its own words and bound.
+  e = input_error_of([&] { (void)read_scene_file(fifo.string()); });
+  EXPECT_EQ(e, fifo.string() + ": is not a regular file (a scene is a TOML text file)") << e;
+  e = input_error_of([&] { (void)read_scene_file(dir.string()); });
+  EXPECT_EQ(e, dir.string() + ": is a directory, not a scene file") << e;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
+}
+
+TEST(CalibrateInputs, AMeasurementLargerThanItsBoundIsRefusedUnread) {
+  // A sparse file one byte over 64 MiB: refused by its size, before a byte of it is read.
+  const std::string path = file_with("huge.csv", "t,z1\n");
+  fs::resize_file(path, kMaxMeasurementBytes + 1);
+  const std::string e = input_error_of([&] { (void)read_measurement(path); });
+  EXPECT_EQ(e, path + ": the measurement file has 67108865 bytes, more than the 64 MiB a measurement may have") << e;
+  fs::remove(path);
+  const std::string scene = file_with("huge.toml", "");
+  fs::resize_file(scene, kMaxSceneBytes + 1);
+  EXPECT_EQ(input_error_of([&] { (void)read_scene_file(scene); }),
+            scene + ": the scene file has 1048577 bytes, more than the 1 MiB a scene may have");
+  fs::remove(scene);
+  EXPECT_EQ(byte_count_text(std::uintmax_t{256} << 20), "256 MiB");
+  EXPECT_EQ(byte_count_text(1000), "1000 bytes");
+}
+
+TEST(CalibrateInputs, ALeadingByteOrderMarkIsSkipped) {
+  // Spreadsheets save CSV as UTF-8 with a byte order mark: it is not part of the first column's name.
+  const auto tr = std::get<MeasuredTrajectory>(read_measurement(file_with("bom.csv", "\xEF\xBB\xBF" + kGood.substr(kGood.find('\n') + 1))));
+  EXPECT_EQ(tr.t.size(), 5u);
+  EXPECT_EQ(tr.columns, (std::vector<std::string>{"z1", "z2"}));
+  const auto tb = std::get<MeasuredTable>(read_measurement(file_with("bom_table.csv", "\xEF\xBB\xBFsphere[0].velocity,e\n0.1,0.8\n0.2,0.85\n")));
+  EXPECT_EQ(tb.keys, std::vector<std::string>{"sphere[0].velocity"});
+}
+
+TEST(CalibrateInputs, OutOfRangeCellsAreRefusedWithLineAndColumn) {
+  // 1e308 squared overflows: every evaluation would fail. Refused as the scene reader refuses such a number.
+  std::string e = read_error("huge_z.csv", "t,z1\n0,0\n0.001,1e308\n0.002,2e-4\n0.003,3e-4\n0.004,4e-4\n");
+  EXPECT_NE(e.find("huge_z.csv:3: key 'z1': out of range: 1e308"), std::string::npos) << e;
+  e = read_error("tiny_t.csv", "t,z1\n1e-40,0\n0.001,1e-4\n0.002,2e-4\n0.003,3e-4\n0.004,4e-4\n");
+  EXPECT_NE(e.find("tiny_t.csv:2: key 't': out of range"), std::string::npos) << e;
+  e = read_error("huge_key.csv", "sphere[0].velocity,e\n1e31,0.8\n0.2,0.85\n");
+  EXPECT_NE(e.find("huge_key.csv:2: key 'sphere[0].velocity': out of range"), std::string::npos) << e;
+}
+
+TEST(CalibrateInputs, FitAnIntegerKey) {
+  const std::string e = fit_error("solver.max_steps=1000:100000");
+  EXPECT_NE(e.find("command line: key '--fit': parameter 'solver.max_steps': integer keys cannot be fitted"), std::string::npos) << e;
+}
+
+TEST(CalibrateInputs, ARowWithoutACollisionFailsTheEvaluation) {
+  // 1 us (4 us with t_end doubled twice) is far too short for gg3462's sphere to reach its target: e is not measured,
+  // and the evaluation fails with that reason instead of counting e = 0.
+  const std::string path = file_with("short.csv", "sphere[0].velocity,e\n0.08,0.845\n0.11,0.872\n");
+  const auto tb = std::get<MeasuredTable>(read_measurement(path));
+  const Evaluation ev = evaluate_table(tb, gg3462(), {{"solver.t_end", "1e-6"}});
+  EXPECT_FALSE(ev.ok);
+  EXPECT_TRUE(std::isinf(ev.objective));
+  EXPECT_TRUE(std::isnan(ev.e_sim[0])) << ev.e_sim[0];
+  EXPECT_EQ(ev.message.rfind(path + ":2: e not measured: no collision by t_end", 0), 0u) << ev.message;
+  EXPECT_NE(ev.message.find("still so with solver.t_end raised to 4e-06 s"), std::string::npos) << ev.message;
 }

@@ -198,3 +198,59 @@ TEST(EvaluationCache, OneWriterAtATimeAndNotAfterTheFileChanged) {
   EXPECT_EQ(writer_error(f.read()), "");
   EXPECT_EQ(f.read().size(), 2u);
 }
+
+TEST(EvaluationCache, ADamagedEvaluationIsRefusedNamingItsLineAndField) {
+  // A line that reads as JSON but that no writer wrote: refused, not taken (an objective of "x", null or -5 would
+  // otherwise be taken as a fit), nor skipped (values of another count than the fitted keys would never be found).
+  CacheFile f;
+  CacheWriter(f.path.string(), f.read(), trajectory_context()).add_item(evaluations_to_bytes({{{0.1, 0.9}, evaluation(1)}}));
+  const std::string good = slurp(f.path);
+  const std::string header = good.substr(0, good.find('\n') + 1), item = good.substr(header.size());  // each with its newline
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string line = item;
+    const auto k = line.find(from);
+    EXPECT_NE(k, std::string::npos) << from;
+    return line.replace(k, from.size(), to);
+  };
+  const std::pair<std::string, std::string> cases[] = {
+      {with("\"objective\":1.0", "\"objective\":\"x\""), "evaluation 1: 'objective' must be a finite number >= 0 in an evaluation that succeeded (got \"x\")"},
+      {with("\"objective\":1.0", "\"objective\":null"), "evaluation 1: 'objective' must be a finite number >= 0 in an evaluation that succeeded (got null)"},
+      {with("\"objective\":1.0", "\"objective\":-5"), "evaluation 1: 'objective' must be a finite number >= 0 in an evaluation that succeeded (got -5)"},
+      {with("\"rms\":1.0", "\"rms\":-1.0"), "evaluation 1: 'rms' must be a finite number >= 0"},
+      {with("\"ok\":true", "\"ok\":1"), "evaluation 1: 'ok' must be true or false (got 1)"},
+      {with("\"values\":[0.1,0.9]", "\"values\":[0.1,null]"), "evaluation 1: 'values' must be a list of finite parameter values"},
+      {with(",\"message\":\"\"", ""), "evaluation 1: 'message' must be given (got nothing)"},
+      {"{}\n", "not a line of evaluations (not a list of evaluations)"},
+      {with("\"values\":[0.1,0.9]", "\"values\":[0.1]"), "evaluation 1 has 1 parameter values for 2 fitted keys"},
+      {with("\"values\":[0.1,0.9]", "\"values\":[0.1,0.9,0.5]"), "evaluation 1 has 3 parameter values for 2 fitted keys"},
+  };
+  for (const auto& [line, problem] : cases) {
+    // The damaged line second of three, and as the last line without its newline: JSON, so not a write cut short.
+    for (const std::string& text : {header + line + item, header + line.substr(0, line.size() - 1)}) {
+      std::ofstream(f.path, std::ios::trunc) << text;
+      const std::string err = refusal(f, trajectory_context());
+      EXPECT_EQ(err.rfind(f.path.string() + ":2: key '--cache': ", 0), 0u) << err;
+      EXPECT_NE(err.find(problem), std::string::npos) << "expected: " << problem << "\nin: " << err;
+      EXPECT_NE(err.find("the file is damaged: remove it, or give another --cache"), std::string::npos) << err;
+    }
+  }
+  // A failed evaluation has no objective: null, as written, and it stays failed.
+  std::ofstream(f.path, std::ios::trunc) << header << with("\"ok\":true", "\"ok\":false");
+  const auto failed = f.read().find({0.1, 0.9});
+  ASSERT_TRUE(failed);
+  EXPECT_FALSE(failed->ok);
+  EXPECT_TRUE(std::isinf(failed->objective));
+}
+
+TEST(EvaluationCache, AWriterRefusesAFileThatIsNotRegular) {
+  // /dev/null reads as an empty file; appending to it would lose every evaluation.
+  const std::string err = [] {
+    try {
+      CacheWriter w("/dev/null", EvaluationCache(), trajectory_context());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  }();
+  EXPECT_EQ(err, "/dev/null: key '--cache': is not a regular file (a cache is a text file)");
+}
