@@ -8,7 +8,10 @@
 #include <cstring>
 #include <ctime>
 #include <fcntl.h>
+#include <fstream>
+#include <optional>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -62,23 +65,6 @@ std::string host_name() {
   return buf;
 }
 
-/// Names of files a run of imcol writes (a folder holding only these may be replaced, even without a marker).
-bool written_by_imcol(const fs::directory_entry& f) {
-  const std::string n = f.path().filename().string();
-  const std::string ext = f.path().extension().string();
-  std::error_code ec;
-  if (f.is_directory(ec) && !f.is_symlink(ec) && n == "vtk") {  // flow fields for ParaView: VTK files only
-    for (const auto& g : fs::directory_iterator(f.path(), ec)) {
-      const std::string e = g.path().extension().string();
-      if (!g.is_regular_file(ec) || (e != ".vtu" && e != ".vtp" && e != ".vtm" && g.path().filename().string().find(".tmp.") == std::string::npos))
-        return false;
-    }
-    return !ec;
-  }
-  if (!f.is_regular_file()) return false;
-  return ext == ".csv" || ext == ".json" || ext == ".png" || ext == ".pvd" || n == "sweep.partial" || n.find(".tmp.") != std::string::npos;
-}
-
 bool is_within(const fs::path& inner, const fs::path& outer) {
   auto i = inner.begin();
   for (auto o = outer.begin(); o != outer.end(); ++o, ++i)
@@ -88,6 +74,36 @@ bool is_within(const fs::path& inner, const fs::path& outer) {
 
 constexpr const char* kMarker = ".imcol-run.json";
 
+/// The names a folder's marker lists as its run's files; nothing when there is no marker that imcol wrote (not a
+/// regular file, over 1 MiB, not JSON, or without `imcol` and `files`).
+std::optional<std::set<std::string>> marker_files(const fs::path& marker) {
+  std::error_code ec;
+  const auto st = fs::symlink_status(marker, ec);
+  if (ec || !fs::is_regular_file(st) || fs::file_size(marker, ec) > (1u << 20) || ec) return std::nullopt;
+  std::ifstream in(marker, std::ios::binary);
+  const auto j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_object() || !j.contains("imcol") || !j["imcol"].is_string() || !j.contains("files") || !j["files"].is_array())
+    return std::nullopt;
+  std::set<std::string> names;
+  for (const auto& f : j["files"]) {
+    if (!f.is_string()) return std::nullopt;
+    names.insert(f.get<std::string>());
+  }
+  return names;
+}
+
+/// `.NAME.part-N` or `.NAME.old-N` (N digits): the form of the folders a run stages in and moves aside.
+bool staging_form(const std::string& n) {
+  if (n.size() < 2 || n[0] != '.') return false;
+  for (const std::string kind : {".part-", ".old-"}) {
+    const auto at = n.rfind(kind);
+    if (at == std::string::npos || at == 0 || at + kind.size() == n.size()) continue;
+    if (std::all_of(n.begin() + static_cast<std::ptrdiff_t>(at + kind.size()), n.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void set_command_line(int argc, char** argv) {
@@ -96,7 +112,8 @@ void set_command_line(int argc, char** argv) {
   g_command_line = s;
 }
 
-OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const std::string& scene_path)
+OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const std::string& scene_path,
+                       const std::vector<RunInput>& inputs)
     : place_(out.empty() && !scene_path.empty() ? scene_path : "command line"),
       key_(out.empty() && !scene_path.empty() ? "name" : "--out") {
   const fs::path given = out.empty() ? fallback : fs::path(out);
@@ -104,6 +121,9 @@ OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const s
   if (given.empty()) throw InputError(place_, key_, "the output folder is empty: give a folder name");
   shown_ = given.lexically_normal();
   if (!shown_.has_filename() && shown_.has_parent_path()) shown_ = shown_.parent_path();
+  if (fs::is_symlink(fs::symlink_status(shown_, ec)) && !fs::exists(shown_, ec))
+    throw InputError(place_, key_, "'" + shown_.string() + "' is a symbolic link to '" + fs::read_symlink(shown_, ec).string() +
+                                       "', which does not exist: create that folder, or give another output folder");
   target_ = fs::weakly_canonical(fs::absolute(given, ec), ec);
   if (ec) throw InputError(place_, key_, "cannot resolve the output folder '" + given.string() + "': " + ec.message());
   if (!target_.has_filename()) target_ = target_.parent_path();
@@ -111,6 +131,8 @@ OutputUnit::OutputUnit(const std::string& out, const fs::path& fallback, const s
   if (!target_.has_relative_path() || (!ec && is_within(cwd, target_)))
     throw InputError(place_, key_, "'" + given.string() + "' is the current folder or contains it: a run replaces its whole output "
                                    "folder, so give it a folder of its own");
+  refuse_staging_name();
+  refuse_inputs_inside(scene_path, inputs);
   try {
     lock_target();
     check_contents();
@@ -140,6 +162,25 @@ fs::path OutputUnit::sibling(const std::string& kind, long pid) const {
   std::string name = ".";
   name.append(target_.filename().string()).append(".").append(kind).append("-").append(std::to_string(pid));
   return target_.parent_path() / name;
+}
+
+void OutputUnit::refuse_staging_name() const {
+  if (staging_form(target_.filename().string()))
+    throw InputError(place_, key_, "'" + target_.filename().string() + "' has the form of the folders imcol stages a run in (.NAME.part-N, "
+                                   ".NAME.old-N), which a later run into NAME removes: choose another name");
+}
+
+void OutputUnit::refuse_inputs_inside(const std::string& scene_path, const std::vector<RunInput>& inputs) const {
+  std::vector<RunInput> all = inputs;
+  if (!scene_path.empty()) all.insert(all.begin(), RunInput{"the scene file", scene_path});
+  for (const auto& in : all) {
+    if (in.path.empty()) continue;
+    std::error_code ec;
+    const fs::path p = fs::weakly_canonical(fs::absolute(in.path, ec), ec);
+    if (!ec && is_within(p, target_))
+      throw InputError(place_, key_, "the output folder '" + shown_.string() + "' holds '" + in.path + "' (" + in.what +
+                                         "), an input of this run: a run replaces its whole output folder, so keep its inputs outside it");
+  }
 }
 
 void OutputUnit::lock_target() {
@@ -181,12 +222,21 @@ void OutputUnit::lock_target() {
 
 void OutputUnit::check_contents() const {
   std::error_code ec;
-  if (fs::exists(target_ / kMarker, ec)) return;
-  for (const auto& f : fs::directory_iterator(target_, ec))
-    if (!written_by_imcol(f))
-      throw InputError(place_, key_, "the output folder '" + shown_.string() + "' holds '" + f.path().filename().string() +
-                                         "', which imcol did not write: a run replaces its whole output folder, so give a new or empty one");
+  std::set<std::string> present;
+  for (const auto& f : fs::directory_iterator(target_, ec)) present.insert(f.path().filename().string());
   if (ec) throw InputError(place_, key_, "cannot read the output folder '" + shown_.string() + "': " + ec.message());
+  present.erase(kMarker);
+  if (present.empty()) return;
+  const auto listed = marker_files(target_ / kMarker);
+  if (!listed)
+    throw InputError(place_, key_, "the output folder '" + shown_.string() + "' holds '" + *present.begin() +
+                                       "', which imcol did not write (no " + kMarker + " of an imcol run lists it): a run "
+                                       "replaces its whole output folder, so give a new or empty one");
+  for (const auto& n : present)
+    if (!listed->count(n))
+      throw InputError(place_, key_, "the output folder '" + shown_.string() + "' holds '" + n + "', which imcol did not write (the run "
+                                         "that wrote the folder lists its files in " + kMarker + "): a run replaces its whole output "
+                                         "folder, so move that file or give another folder");
 }
 
 void OutputUnit::remove_leftovers() const {
@@ -196,20 +246,45 @@ void OutputUnit::remove_leftovers() const {
   std::vector<fs::path> stale;
   for (const auto& f : fs::directory_iterator(target_.parent_path(), ec)) {
     const std::string n = f.path().filename().string();
-    if (n.rfind(name + "part-", 0) == 0 || n.rfind(name + "old-", 0) == 0) stale.push_back(f.path());
+    if (n.rfind(name, 0) != 0 || !staging_form(n) || f.is_symlink(ec) || !f.is_directory(ec)) continue;
+    const std::string rest = n.substr(name.size());
+    if (rest.rfind("part-", 0) == 0 || rest.rfind("old-", 0) == 0) stale.push_back(f.path());
   }
   for (const auto& p : stale) fs::remove_all(p, ec);
 }
 
-void OutputUnit::commit() {
+void OutputUnit::write_marker(bool complete) const {
   std::error_code ec;
   nlohmann::ordered_json marker = run_;
   marker["finished_utc"] = utc(std::time(nullptr), kIsoUtc);
+  if (!complete) marker["complete"] = false;
   std::vector<std::string> files;
-  for (const auto& f : fs::directory_iterator(staging_, ec)) files.push_back(f.path().filename().string());
+  for (const auto& f : fs::directory_iterator(staging_, ec))
+    if (f.path().filename() != kMarker) files.push_back(f.path().filename().string());
   std::sort(files.begin(), files.end());
   marker["files"] = files;
   write_file_atomic(staging_ / kMarker, marker.dump(2) + "\n");
+}
+
+fs::path OutputUnit::keep_beside() {
+  try {
+    write_marker(false);
+  } catch (const std::exception&) {  // the files are kept without it (a full disk, a file-size limit)
+  }
+  return move_beside("partial");
+}
+
+fs::path OutputUnit::move_beside(const std::string& kind) {
+  const std::string name = target_.filename().string() + "." + kind + "-" + run_["id"].get<std::string>();
+  if (::rename(staging_.c_str(), (target_.parent_path() / name).c_str()) != 0)
+    throw std::runtime_error("cannot keep them beside '" + shown_.string() + "' as '" + name + "': " + std::strerror(errno));
+  staging_.clear();
+  return shown_.parent_path() / name;
+}
+
+void OutputUnit::commit() {
+  std::error_code ec;
+  write_marker(true);
 
   if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_EXCHANGE) != 0) {
     const int err = errno;
@@ -230,9 +305,16 @@ void OutputUnit::commit() {
       }
     }
     if (!moved) {
-      committed_ = true;  // keep the staged files: they are the run's complete result
+      // The staged files are the run's complete result: kept under a name no later run removes.
+      std::string kept;
+      try {
+        kept = move_beside("complete").string();
+      } catch (const std::exception&) {
+        committed_ = true;
+        kept = staging_.string();
+      }
       throw std::runtime_error("cannot move the results into '" + shown_.string() + "' (" + std::strerror(err) +
-                               "); they are complete in '" + staging_.string() + "'");
+                               "); they are complete in '" + kept + "'");
     }
   }
   committed_ = true;
@@ -244,7 +326,7 @@ void OutputUnit::commit() {
 OutputUnit::~OutputUnit() {
   std::error_code ec;
   if (!committed_) {
-    fs::remove_all(staging_, ec);
+    if (!staging_.empty()) fs::remove_all(staging_, ec);
     for (const auto& p : created_)  // innermost first; only empty folders go
       if (!fs::is_directory(p, ec) || !fs::is_empty(p, ec) || !fs::remove(p, ec)) break;
   }

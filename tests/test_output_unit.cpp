@@ -91,14 +91,39 @@ double check_run_unit(const fs::path& dir) {
   return given;
 }
 
+/// Writes `files` (name -> content) into `dir` as one committed unit.
+void commit_files(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& files) {
+  OutputUnit unit(dir.string(), "unused");
+  for (const auto& [name, content] : files) {
+    fs::create_directories((unit.dir() / name).parent_path());
+    std::ofstream(unit.dir() / name) << content;
+  }
+  unit.commit();
+}
+
+std::set<std::string> names_in(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& f : fs::directory_iterator(dir)) names.insert(f.path().filename().string());
+  return names;
+}
+
+/// The message of the InputError that constructing an OutputUnit throws ("" if it does not throw).
+std::string refusal(const std::string& out, const std::string& scene_path = "", const std::vector<imcol::RunInput>& inputs = {}) {
+  try {
+    OutputUnit unit(out, "unused", scene_path, inputs);
+  } catch (const imcol::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace
 
 TEST(OutputUnit, CommitReplacesTheWholeFolderAndNamesTheRun) {
   const fs::path dir = fresh("replace");
-  fs::create_directories(dir);
-  std::ofstream(dir / "flow_00.csv") << "old\n";  // a coupled run's field, a picture, a killed writer's temporary
-  std::ofstream(dir / "trajectory.png") << "old";
-  std::ofstream(dir / "summary.json.tmp.12345") << "old";
+  // An earlier run's unit: a coupled run's field, a picture, its VTK folder.
+  commit_files(dir, {{"flow_00.csv", "old\n"}, {"trajectory.png", "old"}, {"vtk/flow_00.vtm", "<VTKFile/>"}});
+  EXPECT_EQ(names_in(dir), (std::set<std::string>{".imcol-run.json", "flow_00.csv", "trajectory.png", "vtk"}));
   {
     OutputUnit unit(dir.string(), "unused");
     EXPECT_NE(unit.dir(), dir);
@@ -106,21 +131,143 @@ TEST(OutputUnit, CommitReplacesTheWholeFolderAndNamesTheRun) {
     EXPECT_TRUE(fs::exists(dir / "flow_00.csv"));  // nothing changes until the commit
     unit.commit();
   }
-  std::set<std::string> names;
-  for (const auto& f : fs::directory_iterator(dir)) names.insert(f.path().filename().string());
-  EXPECT_EQ(names, (std::set<std::string>{".imcol-run.json", "summary.json"}));
+  EXPECT_EQ(names_in(dir), (std::set<std::string>{".imcol-run.json", "summary.json"}));
   const auto marker = nlohmann::json::parse(slurp(dir / ".imcol-run.json"));
   EXPECT_FALSE(marker["id"].get<std::string>().empty());
   EXPECT_EQ(marker["pid"].get<long>(), ::getpid());
   EXPECT_EQ(marker["files"], nlohmann::json::array({"summary.json"}));
+  EXPECT_FALSE(marker.contains("complete"));
   EXPECT_TRUE(staged_beside(dir).empty());
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, AFolderIsReplacedOnlyWhenItsMarkerListsAllItHolds) {
+  const fs::path dir = fresh("marker");
+  // CSV and JSON files without a marker are a user's, however they are named.
+  fs::create_directories(dir);
+  std::ofstream(dir / "experiment_2019.csv") << "t,z\n";
+  std::ofstream(dir / "notes.json") << "{}";
+  std::string why = refusal(dir.string());
+  EXPECT_NE(why.find("holds 'experiment_2019.csv', which imcol did not write (no .imcol-run.json"), std::string::npos) << why;
+  EXPECT_EQ(slurp(dir / "experiment_2019.csv"), "t,z\n");
+  // A marker that is not imcol's does not make the folder imcol's.
+  std::ofstream(dir / ".imcol-run.json") << "{\"files\": [\"experiment_2019.csv\", \"notes.json\"]}";
+  EXPECT_NE(refusal(dir.string()).find("which imcol did not write"), std::string::npos);
+  fs::remove_all(dir);
+  // An imcol folder that a user added a file to keeps it: the folder is refused, naming the file.
+  commit_files(dir, {{"summary.json", "{}"}, {"vtk/flow_end.vtm", "<VTKFile/>"}});
+  std::ofstream(dir / "experiment_2019.csv") << "mine";
+  why = refusal(dir.string());
+  EXPECT_NE(why.find("holds 'experiment_2019.csv', which imcol did not write (the run that wrote the folder lists its files"),
+            std::string::npos) << why;
+  EXPECT_EQ(slurp(dir / "experiment_2019.csv"), "mine");
+  EXPECT_TRUE(staged_beside(dir).empty());
+  // Without that file the folder is imcol's again, its vtk/ folder too.
+  fs::remove(dir / "experiment_2019.csv");
+  commit_files(dir, {{"summary.json", "{\"new\": 1}"}});
+  EXPECT_EQ(names_in(dir), (std::set<std::string>{".imcol-run.json", "summary.json"}));
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, AFolderHoldingAnInputOfTheRunIsRefused) {
+  const fs::path dir = fresh("inputs");
+  commit_files(dir, {{"cache.csv", "# imcol evaluation cache\n"}, {"scene.toml", "name = 'x'\n"}});
+  std::string why = refusal(dir.string(), "", {{"--data", "/nonexistent/m.csv"}, {"--cache", (dir / "cache.csv").string()}});
+  EXPECT_NE(why.find("holds '" + (dir / "cache.csv").string() + "' (--cache), an input of this run"), std::string::npos) << why;
+  // Also through a relative path and a path that names the folder another way.
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir.parent_path());
+  why = refusal(dir.filename().string() + "/", dir.filename().string() + "/./scene.toml");
+  fs::current_path(cwd);
+  EXPECT_NE(why.find("(the scene file), an input of this run"), std::string::npos) << why;
+  EXPECT_TRUE(fs::exists(dir / "cache.csv"));
+  // An input beside the folder is no reason to refuse it.
+  EXPECT_EQ(refusal(dir.string(), "", {{"--cache", dir.string() + "-cache.csv"}}), "");
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, StagingNamesAreRefusedAndOnlyStagingFoldersAreRemoved) {
+  const fs::path dir = fresh("staging");
+  const fs::path parent = dir.parent_path();
+  const std::string n = dir.filename().string();
+  // A folder of the staging form cannot be an output folder: a later run into NAME would remove it.
+  for (const std::string& name : {"." + n + ".part-1", "." + n + ".old-42"}) {
+    const std::string why = refusal((parent / name).string());
+    EXPECT_NE(why.find("has the form of the folders imcol stages a run in"), std::string::npos) << name << ": " << why;
+    EXPECT_FALSE(fs::exists(parent / name));
+  }
+  // A run into NAME removes a killed run's staging folder, and nothing else that starts like one.
+  fs::create_directories(parent / ("." + n + ".part-999999"));
+  fs::create_directories(parent / ("." + n + ".part-mine"));
+  std::ofstream(parent / ("." + n + ".old-7")) << "a file, not a staging folder";
+  commit_files(dir, {{"summary.json", "{}"}});
+  EXPECT_FALSE(fs::exists(parent / ("." + n + ".part-999999")));
+  EXPECT_TRUE(fs::exists(parent / ("." + n + ".part-mine")));
+  EXPECT_TRUE(fs::exists(parent / ("." + n + ".old-7")));
+  fs::remove_all(parent / ("." + n + ".part-mine"));
+  fs::remove(parent / ("." + n + ".old-7"));
+  fs::remove_all(dir);
+}
+
+TEST(OutputUnit, ADanglingSymbolicLinkIsNamedAsSuch) {
+  const fs::path link = fresh("dangling");
+  fs::create_symlink(link.string() + "-nowhere", link);
+  const std::string why = refusal(link.string());
+  EXPECT_NE(why.find("is a symbolic link to '" + link.string() + "-nowhere', which does not exist"), std::string::npos) << why;
+  fs::remove(link);
+}
+
+TEST(OutputUnit, KeptBesideLeavesThePreviousResultAsItWas) {
+  const fs::path dir = fresh("beside");
+  commit_files(dir, {{"sweep.csv", "complete\n"}, {"sweep.json", "{}"}});
+  fs::path kept;
+  {
+    OutputUnit unit(dir.string(), "unused");
+    std::ofstream(unit.dir() / "sweep.csv") << "partial\n";
+    kept = unit.keep_beside();
+  }
+  EXPECT_EQ(slurp(dir / "sweep.csv"), "complete\n");
+  EXPECT_TRUE(fs::exists(dir / "sweep.json"));
+  EXPECT_EQ(kept.parent_path(), dir.parent_path());
+  EXPECT_EQ(kept.filename().string().rfind(dir.filename().string() + ".partial-", 0), 0u) << kept;
+  EXPECT_EQ(slurp(kept / "sweep.csv"), "partial\n");
+  const auto marker = nlohmann::json::parse(slurp(kept / ".imcol-run.json"));
+  EXPECT_EQ(marker["complete"], false);
+  EXPECT_EQ(marker["files"], nlohmann::json::array({"sweep.csv"}));
+  EXPECT_TRUE(staged_beside(dir).empty());
+  // A new folder that only a kept-beside run used is removed again.
+  const fs::path fresh_dir = fresh("beside_new");
+  {
+    OutputUnit unit(fresh_dir.string(), "unused");
+    std::ofstream(unit.dir() / "sweep.csv") << "partial\n";
+    const fs::path k = unit.keep_beside();
+    fs::remove_all(k);
+  }
+  EXPECT_FALSE(fs::exists(fresh_dir));
+  fs::remove_all(dir);
+  fs::remove_all(kept);
+}
+
+TEST(OutputUnit, AClosedStandardOutputLosesNoResult) {
+  // `imcol sweep … | true`: the reader is gone before the table is printed; the sweep still writes its folder whole.
+  const fs::path dir = fresh("sigpipe");
+  const fs::path status = dir.string() + ".status";
+  const std::string cmd = "bash -c '" + imcol_cmd("sweep data/scenes/default.toml --vary velocity --from 0.1 --to 0.3 --points 40 "
+                                                  "--no-plot --no-progress --out " + dir.string()) +
+                          " | true; echo ${PIPESTATUS[0]} > " + status.string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(slurp(status), "0\n");
+  ASSERT_TRUE(fs::exists(dir / "sweep.json"));
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "sweep.json"))["complete"], true);
+  EXPECT_FALSE(fs::exists(dir / "sweep.partial"));
+  EXPECT_TRUE(staged_beside(dir).empty());
+  fs::remove(status);
   fs::remove_all(dir);
 }
 
 TEST(OutputUnit, AnUncommittedUnitLeavesThePreviousResultAndNoTrace) {
   const fs::path dir = fresh("uncommitted");
-  fs::create_directories(dir);
-  std::ofstream(dir / "summary.json") << "previous\n";
+  commit_files(dir, {{"summary.json", "previous\n"}});
   { OutputUnit unit(dir.string(), "unused"); std::ofstream(unit.dir() / "summary.json") << "new\n"; }
   EXPECT_EQ(slurp(dir / "summary.json"), "previous\n");
   EXPECT_TRUE(staged_beside(dir).empty());
@@ -179,35 +326,6 @@ TEST(OutputUnit, FoldersThatAreNotImcolOutputsAreRefused) {
     }
   }
   fs::current_path(cwd);
-  fs::remove_all(dir);
-}
-
-TEST(OutputUnit, AFolderOfFlowFieldsIsAnImcolOutput) {
-  // Without the marker, a folder holding what a coupled run writes (CSV, flow.pvd, vtk/ of VTK files) may be
-  // replaced; a vtk/ folder holding anything else may not.
-  const fs::path dir = fresh("vtkfields");
-  fs::create_directories(dir / "vtk");
-  std::ofstream(dir / "flow_end.csv") << "level,r,z\n";
-  std::ofstream(dir / "flow.pvd") << "<VTKFile/>";
-  std::ofstream(dir / "vtk" / "flow_end.vtm") << "<VTKFile/>";
-  std::ofstream(dir / "vtk" / "flow_end_level0.vtu") << "<VTKFile/>";
-  {
-    OutputUnit unit(dir.string(), "unused");
-    std::ofstream(unit.dir() / "summary.json") << "{}";
-    unit.commit();
-  }
-  EXPECT_TRUE(fs::exists(dir / "summary.json"));
-  EXPECT_FALSE(fs::exists(dir / "vtk"));
-  fs::remove(dir / ".imcol-run.json");
-  fs::create_directories(dir / "vtk");
-  std::ofstream(dir / "vtk" / "notes.txt") << "mine";
-  try {
-    OutputUnit unit(dir.string(), "unused");
-    ADD_FAILURE() << "a vtk folder holding other files was taken";
-  } catch (const imcol::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("'vtk', which imcol did not write"), std::string::npos) << e.what();
-  }
-  EXPECT_EQ(slurp(dir / "vtk" / "notes.txt"), "mine");
   fs::remove_all(dir);
 }
 
