@@ -40,6 +40,7 @@ struct SolverStats {
   long prec_setups = 0;        // Schur-complement preconditioner set-ups (with a Jacobian evaluation)
   long prec_solves = 0;
   long breakpoints = 0;        // stops on the system's fixed grid (direct history evaluator)
+  long order_caps = 0;         // restarts with the BDF order capped at 2: a ringing order 3-5 (RingingDetector)
   std::string linear_solver;   // what ran: dense | schur | gmres
   std::size_t state_size = 0;
   std::map<std::string, long> as_map() const;

@@ -44,6 +44,7 @@ std::map<std::string, long> SolverStats::as_map() const {
           {"prec_setups", prec_setups},
           {"prec_solves", prec_solves},
           {"breakpoints", breakpoints},
+          {"order_caps", order_caps},
           {"state_size", static_cast<long>(state_size)}};
 }
 
@@ -293,6 +294,8 @@ class Backend {
   virtual void add_stats(SolverStats& s) = 0;
   virtual std::string flag_name(int flag) = 0;
   virtual void error_vectors(N_Vector w, N_Vector e) = 0;
+  virtual int last_order() = 0;              // the BDF order of the last step
+  virtual void set_max_order(int q) = 0;     // at most the order the solver was created with
 };
 
 class CvodeBackend : public Backend {
@@ -349,6 +352,12 @@ class CvodeBackend : public Backend {
   }
   void set_max_step(double h) override { check(CVodeSetMaxStep(mem_, h), "CVodeSetMaxStep"); }
   int too_much_work() override { return CV_TOO_MUCH_WORK; }
+  int last_order() override {
+    int q = 0;
+    CVodeGetLastOrder(mem_, &q);
+    return q;
+  }
+  void set_max_order(int q) override { check(CVodeSetMaxOrd(mem_, q), "CVodeSetMaxOrd"); }
   void root_info(int* found) override { CVodeGetRootInfo(mem_, found); }
   void add_stats(SolverStats& s) override {
     long v = 0;
@@ -434,6 +443,12 @@ class IdaBackend : public Backend {
   }
   void set_max_step(double h) override { check(IDASetMaxStep(mem_, h), "IDASetMaxStep"); }
   int too_much_work() override { return IDA_TOO_MUCH_WORK; }
+  int last_order() override {
+    int q = 0;
+    IDAGetLastOrder(mem_, &q);
+    return q;
+  }
+  void set_max_order(int q) override { check(IDASetMaxOrd(mem_, q), "IDASetMaxOrd"); }
   void root_info(int* found) override { IDAGetRootInfo(mem_, found); }
   void add_stats(SolverStats& s) override {
     long v = 0;
@@ -477,6 +492,53 @@ using VectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, VectorDeleter
 
 }  // namespace
 
+/// A lightly damped stiff oscillation that a BDF method of order 3 to 5 sustains instead of damping (those orders are not
+/// A-stable: near the imaginary axis they amplify, e.g. a resting contact whose only damping is the liquid film, ζ ~ 1e-3).
+/// The error test then holds the amplitude at the tolerance and the steps at a fraction of its period, to t_end. The
+/// sign: some component's step increment reverses at least kReversals times in each of kWindows consecutive windows of
+/// kWindow steps, all taken at order ≥ 3 (increments below the component's absolute tolerance do not count).
+class RingingDetector {
+ public:
+  static constexpr int kWindow = 50, kReversals = 5, kWindows = 5;
+  void reset() {
+    prev_.clear();
+    in_window_ = rung_ = 0;
+  }
+  /// After an accepted step to y at order q: whether the solution has been ringing at order ≥ 3.
+  bool step(std::span<const double> y, std::span<const double> atol, int q) {
+    if (q < 3) {
+      reset();
+      return false;
+    }
+    if (prev_.size() != y.size()) {
+      prev_.assign(y.begin(), y.end());
+      sign_.assign(y.size(), 0);
+      count_.assign(y.size(), 0);
+      in_window_ = 0;
+      return false;
+    }
+    for (std::size_t i = 0; i < y.size(); ++i) {
+      const double d = y[i] - prev_[i];
+      prev_[i] = y[i];
+      if (!(std::abs(d) > atol[i])) continue;
+      const int s = d > 0 ? 1 : -1;
+      if (sign_[i] != 0 && s != sign_[i]) ++count_[i];
+      sign_[i] = s;
+    }
+    if (++in_window_ < kWindow) return false;
+    const bool rang = std::any_of(count_.begin(), count_.end(), [](int c) { return c >= kReversals; });
+    std::fill(count_.begin(), count_.end(), 0);
+    in_window_ = 0;
+    rung_ = rang ? rung_ + 1 : 0;
+    return rung_ >= kWindows;
+  }
+
+ private:
+  std::vector<double> prev_;
+  std::vector<int> sign_, count_;
+  int in_window_ = 0, rung_ = 0;
+};
+
 struct Integrator::Impl {
   Impl(DynamicalSystem& s, const IntegratorSettings& settings, Observer& o) : sys(s), st(settings), observer(o) {}
   DynamicalSystem& sys;
@@ -497,6 +559,22 @@ struct Integrator::Impl {
   long steps_taken = 0;   // accepted internal steps of this run (for the observer's progress display)
   std::vector<double> g;  // root values (root_exactly_zero)
   bool done = false;
+  RingingDetector ringing;
+  std::vector<double> atol;  // per component, for the detector
+  bool order_capped = false;  // BDF order at most 2 until the next event's re-initialisation
+
+  /// Re-initialises at (t, y); `cap`: with the BDF order at most 2 (ringing), else with the settings' maximum order.
+  void restart(bool cap) {
+    be->add_stats(stats);
+    ++stats.reinits;
+    const int q = cap ? std::min(2, st.max_order) : st.max_order;
+    if (cap != order_capped) be->set_max_order(q);
+    order_capped = cap;
+    ringing.reset();
+    sys.at_step(t, view(y.get()), true);
+    be->init(t, y.get());
+    be->set_roots(sys.roots());
+  }
 
   /// Samples the output times k·dt in (t, t_upto) (strict) or (t, t_upto] from the solver's interpolant,
   /// without stopping the solver there. If the system's stop time falls to a sample (the observer ended the
@@ -600,6 +678,7 @@ Integrator::Integrator(DynamicalSystem& sys, const IntegratorSettings& st, Obser
   sys.initial_state(mview(m.y.get()));
   auto tol = sys.absolute_tolerances(st.atol);
   std::copy(tol.begin(), tol.end(), mview(m.abstol.get()).begin());
+  m.atol = tol;
 
   m.cb = Callback{&sys, nullptr, {tol.begin(), tol.end()}, 0, nullptr, {}};
   ModalStructure probe;
@@ -639,14 +718,7 @@ SolverStats Integrator::stats() const {
   return s;
 }
 
-void Integrator::reinit() {
-  auto& m = *impl_;
-  m.be->add_stats(m.stats);
-  ++m.stats.reinits;
-  m.sys.at_step(m.t, view(m.y.get()), true);
-  m.be->init(m.t, m.y.get());
-  m.be->set_roots(m.sys.roots());
-}
+void Integrator::reinit() { impl_->restart(false); }
 
 double Integrator::advance(double t_target) {
   auto& m = *impl_;
@@ -715,6 +787,11 @@ double Integrator::advance(double t_target) {
       ++m.stats.breakpoints;
     }
     if (t >= sys.stop_time() - t_eps_new && !(std::abs(m.t_sampled - t) <= t_eps_new)) m.observer.sample(t, view(m.y.get()), false);
+    // A ringing BDF order 3-5 (RingingDetector): restart here with the order at most 2 (A-stable, it damps), until the next event.
+    if (!m.order_capped && m.st.max_order > 2 && t < sys.stop_time() - t_eps_new && m.ringing.step(view(m.y.get()), m.atol, be->last_order())) {
+      ++m.stats.order_caps;
+      m.restart(true);
+    }
   }
   return t;
 }

@@ -202,16 +202,37 @@ void Recorder::show_status(const std::string& text) {
 
 void Recorder::show_progress(double t) {
   const double run = seconds_since(start_);
+  estimate_.add(seconds_since(t0_), t);  // counted from t = 0 (not the start-up before it)
   if (run < 2.0 || seconds_since(last_) < 0.5) return;
   last_ = WallClock::now();
   shown_ = true;
-  const double t_end = sc_.solver.t_end;
-  // At most: the run may stop once e is measured. Projected from the time since t = 0 (not the start-up before it).
-  const double since_t0 = seconds_since(t0_);
-  const double left = t > 0 ? since_t0 * (t_end - t) / t : 0.0;
-  std::cerr << "\r  t = " << std::setprecision(4) << t << " s of t_end " << t_end << " s (" << std::fixed << std::setprecision(1)
-            << 100 * t / t_end << " %), " << steps_ << " steps, " << run << " s elapsed, at most " << left << " s left   " << std::defaultfloat
-            << std::flush;
+  std::cerr << "\r  " << progress_text(t, sc_.solver.t_end, steps_, run, estimate_.seconds_left(sc_.solver.t_end)) << "   " << std::flush;
+}
+
+void ProgressEstimate::add(double wall, double t) {
+  // Keep the newest point and, as the anchor of the rate, the newest one at least kWindow older than it.
+  if (!points_.empty() && wall - points_.back().first < 0.05) {
+    points_.back() = {wall, t};  // closer than 50 ms: replace, so that the deque stays short
+  } else {
+    points_.emplace_back(wall, t);
+  }
+  while (points_.size() > 2 && wall - points_[1].first >= kWindow) points_.pop_front();
+}
+
+std::optional<double> ProgressEstimate::seconds_left(double t_end) const {
+  if (points_.size() < 2) return std::nullopt;
+  const auto& [w0, t0] = points_.front();
+  const auto& [w1, t1] = points_.back();
+  if (!(t1 > t0) || !(w1 > w0)) return std::nullopt;
+  return std::max(0.0, t_end - t1) * (w1 - w0) / (t1 - t0);
+}
+
+std::string progress_text(double t, double t_end, long steps, double elapsed, std::optional<double> left) {
+  std::ostringstream os;
+  os << "t = " << std::setprecision(4) << t << " s of t_end " << t_end << " s (" << std::fixed << std::setprecision(1)
+     << 100 * t / t_end << " %), " << steps << " steps, " << elapsed << " s elapsed";
+  if (left) os << ", about " << *left << " s left to t_end";
+  return os.str();
 }
 
 }  // namespace imcol::run

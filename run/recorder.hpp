@@ -5,8 +5,11 @@
 // run: at rest), and shows progress. The measures of e read their own track: the integrator samples at the
 // measures' interval (measure_interval, a divisor of output.dt) and every sample is kept, so that no named
 // measure depends on output.dt.
+#include <deque>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/collision_model.hpp"
@@ -20,6 +23,26 @@ namespace imcol::run {
 /// The interval (s) at which the integrator samples a run: output.dt divided by the smallest whole number that brings it
 /// to at most the contact_ends window at an upper bound of the impact speed over measure.samples_per_window.
 double measure_interval(const model::CollisionModel& model, const Scene& sc);
+
+/// The wall time left to t_end, projected from the rate (simulated s per wall s) over the last kWindow s of wall time:
+/// remaining = (t_end − t) · Δwall / Δt over that window. An estimate, not a bound: the step size can shrink later
+/// (a contact, a stiff resting contact, the direct history evaluator's cost growing with the run), and the run can
+/// stop before t_end (e measured, at rest).
+class ProgressEstimate {
+ public:
+  static constexpr double kWindow = 3.0;  // s of wall time
+  /// Simulated time t reached `wall` s after t = 0 (both non-decreasing).
+  void add(double wall, double t);
+  /// Wall seconds to t_end at the recent rate; none before the simulated time has advanced.
+  std::optional<double> seconds_left(double t_end) const;
+
+ private:
+  std::deque<std::pair<double, double>> points_;  // (wall s, t s): the newest, and the last one at least kWindow older
+};
+
+/// The progress line's text: "t = … s of t_end … s (… %), N steps, … s elapsed, about … s left to t_end" (no "left" part
+/// without an estimate).
+std::string progress_text(double t, double t_end, long steps, double elapsed, std::optional<double> left);
 
 class Recorder : public Observer {
  public:
@@ -69,6 +92,7 @@ class Recorder : public Observer {
   bool forces_ = true, progress_ = false, shown_ = false;
   WallClock::time_point start_ = WallClock::now(), last_ = start_;
   WallClock::time_point t0_ = start_;  // when t = 0 was sampled: the projection counts from there
+  ProgressEstimate estimate_;
   bool sampled_ = false;
   const bool contact_rows_on_;  // step_end keeps rows (forces, a contact and the history force)
   const double contact_zone_;   // m: 3 δ_SS, the gap below which step_end keeps rows

@@ -8,8 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
@@ -162,4 +165,37 @@ TEST(StepCap, LooseToleranceCannotStepOverTheContact) {
     const double loose = with("1e-3"), tight = with("1e-10");
     EXPECT_NEAR(loose / tight, 1.0, 0.08) << name << (base.empty() ? "" : " at " + base[0].value + " m/s");
   }
+}
+
+TEST(Ringing, AStiffRestingContactComesToRestInsteadOfRingingToTEnd) {
+  // gondret/st192 with contact.beta = 2e8 (a ramp 1e6 times steeper than the energy-consistent one) and the wall
+  // replaced by a free glass sphere: after three bounces the pair falls together in contact, a spring of period
+  // 1.4 µs damped only by the liquid film (ζ ~ 1e-3). CVODE at orders 4-5 amplified that oscillation and held it at
+  // the tolerance (|dU_rel/dt| ~ 6 m/s², so the rest rule never fired): 5.2 M steps of ~80 ns to t_end = 1.5 s.
+  // The driver restarts a ringing order 3-5 at order 2 (integrators/sundials_driver.cpp, RingingDetector): at rest
+  // at 1.0994 s (IDA and CVODE at atol 1e-12: 1.0998 s and 1.1003 s at t_end = 1.2), 85 k steps, the same e.
+  const fs::path dir = fs::temp_directory_path() / ("imcol_ringing_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path scene = dir / "scene.toml";
+  {
+    std::ofstream f(scene);
+    f << "name = \"gondret_st192\"\ngravity = 9.81\n[fluid]\ndensity = 953.0\nviscosity = 0.02\n"
+         "[[sphere]]\nmaterial = \"steel\"\ndensity = 7800.0\ne_dry = 0.97\ndiameter = 0.006\nposition = -0.483\nvelocity = 0.0\n"
+         "[[sphere]]\nmaterial = \"glass\"\ndiameter = 0.006\nposition = 0.003\nvelocity = 0.0\n"
+         "[drag]\nlaw = \"schiller-naumann\"\n[history]\nkernel = \"mei-adrian\"\n"
+         "[solver]\nt_end = 1.5\nmax_step = 4e-05\n[measure]\nbounces = \"all\"\n[contact]\nbeta = 200000000.0\n";
+  }
+  const RunResult r = simulate(load_scene(scene.string()));
+  fs::remove_all(dir);
+  const auto& s = r.summary_json;
+  const auto& sol = s["solver"];
+  ASSERT_FALSE(s["at_rest_since_s"].is_null()) << "rang to t_end: " << sol["steps"].get<long>() << " steps";
+  EXPECT_NEAR(s["at_rest_since_s"].get<double>(), 1.0994, 2e-3);
+  EXPECT_LT(sol["steps"].get<long>(), 200000);
+  EXPECT_GE(sol["order_caps"].get<long>(), 1);
+  EXPECT_NEAR(s["e"].get<double>(), 0.8207918, 1e-6);  // the first bounce, as before
+  // An ordinary run does not ring: no cap, the same steps as before.
+  const RunResult d = simulate(load_scene(data_dir() + "/scenes/default.toml"));
+  EXPECT_EQ(d.summary_json["solver"]["order_caps"].get<long>(), 0);
+  EXPECT_EQ(d.summary_json["solver"]["steps"].get<long>(), 574);
 }
