@@ -3,6 +3,8 @@
 // The Python module's parts, one per concept: each adds its classes and functions to the module.
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 namespace imcol::python {
 
 void bind_errors(pybind11::module_& m);  // InputError -> ValueError, SolverError -> imcol.SolverError
@@ -10,5 +12,11 @@ void bind_scene(pybind11::module_& m);   // imcol.Scene
 void bind_run(pybind11::module_& m);     // imcol.run and imcol.Result
 void bind_sweep(pybind11::module_& m);   // imcol.sweep and imcol.SweepResult
 void bind_choices(pybind11::module_& m); // imcol.history_kernels(), …, imcol.scenes(), imcol.choices()
+
+/// NumPy's C API table, made at the module's import under its GIL (python/numpy_api.cpp); without NumPy the module
+/// still imports.
+void init_numpy();
+/// Returns when NumPy's arrays can be made; else raises ImportError: "`what` needs NumPy, …".
+void require_numpy(const std::string& what);
 
 }  // namespace imcol::python

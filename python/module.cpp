@@ -5,6 +5,7 @@
 PYBIND11_MODULE(_imcol, m) {
   m.doc() = "imcol: head-on collisions of spheres immersed in a viscous liquid";
   m.attr("__version__") = IMCOL_VERSION;
+  imcol::python::init_numpy();  // first: before any call could make an array
   imcol::python::bind_errors(m);
   imcol::python::bind_scene(m);
   imcol::python::bind_run(m);

@@ -33,7 +33,10 @@ struct PyResult {
     return view_;
   }
   const py::object& trajectory() {  // a dict: column name -> 1-D float64 array
-    if (!trajectory_) trajectory_ = columns_as_arrays(run);
+    if (!trajectory_) {
+      require_numpy("imcol.Result.trajectory");
+      trajectory_ = columns_as_arrays(run);
+    }
     return trajectory_;
   }
 

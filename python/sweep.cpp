@@ -67,6 +67,7 @@ std::vector<double> values_from(const py::handle& values) {
 PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const py::object& values_arg, int jobs,
                     const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
                     const std::optional<std::string>& integrator) {
+  require_numpy("imcol.sweep");  // before anything runs: its values and its result are arrays
   const PyScene scene = py::isinstance<py::str>(scene_arg) ? PyScene::load(scene_arg.cast<std::string>()) : scene_arg.cast<PyScene>();
   check_sweep_quantity(vary, "imcol.sweep", "vary");
   if (values_arg.is_none()) throw InputError("imcol.sweep", "values", "missing: give the values of " + vary + " (SI units)");
