@@ -43,14 +43,18 @@ std::string toml_string(const std::string& s) { return nlohmann::json(s).dump();
 
 constexpr int kMaxDepth = 32;  // lists in lists: a list that holds itself ends here, not in a stack overflow
 
+/// Whether `v` is a NumPy scalar or array (or another array library's value with NumPy's `dtype` and `tolist`).
+bool is_array_like(const py::handle& v) { return py::hasattr(v, "dtype") && py::hasattr(v, "tolist"); }
+
 std::string scalar_text(const py::handle& v, bool bare_str, int depth = 0) {
   if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
+  // int and float subclasses (an IntEnum, numpy.float64) by their value: their own str/repr may be other text
+  if (py::isinstance<py::int_>(v)) return py::str(py::reinterpret_steal<py::object>(PyNumber_Long(v.ptr()))).cast<std::string>();
   if (py::isinstance<py::float_>(v)) {
     const double x = v.cast<double>();
     if (std::isnan(x)) return "nan";
     if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-    std::string r = py::repr(v).cast<std::string>();  // shortest text that reads back as the same double
+    std::string r = py::repr(py::float_(x)).cast<std::string>();  // shortest text that reads back as the same double
     if (r.find_first_of(".eE") == std::string::npos) r += ".0";
     return r;
   }
@@ -65,8 +69,16 @@ std::string scalar_text(const py::handle& v, bool bare_str, int depth = 0) {
     }
     return s + "]";
   }
-  // NumPy scalars and other numbers: as a float if they convert to one.
-  if (py::hasattr(v, "__float__")) return scalar_text(py::float_(v.cast<py::object>()), bare_str);
+  // NumPy scalars and arrays by their kind, as tolist() gives them: numpy.bool_ a bool, integers an int, floats a
+  // float (a float32 its exact value), arrays lists (a 0-d array its element). Other kinds (complex, dates) are refused.
+  if (is_array_like(v)) {
+    const py::object plain = v.attr("tolist")();
+    if (py::isinstance<py::list>(plain) || py::isinstance<py::bool_>(plain) || py::isinstance<py::int_>(plain) ||
+        py::isinstance<py::float_>(plain) || py::isinstance<py::str>(plain))
+      return scalar_text(plain, bare_str, depth);
+  } else if (py::hasattr(v, "__float__")) {  // other numbers: as a float if they convert to one
+    return scalar_text(py::float_(v.cast<py::object>()), bare_str);
+  }
   throw py::type_error("a scene value must be a str, bool, int, float or a list of them (got " +
                        py::str(py::type::of(v).attr("__name__")).cast<std::string>() + ")");
 }

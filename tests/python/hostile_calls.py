@@ -55,7 +55,10 @@ CALLS = {
     "set(key, object())": (TypeError, lambda: default().set("fluid.viscosity", object())),
     "set(key, 1j)": (TypeError, lambda: default().set("fluid.viscosity", 1j)),
     "set(key, {})": (TypeError, lambda: default().set("fluid.viscosity", {})),
-    "set(key, np.array)": (TypeError, lambda: default().set("fluid.viscosity", np.array([1.0, 2.0]))),
+    "set(key, np.array)": (ValueError, lambda: default().set("fluid.viscosity", np.array([1.0, 2.0]))),  # a list
+    "set(key, np.complex128)": (TypeError, lambda: default().set("fluid.viscosity", np.complex128(1j))),
+    "set(key, np.datetime64)": (TypeError, lambda: default().set("fluid.viscosity", np.datetime64("2020-01-01"))),
+    "set(key, np 32-d array)": (ValueError, lambda: default().set("effects", np.zeros([1] * 32))),
     "set(key, BadFloat())": (ValueError, lambda: default().set("fluid.viscosity", BadFloat())),
     "run(rtol=[])": (TypeError, lambda: imcol.run(default(), rtol=[object()])),
     "run(integrator=1)": (TypeError, lambda: imcol.run(default(), integrator=1)),
