@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -367,4 +368,88 @@ TEST(BadValues, EveryOptionRefusesEachBadValueNamingIt) {
     EXPECT_NE(r.err.find(opt), std::string::npos) << label << ": " << r.err;
   }
   std::printf("%zu option cases\n", cases.size());
+}
+
+TEST(BadValues, EveryInputFileRefusesWhatIsNotARegularFileOfBoundedSize) {
+  // A device, a FIFO (which would block a reader for ever), a directory and /proc text as the scene, the measurement,
+  // the held-out measurement and the cache: exit 2 within the time limit, one line naming the path.
+  const fs::path tmp = fs::temp_directory_path() / ("imcol_badfile_" + std::to_string(::getpid()));
+  fs::remove_all(tmp);
+  fs::create_directories(tmp / "a_directory");
+  const std::string fifo = (tmp / "a_fifo").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string scene = (fs::path(data_dir()) / "scenes/gg3462.toml").string();
+  const std::string data = (fs::path(data_dir()) / "measurements/gg3462_trajectory.csv").string();
+  const std::vector<std::string> bad = {"/dev/zero", fifo, (tmp / "a_directory").string(), "/dev/null"};
+  struct Case {
+    std::string label, path;  // the case, the path its message must name
+    std::vector<std::string> args;
+  };
+  std::vector<Case> cases;
+  const std::vector<std::string> fit = {"--fit", "contact.delta_ss=0.005:0.05", "--out", (tmp / "out").string()};
+  for (const auto& b : bad) {
+    cases.push_back({"imcol run " + b, b, {"run", b, "--out", (tmp / "out").string()}});
+    for (const std::string opt : {"--data", "--validate", "--cache"}) {
+      std::vector<std::string> a = {"calibrate", scene, "--data", opt == "--data" ? b : data};
+      a.insert(a.end(), fit.begin(), fit.end());
+      if (opt != "--data") a.insert(a.end(), {opt, b});
+      cases.push_back({"imcol calibrate " + opt + " " + b, b, a});
+    }
+  }
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [label, path, args] = cases[i];
+    const Outcome r = run_binary(args, static_cast<int>(i));
+    EXPECT_EQ(r.status, 2) << label << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("imcol: error: ", 0), 0u) << label << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << label << ": " << r.err;
+    EXPECT_NE(r.err.find(path), std::string::npos) << label << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(tmp / "out"));
+  fs::remove_all(tmp);
+}
+
+TEST(BadValues, AnOutputFolderThatIsNotImcolsIsRefusedAndKeptAsItWas) {
+  // A user's folder of CSV and JSON files, an imcol folder a user added a file to, a folder holding the scene, a name
+  // of the staging form and a dangling symbolic link as --out: exit 2, one line naming --out, every file kept.
+  const fs::path tmp = fs::temp_directory_path() / ("imcol_badout_" + std::to_string(::getpid()));
+  fs::remove_all(tmp);
+  const std::string scene = (fs::path(data_dir()) / "scenes/default.toml").string();
+  fs::create_directories(tmp / "userdir");
+  std::ofstream(tmp / "userdir" / "experiment_2019.csv") << "t,z\n0,1\n";
+  std::ofstream(tmp / "userdir" / "notes.json") << "{}\n";
+  const std::string added = (tmp / "added").string();
+  ASSERT_EQ(run_binary({"run", scene, "--quiet", "--no-plot", "--out", added}, 0).status, 0);
+  std::ofstream(tmp / "added" / "experiment_2019.csv") << "mine\n";
+  fs::create_directories(tmp / "holds_scene");
+  fs::copy_file(scene, tmp / "holds_scene" / "scene.toml");
+  fs::create_symlink(tmp / "nowhere", tmp / "dangling");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"run", (tmp / "userdir").string()}, {"run", added}, {"sweep", (tmp / "added").string()},
+      {"run", (tmp / ".x.part-1").string()}, {"run", (tmp / "dangling").string()}};
+  int i = 0;
+  for (const auto& [sub, out] : cases) {
+    std::vector<std::string> a = {sub, scene, "--out", out};
+    if (sub == "sweep") a.insert(a.end(), {"--vary", "velocity", "--from", "0.1", "--to", "0.2", "--points", "2"});
+    const Outcome r = run_binary(a, ++i);
+    EXPECT_EQ(r.status, 2) << sub << " --out " << out << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("imcol: error: command line: key '--out': ", 0), 0u) << out << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << out << ": " << r.err;
+  }
+  const Outcome in = run_binary({"run", (tmp / "holds_scene" / "scene.toml").string(), "--out", (tmp / "holds_scene").string()}, 9);
+  EXPECT_EQ(in.status, 2) << in.err;
+  EXPECT_NE(in.err.find("(the scene file), an input of this run"), std::string::npos) << in.err;
+  // A calibration's cache inside its output folder would go with the folder's previous content.
+  const Outcome cache = run_binary({"calibrate", (fs::path(data_dir()) / "scenes/gg3462.toml").string(), "--data",
+                                    (fs::path(data_dir()) / "measurements/gg3462_trajectory.csv").string(), "--fit",
+                                    "contact.delta_ss=0.005:0.05", "--cache", added + "/cache.csv", "--out", added}, 10);
+  EXPECT_EQ(cache.status, 2) << cache.err;
+  EXPECT_NE(cache.err.find("(--cache), an input of this run"), std::string::npos) << cache.err;
+  EXPECT_FALSE(fs::exists(tmp / "added" / "cache.csv"));
+  EXPECT_EQ(slurp(tmp / "userdir" / "experiment_2019.csv"), "t,z\n0,1\n");
+  EXPECT_EQ(slurp(tmp / "added" / "experiment_2019.csv"), "mine\n");
+  EXPECT_TRUE(fs::exists(tmp / "added" / "summary.json"));
+  EXPECT_TRUE(fs::exists(tmp / "holds_scene" / "scene.toml"));
+  EXPECT_FALSE(fs::exists(tmp / ".x.part-1"));
+  EXPECT_FALSE(fs::exists(tmp / "nowhere"));
+  fs::remove_all(tmp);
 }
