@@ -485,16 +485,18 @@ EStatusCounts report_e_status(const std::vector<PointResult>& pts, const Scene& 
   return c;
 }
 
-/// A sweep stopped by a failed write of sweep.csv: keeps what finished (marked by sweep.partial) and throws.
+/// A sweep stopped by a failed write of sweep.csv: keeps what finished beside the output folder (marked by
+/// sweep.partial), leaves the folder's previous content as it was, and throws.
 [[noreturn]] void stop_on_write_error(OutputUnit& unit, const Tally& tally, const SweepOptions& opt) {
-  std::string kept = "sweep.partial marks what is there as incomplete";
+  std::string kept;
   try {
-    unit.commit();
+    kept = "the points finished so far are in " + unit.keep_beside().string() + " (sweep.partial marks them as incomplete); " +
+           unit.target().string() + " is as it was";
   } catch (const std::exception& e) {
     kept = "the points finished so far could not be kept either (" + std::string(e.what()) + ")";
   }
   throw std::runtime_error("sweep stopped after " + std::to_string(tally.finished) + " of " + std::to_string(opt.points) +
-                           " points: writing " + (unit.target() / "sweep.csv").string() + " failed (" + tally.write_error + "); " + kept);
+                           " points: writing sweep.csv failed (" + tally.write_error + "); " + kept);
 }
 
 /// What the finished sweep found, for its closing lines and sweep.json.
@@ -590,7 +592,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   for (std::size_t i = 0; i < values.size(); ++i) pts[i].value = values[i];
   const int jobs = job_count(opt.jobs, pts.size());
   // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
-  // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both.
+  // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both beside the folder.
   // Under mpirun, rank 0 alone takes the folder, writes and prints; a refused folder ends every rank.
   std::optional<OutputUnit> unit;
   const int refused = cluster::on_rank0([&] {

@@ -18,6 +18,7 @@
 #include <sys/wait.h>
 
 #include "core/materials.hpp"
+#include "tests/imcol_process.hpp"
 #include "tests/scene_text.hpp"
 
 namespace fs = std::filesystem;
@@ -254,23 +255,41 @@ TEST(Cli, SweepWritesStAndEAndKeepsFinishedPointsWhenOneFails) {
   EXPECT_NE(neg.err.find("fluid.viscosity"), std::string::npos) << neg.err;
 }
 
-TEST(Cli, SweepThatCannotWriteItsTableStopsWithOneLineAndKeepsThePartialMarker) {
-  // A file-size limit of 1 KiB: sweep.csv outgrows it after a few points, and the write fails in a worker thread.
+TEST(Cli, SweepThatCannotWriteItsTableKeepsThePreviousResultAndPutsItsPointsBeside) {
+  // A complete sweep, then one under a file-size limit of 1 KiB: sweep.csv outgrows it after a few points and the
+  // write fails in a worker thread. The complete sweep stays; the points finished go to a folder beside it.
   const fs::path out = fs::temp_directory_path() / "imcol_cli_sweep_unwritable";
+  const std::string sweep = "sweep " + imcol::data_dir() + "/scenes/default.toml --vary velocity --from 0.1 --to 0.3 --jobs 2 --no-plot --no-progress ";
+  auto partials = [&] {
+    std::vector<fs::path> v;
+    for (const auto& f : fs::directory_iterator(out.parent_path()))
+      if (f.path().filename().string().rfind(out.filename().string() + ".partial-", 0) == 0) v.push_back(f.path());
+    return v;
+  };
+  for (const auto& p : partials()) fs::remove_all(p);
   fs::remove_all(out);
-  const Result r = run_imcol("sweep " + imcol::data_dir() + "/scenes/default.toml --vary velocity --from 0.1 --to 0.3 --points 200 "
-                             "--jobs 2 --no-plot --no-progress --out " + out.string(), "ulimit -f 2; ");
+  ASSERT_EQ(run_imcol(sweep + "--points 3 --out " + out.string()).status, 0);
+  const std::string complete = imcol::test::slurp(out / "sweep.csv");
+  const Result r = run_imcol(sweep + "--points 200 --out " + out.string(), "ulimit -f 2; ");
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(r.err.rfind("imcol: error: sweep stopped after ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find("sweep.csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("writing sweep.csv failed (") , std::string::npos) << r.err;
   EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(out.string() + " is as it was"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_TRUE(fs::exists(out / "sweep.partial"));
-  EXPECT_TRUE(fs::exists(out / "sweep.csv"));
-  EXPECT_FALSE(fs::exists(out / "sweep.json"));
-  for (const auto& f : fs::directory_iterator(out)) EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
+  EXPECT_EQ(imcol::test::slurp(out / "sweep.csv"), complete);
+  EXPECT_TRUE(fs::exists(out / "sweep.json"));
+  EXPECT_FALSE(fs::exists(out / "sweep.partial"));
+  const auto kept = partials();
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_NE(r.err.find(kept[0].string()), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(kept[0] / "sweep.partial"));
+  EXPECT_TRUE(fs::exists(kept[0] / "sweep.csv"));
+  EXPECT_FALSE(fs::exists(kept[0] / "sweep.json"));
+  for (const auto& f : fs::directory_iterator(kept[0])) EXPECT_EQ(f.path().string().find(".tmp."), std::string::npos) << f.path();
   for (const auto& f : fs::directory_iterator(out.parent_path()))
     EXPECT_NE(f.path().filename().string().rfind("." + out.filename().string() + ".", 0), 0u) << f.path();
+  fs::remove_all(kept[0]);
   fs::remove_all(out);
 }
 
