@@ -19,6 +19,7 @@
 #include "apps/calibrate_files.hpp"
 #include "apps/calibrate_progress.hpp"
 #include "apps/calibrate_runner.hpp"
+#include "apps/rank_inputs.hpp"
 #include "apps/cluster.hpp"
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
@@ -309,6 +310,7 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   // MPI starts here, every rank having checked the same inputs. Rank 0 alone writes: its output folder is taken
   // now, and a refusal (another run writing it, a folder imcol did not write) ends every rank.
   const cluster::World world = cluster::world();
+  if (const int differ = cluster::agree(calibrate_inputs(in.base, in.data, in.held_out, opt))) return differ;  // ranks on other inputs: refused
   std::optional<OutputUnit> unit;
   if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path); }))
     return refused;

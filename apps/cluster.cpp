@@ -16,6 +16,7 @@
 
 #include "apps/parallel_runs.hpp"
 #include "apps/run_failure.hpp"
+#include "core/errors.hpp"
 
 #ifdef IMCOL_MPI
 #include <mpi.h>
@@ -33,6 +34,11 @@ void run_distributed(std::size_t n, int jobs, const std::function<std::string(st
 }
 
 void share(std::string&) {}
+
+namespace {
+/// Every rank's `mine`, one after the other, on rank 0 (the identity with one rank).
+std::vector<std::uint64_t> gather(const std::vector<std::uint64_t>& mine) { return mine; }
+}  // namespace
 
 Hold::Hold() : exceptions_(std::uncaught_exceptions()) {}
 Hold::~Hold() = default;
@@ -206,6 +212,20 @@ void share(std::string& bytes) {
   g_released = g_holds == 0;
 }
 
+namespace {
+/// Every rank's `mine` (the same size on every rank), one after the other, on rank 0; nothing on the other ranks.
+std::vector<std::uint64_t> gather(const std::vector<std::uint64_t>& mine) {
+  const World w = world();
+  if (w.size == 1) return mine;
+  g_released = false;
+  std::vector<std::uint64_t> all(w.rank == 0 ? mine.size() * static_cast<std::size_t>(w.size) : 0);
+  MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_UINT64_T, all.data(), static_cast<int>(mine.size()), MPI_UINT64_T, 0,
+             MPI_COMM_WORLD);
+  g_released = g_holds == 0;
+  return all;
+}
+}  // namespace
+
 Hold::Hold() : exceptions_(std::uncaught_exceptions()) {
   if (world().size == 1) return;
   ++g_holds;
@@ -220,6 +240,51 @@ Hold::~Hold() {
 }
 
 #endif
+
+std::uint64_t digest(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+namespace {
+
+/// "rank 2", "ranks 1, 3 and 4".
+std::string ranks_text(const std::vector<int>& ranks) {
+  std::string t = ranks.size() == 1 ? "rank " : "ranks ";
+  for (std::size_t i = 0; i < ranks.size(); ++i)
+    t += (i == 0 ? "" : i + 1 == ranks.size() ? " and " : ", ") + std::to_string(ranks[i]);
+  return t;
+}
+
+}  // namespace
+
+int agree(const Inputs& inputs) {
+  if (world().size == 1) return 0;
+  constexpr const char* kParts[] = {"scene", "options", "version"};
+  const std::vector<std::uint64_t> all = gather({digest(inputs.scene), digest(inputs.options), digest(IMCOL_VERSION)});
+  return on_rank0([&] {
+    // The ranks that differ from rank 0, grouped by what differs ("scene", "scene and options", ...).
+    std::map<std::string, std::vector<int>> by_parts;
+    std::vector<std::string> order;
+    for (std::size_t r = 1; r * 3 < all.size(); ++r) {
+      std::string parts;
+      for (std::size_t k = 0; k < 3; ++k)
+        if (all[3 * r + k] != all[k]) parts += std::string(parts.empty() ? "" : ", ") + kParts[k];
+      if (parts.empty()) continue;
+      if (!by_parts.count(parts)) order.push_back(parts);
+      by_parts[parts].push_back(static_cast<int>(r));
+    }
+    if (order.empty()) return;
+    std::string msg = "the ranks of this job were not given the same inputs, so their results cannot be put together: ";
+    for (std::size_t i = 0; i < order.size(); ++i)
+      msg += (i ? "; " : "") + ranks_text(by_parts[order[i]]) + " differ" + (by_parts[order[i]].size() == 1 ? "s" : "") +
+             " from rank 0 in " + order[i];
+    msg += " (every rank must run the same imcol version and command on the same scene: check IMCOL_DATA_DIR, the scene file, "
+           "--set and the other options on every node)";
+    throw InputError("mpirun", "", msg);
+  });
+}
 
 int on_rank0(const std::function<void()>& step) {
   RunFailure failure;

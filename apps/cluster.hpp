@@ -4,6 +4,7 @@
 // takes each finished run's result as bytes; every rank runs its share on its own threads. The only MPI code in imcol.
 // Without mpirun, or built without MPI (IMCOL_MPI off), there is one rank and the runs stay on this process's threads.
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -32,6 +33,22 @@ void share(std::string& bytes);
 /// leaves with (2 for an InputError, 3 for a SolverError, else 1) and should leave with it. 0 on every rank when
 /// step did not throw. Every rank calls it at the same point.
 int on_rank0(const std::function<void()>& step);
+
+/// What every rank of a job must run on alike, as text: the command's resolved scene(s) (core/scene_values.hpp) and
+/// the options that decide its results (with the command's name). imcol's version is added here.
+struct Inputs {
+  std::string scene, options;
+};
+
+/// Compares every rank's inputs with rank 0's (64-bit digests of each part, gathered on rank 0), so that ranks
+/// started on different inputs (another IMCOL_DATA_DIR, an MPMD job with another --set) cannot mix their results.
+/// 0 on every rank when all agree; else rank 0 throws an InputError naming the ranks that differ and in what (scene,
+/// options, version) and the other ranks get 2, which they should leave with. Every rank calls it at the same point,
+/// before the first run_distributed; nothing with one rank.
+int agree(const Inputs& inputs);
+
+/// The FNV-1a 64-bit digest of `text` (agree's, the same on every machine).
+std::uint64_t digest(const std::string& text);
 
 /// Several steps in a row (run_distributed, share) during which the other ranks may wait on this one: while a Hold
 /// lives, a rank that leaves by an exception or exit aborts the job instead of leaving the others waiting. Ended

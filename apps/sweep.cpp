@@ -22,6 +22,7 @@
 #include "apps/output_unit.hpp"
 #include "apps/parallel_runs.hpp"
 #include "apps/plot.hpp"
+#include "apps/rank_inputs.hpp"
 #include "run/measured_run.hpp"
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
@@ -436,7 +437,7 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
 nlohmann::ordered_json print_points(const std::vector<PointResult>& pts, const SweepOptions& opt, const Quantity& q,
                                     const std::string& scene_name, int jobs, double& cpu) {
   std::cout << "scene " << scene_name << ": sweep of " << opt.vary << " from " << opt.from << " to " << opt.to << " (" << opt.points
-            << " points, " << opt.spacing << " spacing, " << jobs << " jobs"
+            << " points, " << opt.spacing << " spacing, " << jobs << (jobs == 1 ? " job" : " jobs")
             << (cluster::world().size > 1 ? " on each of " + std::to_string(cluster::world().size) + " ranks" : std::string()) << ")\n";
   std::cout << std::setw(14) << q.column << std::setw(10) << "St" << std::setw(9) << "Re" << std::setw(9) << "e" << std::setw(9)
             << "steps" << std::setw(10) << "ms" << "  note\n";
@@ -520,7 +521,7 @@ Outcome report_points(const std::vector<PointResult>& pts, const SweepOptions& o
   const int ok = opt.points - tally.failed;
   out.ok = ok;
   std::cout << ok << " of " << opt.points << " points ran in " << std::fixed << std::setprecision(2) << wall << " s on " << jobs
-            << " jobs: " << std::setprecision(1) << ok / wall << " collisions per second (" << std::setprecision(3)
+            << (jobs == 1 ? " job: " : " jobs: ") << std::setprecision(1) << ok / wall << " collisions per second (" << std::setprecision(3)
             << (ok ? 1e3 * cpu / ok : NAN) << " ms integration per point)\n";
   for (const auto& f : out.failures)
     std::cout << "failed: point " << f["point"] << " (" << opt.vary << " = " << f["value"] << "): " << f["reason"].get<std::string>() << "\n";
@@ -594,6 +595,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
   // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both beside the folder.
   // Under mpirun, rank 0 alone takes the folder, writes and prints; a refused folder ends every rank.
+  if (const int differ = cluster::agree(sweep_inputs(scenes, opt))) return differ;  // ranks on other inputs: refused
   std::optional<OutputUnit> unit;
   const int refused = cluster::on_rank0([&] {
     unit.emplace(opt.out, fs::path("out") / (base.name + "-sweep_" + opt.vary), base.path);

@@ -18,6 +18,7 @@
 #include "apps/cluster.hpp"
 #include "apps/format.hpp"
 #include "apps/plot.hpp"
+#include "apps/rank_inputs.hpp"
 #include "apps/run_failure.hpp"
 #include "run/simulate.hpp"
 #include "model/collision_model.hpp"
@@ -543,6 +544,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   runs.repeat = opt.repeat;
   // Under mpirun, ranks > 0 run what rank 0 hands them (docs/cluster.md); rank 0 alone writes and prints.
   const int ranks = cluster::world().size;
+  if (const int differ = cluster::agree(work_precision_inputs(base, opt))) return differ;  // ranks on other inputs: refused
   std::optional<OutputUnit> unit;
   if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fallback, base.path); })) return refused;
   std::vector<int> runs_by_rank;

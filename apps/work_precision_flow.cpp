@@ -13,6 +13,7 @@
 
 #include "apps/cluster.hpp"
 #include "apps/format.hpp"
+#include "apps/rank_inputs.hpp"
 #include "apps/run_failure.hpp"
 #include "run/json_util.hpp"
 #include "run/simulate.hpp"
@@ -115,6 +116,7 @@ int work_precision_flow(const Scene& base, const std::vector<Override>& override
     thrown[i] = r.failure.thrown;
     return encode_flow_rung(r);
   };
+  if (const int differ = cluster::agree(flow_ladder_inputs(base, opt))) return differ;  // ranks on other inputs: refused
   std::optional<OutputUnit> unit;
   if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fallback, base.path); })) return refused;
   if (w.rank > 0) {
