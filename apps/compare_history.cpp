@@ -128,7 +128,6 @@ HistoryFiles report_rows(const std::vector<Row>& rows, bool collision, const std
             << "dF/F_peak" << std::setw(7) << "modes" << std::setw(7) << "state" << std::setw(8) << "steps" << std::setw(9)
             << "rhs" << std::setw(10) << "wall ms" << std::setw(10) << "setup ms" << "\n";
   std::ostringstream csv;
-  csv << std::setprecision(12);
   csv << "kernel,evaluator," << (collision ? "e" : "u_end_m_s")
       << ",diff_from_none,peak_history_force_N,diff_from_reference,force_diff_rel,modes,state_size,steps,rhs_evals,"
          "linear_solver,wall_time_s,setup_time_s\n";
@@ -141,14 +140,16 @@ HistoryFiles report_rows(const std::vector<Row>& rows, bool collision, const std
     const std::string modes = s.history_modes ? std::to_string(*s.history_modes) : "-";
     const double wall = s.wall_time_s, setup = s.setup_time_s;
     std::cout << std::left << std::setw(12) << r.kernel << std::setw(8) << r.evaluator << std::right << std::setw(12)
-              << std::fixed << std::setprecision(6) << r.metric << std::setw(10) << sci(r.metric - none_metric, 1)
+              << (std::isnan(r.metric) ? "-" : fixed(r.metric, 6)) << std::setw(10) << sci(r.metric - none_metric, 1)
               << std::setw(12) << sci(r.peak) << std::setw(10) << sci(r.d_metric, 1) << std::setw(11) << sci(r.d_force, 1)
               << std::setw(7) << modes << std::setw(7) << sol.state_size << std::setw(8)
               << sol.steps << std::setw(9) << sol.rhs_evals << std::setw(10) << std::fixed
               << std::setprecision(2) << 1e3 * wall << std::setw(10) << 1e3 * setup << "\n";
-    csv << r.kernel << "," << r.evaluator << "," << r.metric << "," << r.metric - none_metric << "," << r.peak << ","
-        << r.d_metric << "," << r.d_force << "," << modes << "," << sol.state_size << "," << sol.steps << ","
-        << sol.rhs_evals << "," << sol.linear_solver << "," << wall << "," << setup << "\n";
+    // A value that is not there (no direct reference, no e) is an empty cell, as in the other CSV files.
+    csv << r.kernel << "," << r.evaluator << "," << csv_number(r.metric) << "," << csv_number(r.metric - none_metric) << ","
+        << csv_number(r.peak) << "," << csv_number(r.d_metric) << "," << csv_number(r.d_force) << ","
+        << (s.history_modes ? std::to_string(*s.history_modes) : "") << "," << sol.state_size << "," << sol.steps << ","
+        << sol.rhs_evals << "," << sol.linear_solver << "," << csv_number(wall) << "," << csv_number(setup) << "\n";
     if (r.kernel != "none")
       for (const auto& [t, f] : force_trace(r.run))
         forces << r.kernel << " " << r.evaluator << "," << t << "," << f << "," << r.kernel << "," << r.evaluator << "\n";

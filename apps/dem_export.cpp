@@ -2,6 +2,7 @@
 #include "apps/dem_export.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -117,10 +118,14 @@ std::string export_dem(const fs::path& dir, const Scene& base, const DemSweep& s
   write_file_atomic(dir / "dem.csv", dem_csv(base, sw, pts, pair));
   write_file_atomic(dir / "dem_table.csv", lookup_csv(sw, pts, pair));
 
+  // The fits take the points with a St; a point with e but no St (a scene without a liquid: St is infinite) is
+  // counted apart, not as one without e.
   std::vector<run::RestitutionSample> samples;
+  std::size_t without_St = 0;
   for (const auto& p : pts) {
     const auto St = dem_St(p, pair);
-    samples.push_back({St.value_or(NAN), St ? p.e : std::nullopt});
+    if (!St && p.e) ++without_St;
+    else samples.push_back({St.value_or(NAN), St ? p.e : std::nullopt});
   }
   // Both forms, e_dry fixed to the scene's (when it has one) and free; a fit without enough points is left out and said.
   std::vector<RestitutionFit> fits;
@@ -128,8 +133,10 @@ std::string export_dem(const fs::path& dir, const Scene& base, const DemSweep& s
   std::vector<std::optional<double>> e_drys;
   if (sw.e_dry) e_drys.push_back(sw.e_dry);
   e_drys.push_back(std::nullopt);
+  if (!base.fluid) fit_error = "the scene has no liquid: St is infinite and e does not depend on it (a DEM code takes e_dry as it is)";
   for (const auto form : {RestitutionForm::exponential, RestitutionForm::linear})
     for (const auto& e_dry : e_drys) {
+      if (!base.fluid) break;
       try {
         fits.push_back(run::fit_restitution(samples, form, e_dry));
       } catch (const std::exception& e) {  // too few points (or no convergence): said in dem.json and on the terminal
@@ -154,10 +161,10 @@ std::string export_dem(const fs::path& dir, const Scene& base, const DemSweep& s
     else if (*s.e > 0) ++used;
     else ++no_rebound, St_no_rebound_max = std::max(St_no_rebound_max, s.St);
   }
-  j["points"] = {{"total", pts.size()}, {"used_in_fits", used}, {"no_rebound", no_rebound}, {"without_e", without_e}};
+  j["points"] = {{"total", pts.size()}, {"used_in_fits", used}, {"no_rebound", no_rebound}, {"without_e", without_e}, {"without_St", without_St}};
   j["St_no_rebound_max"] = no_rebound ? nlohmann::ordered_json(St_no_rebound_max) : nlohmann::ordered_json(nullptr);
-  j["treatment"] = "points with e = 0 (no rebound) and points without e (failed runs, e not measured) are left out of the fits and counted "
-                   "here; the fits hold over valid_St, the St range of the points used";
+  j["treatment"] = "points with e = 0 (no rebound), points without e (failed runs, e not measured) and points with e but without St (no "
+                   "liquid) are left out of the fits and counted here; the fits hold over valid_St, the St range of the points used";
   j["tolerance_max_residual"] = kDemFitTolerance;
   j["fits"] = nlohmann::ordered_json::array();
   for (const auto& f : fits) j["fits"].push_back(fit_json(f, pair));
@@ -181,7 +188,18 @@ std::string export_dem(const fs::path& dir, const Scene& base, const DemSweep& s
   j["fit_error"] = fit_error.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(fit_error);
   write_file_atomic(dir / "dem.json", j.dump(2) + "\n");
 
-  if (!best) return "dem: no fit: " + fit_error;
+  if (!best) {
+    std::string line = "dem: no fit: " + fit_error;
+    if (without_St) {  // what the points found instead: e without St
+      double lo = INFINITY, hi = -INFINITY;
+      for (const auto& p : pts)
+        if (p.e && !dem_St(p, pair)) lo = std::min(lo, *p.e), hi = std::max(hi, *p.e);
+      const std::string a = fixed(lo, 4), b = fixed(hi, 4);
+      line += "; e = " + (a == b ? a : a + "-" + b) + " at " + std::to_string(without_St) + " of " +
+              std::to_string(pts.size()) + " points";
+    }
+    return line;
+  }
   std::ostringstream os;
   os << "dem: " << fit_text(*best) << ", St " << fixed(best->St_min, 1) << "-" << fixed(best->St_max, 1) << " (" << best->used << " points)";
   if (expo && expo != best) os << "; " << fit_text(*expo);

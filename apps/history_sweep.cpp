@@ -196,7 +196,7 @@ int history_sweep(const std::string& scene_path, const std::vector<Override>& ov
   for (const auto& c : cells)
     if (c.ok() && !first) first = &c;
   std::cout << "scene " << base.name << ": e per history kernel at " << sw.points << " points of " << sw.vary << " from " << sw.from
-            << " to " << sw.to << " (" << sw.spacing << " spacing, " << cells.size() << " runs on " << jobs << " jobs, "
+            << " to " << sw.to << " (" << sw.spacing << " spacing, " << cells.size() << " runs on " << jobs << (jobs == 1 ? " job, " : " jobs, ")
             << std::fixed << std::setprecision(2) << wall << " s); e = " << (first ? first->summary.e_is : to_string(base.measure.e))
             << std::defaultfloat << "\n";
   print_table(cells, series, values, column);

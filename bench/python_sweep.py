@@ -41,7 +41,7 @@ def run_cli(imcol_bin, args, out):
     if p.returncode != 0:
         sys.exit("imcol sweep failed: " + p.stderr)
     # "N of N points ran in T s on J jobs: R collisions per second (…)"
-    m = re.search(r"(\d+) of \d+ points ran in ([0-9.]+) s on \d+ jobs: ([0-9.]+) collisions per second", p.stdout)
+    m = re.search(r"(\d+) of \d+ points ran in ([0-9.]+) s on \d+ jobs?: ([0-9.]+) collisions per second", p.stdout)
     with open(out / "sweep.csv", newline="") as f:
         e = [float(r["e"]) if r["e"] else float("nan") for r in csv.DictReader(f)]
     return wall, float(m.group(2)), np.array(e)
