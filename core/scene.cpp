@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/scene_kind.hpp"
 #include "core/toml_reader.hpp"
 #include "core/fluids.hpp"
 #include "core/materials.hpp"
@@ -520,6 +521,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
     throw InputError(path + ":" + std::to_string(e.source().begin.line), "",
                      "TOML syntax error: " + std::string(e.description()));
   }
+  if (scene_kind(root) == SceneKind::flow) throw InputError(path, "", other_scene_kind_message(SceneKind::flow));
   for (const auto& ov : overrides) apply_override(root, ov);
 
   Scene sc;

@@ -53,12 +53,14 @@ std::string scenes_dir() { return (fs::path(data_dir()) / "scenes").string(); }
 std::string find_scene(const std::string& arg) {
   if (arg.empty()) throw InputError("command line", "scene", "empty scene argument (give a scene file or a shipped scene's name: imcol scenes lists them)");
   std::error_code ec;
-  if (fs::exists(arg, ec)) return arg;
   constexpr std::string_view kReadmePrefix = "data/scenes/";
   const std::string name = arg.starts_with(kReadmePrefix) ? arg.substr(kReadmePrefix.size()) : arg;
   const std::string file = name.ends_with(".toml") ? name : name + ".toml";
   const fs::path shipped = fs::path(scenes_dir()) / file;
-  if (!fs::path(file).is_absolute() && fs::is_regular_file(shipped, ec)) return shipped.string();
+  const bool is_shipped = !fs::path(file).is_absolute() && fs::is_regular_file(shipped, ec);
+  // A folder is never a scene: `default` beside an output folder of that name is the shipped scene.
+  if (fs::exists(arg, ec) && !(is_shipped && fs::is_directory(arg, ec))) return arg;
+  if (is_shipped) return shipped.string();
   const std::string stem = file.substr(0, file.size() - 5);
   std::string msg = "no scene '" + arg + "': no file " + (fs::absolute(arg, ec)).string() + " (relative to the current folder), and no " +
                     file + " in " + scenes_dir() + " (imcol scenes lists the shipped scenes)";

@@ -10,8 +10,9 @@ namespace imcol {
 /// The shipped scenes' folder: data_dir()/scenes.
 std::string scenes_dir();
 
-/// The file a scene argument stands for: `arg` itself if it exists (a path always wins); else the shipped scene of
-/// that name (".toml" optional; a leading "data/scenes/" is dropped, so the README's paths work from any folder).
+/// The file a scene argument stands for: `arg` itself if it exists (a path wins, but for a folder named as a shipped
+/// scene: an output folder `default` leaves `default` the shipped scene); else the shipped scene of that name (".toml"
+/// optional; a leading "data/scenes/" is dropped, so the README's paths work from any folder).
 /// Throws InputError (key 'scene') saying where it looked, with the shipped scenes of a close name.
 std::string find_scene(const std::string& arg);
 

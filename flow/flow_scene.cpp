@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/scene_kind.hpp"
 #include "core/toml_reader.hpp"
 
 namespace imcol::flow {
@@ -300,6 +301,7 @@ FlowScene load_flow_scene(const std::string& path) {
   } catch (const toml::parse_error& e) {
     throw InputError(path + ":" + std::to_string(e.source().begin.line), "", "TOML syntax error: " + std::string(e.description()));
   }
+  if (scene_kind(root) == SceneKind::collision) throw InputError(path, "", other_scene_kind_message(SceneKind::collision));
   FlowScene sc;
   sc.path = path;
   Reader top(root, "", path);

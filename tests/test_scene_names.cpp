@@ -146,3 +146,54 @@ TEST(SceneNames, ScenesListsEveryShippedScene) {
   EXPECT_EQ(g.out.find("seed_run1"), std::string::npos);
   fs::remove_all(elsewhere());
 }
+
+TEST(SceneNames, AFolderNamedAsAShippedSceneIsTheShippedScene) {
+  // An old output folder `default` (imcol run default --out default) in the working folder: `imcol run default` runs
+  // the shipped scene, not "is a directory".
+  const fs::path cwd = elsewhere();
+  fs::create_directories(cwd / "default");
+  fs::create_directories(cwd / "not_a_scene");
+  const fs::path here = fs::current_path();
+  fs::current_path(cwd);
+  EXPECT_EQ(fs::path(find_scene("default")), fs::path(scenes_dir()) / "default.toml");
+  EXPECT_EQ(find_scene("not_a_scene"), "not_a_scene");  // no such shipped scene: the folder, refused by the reader
+  fs::current_path(here);
+  const Result r = run_in(cwd, "run default --quiet --no-plot --out out_default");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(cwd / "out_default" / "summary.json"));
+  const Result dir = run_in(cwd, "run not_a_scene --quiet --no-plot");
+  EXPECT_EQ(dir.status, 2);
+  EXPECT_NE(dir.err.find("is a directory"), std::string::npos) << dir.err;
+  fs::remove_all(cwd);
+}
+
+TEST(SceneNames, AProcFileIsReadForWhatItHolds) {
+  // /proc files report size 0: their text is read all the same, so the error is about that text (not TOML),
+  // not a missing [[sphere]].
+  const Result r = run_in(elsewhere(), "run /proc/self/status --quiet --no-plot");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.err.find("key 'sphere': missing"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/proc/self/status"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("TOML"), std::string::npos) << r.err;
+}
+
+TEST(SceneNames, ASceneOfTheOtherKindNamesItsCommand) {
+  const Result run = run_in(elsewhere(), "run flow/fixed_sphere_re20 --quiet --no-plot");
+  EXPECT_EQ(run.status, 2);
+  EXPECT_NE(run.err.find("this is a flow scene"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("imcol flow"), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("missing"), std::string::npos) << run.err;
+  const Result sweep = run_in(elsewhere(), "sweep flow/fixed_sphere_re20 --vary velocity --from 0.1 --to 1 --points 2 --no-plot");
+  EXPECT_EQ(sweep.status, 2);
+  EXPECT_NE(sweep.err.find("this is a flow scene"), std::string::npos) << sweep.err;
+  const Result flow = run_in(elsewhere(), "flow default --no-plot");
+  EXPECT_EQ(flow.status, 2);
+  EXPECT_NE(flow.err.find("this is a collision scene"), std::string::npos) << flow.err;
+  EXPECT_NE(flow.err.find("imcol run"), std::string::npos) << flow.err;
+  EXPECT_EQ(flow.err.find("missing"), std::string::npos) << flow.err;
+  // Every shipped scene is read by its own command's reader without this message.
+  for (const auto& name : shipped_scene_names()) {
+    if (name.starts_with("flow/")) continue;
+    EXPECT_NO_THROW(load_scene(find_scene(name))) << name;
+  }
+}
