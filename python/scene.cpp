@@ -88,7 +88,9 @@ void bind_scene(py::module_& m) {
           },
           py::arg("key"), py::arg("value"), py::return_value_policy::reference_internal,
           "Sets a dotted key as `--set key=value` does, with the same checks and messages (ValueError); returns the "
-          "scene. A str is taken as --set takes its text (a bare word is a string); numbers, bools and lists as TOML.")
+          "scene. A str is taken as --set takes its text (a bare word is a string); numbers, bools and lists as TOML; "
+          "NumPy scalars and arrays by their kind (numpy.bool_ a bool, integers an int, floats a float, arrays lists). "
+          "A later set of a key replaces the earlier one, and the keys set inside it (`overrides` keeps each key once).")
       .def_property_readonly("name", [](const PyScene& s) { return s.scene().name; })
       .def_property_readonly("path", &PyScene::path, "The file the scene was read from (`<string>` for from_toml).")
       .def_property_readonly("description", [](const PyScene& s) { return s.scene().description; })
@@ -100,7 +102,7 @@ void bind_scene(py::module_& m) {
             for (const auto& o : s.overrides()) out.append(o.key + "=" + o.value);
             return out;
           },
-          "The keys set, as --set options would give them.")
+          "The keys set, as --set options would give them: each key once, at its latest value, in the order set.")
       .def("__copy__", [](const PyScene& s) { return s; })
       .def("__deepcopy__", [](const PyScene& s, const py::dict&) { return s; }, py::arg("memo"))
       .def("__repr__", [](const PyScene& s) {

@@ -17,7 +17,7 @@ class SolverError(RuntimeError):
     state: Optional[Dict[str, float]]
     local_errors: Optional[Dict[str, float]]
 
-_Value = Union[str, bool, int, float, Sequence[Union[str, bool, int, float]]]
+_Value = Union[str, bool, int, float, np.generic, np.ndarray, Sequence[Union[str, bool, int, float, np.generic]]]
 
 class Scene:
     """A scene: a TOML file or text, with keys set on it as the command line's --set does."""

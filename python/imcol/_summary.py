@@ -152,6 +152,7 @@ class Solver(Block):
     breakpoints: int
     root_events: int
     root_fn_evals: int
+    order_caps: int  # restarts with CVODE's BDF order capped at 2 (a ringing order 3-5)
 
 
 class FlowGrid(Block):
