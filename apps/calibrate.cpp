@@ -312,7 +312,8 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   const cluster::World world = cluster::world();
   if (const int differ = cluster::agree(calibrate_inputs(in.base, in.data, in.held_out, opt))) return differ;  // ranks on other inputs: refused
   std::optional<OutputUnit> unit;
-  if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path); }))
+  if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path,
+                                                                  std::vector<RunInput>{{"--data", opt.data}, {"--validate", opt.validate}, {"--cache", opt.cache}}); }))
     return refused;
   // The cache as rank 0 read it is every rank's (rank 0 alone appends to it, from here on).
   std::optional<calib::CacheWriter> cache_writer;

@@ -127,9 +127,11 @@ TEST(FirstHour, AFailingPlotQuotesThePythonError) {
 TEST(FirstHour, AKilledSweepLeavesThePreviousResultWhole) {
   const fs::path dir = tmp("sweep");
   fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / "sweep.json") << "{\"previous\": true}\n";
-  std::ofstream(dir / "sweep.png") << "previous";
+  // The previous result: a complete sweep of 2 points, with its picture.
+  const Outcome prev = run_imcol("sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 0.2 --points 2 --no-progress --out " + dir.string());
+  ASSERT_EQ(prev.status, 0) << prev.err;
+  ASSERT_TRUE(fs::exists(dir / "sweep.png"));
+  const std::string previous_csv = slurp(dir / "sweep.csv");
   // Started as a child of the test; killed (-9) once its partial sweep.csv is there.
   const pid_t pid = start_imcol("sweep data/scenes/gg3462.toml --vary velocity --from 0.1 --to 1 --points 4000 --jobs 1 --no-plot"
                                 " --no-progress --out " + dir.string(),
@@ -148,9 +150,9 @@ TEST(FirstHour, AKilledSweepLeavesThePreviousResultWhole) {
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "the sweep finished before it was killed";
-  EXPECT_TRUE(nlohmann::json::parse(slurp(dir / "sweep.json"))["previous"].get<bool>());
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir / "sweep.json"))["points"], 2);
   EXPECT_TRUE(fs::exists(dir / "sweep.png"));
-  EXPECT_FALSE(fs::exists(dir / "sweep.csv"));
+  EXPECT_EQ(slurp(dir / "sweep.csv"), previous_csv);
   EXPECT_FALSE(fs::exists(dir / "sweep.partial"));
   const std::vector<fs::path> left = staged();
   ASSERT_EQ(left.size(), 1u);
