@@ -7,7 +7,11 @@ three mutations drawn from a generator seeded by (--seed, n) alone -- numbers sc
 huge or tiny; effects dropped or added; materials swapped; spheres moved, added or removed; solver, measure, output
 and model keys changed -- and runs `imcol run SCENE --out DIR --quiet --no-plot` with a CPU-time limit. Coupled
 scenes (the `flow` effect) are kept on coarse grids and short t_end. Some cases write into the folder of a complete
-earlier run (the default scene with its picture, or a coupled scene with its flow fields). Each case must:
+earlier run (the default scene with its picture, or a coupled scene with its flow fields). Some meet a hostile
+environment, drawn apart from the scene's mutations (so that case N's scene stays the same): a file of the user's
+put into that earlier run's folder (the run must be refused, exit 2 naming --out or a bad scene key, the file and
+the earlier run kept), or a standard output whose reader has gone (the run must write its folder as usual, not die of SIGPIPE).
+Each case must:
 
   * end by itself (no signal, no timeout) with exit status 0, 2 or 3; exit 2 and 3 print exactly one line on stderr,
     `imcol: error: ...` (exit 2: `imcol: error: SCENE[:LINE]: key 'K': ...`; exit 3: `imcol: solver failure: ...`
@@ -449,6 +453,15 @@ def make_case(seed, n, bases, mats):
     return os.path.relpath(path, ROOT), scene, muts, reuse
 
 
+def make_hazard(seed, n, reuse):
+    """The case's hostile environment, or None: drawn from a generator of its own, so the scene is the same with or without."""
+    rng = random.Random(f"imcol-fuzz-environment/{seed}/{n}")
+    x = rng.random()
+    if reuse is not None and x < 0.3:
+        return "foreign file"
+    return "closed stdout" if x > 0.92 else None
+
+
 def toml_effects(scene):
     e = scene.get("effects")
     return e if isinstance(e, list) else []
@@ -563,10 +576,19 @@ def wall_limit(a):
     return max(300.0, 30 * a.timeout)
 
 
-def run_timed(cmd, prefix, wall_limit):
-    """(exit code or None if killed at the wall-clock limit, stderr, stdout, CPU seconds of the run itself)."""
+def run_timed(cmd, prefix, wall_limit, closed_stdout=False):
+    """(exit code or None if killed at the wall-clock limit, stderr, stdout, CPU seconds of the run itself).
+    closed_stdout: the run's standard output is a pipe whose read end is already closed (stdout is then "")."""
     with open(prefix + ".out", "w+") as fo, open(prefix + ".err", "w+") as fe:
-        p = subprocess.Popen(cmd, stdout=fo, stderr=fe)
+        if closed_stdout:
+            r, w = os.pipe()
+            os.close(r)
+            try:
+                p = subprocess.Popen(cmd, stdout=w, stderr=fe)
+            finally:
+                os.close(w)
+        else:
+            p = subprocess.Popen(cmd, stdout=fo, stderr=fe)
         timer = threading.Timer(wall_limit, p.kill)
         timer.start()
         _, status, usage = os.wait4(p.pid, 0)  # the rusage of this child alone (sh execs imcol: the same process)
@@ -588,16 +610,22 @@ def run_case(a, n, bases, mats, work, templates):
         f.write(toml_text(scene))
     out = os.path.join(cdir, "out")
     template = templates[reuse] if reuse is not None else None
+    hazard = make_hazard(a.seed, n, reuse)
     if template:
         shutil.copytree(template["dir"], out)  # copy2: the earlier run's files keep their times
+    user_file = os.path.join(out, "experiment_2019.csv")
+    if hazard == "foreign file":
+        with open(user_file, "w") as f:
+            f.write("t,z\n0,1\n")
     # The time limit is on CPU time (ulimit -t: SIGXCPU), so that a loaded machine does not fail cases; the wall
     # clock limit is a backstop for a run that waits without computing.
     cmd = ["/bin/sh", "-c", f'ulimit -S -t {max(1, math.ceil(a.timeout))} && exec "$0" "$@"',
-           a.imcol, "run", spath, "--out", out, "--quiet", "--no-plot"]
+           a.imcol, "run", spath, "--out", out, "--no-plot"] + ([] if hazard == "closed stdout" else ["--quiet"])
     t0, started_ns = time.monotonic(), time.time_ns()
-    rc, err, sout, cpu = run_timed(cmd, os.path.join(cdir, "std"), wall_limit(a))
+    rc, err, sout, cpu = run_timed(cmd, os.path.join(cdir, "std"), wall_limit(a), hazard == "closed stdout")
     wall = time.monotonic() - t0
     desc = f"{base}: " + ("; ".join(muts) or "unchanged") + (f" [into the folder of an earlier run of {template['label']}]" if template else "")
+    desc += f" [{hazard}]" if hazard else ""
     try:
         if rc is None:
             raise Failure("timeout", f"more than {wall_limit(a):g} s of wall time")
@@ -608,6 +636,17 @@ def run_case(a, n, bases, mats, work, templates):
         if rc not in (0, 2, 3):
             raise Failure(f"exit {rc}", err.strip().splitlines()[-1][:200] if err.strip() else "(no message)")
         lines = err.splitlines()
+        if hazard == "foreign file":  # refused before anything runs (or the scene first), the user's file and the earlier run kept
+            if rc != 2 or len(lines) != 1 or not lines[0].startswith("imcol: error: "):
+                raise Failure("a folder holding a user's file was not refused", f"exit {rc}: {err.strip()[:200]!r}")
+            with open(user_file) as f:
+                if f.read() != "t,z\n0,1\n":
+                    raise Failure("the user's file changed", user_file)
+            s, h, r = read_output(out)
+            check_matches(s, h, r, template["scene"], template["path"], template["name"])
+            return n, "refused: a user's file in --out", None, desc, (wall, cpu), err.strip()
+        if hazard == "closed stdout":
+            lines = [ln for ln in lines if not ln.startswith("imcol: warning: ")]  # without --quiet, warnings are said
         if rc in (2, 3):
             ok = ("imcol: error: ",) + (("imcol: solver failure: ",) if rc == 3 else ())
             if len(lines) != 1 or not lines[0].startswith(ok):
@@ -618,7 +657,7 @@ def run_case(a, n, bases, mats, work, templates):
             # Bad input is in the scene (the only input): the message names the file, maybe a line, and a key.
             if rc == 2 and not re.match(r"imcol: error: " + re.escape(spath) + r"(:\d+)?: key '[^']*': \S", lines[0]):
                 raise Failure("exit 2 message does not name the scene and a key", lines[0][:200])
-        elif err.strip():
+        elif hazard != "closed stdout" and err.strip():
             raise Failure("stderr with --quiet", err.strip()[:200])
         if rc == 0 and sout.strip():
             raise Failure("stdout with --quiet", sout.strip()[:200])

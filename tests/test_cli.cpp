@@ -373,9 +373,9 @@ TEST(Cli, ValidateRejectsBadInput) {
 TEST(Cli, ValidatePlotsBothLayoutsAndLeavesNoStalePicture) {
   const fs::path out = fs::temp_directory_path() / "imcol_cli_validate_plot";
   fs::remove_all(out);
-  fs::create_directories(out);
-  std::ofstream(out / "validate_seed.png") << "stale";
-  // --no-plot: the old picture goes, the CSV is new.
+  // An earlier validation with its picture; then --no-plot: the old picture goes, the CSV is new.
+  ASSERT_EQ(run_imcol("validate seed --models seed --out " + out.string()).status, 0);
+  ASSERT_TRUE(fs::exists(out / "validate_seed.png"));
   ASSERT_EQ(run_imcol("validate seed --no-plot --models seed --out " + out.string()).status, 0);
   EXPECT_FALSE(fs::exists(out / "validate_seed.png"));
   // With the plot (reduced-order layout, both models): a real PNG.
