@@ -169,14 +169,7 @@ std::string point_message(const RunSummary& s, double t_end_scene, double t_end_
   std::ostringstream os;
   os << std::setprecision(4);
   const bool extended = t_end_run != t_end_scene;
-  if (!s.e) {
-    std::string why = s.e_missing.value_or("e is undefined");
-    const std::string hint = " (raise solver.t_end)";
-    if (auto k = why.find(hint); k != std::string::npos) why.erase(k, hint.size());
-    os << "e not measured: " << why;
-    if (s.t_end_too_short && extended) os << "; still so with solver.t_end raised to " << t_end_run << " s";
-    return os.str();
-  }
+  if (!s.e) return e_missing_message(s, t_end_scene, t_end_run);
   if (extended) os << "t_end extended to " << t_end_run << " s";
   if (e_status(s) == "measures_disagree") {
     os << (extended ? "; " : "") << "measures disagree with e (" << s.e_is << ") by more than "

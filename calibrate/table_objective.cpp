@@ -21,17 +21,6 @@ std::vector<Override> row_overrides(const MeasuredTable& m, std::size_t r, const
   return ov;
 }
 
-/// Why a row has no e, as imcol sweep says it of a point: the summary's reason, and the longer t_end tried in vain.
-std::string e_missing_message(const RunSummary& s, double t_end_scene, double t_end_run) {
-  std::string why = s.e_missing.value_or("e is undefined");
-  const std::string hint = " (raise solver.t_end)";
-  const bool extended = t_end_run != t_end_scene;
-  if (const auto k = why.find(hint); k != std::string::npos && extended) why.erase(k, hint.size());
-  std::string out = "e not measured: " + why;
-  if (extended && s.t_end_too_short) out += "; still so with solver.t_end raised to " + fmt_number(t_end_run) + " s";
-  return out;
-}
-
 }  // namespace
 
 void check_table_keys(const MeasuredTable& m, const std::string& scene_path, const std::vector<Override>& overrides) {

@@ -81,18 +81,7 @@ void read_solid(Reader& r, Solid& s, bool need_density) {
 toml::array* array_at(toml::node* n) { return n ? n->as_array() : nullptr; }
 
 void apply_override(toml::table& root, const Override& ov) {
-  // Split "a.b[1].c" or "a.b.1.c" into segments.
-  std::vector<std::string> seg;
-  std::string cur;
-  for (char ch : ov.key) {
-    if (ch == '.' || ch == '[' || ch == ']') {
-      if (!cur.empty()) seg.push_back(cur);
-      cur.clear();
-    } else {
-      cur += ch;
-    }
-  }
-  if (!cur.empty()) seg.push_back(cur);
+  const std::vector<std::string> seg = key_path(ov.key);
   if (seg.empty()) throw InputError("--set", ov.key, "empty key");
 
   toml::table parsed;
@@ -499,6 +488,21 @@ void check_scene(const Scene& sc) {
 }
 
 }  // namespace
+
+std::vector<std::string> key_path(const std::string& key) {
+  std::vector<std::string> seg;
+  std::string cur;
+  for (char ch : key) {
+    if (ch == '.' || ch == '[' || ch == ']') {
+      if (!cur.empty()) seg.push_back(std::move(cur));
+      cur.clear();
+    } else {
+      cur += ch;
+    }
+  }
+  if (!cur.empty()) seg.push_back(std::move(cur));
+  return seg;
+}
 
 Override parse_override(const std::string& text) {
   auto eq = text.find('=');

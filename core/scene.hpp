@@ -161,6 +161,8 @@ struct Override {
   std::string value;
 };
 Override parse_override(const std::string& text);  // throws InputError
+/// A dotted key's path as overrides apply it: "a.b[1].c" and "a.b.1.c" are a, b, 1, c.
+std::vector<std::string> key_path(const std::string& key);
 
 /// Parses, applies overrides, validates. Throws InputError naming the file, line and key.
 Scene load_scene(const std::string& path, const std::vector<Override>& overrides = {});

@@ -24,22 +24,6 @@ PyScene PyScene::from_toml(const std::string& text) { return PyScene("<string>",
 
 namespace scene_impl {  // this file's helpers: named, as the module is one unity unit
 
-/// A key's path as the scene reader splits it (core/scene.cpp apply_override): "a.b[1].c" and "a.b.1.c" are a, b, 1, c.
-std::vector<std::string> key_path(const std::string& key) {
-  std::vector<std::string> seg;
-  std::string cur;
-  for (char ch : key) {
-    if (ch == '.' || ch == '[' || ch == ']') {
-      if (!cur.empty()) seg.push_back(std::move(cur));
-      cur.clear();
-    } else {
-      cur += ch;
-    }
-  }
-  if (!cur.empty()) seg.push_back(std::move(cur));
-  return seg;
-}
-
 /// Whether `inner` names `outer` or a node inside it.
 bool inside(const std::vector<std::string>& inner, const std::vector<std::string>& outer) {
   return !outer.empty() && inner.size() >= outer.size() && std::equal(outer.begin(), outer.end(), inner.begin());
@@ -52,11 +36,11 @@ void PyScene::set(const std::string& key, const std::string& value_text) {
   // node inside it, is overwritten by this one whatever lies between: it is dropped, and the scene read is the one
   // --set would give with every override kept. The overrides stay one per key, and set's cost with them.
   Override ov = parse_override(key + "=" + value_text);
-  const auto path = scene_impl::key_path(ov.key);
+  const auto path = key_path(ov.key);
   std::vector<Override> trial;
   trial.reserve(overrides_.size() + 1);
   for (const auto& o : overrides_)
-    if (!scene_impl::inside(scene_impl::key_path(o.key), path)) trial.push_back(o);
+    if (!scene_impl::inside(key_path(o.key), path)) trial.push_back(o);
   trial.push_back(std::move(ov));
   scene_ = std::make_shared<const Scene>(parse_scene(text_, path_, trial));
   overrides_ = std::move(trial);
