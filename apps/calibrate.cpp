@@ -304,6 +304,7 @@ void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::Se
 
 }  // namespace
 
+// The command's steps in order (125 lines: inputs, rank agreement, folder, cache, search, report, files), each a call; what they share (inputs, unit, cache) would otherwise be passed between pieces.
 int calibrate(const std::string& scene_path, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
   Inputs in = read_inputs(scene_path, overrides, opt);
 

@@ -433,6 +433,7 @@ constexpr double samples_per_decade = 20;  // fit samples on [min_lag, horizon]
 constexpr double tikhonov = 1e-9;         // μ relative to ‖M‖_F
 }  // namespace
 
+// One constructor (71 lines): the fit of the kernel by exponentials (samples, least squares, checks), one computation whose steps share its arrays.
 SoeKernel::SoeKernel(const HistoryKernel& kernel, const SumOfExponentials& base)
     : kernel_(kernel), base_(base), rate_(base.rate) {
   const std::size_t m = rate_.size();

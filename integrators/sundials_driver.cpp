@@ -563,6 +563,24 @@ struct Integrator::Impl {
   std::vector<double> atol;  // per component, for the detector
   bool order_capped = false;  // BDF order at most 2 until the next event's re-initialisation
 
+  /// The events found at the step to t: samples them and lets the system act. True when the run stops there.
+  bool on_roots() {
+    std::vector<int> flags(sys.roots().size(), 0);
+    be->root_info(flags.data());
+    std::vector<std::size_t> found;
+    for (std::size_t i = 0; i < flags.size(); ++i)
+      if (flags[i]) found.push_back(i);
+    stats.root_events += static_cast<long>(found.size());
+    observer.sample(t, view(y.get()), true);
+    const EventAction action = sys.on_roots(found, t, mview(y.get()));
+    if (action == EventAction::stop) return done = true;
+    // A root function exactly zero here (a gap or speed that moves so slowly that its change over the solver's
+    // smallest step is below rounding) would be found again at t + ε on the next step, which CVODE and IDA refuse
+    // ("Root found at and very near t", *_ILL_INPUT). A restart here lets them hold it inactive until it leaves 0.
+    if (action == EventAction::reinit || root_exactly_zero()) restart(false);
+    return false;
+  }
+
   /// Re-initialises at (t, y); `cap`: with the BDF order at most 2 (ringing), else with the settings' maximum order.
   void restart(bool cap) {
     be->add_stats(stats);
@@ -761,22 +779,7 @@ double Integrator::advance(double t_target) {
     }
     t = t_new;
     if (flag > 0) {
-      std::vector<int> flags(sys.roots().size(), 0);
-      be->root_info(flags.data());
-      std::vector<std::size_t> found;
-      for (std::size_t i = 0; i < flags.size(); ++i)
-        if (flags[i]) found.push_back(i);
-      m.stats.root_events += static_cast<long>(found.size());
-      m.observer.sample(t, view(m.y.get()), true);
-      const EventAction action = sys.on_roots(found, t, mview(m.y.get()));
-      if (action == EventAction::stop) {
-        m.done = true;
-        break;
-      }
-      // A root function exactly zero here (a gap or speed that moves so slowly that its change over the solver's
-      // smallest step is below rounding) would be found again at t + ε on the next step, which CVODE and IDA refuse
-      // ("Root found at and very near t", *_ILL_INPUT). A restart here lets them hold it inactive until it leaves 0.
-      if (action == EventAction::reinit || m.root_exactly_zero()) reinit();
+      if (m.on_roots()) break;
       continue;
     }
     sys.at_step(t, view(m.y.get()), false);  // the step to t is accepted (its samples are taken)

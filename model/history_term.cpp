@@ -12,6 +12,7 @@ namespace imcol::model {
 
 using namespace contact;
 
+// One constructor (64 lines): each history setting read once, in the order the term uses them; a split would pass them all along.
 HistoryTerm::HistoryTerm(const Scene& sc, const PairGeometry& p) : wall_(sc, p), n_spheres_(p.n_spheres) {
   const auto& h = sc.history;
   auto& o = opt_;

@@ -80,6 +80,7 @@ py::object opt(const std::optional<double>& v) { return v ? py::object(py::float
 
 }  // namespace result_impl
 
+// One pybind11 chain (68 lines): the Result class's attributes and imcol.run, kept together as Python sees them.
 void bind_run(py::module_& m) {
   using namespace result_impl;
   py::class_<PyResult, std::shared_ptr<PyResult>>(m, "Result",

@@ -8,6 +8,7 @@ raises AttributeError. Blocks whose keys are data (e_measures, model, measures_d
 from typing import Any, Dict, List, Optional
 
 
+# One class (61 lines): the attribute protocol (getattr, dir, repr, to_dict) over one JSON object reads best in one place.
 class Block:
     """Attributes over one JSON object of the summary; to_dict() gives the object back."""
 
