@@ -10,10 +10,13 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
+#include "apps/validate_speed.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 #include "core/report.hpp"
@@ -82,7 +85,7 @@ std::vector<SeedRun> read_table_6_1() {
   std::vector<SeedRun> runs;
   std::string line;
   for (int line_no = 1; std::getline(in, line); ++line_no) {
-    double e = 0;
+    double e = 0, St_B = 0;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#' || line.rfind("run,", 0) == 0) continue;
     std::vector<std::string> cell;
@@ -98,10 +101,11 @@ std::vector<SeedRun> read_table_6_1() {
       const bool ok = !c.empty() && r.ec == std::errc() && r.ptr == c.data() + c.size() && std::isfinite(v) && v >= 0 &&
                       (k != 0 || (v >= 1 && v == std::floor(v) && c.find_first_not_of("0123456789") == std::string::npos));
       if (!ok) throw InputError(where, column_name(k), "'" + c + "' is not " + (k == 0 ? "a run number" : "a non-negative number"));
+      if (k == 6) St_B = v;
       if (k == 7) e = v;
     }
     if (e > 1) throw InputError(where, "e", "'" + cell[7] + "' is not a coefficient of restitution in [0, 1]");
-    runs.push_back({cell[0], cell[8], cell[6], cell[7], cell[5], e});
+    runs.push_back({cell[0], cell[8], cell[6], cell[7], cell[5], e, St_B});
   }
   if (runs.empty()) throw InputError(table, "", "no runs in the reference table");
   return runs;
@@ -132,17 +136,26 @@ void check_validate_options(const std::string& what, const ValidateOptions& opt,
                        "imcol validate sets the gap law of each model; choose the models with --models seed,asymptotic instead of --set");
 }
 
-/// The table's title, the models' legend and its column heads on stdout.
-void print_validate_header(bool flow) {
+/// The table's title and the models' legend on stdout.
+void print_validate_legend(bool flow) {
   std::cout << "Seed Table 6.1 (Li 2010) against imcol, " << (flow ? "coupled (f_SIM from the flow kernel, blended by H) and reduced-order"
                                                                   : "reduced-order (no f_SIM)") << "\n"
             << "  models (only the gap law differs; the scenes keep lagrangian added mass, K_H = 1, lambda without Re_h):\n"
             << "    seed       = the seed's gap law as we read its (6.7): 6 pi mu a_m (lambda(h/a*) - 1) U_rel on sphere m\n"
             << "    asymptotic = 6 pi mu [a*^2/h + c_log ln(a*/h)] U_rel, shifted to vanish at h_c (Jeffrey & Onishi; exact as h -> 0)\n"
-            << "  St_B(T6.1) = the seed's Table 6.1 convention, half of St_B(eq6.2) = m* U_rel / (6 pi mu a*^2)\n";
-  std::cout << std::left << std::setw(4) << "run" << std::setw(13) << "pair" << std::setw(11) << "model" << std::right << std::setw(10)
-            << "St_B seed" << std::setw(11) << "St_B(T6.1)" << std::setw(12) << "St_B(eq6.2)" << std::setw(8) << "e seed" << std::setw(8)
-            << (flow ? "e flow" : "e") << std::setw(8) << "diff";
+            << "  St_B(T6.1) = the seed's Table 6.1 convention, half of St_B(eq6.2) = m* U_rel / (6 pi mu a*^2)\n"
+            << "  each run twice: at the printed V_Io, and at the approach speed V that gives the printed St_B (same time before contact)\n";
+}
+
+/// One block's heading and column heads.
+void print_block_heading(const std::string& set, bool flow) {
+  std::cout << "\n"
+            << (set == "V_Io" ? "At V_Io (the printed approach speed):"
+                              : "At St_B (V scaled so that St_B(T6.1) is the printed St_B; the seed plots e against it):")
+            << "\n";
+  std::cout << std::left << std::setw(4) << "run" << std::setw(13) << "pair" << std::setw(11) << "model" << std::right << std::setw(8)
+            << "V cm/s" << std::setw(10) << "St_B seed" << std::setw(11) << "St_B(T6.1)" << std::setw(12) << "St_B(eq6.2)" << std::setw(8)
+            << "e seed" << std::setw(8) << (flow ? "e flow" : "e") << std::setw(8) << "diff";
   if (flow) std::cout << std::setw(10) << "e reduced" << std::setw(8) << "diff";
   std::cout << std::setw(8) << "e_inst" << std::setw(10) << "U_G mm/s" << std::setw(10) << (flow ? "wall s" : "wall ms");
   if (flow) std::cout << std::setw(9) << "ms/step";
@@ -150,30 +163,31 @@ void print_validate_header(bool flow) {
 }
 
 std::string validate_csv_header(bool flow) {
-  std::string h = "run,pair,model,lubrication_model,St_B_seed,e_seed,Re_seed,St_B,St_B_table_6_1,St_B_eq_6_2,e,e_minus_e_seed,e_instant,Re,"
-                  "group_velocity_m_s,steps,wall_time_s";
+  std::string h = "run,pair,model,lubrication_model,speed_set,V_m_s,St_B_seed,e_seed,Re_seed,St_B,St_B_table_6_1,St_B_eq_6_2,e,"
+                  "e_minus_e_seed,e_instant,Re,group_velocity_m_s,steps,wall_time_s";
   if (flow)
     h += ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_table_6_1_reduced_order,St_B_eq_6_2_reduced_order,wall_time_reduced_order_s,"
          "flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s";
   return h + "\n";
 }
 
-/// One run with one model: `s` the reported run (coupled with --flow), `rs` the reduced-order one.
+/// One run with one model at one speed: `s` the reported run (coupled with --flow), `rs` the reduced-order one.
 struct ValidateRow {
-  const SeedRun& sr;
-  const ValidateModel& model;
-  const RunSummary& s;
-  const RunSummary& rs;
+  const SeedRun* sr;
+  const ValidateModel* model;
+  std::string set;  // V_Io | St_B
+  double V;         // the approach speed, m/s
+  RunSummary s, rs;
   bool flow;
-  std::optional<double> diff(std::optional<double> v) const { return v ? std::optional<double>(*v - sr.e_value) : std::nullopt; }
+  std::optional<double> diff(std::optional<double> v) const { return v ? std::optional<double>(*v - sr->e_value) : std::nullopt; }
 };
 
 void print_validate_row(const ValidateRow& r) {
   const auto& s = r.s;
   auto show = [](std::optional<double> v, int prec) { return v ? fixed(*v, prec) : std::string("n/a"); };
-  std::cout << std::left << std::setw(4) << r.sr.run << std::setw(13) << r.sr.pair << std::setw(11) << r.model.name << std::right
-            << std::setw(10) << r.sr.St_B << std::setw(11) << fixed_or_na(s.St_B_table_6_1, 1) << std::setw(12)
-            << fixed_or_na(s.St_B_eq_6_2, 1) << std::setw(8) << r.sr.e << std::setw(8) << show(s.e, 3) << std::setw(8)
+  std::cout << std::left << std::setw(4) << r.sr->run << std::setw(13) << r.sr->pair << std::setw(11) << r.model->name << std::right
+            << std::setw(8) << fixed(100 * r.V, 2) << std::setw(10) << r.sr->St_B << std::setw(11) << fixed_or_na(s.St_B_table_6_1, 1)
+            << std::setw(12) << fixed_or_na(s.St_B_eq_6_2, 1) << std::setw(8) << r.sr->e << std::setw(8) << show(s.e, 3) << std::setw(8)
             << show(r.diff(s.e), 3);
   if (r.flow) std::cout << std::setw(10) << show(r.rs.e, 3) << std::setw(8) << show(r.diff(r.rs.e), 3);
   std::cout << std::setw(8) << fixed_or_na(s.e_instant, 3) << std::setw(10)
@@ -187,10 +201,11 @@ void write_validate_row(std::ostream& csv, const ValidateRow& r) {
   const auto& s = r.s;
   const auto& rs = r.rs;
   auto num = [](std::optional<double> v) { return v ? csv_number(*v) : std::string(); };
-  csv << r.sr.run << "," << r.sr.pair << "," << r.model.name << "," << to_string(r.model.lubrication) << "," << r.sr.St_B << "," << r.sr.e << ","
-      << r.sr.Re << "," << csv_cell(s.St) << "," << csv_cell(s.St_B_table_6_1) << "," << csv_cell(s.St_B_eq_6_2) << ","
-      << num(s.e) << "," << num(r.diff(s.e)) << "," << csv_cell(s.e_instant) << "," << csv_cell(s.Re) << ","
-      << csv_cell(s.group_velocity_m_s) << "," << csv_number(s.solver.stats.steps) << "," << csv_number(s.wall_time_s);
+  csv << r.sr->run << "," << r.sr->pair << "," << r.model->name << "," << to_string(r.model->lubrication) << "," << r.set << ","
+      << csv_number(r.V) << "," << r.sr->St_B << "," << r.sr->e << "," << r.sr->Re << "," << csv_cell(s.St) << ","
+      << csv_cell(s.St_B_table_6_1) << "," << csv_cell(s.St_B_eq_6_2) << "," << num(s.e) << "," << num(r.diff(s.e)) << ","
+      << csv_cell(s.e_instant) << "," << csv_cell(s.Re) << "," << csv_cell(s.group_velocity_m_s) << ","
+      << csv_number(s.solver.stats.steps) << "," << csv_number(s.wall_time_s);
   if (r.flow) {
     const FlowSummary& f = s.flow.value();
     csv << "," << num(rs.e) << "," << num(r.diff(rs.e)) << "," << csv_cell(rs.St_B_table_6_1) << "," << csv_cell(rs.St_B_eq_6_2)
@@ -200,40 +215,84 @@ void write_validate_row(std::ostream& csv, const ValidateRow& r) {
   csv << "\n";
 }
 
+/// One scene run reduced-order and, with `flow`, coupled: the reported run's summary and the reduced-order one's.
+std::pair<RunSummary, RunSummary> run_validate_scene(const std::string& path, const std::vector<Override>& ov, bool flow) {
+  RunSummary red = simulate(load_scene(path, without_flow_keys(ov))).summary;
+  if (!flow) return {red, red};
+  return {simulate(with_flow(path, ov), true).summary, red};
+}
+
+/// One Table 6.1 run with one model: its row at V_Io and its row at the speed that gives the printed St_B.
+std::pair<ValidateRow, ValidateRow> validate_run(const SeedRun& sr, const ValidateModel& model, std::vector<Override> ov, bool flow) {
+  const std::string path = data_dir() + "/scenes/seed_run" + sr.run + ".toml";
+  ov.push_back({"lubrication.model", std::string("\"") + to_string(model.lubrication) + "\""});  // the model's law
+  const Scene sc = load_scene(path, without_flow_keys(ov));
+  const double V_Io = approach_speed(sc);
+  auto [s, rs] = run_validate_scene(path, ov, flow);
+  ValidateRow at_V{&sr, &model, "V_Io", V_Io, s, rs, flow};
+  ValidateRow at_St{&sr, &model, "St_B", V_Io, s, rs, flow};
+  if (!(s.St_B_table_6_1 && *s.St_B_table_6_1 > 0)) {
+    std::cerr << "imcol: warning: run " << sr.run << " (" << model.name << "): no St_B at V_Io; its St_B row is the run at V_Io\n";
+    return {at_V, at_St};
+  }
+  auto St_at = [&](double scale) {
+    auto with_speed = ov;
+    for (auto& o : speed_overrides(sc, scale)) with_speed.push_back(o);
+    std::tie(at_St.s, at_St.rs) = run_validate_scene(path, with_speed, flow);
+    at_St.V = scale * V_Io;
+    return at_St.s.St_B_table_6_1;
+  };
+  scale_to_St(*s.St_B_table_6_1, sr.St_B_value, St_at);
+  const auto St = at_St.s.St_B_table_6_1;
+  if (!St || std::abs(*St - sr.St_B_value) > 0.01 * sr.St_B_value)
+    std::cerr << "imcol: warning: run " << sr.run << " (" << model.name << "): St_B(T6.1) " << fixed_or_na(St, 2)
+              << " at the scaled speed, printed " << sr.St_B << "\n";
+  return {at_V, at_St};
+}
+
+/// Prints one set's block: its rows and each model's agreement with the seed's e.
+void print_validate_block(const std::vector<ValidateRow>& rows, const std::string& set, const std::vector<ValidateModel>& models,
+                          const ValidateOptions& opt) {
+  print_block_heading(set, opt.flow);
+  std::vector<Agreement> agree(models.size()), agree_reduced(models.size());
+  for (const auto& r : rows) {
+    if (r.set != set) continue;
+    const std::size_t k = static_cast<std::size_t>(r.model - models.data());
+    agree[k].add(r.sr->run, r.s.e, r.sr->e_value, opt.tolerance);
+    if (opt.flow) agree_reduced[k].add(r.sr->run, r.rs.e, r.sr->e_value, opt.tolerance);
+    print_validate_row(r);
+  }
+  for (std::size_t k = 0; k < models.size(); ++k) {
+    std::cout << "  " << models[k].name << (opt.flow ? ", coupled: " : ": ") << agree[k].text(opt.tolerance) << "\n";
+    if (opt.flow) std::cout << "  " << models[k].name << ", reduced-order: " << agree_reduced[k].text(opt.tolerance) << "\n";
+  }
+}
+
 }  // namespace
 
 /// The seed's Table 6.1: each run with the seed's gap law (lubrication.model = "seed", our reading of its (6.7)) and with
 /// the asymptotic one (exact as h -> 0), reduced-order, and with --flow also coupled (MODEL.md (6.10)); both St_B
-/// conventions. Only the gap law differs between the models: the rest of the pair model is the scenes' (lagrangian
-/// added mass, K_H = 1, λ without the gap Reynolds number).
+/// conventions; each at the printed V_Io and at the speed that gives the printed St_B. Only the gap law differs between
+/// the models: the rest of the pair model is the scenes' (lagrangian added mass, K_H = 1, λ without the gap Reynolds number).
 int cmd_validate(const std::string& what, const ValidateOptions& opt, const std::vector<Override>& overrides) {
   check_validate_options(what, opt, overrides);
   const auto models = validate_models(opt.models);
   const auto runs = read_table_6_1();
   OutputUnit unit(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
-  const bool flow = opt.flow;
-  print_validate_header(flow);
-  std::ostringstream csv;
-  csv << validate_csv_header(flow);
-  std::vector<Agreement> agree(models.size()), agree_reduced(models.size());
-  for (const auto& sr : runs) {
-    const std::string path = data_dir() + "/scenes/seed_run" + sr.run + ".toml";
-    for (std::size_t k = 0; k < models.size(); ++k) {
-      const auto& model = models[k];
-      auto ov = overrides;
-      ov.push_back({"lubrication.model", std::string("\"") + to_string(model.lubrication) + "\""});  // the model's law
-      const RunResult red = simulate(load_scene(path, without_flow_keys(ov)));
-      const RunResult cpl = flow ? simulate(with_flow(path, ov), true) : RunResult{};
-      const ValidateRow row{sr, model, flow ? cpl.summary : red.summary, red.summary, flow};
-      agree[k].add(sr.run, row.s.e, sr.e_value, opt.tolerance);
-      if (flow) agree_reduced[k].add(sr.run, row.rs.e, sr.e_value, opt.tolerance);
-      print_validate_row(row);
-      write_validate_row(csv, row);
+  print_validate_legend(opt.flow);
+  std::vector<ValidateRow> rows;
+  for (const auto& sr : runs)
+    for (const auto& model : models) {
+      auto [at_V, at_St] = validate_run(sr, model, overrides, opt.flow);
+      rows.push_back(std::move(at_V));
+      rows.push_back(std::move(at_St));
     }
-  }
-  for (std::size_t k = 0; k < models.size(); ++k) {
-    std::cout << "  " << models[k].name << (flow ? ", coupled: " : ": ") << agree[k].text(opt.tolerance) << "\n";
-    if (flow) std::cout << "  " << models[k].name << ", reduced-order: " << agree_reduced[k].text(opt.tolerance) << "\n";
+  std::ostringstream csv;
+  csv << validate_csv_header(opt.flow);
+  for (const std::string set : {"V_Io", "St_B"}) {
+    print_validate_block(rows, set, models, opt);
+    for (const auto& r : rows)
+      if (r.set == set) write_validate_row(csv, r);
   }
   write_file_atomic(unit.dir() / "validate_seed.csv", csv.str());
   if (opt.plot) {

@@ -2,6 +2,7 @@
 #pragma once
 // `imcol validate seed`: the seed's Table 6.1 (data/reference/li_2010_table_6_1.csv) run by imcol with two gap laws,
 // reduced-order and with --flow also coupled (MODEL.md (6.10)); both St_B conventions (docs/model-notes.md, "Pairs").
+// Each run twice: at the printed V_Io, and at the approach speed that gives the printed St_B (apps/validate_speed.hpp).
 // Writes DIR/validate_seed.csv and DIR/validate_seed.png (scripts/plot_validate_seed.py).
 #include <string>
 #include <vector>
@@ -14,7 +15,7 @@ namespace imcol {
 /// One run of the seed's Table 6.1: its cells as printed (for the table and the CSV) and as numbers.
 struct SeedRun {
   std::string run, pair, St_B, e, Re;
-  double e_value = 0;
+  double e_value = 0, St_B_value = 0;
 };
 
 /// Reads the table (data_dir()/reference/li_2010_table_6_1.csv); a malformed row is an InputError naming the file,

@@ -311,9 +311,10 @@ TEST(Cli, ValidateSeedRunsBothGapLawsWithBothStokesNumbers) {
   const Result r = run_imcol("validate seed --no-plot --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const auto rows = read_csv(out / "validate_seed.csv");
-  ASSERT_EQ(rows.size(), 12u);
-  std::map<std::string, std::map<std::string, double>> e;  // model -> run -> e
+  ASSERT_EQ(rows.size(), 24u);  // each run and model at V_Io and at the printed St_B
+  std::map<std::string, std::map<std::string, double>> e;  // model -> run -> e at V_Io
   for (const auto& row : rows) {
+    if (row.at("speed_set") != "V_Io") continue;
     const double e_seed = std::stod(row.at("e_seed")), v = std::stod(row.at("e"));
     EXPECT_EQ(row.at("lubrication_model"), row.at("model"));
     EXPECT_NEAR(std::stod(row.at("e_minus_e_seed")), v - e_seed, 1e-9);
@@ -329,6 +330,43 @@ TEST(Cli, ValidateSeedRunsBothGapLawsWithBothStokesNumbers) {
   const Result bad = run_imcol("validate seed --no-plot --models seed,wall --out " + out.string());
   EXPECT_EQ(bad.status, 2) << bad.err;
   EXPECT_NE(bad.err.find("--models"), std::string::npos) << bad.err;
+}
+
+TEST(Cli, ValidateSeedRunsEachRunAtVIoAndAtThePrintedStB) {
+  const fs::path out = fs::temp_directory_path() / "imcol_cli_validate_speed";
+  fs::remove_all(out);
+  const imcol::test::Outcome r = imcol::test::run_imcol("validate seed --no-plot --out " + out.string(), out.string() + "_output");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("At V_Io"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("At St_B"), std::string::npos) << r.out;
+  std::map<std::string, double> V_Io;  // run -> the printed approach speed, m/s
+  for (const auto& t : read_csv(fs::path(imcol::data_dir()) / "reference" / "li_2010_table_6_1.csv"))
+    V_Io[t.at("run")] = std::stod(t.at("V_Io_cm_s")) / 100;
+  std::map<std::string, std::map<std::string, int>> sets;  // run,model -> speed_set -> rows
+  for (const auto& row : read_csv(out / "validate_seed.csv")) {
+    const std::string& set = row.at("speed_set");
+    ++sets[row.at("run") + "," + row.at("model")][set];
+    const double St = std::stod(row.at("St_B_table_6_1")), printed = std::stod(row.at("St_B_seed")), V = std::stod(row.at("V_m_s"));
+    if (set == "St_B") {
+      EXPECT_LT(std::abs(St - printed) / printed, 0.02) << "run " << row.at("run") << ", " << row.at("model");
+      continue;
+    }
+    ASSERT_EQ(set, "V_Io");
+    // The V_Io rows are the shipped scenes as they stand: the same numbers as `imcol run` gives.
+    EXPECT_NEAR(V, V_Io.at(row.at("run")), 1e-12);
+    const fs::path one = out.string() + "_run";
+    const std::string scene = imcol::data_dir() + "/scenes/seed_run" + row.at("run") + ".toml";
+    ASSERT_EQ(run_imcol("run " + scene + " --quiet --no-plot --set 'lubrication.model=\"" + row.at("lubrication_model") + "\"' --out " +
+                        one.string()).status, 0);
+    std::ifstream js(one / "summary.json");
+    const auto s = nlohmann::json::parse(js);
+    EXPECT_NEAR(std::stod(row.at("e")), s["e"].get<double>(), 1e-9) << "run " << row.at("run");
+    EXPECT_NEAR(St, s["St_B_table_6_1"].get<double>(), 1e-9 * St) << "run " << row.at("run");
+    fs::remove_all(one);
+  }
+  ASSERT_EQ(sets.size(), 12u);
+  for (const auto& [key, n] : sets) EXPECT_EQ(n, (std::map<std::string, int>{{"St_B", 1}, {"V_Io", 1}})) << key;
+  fs::remove_all(out);
 }
 
 TEST(Cli, ValidateRejectsBadInput) {
@@ -392,7 +430,7 @@ TEST(Cli, ValidatePlotsBothLayoutsAndLeavesNoStalePicture) {
   csv = header + ",e_reduced_order,e_reduced_order_minus_e_seed,St_B_table_6_1_reduced_order,St_B_eq_6_2_reduced_order,"
                  "wall_time_reduced_order_s,flow_steps,flow_ms_per_step,cells_per_diameter,flow_dt_s\n";
   const auto rows = read_csv(out / "validate_seed.csv");
-  ASSERT_EQ(rows.size(), 12u);
+  ASSERT_EQ(rows.size(), 24u);
   for (std::size_t i = 0; std::getline(in, line); ++i) {
     const auto& row = rows.at(i);
     csv += line + "," + row.at("e") + "," + row.at("e_minus_e_seed") + "," + row.at("St_B_table_6_1") + "," + row.at("St_B_eq_6_2") +
