@@ -55,7 +55,7 @@ std::optional<std::string> RampLaw::start_inside_refusal(double u_rel) const {
   std::ostringstream os;
   os << "the sphere starts inside the contact zone, " << p_.delta_ss_m << " m from contact, where the ramp cannot store the impact:"
      << " the Hertz indentation at U = " << u_rel << " m/s is " << eps_max << " m; start at a gap above " << 0.8 * eps_max
-     << " m or approach more slowly";
+     << " m, approach more slowly, or set contact.law = \"hertz\" (the Hertz law stores any impact from the initial gap)";
   return os.str();
 }
 

@@ -396,6 +396,7 @@ void read_solver(Reader& top, Scene& sc) {
 /// Default instant_gap: contact.delta_ss.
 void read_measure(Reader& top, Scene& sc) {
   auto& m = sc.measure;
+  m.e = sc.spheres.size() == 2 ? EMeasure::yang_hunt_2006 : EMeasure::joseph_2001;
   if (const auto* t = top.table("measure")) {
     Reader r(*t, "measure", sc.path);
     m.window = r.number("window", m.window);
@@ -409,6 +410,7 @@ void read_measure(Reader& top, Scene& sc) {
     r.positive("fit_distance", m.fit_distance);
     m.at_gap = r.number("at_gap", m.at_gap);
     r.positive("at_gap", m.at_gap);
+    m.e_given = r.has("e");
     r.choice("e", m.e);
     m.ends_distance = r.number("ends_distance", m.ends_distance);
     r.in_range("ends_distance", m.ends_distance, 0.0, 10.0, true, false);

@@ -139,7 +139,11 @@ struct Scene {
     BouncesMode bounces = BouncesMode::first;  // first (stop after the first rebound is measured) | all (follow every contact)
     double fit_distance = 0.1;  // units of D: e_measures.fit_distance fits z over this distance beyond delta_ss
     double at_gap = 0.1;        // units of D: e_measures.at_gap takes the velocities at this gap
-    EMeasure e = EMeasure::contact_ends;  // the named measure reported as `e` (docs/bounces.md)
+    // The named measure reported as `e` (docs/bounces.md). Without the key, the experiments' procedure for the scene's
+    // kind: joseph_2001 (the camera's lines over 0.1 D) for a sphere and a wall, yang_hunt_2006 (the seed's eq. 6.1,
+    // lines over 10 ms) for a pair.
+    EMeasure e = EMeasure::joseph_2001;
+    bool e_given = false;  // measure.e was in the scene (or an override)
     double ends_distance = 0.02;  // units of D: contact_ends fits over the time to travel this at the impact speed
     double ends_speed_change = 0.25;  // contact_ends windows end before U_rel has changed by more than this fraction
     double ends_tolerance = 0.02;     // warn where contact_ends' end slopes differ from U_rel at δ_SS by more (× impact speed)

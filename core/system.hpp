@@ -73,6 +73,12 @@ class DynamicalSystem {
   /// advanced step by step) updates it here. Samples inside the step come before the call.
   virtual void at_step(double /*t*/, std::span<const double> /*y*/, bool /*restart*/) {}
 
+  /// Quadratures carried beside the state (integrals q' = w(t, y) the solution does not depend on, such as the work of
+  /// each force): their number, names and integrands. They take no part in the error test or the Newton iteration.
+  virtual std::size_t quadrature_size() const { return 0; }
+  virtual std::vector<std::string> quadrature_names() const { return {}; }
+  virtual void quadrature_rhs(double /*t*/, std::span<const double> /*y*/, std::span<double> /*qdot*/) {}
+
   /// Fills the modal structure at (t, y) and returns true, or returns false if the state has none.
   virtual bool modal_structure(double /*t*/, std::span<const double> /*y*/, ModalStructure& /*s*/) const { return false; }
 };
@@ -82,6 +88,8 @@ class Observer {
  public:
   virtual ~Observer() = default;
   virtual void sample(double t, std::span<const double> y, bool at_event) = 0;
+  /// The system's quadratures at the time of the sample that follows (only for a system with quadratures).
+  virtual void quadratures(std::span<const double> q) { (void)q; }
   /// After each accepted solver step: the steps taken so far in this run (for a progress display).
   virtual void stepped(long steps) { (void)steps; }
   /// After each accepted solver step that ends without an event: its end (t, y), after the system's at_step.

@@ -22,6 +22,7 @@
 
 #include "core/errors.hpp"
 #include "integrators/integrator.hpp"
+#include "integrators/step_quadrature.hpp"
 
 #if SUNDIALS_VERSION_MAJOR != 6
 #error "imcol's SUNDIALS driver is written for SUNDIALS 6.x"
@@ -540,12 +541,14 @@ class RingingDetector {
 };
 
 struct Integrator::Impl {
-  Impl(DynamicalSystem& s, const IntegratorSettings& settings, Observer& o) : sys(s), st(settings), observer(o) {}
+  Impl(DynamicalSystem& s, const IntegratorSettings& settings, Observer& o) : sys(s), st(settings), observer(o), quad(s) {}
   DynamicalSystem& sys;
   IntegratorSettings st;
   Observer& observer;
   std::unique_ptr<std::remove_pointer_t<SUNContext>, ContextDeleter> ctx;
   VectorPtr y, abstol, yi;  // yi: interpolated output samples
+  StepQuadrature quad;      // the system's quadratures, if any
+  VectorPtr y_mid;          // the state in the middle of a step (quad)
   Callback cb{};
   SchurPreconditioner prec;
   std::unique_ptr<Backend> be;
@@ -571,6 +574,7 @@ struct Integrator::Impl {
     for (std::size_t i = 0; i < flags.size(); ++i)
       if (flags[i]) found.push_back(i);
     stats.root_events += static_cast<long>(found.size());
+    give_quadratures(quad.value());
     observer.sample(t, view(y.get()), true);
     const EventAction action = sys.on_roots(found, t, mview(y.get()));
     if (action == EventAction::stop) return done = true;
@@ -590,8 +594,20 @@ struct Integrator::Impl {
     order_capped = cap;
     ringing.reset();
     sys.at_step(t, view(y.get()), true);
+    quad.restart(t, view(y.get()));
     be->init(t, y.get());
     be->set_roots(sys.roots());
+  }
+
+  /// Passes the quadratures to the observer before a sample (nothing without quadratures).
+  void give_quadratures(std::span<const double> q) {
+    if (quad.active()) observer.quadratures(q);
+  }
+  /// Integrates the quadratures over the last step, from t to t1 (y1 = y(t1)).
+  void integrate_quadratures(double t1, N_Vector y1) {
+    if (!quad.active() || !(t1 > t)) return;
+    be->interpolate(0.5 * (t + t1), y_mid.get());
+    quad.advance(t1, view(y1), view(y_mid.get()));
   }
 
   /// Samples the output times k·dt in (t, t_upto) (strict) or (t, t_upto] from the solver's interpolant,
@@ -610,9 +626,11 @@ struct Integrator::Impl {
       const bool in_step = strict ? tau < t_upto : tau <= t_upto;
       if (!in_step && (strict || tau > t_upto + eps_upto || t_upto >= sys.stop_time() - eps_upto)) return false;
       be->interpolate(in_step ? tau : t_upto, yi.get());
+      if (quad.active()) give_quadratures(quad.at(in_step ? tau : t_upto));
       observer.sample(tau, view(yi.get()), false);
       t_sampled = tau;
       if (tau >= sys.stop_time() - 1e-12 * std::max(1.0, std::abs(tau))) {
+        if (in_step) quad.end_at(tau, view(yi.get()));
         N_VScale(1.0, yi.get(), y.get());
         t = tau;
         ++k_out;
@@ -721,6 +739,11 @@ Integrator::Integrator(DynamicalSystem& sys, const IntegratorSettings& st, Obser
   m.be->init(m.t, m.y.get());
   m.be->set_roots(sys.roots());
   sys.at_step(m.t, view(m.y.get()), true);
+  if (m.quad.active()) {
+    m.y_mid.reset(N_VNew_Serial(n, m.ctx.get()));
+    m.quad.restart(m.t, view(m.y.get()));
+  }
+  m.give_quadratures(m.quad.value());
   observer.sample(m.t, view(m.y.get()), true);
 }
 
@@ -761,6 +784,8 @@ double Integrator::advance(double t_target) {
       // The solver has stepped past t_limit (an event or a sample moved the stop time back, which CVODE's
       // stop time cannot follow): the samples and the state at t_limit come from its interpolant.
       t_new = t_limit;
+      be->interpolate(t_new, m.yi.get());
+      m.integrate_quadratures(t_new, m.yi.get());
       if (m.emit_outputs(t_new, false)) continue;
       be->interpolate(t_new, m.y.get());
     } else {
@@ -772,6 +797,7 @@ double Integrator::advance(double t_target) {
       flag = be->step(tout, t_limit, m.y.get(), t_new);
       if (flag < 0) m.fail(flag);
       if (m.cb.error) m.rethrow_model_error();
+      m.integrate_quadratures(t_new, m.y.get());
       m.observer.stepped(++m.steps_taken);
       const double sampled = m.t_sampled;
       if (m.emit_outputs(t_new, flag > 0)) continue;  // the observer ended the run at a sample (y is there)
@@ -789,7 +815,10 @@ double Integrator::advance(double t_target) {
       sys.at_breakpoint(t, view(m.y.get()));
       ++m.stats.breakpoints;
     }
-    if (t >= sys.stop_time() - t_eps_new && !(std::abs(m.t_sampled - t) <= t_eps_new)) m.observer.sample(t, view(m.y.get()), false);
+    if (t >= sys.stop_time() - t_eps_new && !(std::abs(m.t_sampled - t) <= t_eps_new)) {
+      m.give_quadratures(m.quad.value());
+      m.observer.sample(t, view(m.y.get()), false);
+    }
     // A ringing BDF order 3-5 (RingingDetector): restart here with the order at most 2 (A-stable, it damps), until the next event.
     if (!m.order_capped && m.st.max_order > 2 && t < sys.stop_time() - t_eps_new && m.ringing.step(view(m.y.get()), m.atol, be->last_order())) {
       ++m.stats.order_caps;

@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "model/contact_term.hpp"
 #include "model/force_terms.hpp"
+#include "model/force_work.hpp"
 #include "model/gap_resistance_term.hpp"
 
 namespace imcol::model {
@@ -291,6 +292,19 @@ void CollisionModel::residual(double t, std::span<const double> y, std::span<con
     r[3] = ev.m_couple * yp[1] + ev.m_eff[1] * yp[3] - g[1];
   }
   if (history_) history_->residual(y, yp, r);
+}
+
+std::size_t CollisionModel::quadrature_size() const { return kForceKinds; }
+
+std::vector<std::string> CollisionModel::quadrature_names() const {
+  std::vector<std::string> names;
+  for (ForceKind k : kAllForceKinds) names.push_back(std::string("work_") + to_string(k));
+  return names;
+}
+
+void CollisionModel::quadrature_rhs(double t, std::span<const double> y, std::span<double> qdot) {
+  const auto p = force_powers(evaluate(t, y), n_spheres_);
+  std::copy(p.begin(), p.end(), qdot.begin());
 }
 
 // ---------- Events (MODEL.md §3) ----------

@@ -67,6 +67,10 @@ class CollisionModel : public DynamicalSystem {
   void initial_state(std::span<double> y) const override;
   void rhs(double t, std::span<const double> y, std::span<double> ydot) override;
   void residual(double t, std::span<const double> y, std::span<const double> yp, std::span<double> r) override;
+  /// The work of each force (model/force_work.hpp), carried as quadratures by the integrator.
+  std::size_t quadrature_size() const override;
+  std::vector<std::string> quadrature_names() const override;
+  void quadrature_rhs(double t, std::span<const double> y, std::span<double> qdot) override;
   std::vector<RootSpec> roots() const override { return armed_; }
   void root_values(double t, std::span<const double> y, std::span<double> g) override;
   EventAction on_roots(std::span<const std::size_t> found, double t, std::span<double> y) override;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/measure.hpp"
+#include "run/energy_budget.hpp"
 #include "run/json_util.hpp"
 
 namespace imcol::run {
@@ -220,11 +221,42 @@ void put_apex(const Track& tr, const Flights& f, nlohmann::ordered_json& b) {
   b["t_apex_s"] = f.sep ? nlohmann::ordered_json(tr.t[ia]) : nlohmann::ordered_json(nullptr);
 }
 
-/// fit_distance: slopes from the last inward crossing of g_fd = delta_ss + d to the contact, and from the
-/// separation to the first outward crossing.
+/// The flights' excursions above the gap g0 shorter than d: the approach's fall from the largest gap of its flight
+/// (unless the run started there) and the rebound's rise to its apex, once the apex is known (the flight ends before the
+/// run does, or the run ended with the rebound stalled: U_rel above −stall_speed). The camera sees all of a short
+/// excursion. The shorter of the two, or none.
+std::optional<double> short_excursion(const Track& tr, const Flights& f, double g0, double d, double stall_speed) {
+  std::optional<double> shortest;
+  auto consider = [&](double x) {
+    if (x > 0 && x < d && (!shortest || x < *shortest)) shortest = x;
+  };
+  auto highest = [&](std::size_t i0, std::size_t i1) {
+    std::size_t ia = i0;
+    for (std::size_t i = i0; i <= i1 && i < tr.t.size(); ++i)
+      if (tr.gap[i] > tr.gap[ia]) ia = i;
+    return ia;
+  };
+  if (!f.started && f.a1 > f.a0) consider(tr.gap[highest(f.a0, f.a1)] - g0);
+  if (f.sep) {
+    const std::size_t ia = highest(f.r0, f.r1);
+    const bool at_end = f.last && ia + 1 >= tr.t.size();
+    if (!at_end || tr.u.back() > -stall_speed) consider(tr.gap[ia] - g0);
+  }
+  return shortest;
+}
+
+/// fit_distance (and joseph_2001): slopes from the last inward crossing of g_fd = delta_ss + d to the contact, and from
+/// the separation to the first outward crossing. A flight that does not reach g_fd (a low apex) is fitted, both sides
+/// alike, over half its excursion (a constant deceleration keeps 71 % of the speed there): what a camera sees of it.
 nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double g_fd,
-                                            double d_fit) {
+                                            double d_fit, double stall_speed) {
   nlohmann::ordered_json fd;
+  const double g0 = g_fd - d_fit;
+  const std::optional<double> rise = short_excursion(tr, f, g0, d_fit, stall_speed);
+  if (rise) {
+    d_fit = 0.5 * *rise;
+    g_fd = g0 + d_fit;
+  }
   std::optional<double> fd_in, fd_out, ta, tb;
   for (std::size_t i = std::max<std::size_t>(f.a0, 1); i <= f.a1 && i < tr.t.size(); ++i)
     if (tr.gap[i - 1] >= g_fd && tr.gap[i] < g_fd) ta = tr.cross(i, g_fd);
@@ -237,8 +269,9 @@ nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<d
   else if (!f.sep) fd_out = 0.0;
   put_e(fd, fd_in, fd_out, "the fitted rebound moves toward the target; e clipped to 0");
   fd["distance_m"] = d_fit;
+  if (rise) fd["shortened_to_half_the_excursion"] = true;
   if (!fd_in && !f.started) fd["missing"] = "the approach did not start beyond delta_ss + fit_distance";
-  else if (f.sep && !tb) fd["missing"] = "the rebound did not reach delta_ss + fit_distance (apex below it, or the run ended)";
+  else if (f.sep && !tb) fd["missing"] = "the rebound did not reach delta_ss + fit_distance (the run ended before its apex)";
   return fd;
 }
 
@@ -315,6 +348,7 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
     const Flights f{c, t_from, t_next, t_sep, c.t_out.has_value(), model.started_in_contact() && k == 0, k + 1 == cs.size(),
                     tr.first_at_or_after(t_from), tr.first_at_or_after(c.t_in), tr.first_at_or_after(t_sep),
                     std::min(tr.first_at_or_after(t_next), tr.t.size() - 1)};
+    const double stall_speed = 2 * sc.measure.stall_fraction * std::abs(c.u_in);  // a rebound this slow has stalled
     nlohmann::ordered_json b;
     b["contact"] = k + 1;
     b["t_contact_s"] = c.t_in;
@@ -325,12 +359,12 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
                                               sc.measure.ends_tolerance, model.n_spheres() == 2);
     em["yang_hunt_2006"] = fit_time_measure(tr, rate, f, kYangHuntWindow);
     em["yang_hunt_2006"]["reference"] = "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms";
-    em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m() + kJosephDistance * D, kJosephDistance * D);
+    em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m() + kJosephDistance * D, kJosephDistance * D, stall_speed);
     em["joseph_2001"]["reference"] = "Joseph, Zenit, Hunt & Rosenwinkel, J. Fluid Mech. 433 (2001): lines over the last/first 0.1 D (our reading)";
     em["gondret_2002"] = peak_rebound_measure(tr, f);
     em["gondret_2002"]["reference"] = "Gondret, Lance & Petit, Phys. Fluids 14, 643 (2002): peak speeds of the position signal (our reading)";
     em["fit_time"] = fit_time_measure(tr, rate, f, sc.measure.window);
-    em["fit_distance"] = fit_distance_measure(tr, rate, f, g_fd, d_fit);
+    em["fit_distance"] = fit_distance_measure(tr, rate, f, g_fd, d_fit, stall_speed);
     em["at_gap"] = at_gap_measure(tr, f, g_at, model.initial_gap());
     em["peak_rebound"] = peak_rebound_measure(tr, f);
     em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};
@@ -342,6 +376,7 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
     b["rebound_velocity_m_s"] = f.sep ? em[e_name].value("rebound_velocity_m_s", nlohmann::ordered_json(nullptr)) : nullptr;
     b["e_instant"] = em["instant"]["e"];
     put_apex(tr, f, b);
+    b["energy_budget"] = energy_budget(tr, {t_from, c.t_in, c.t_out, t_next});
     // The distinct measures whose e differs from `e` by more than measure.disagreement (a pair identical by construction
     // once, under both names).
     nlohmann::ordered_json dis = nlohmann::ordered_json::object();

@@ -3,11 +3,13 @@
 // Every contact of a run and each named measure of e (docs/bounces.md): contact_ends (the default), the papers'
 // yang_hunt_2006, joseph_2001, gondret_2002, and fit_time, fit_distance, at_gap, peak_rebound, instant; the apex
 // between contacts. Velocities in m/s, gaps in m, times in s.
+#include <array>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "model/collision_model.hpp"
+#include "model/force_work.hpp"
 #include "core/scene.hpp"
 #include "run/watch.hpp"
 
@@ -18,6 +20,10 @@ namespace imcol::run {
 struct Track {
   std::vector<double> t, gap, u;
   std::vector<double> z1, u1, z2, u2;
+  /// The work of each force since t = 0 (model/force_work.hpp) and the kinetic energies of the spheres (Σ ½ m_p U²)
+  /// and of the added mass (½ Uᵀ M_a U), J: the energy budget's samples (empty where the run kept none).
+  std::vector<std::array<double, model::kForceKinds>> work;
+  std::vector<double> ke_spheres, ke_added;
   /// Time where the gap crosses g between samples i−1 and i (linear).
   double cross(std::size_t i, double g) const;
   /// U_rel where the gap crosses g between samples i−1 and i (linear).

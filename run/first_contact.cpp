@@ -190,6 +190,30 @@ FirstContact measure_first_contact(const CollisionModel& model, const Watch& wat
   return m;
 }
 
+std::string e_by_measure_line(const Scene& sc, const nlohmann::ordered_json& measures, const std::string& e_name) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(3);
+  double lo = INFINITY, hi = -INFINITY;
+  std::string rest;
+  // e's measure may share its label with a generic one ("fit_distance/joseph_2001"), listed under the generic name.
+  std::string e_label = measure_label(sc, e_name);
+  for (const auto& [k, v] : measures.items())
+    if (e_label.empty() && measure_label(sc, k).ends_with("/" + e_name)) e_label = measure_label(sc, k);
+  for (const auto& [k, v] : measures.items()) {
+    const std::string label = measure_label(sc, k);
+    if (label.empty() || !v["e"].is_number()) continue;
+    const double e = v["e"].get<double>();
+    lo = std::min(lo, e);
+    hi = std::max(hi, e);
+    std::ostringstream one;
+    one << std::fixed << std::setprecision(3) << label << " " << e;
+    if (label == e_label) os << one.str() << " (e)";
+    else rest += ", " + one.str();
+  }
+  os << rest << "; spread " << (hi >= lo ? hi - lo : 0.0) << " (docs/bounces.md)";
+  return os.str();
+}
+
 void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstContact& m, std::vector<std::string>& warnings) {
   // Without a contact, or before a separation, e is the approach's verdict: 0 when the pair stopped or moves on
   // together (at rest, group motion), null when a longer run could still show a rebound.
@@ -214,22 +238,7 @@ void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstConta
     warnings.push_back(m.e ? "t_end cut the " + std::string(name) + " rebound window short"
                            : "t_end ended the run before " + std::string(name) + " could measure the rebound");
   }
-  if (m.e && !b["measures_disagree"].empty()) {
-    // One line: e and the distinct measures more than measure.disagreement from it, with their spread.
-    double lo = *m.e, hi = *m.e;
-    for (const auto& [k, v] : b["measures_disagree"].items()) {
-      lo = std::min(lo, v.get<double>());
-      hi = std::max(hi, v.get<double>());
-    }
-    std::string e_label = measure_label(sc, name);
-    if (e_label.empty()) e_label = name;
-    std::ostringstream os;
-    os << std::fixed << std::setprecision(3) << "e depends on how it is measured here (spread " << hi - lo << "): " << e_label << " "
-       << *m.e << " (e)";
-    for (const auto& [k, v] : b["measures_disagree"].items()) os << ", " << k << " " << v.get<double>();
-    os << " (more than measure.disagreement = " << std::defaultfloat << sc.measure.disagreement << " from e; docs/bounces.md)";
-    warnings.push_back(os.str());
-  }
+  if (m.e) m.e_by_measure = e_by_measure_line(sc, b["e_measures"], name);
 }
 
 void check_plausibility(const CollisionModel& model, const Scene& sc, const FirstContact& m, std::vector<std::string>& warnings) {

@@ -26,7 +26,11 @@ struct FirstContact {
   bool t_end_too_short = false;  // a longer solver.t_end would change e (never when the run ended at rest)
   bool stopped_by_t_end = false;  // the run ran to solver.t_end (did not end at rest or once e was measured)
   std::optional<std::string> e_missing;  // why e is undefined
+  std::optional<std::string> e_by_measure;  // e_by_measure_line of the first contact
 };
+
+/// One plain line: e by each distinct named measure of a contact (measure_label), e's own first, and their spread.
+std::string e_by_measure_line(const Scene& sc, const nlohmann::ordered_json& measures, const std::string& e_name);
 
 /// St in the reported convention (eq. 6.2 for a wall, half of it for a pair: seed Table 6.1) and St by (6.2).
 std::pair<double, double> stokes_numbers(const model::CollisionModel& model, const Scene& sc, double u_rel);
@@ -36,7 +40,7 @@ FirstContact measure_first_contact(const model::CollisionModel& model, const Wat
                                    std::vector<std::string>& warnings);
 
 /// `e` is the first contact's named measure measure.e (from measure_bounces); without a contact, the approach's e
-/// (0 when the liquid stopped it). Warns where named measures differ from it by more than measure.disagreement.
+/// (0 when the liquid stopped it). The other measures' e go to one plain line (e_by_measure), not to the warnings.
 void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstContact& m, std::vector<std::string>& warnings);
 
 /// Warnings for an e that cannot be trusted: above e_dry (energy created), or from loose tolerances.

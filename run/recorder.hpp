@@ -52,6 +52,7 @@ class Recorder : public Observer {
   Recorder(model::CollisionModel& model, const Scene& sc, bool progress, bool forces = true, double sample_dt = 0);
 
   void sample(double t, std::span<const double> y, bool at_event) override;
+  void quadratures(std::span<const double> q) override;
   void stepped(long steps) override { steps_ = steps; }
   /// With forces and the history force: a row at the end of every accepted step while the gap is below 3 δ_SS
   /// (contact_rows), where the history force peaks faster than output.dt resolves. Otherwise nothing.
@@ -85,6 +86,7 @@ class Recorder : public Observer {
   std::vector<double model::SphereForces::*> fields_;  // the force columns of each sphere, in column order
   std::vector<std::vector<double>> rows_, contact_rows_;
   Track track_;
+  std::array<double, model::kForceKinds> work_{};  // the quadratures of the sample being taken, J
   double sample_dt_, next_row_;  // s
   long k_row_ = 1;
   double min_gap_, max_force_ = 0, max_history_ = 0;

@@ -67,6 +67,11 @@ struct RunSummary {
   double e_instant_gap_m = 0;
   /// The first contact's named measures, name → e (empty without a contact), in summary.json's order.
   std::vector<std::pair<std::string, std::optional<double>>> e_measures;
+  std::optional<std::string> e_by_measure;  // one line: e by each distinct measure and their spread
+  /// The first collision's energy budget over approach, contact and rebound (run/energy_budget.hpp): what each force
+  /// dissipated, in units of the impact kinetic energy, and the largest |closure| of a phase in those units.
+  std::vector<std::pair<std::string, double>> dissipated_share;
+  std::optional<double> energy_closure;
   /// The distinct measures whose e differs from e by more than measure.disagreement, label → e.
   std::vector<std::pair<std::string, double>> measures_disagree;
   std::string bounces_mode;                // measure.bounces

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "run/summary.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -35,6 +37,19 @@ nlohmann::ordered_json or_null(const std::optional<std::string>& v) {
   return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
 }
 
+/// The collision phase's dissipation by force (those that did any) and the largest |closure| of a phase.
+void put_energy(RunSummary& s, const nlohmann::ordered_json& budget) {
+  if (!budget.is_object()) return;
+  double closure = 0;
+  for (const auto& p : budget["phases"]) {
+    closure = std::max(closure, std::abs(p["closure_per_impact_energy"].get<double>()));
+    if (p["phase"] != "collision") continue;
+    for (const auto& [force, d] : p["dissipated_per_impact_energy"].items())
+      if (d.get<double>() != 0.0) s.dissipated_share.push_back({force, d.get<double>()});
+  }
+  s.energy_closure = closure;
+}
+
 }  // namespace
 
 void measure_summary(RunSummary& s, const CollisionModel& model, const Watch& watch, const Scene& sc, const FirstContact& m,
@@ -44,12 +59,14 @@ void measure_summary(RunSummary& s, const CollisionModel& model, const Watch& wa
   s.e_is = to_string(sc.measure.e);  // the named measure in e_measures (measure.e; docs/bounces.md)
   s.e_fit_raw = m.e_fit_raw;
   if (!m.e) s.e_missing = m.e_missing;
+  s.e_by_measure = m.e_by_measure;
   s.e_instant = m.e_instant;
   s.e_instant_gap_m = sc.measure.instant_gap * 2 * model.radius(0);
   // The named measures of the first contact (each contact's are in `bounces`).
   if (!bounces.empty()) {
     for (const auto& [name, x] : bounces[0]["e_measures"].items()) s.e_measures.push_back({name, number_or_none(x.value("e", nlohmann::ordered_json(nullptr)))});
     for (const auto& [name, x] : bounces[0]["measures_disagree"].items()) s.measures_disagree.push_back({name, x.get<double>()});
+    put_energy(s, bounces[0]["energy_budget"]);
   }
   s.bounces_mode = to_string(sc.measure.bounces);
   for (const auto& b : bounces) s.bounces.push_back(typed_bounce(b));
@@ -100,6 +117,7 @@ void put_measurements(nlohmann::ordered_json& j, const RunSummary& s, const Scen
   if (!bounces.empty()) {
     j["e_measures"] = bounces[0]["e_measures"];
     j["measures_disagree"] = bounces[0]["measures_disagree"];
+    j["energy_budget"] = bounces[0]["energy_budget"];
   } else {
     j["e_measures"] = nullptr;
   }
@@ -237,9 +255,16 @@ std::string human_summary(const RunSummary& s) {
   };
   os << "scene " << s.scene << " (" << to_string(s.configuration) << ")\n";
   if (s.fluid) os << "  " << fluid_line(*s.fluid) << "\n";
-  os << "  e = " << num(s.e) << "   e_instant = " << num(s.e_instant) << "   St = " << num(s.St);
+  os << "  e = " << num(s.e) << " (" << s.e_is << ")   e_instant = " << num(s.e_instant) << "   St = " << num(s.St);
   if (s.configuration == Configuration::sphere_sphere) os << " (St_B, Table 6.1; eq. 6.2: " << num(s.St_B_eq_6_2) << ")";
+  if (s.St_L) os << "   St_L = " << num(s.St_L);
   os << "   Re = " << num(s.Re) << "\n";
+  if (s.e_by_measure) os << "  e by measure: " << *s.e_by_measure << "\n";
+  if (!s.dissipated_share.empty()) {
+    os << "  of the impact kinetic energy, dissipated over the collision by:" << std::fixed << std::setprecision(3);
+    for (const auto& [force, d] : s.dissipated_share) os << " " << force << " " << d;
+    os << std::defaultfloat << std::setprecision(2) << " (budget closes to " << *s.energy_closure << ")\n";
+  }
   if (s.group_velocity_m_s)
     os << "  group velocity = " << num(s.group_velocity_m_s) << " m/s (no separation; centre-of-mass velocity at t = "
        << num(s.group_velocity_at_s) << " s, when the relative velocity vanished)\n";

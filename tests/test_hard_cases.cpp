@@ -183,7 +183,7 @@ TEST(Ringing, AStiffRestingContactComesToRestInsteadOfRingingToTEnd) {
          "[[sphere]]\nmaterial = \"steel\"\ndensity = 7800.0\ne_dry = 0.97\ndiameter = 0.006\nposition = -0.483\nvelocity = 0.0\n"
          "[[sphere]]\nmaterial = \"glass\"\ndiameter = 0.006\nposition = 0.003\nvelocity = 0.0\n"
          "[drag]\nlaw = \"schiller-naumann\"\n[history]\nkernel = \"mei-adrian\"\n"
-         "[solver]\nt_end = 1.5\nmax_step = 4e-05\n[measure]\nbounces = \"all\"\n[contact]\nbeta = 200000000.0\n";
+         "[solver]\nt_end = 1.5\nmax_step = 4e-05\n[measure]\nbounces = \"all\"\ne = \"contact_ends\"\n[contact]\nbeta = 200000000.0\n";
   }
   const RunResult r = simulate(load_scene(scene.string()));
   fs::remove_all(dir);

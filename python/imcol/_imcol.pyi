@@ -72,6 +72,7 @@ class Result:
     e_instant_gap_m: float
     e_measures: Optional[Dict[str, Dict[str, Any]]]
     measures_disagree: Dict[str, float]
+    energy_budget: Optional[Dict[str, Any]]
     bounces_mode: str
     St_convention: str
     St_B_table_6_1: Optional[float]

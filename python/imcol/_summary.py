@@ -106,7 +106,8 @@ class Bounce(Block):
     t_apex_s: Optional[float]
     e_measures: Dict[str, Dict[str, Any]]
     measures_disagree: Dict[str, float]
-    _plain = frozenset({"e_measures", "measures_disagree"})
+    energy_budget: Optional[Dict[str, Any]]
+    _plain = frozenset({"e_measures", "measures_disagree", "energy_budget"})
 
 
 class Contact(Block):
@@ -218,6 +219,7 @@ class Summary(Block):
     e_instant_gap_m: float
     e_measures: Optional[Dict[str, Dict[str, Any]]]
     measures_disagree: Dict[str, float]
+    energy_budget: Optional[Dict[str, Any]]
     bounces_mode: str
     bounces: List[Bounce]
     St: Optional[float]
@@ -252,4 +254,4 @@ class Summary(Block):
     setup_time_s: float
     _blocks = {"fluid": Fluid, "velocities_m_s": Velocities, "bounces": Bounce, "contact": Contact,
                "solver": Solver, "events": Event, "flow": Flow}
-    _plain = frozenset({"e_measures", "measures_disagree", "model", "run"})
+    _plain = frozenset({"e_measures", "measures_disagree", "energy_budget", "model", "run"})

@@ -34,7 +34,11 @@ def test_run_default_matches_the_cli(cli_run):
     assert r.warnings == summary["warnings"]
     assert r.Re == summary["Re"]  # summary keys are attributes
     assert r.stats["steps"] == summary["solver"]["steps"]
-    assert r.measures["contact_ends"] == r.e
+    assert r.e_is == "joseph_2001"  # the default for a sphere and a wall
+    assert r.measures["joseph_2001"] == r.e
+    budget = r.energy_budget
+    assert [p["phase"] for p in budget["phases"]] == ["approach", "contact", "rebound", "collision"]
+    assert all(abs(p["closure_per_impact_energy"]) < 1e-4 for p in budget["phases"])
     assert len(r.bounces) == summary["contacts"]
     # the trajectory: the CSV's columns and rows, the values to the CSV's printed digits
     with open(trajectory_csv, newline="") as f:
