@@ -13,7 +13,10 @@
 namespace imcol {
 
 enum class DragLaw { stokes, schiller_naumann };                  // MODEL.md §2.1
-enum class LubricationModel { brenner, asymptotic, seed };        // Brenner series (wall) | Jeffrey–Onishi law | seed (our reading of its 6.7)
+enum class LubricationModel { brenner, asymptotic, seed };
+// Where the lubrication force ends: a smooth cut-off gap it acts through, also in contact (cutoff), or the surfaces'
+// roughness height, where the solids touch and below which it does not act (roughness; docs/model-notes.md).
+enum class LubricationLimit { cutoff, roughness };        // Brenner series (wall) | Jeffrey–Onishi law | seed (our reading of its 6.7)
 enum class AddedMassModel { lagrangian, seed };                   // pair kinetic energy | seed (6.8), per sphere
 enum class KernelKind { basset, mei_adrian, kim, dorgan_loth };   // history kernel, MODEL.md §2.3
 enum class HistoryEvaluator { soe, soe_step, direct };            // sum of exponentials (modes in the state | per step) | product integration
@@ -49,6 +52,7 @@ template <class E> struct ChoiceNames;
 IMCOL_CHOICE_NAMES(DragLaw, {DragLaw::stokes, "stokes"}, {DragLaw::schiller_naumann, "schiller-naumann"})
 IMCOL_CHOICE_NAMES(LubricationModel, {LubricationModel::brenner, "brenner"}, {LubricationModel::asymptotic, "asymptotic"},
                    {LubricationModel::seed, "seed"})
+IMCOL_CHOICE_NAMES(LubricationLimit, {LubricationLimit::cutoff, "cutoff"}, {LubricationLimit::roughness, "roughness"})
 IMCOL_CHOICE_NAMES(AddedMassModel, {AddedMassModel::lagrangian, "lagrangian"}, {AddedMassModel::seed, "seed"})
 IMCOL_CHOICE_NAMES(KernelKind, {KernelKind::basset, "basset"}, {KernelKind::mei_adrian, "mei-adrian"}, {KernelKind::kim, "kim"},
                    {KernelKind::dorgan_loth, "dorgan-loth"})

@@ -62,6 +62,7 @@ void read_solid(Reader& r, Solid& s, bool need_density) {
     s.youngs_modulus = m->youngs_modulus;
     s.poisson_ratio = m->poisson_ratio;
     s.e_dry = m->e_dry;
+    s.roughness = m->roughness;
   }
   const bool have_material = !s.material.empty();
   auto prop = [&](const char* key, double& field) {
@@ -283,6 +284,16 @@ void read_drag(Reader& top, Scene& sc) {
   r.finish();
 }
 
+/// The gap at which two surfaces' asperities touch: the sum of the materials' roughness heights (m). An input error on
+/// lubrication.limit when neither surface has one.
+double materials_roughness(Reader& r, const Scene& sc) {
+  std::optional<double> a = sc.spheres[0].roughness, b = sc.wall ? sc.wall->roughness : sc.spheres[1].roughness;
+  if (!a && !b)
+    r.fail("limit", "'roughness' needs the surfaces' roughness height: give lubrication.roughness (m), or materials with roughness_m"
+                     " (data/materials.csv)");
+  return a.value_or(0.0) + b.value_or(0.0);
+}
+
 /// Default model: brenner for a wall, asymptotic for a pair.
 void read_lubrication(Reader& top, Scene& sc) {
   auto& l = sc.lubrication;
@@ -300,6 +311,13 @@ void read_lubrication(Reader& top, Scene& sc) {
     r.fail("h_c", std::string("applies only to model = 'asymptotic' (the model is '") + to_string(l.model) + "', which acts at every gap)");
   l.h_c = r.number("h_c", l.h_c);
   r.positive("h_c", l.h_c);
+  r.choice("limit", l.limit);
+  if (r.has("roughness") && l.limit != LubricationLimit::roughness) r.fail("roughness", "applies only to limit = 'roughness'");
+  l.roughness = r.number("roughness", l.roughness);
+  if (r.has("roughness")) r.positive("roughness", l.roughness);
+  if (l.limit == LubricationLimit::roughness && l.roughness < 0) l.roughness = materials_roughness(r, sc);
+  // Down to the roughness height the film is resolved: the smooth bound then only keeps a trial state below it finite.
+  if (l.limit == LubricationLimit::roughness && !r.has("cutoff")) l.cutoff = 0.1 * l.roughness / sc.spheres[0].diameter;
   r.finish();
 }
 
@@ -317,11 +335,17 @@ void read_added_mass(Reader& top, Scene& sc) {
 void read_contact(Reader& top, Scene& sc) {
   auto& c = sc.contact;
   c.delta_ss = sc.wall ? 0.017 : 0.024;
+  const bool rough = sc.lubrication.limit == LubricationLimit::roughness;
+  if (rough) c.delta_ss = sc.lubrication.roughness / sc.spheres[0].diameter;  // the solids touch at the roughness height
   const auto* t = top.table("contact");
+  if (rough && !(t && (*t)["law"].value_or(std::string()) == "hertz"))
+    throw InputError(sc.path, "lubrication.limit", "'roughness' needs contact.law = \"hertz\": the solids touch at the roughness height");
   if (!t) return;
   Reader r(*t, "contact", sc.path);
   c.delta_ss = r.number("delta_ss", c.delta_ss);
   r.in_range("delta_ss", c.delta_ss, 0.0, 1.0, true, true);  // units of D
+  if (rough && r.has("delta_ss"))
+    r.fail("delta_ss", "with lubrication.limit = 'roughness' the contact starts at the roughness height: set lubrication.roughness instead");
   c.delta_sl = r.number("delta_sl", c.delta_sl);
   r.positive("delta_sl", c.delta_sl);
   c.e_dry = r.number("e_dry", -1.0);

@@ -58,6 +58,7 @@ struct Solid {
   double youngs_modulus = 0;     // Pa
   double poisson_ratio = 0;      // -
   std::optional<double> e_dry;   // dry restitution of the material
+  std::optional<double> roughness;  // m, the material's roughness height (data/materials.csv roughness_m)
 };
 
 struct SphereSpec : Solid {
@@ -95,6 +96,8 @@ struct Scene {
     LubricationModel model = LubricationModel::asymptotic;  // brenner (wall only) | asymptotic | seed; default: brenner for a wall
     double cutoff = 1e-4;     // smallest effective gap, units of D (impact sphere)
     double h_c = 1.0;         // asymptotic model acts for h < h_c, units of a*
+    LubricationLimit limit = LubricationLimit::cutoff;  // cutoff | roughness (the solids touch at the roughness height)
+    double roughness = -1;    // m, with limit = roughness: the gap where the surfaces touch; <0: the materials' roughness_m summed
   } lubrication;
   struct AddedMass {
     AddedMassModel model = AddedMassModel::lagrangian;  // lagrangian (pair kinetic energy; = seed for a wall and equal spheres) | seed (6.8, per sphere)

@@ -28,6 +28,7 @@ inline void solid(std::string& out, const std::string& at, const Solid& s) {
   out += at + ".youngs_modulus = " + num(s.youngs_modulus) + "\n";
   out += at + ".poisson_ratio = " + num(s.poisson_ratio) + "\n";
   out += at + ".e_dry = " + num(s.e_dry) + "\n";
+  out += at + ".roughness = " + num(s.roughness) + "\n";
 }
 
 }  // namespace scene_values_detail
@@ -73,6 +74,8 @@ inline std::string scene_values(const Scene& sc) {
   put("lubrication.model", to_string(sc.lubrication.model));
   put("lubrication.cutoff", num(sc.lubrication.cutoff));
   put("lubrication.h_c", num(sc.lubrication.h_c));
+  put("lubrication.limit", to_string(sc.lubrication.limit));
+  put("lubrication.roughness", num(sc.lubrication.roughness));
   put("added_mass.model", to_string(sc.added_mass.model));
   put("added_mass.dw_floor", num(sc.added_mass.dw_floor));
   put("contact.delta_ss", num(sc.contact.delta_ss));

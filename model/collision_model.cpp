@@ -39,8 +39,12 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc), pair_(sc), added_m
   delta_sl_m_ = sc.contact.delta_sl * D_;
   const bool start_inside = pair_.start_inside;
   // Cap the step so that the contact zone cannot be crossed (in and out) inside one step.
-  max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step
-                                     : (has_target() ? 0.25 * delta_ss_m_ / u_ref_ : sc.solver.t_end / 100);
+  // With the roughness limit the zone (the roughness height) is far thinner than the Hertz indentation the contact
+  // reaches: that indentation is the contact's length scale then.
+  double zone = delta_ss_m_;
+  if (has_target() && sc.lubrication.limit == LubricationLimit::roughness)
+    zone = std::max(zone, hertz_max_indentation(pair_.m_star, u_ref_, pair_.E_star, pair_.a_star));
+  max_step_ = sc.solver.max_step > 0 ? sc.solver.max_step : (has_target() ? 0.25 * zone / u_ref_ : sc.solver.t_end / 100);
   // The step cap forces at least t_end / max_step steps if the run lasts to t_end (it usually stops
   // earlier): refuse a run that could cost far more than usual unless solver.step_budget allows it.
   if (has_target() && sc.solver.t_end / max_step_ > sc.solver.step_budget) {
@@ -176,7 +180,7 @@ void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev)
   ev.m_pair = 0;
   ev.m_hist = {};
   ev.m_couple = 0;
-  const TermInput in{t, y, phase_ != Phase::approach};
+  const TermInput in{t, y, phase_ != Phase::approach, phase_ == Phase::loading || phase_ == Phase::unloading};
   for (const auto& term : terms_) term->add(in, ev);
   // The mass matrix's diagonal in a fixed order: m_p, the added mass, the history mass, the pair added mass A.
   for (std::size_t m = 0; m < n_spheres_; ++m) ev.m_eff[m] = pair_.mp[m] + ev.m_added[m] + ev.m_hist[m] + ev.m_pair;

@@ -23,6 +23,7 @@ struct TermInput {
   double t = 0;                  // s
   std::span<const double> y;     // the whole state (the history term reads its memory states)
   bool contact_begun = false;    // the first δ_SS crossing has happened (the contact law is consulted from then on)
+  bool in_contact = false;       // between an inward δ_SS crossing and the outward one (loading, unloading)
 };
 
 class ForceTerm {

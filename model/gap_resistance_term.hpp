@@ -25,6 +25,7 @@ class GapResistanceTerm : public ForceTerm {
   contact::GapGeometry geo_;  // the gap law's radii, a*, c_log, h_c
   double h_min_ = 0, h_c_ = 0, six_pi_mu_ = 0;
   bool pair_ = false;
+  bool rough_ = false;  // lubrication.limit = roughness: no force in contact (below the roughness height δ_SS)
 };
 
 std::unique_ptr<ForceTerm> make_gap_resistance_term(const Scene& sc, const PairGeometry& p);

@@ -22,6 +22,7 @@ py::dict scene_choices() {
   py::dict d;
   d["drag.law"] = choice_names<DragLaw>();
   d["lubrication.model"] = choice_names<LubricationModel>();
+  d["lubrication.limit"] = choice_names<LubricationLimit>();
   d["added_mass.model"] = choice_names<AddedMassModel>();
   d["contact.law"] = choice_names<ContactLawKind>();
   d["history.kernel"] = choice_names<KernelKind>();

@@ -221,55 +221,51 @@ void put_apex(const Track& tr, const Flights& f, nlohmann::ordered_json& b) {
   b["t_apex_s"] = f.sep ? nlohmann::ordered_json(tr.t[ia]) : nlohmann::ordered_json(nullptr);
 }
 
-/// The flights' excursions above the gap g0 shorter than d: the approach's fall from the largest gap of its flight
-/// (unless the run started there) and the rebound's rise to its apex, once the apex is known (the flight ends before the
-/// run does, or the run ended with the rebound stalled: U_rel above −stall_speed). The camera sees all of a short
-/// excursion. The shorter of the two, or none.
-std::optional<double> short_excursion(const Track& tr, const Flights& f, double g0, double d, double stall_speed) {
-  std::optional<double> shortest;
-  auto consider = [&](double x) {
-    if (x > 0 && x < d && (!shortest || x < *shortest)) shortest = x;
-  };
-  auto highest = [&](std::size_t i0, std::size_t i1) {
-    std::size_t ia = i0;
-    for (std::size_t i = i0; i <= i1 && i < tr.t.size(); ++i)
-      if (tr.gap[i] > tr.gap[ia]) ia = i;
-    return ia;
-  };
-  if (!f.started && f.a1 > f.a0) consider(tr.gap[highest(f.a0, f.a1)] - g0);
-  if (f.sep) {
-    const std::size_t ia = highest(f.r0, f.r1);
-    const bool at_end = f.last && ia + 1 >= tr.t.size();
-    if (!at_end || tr.u.back() > -stall_speed) consider(tr.gap[ia] - g0);
-  }
-  return shortest;
+/// The largest gap among samples i0..i1.
+std::size_t highest(const Track& tr, std::size_t i0, std::size_t i1) {
+  std::size_t ia = i0;
+  for (std::size_t i = i0; i <= i1 && i < tr.t.size(); ++i)
+    if (tr.gap[i] > tr.gap[ia]) ia = i;
+  return ia;
 }
 
-/// fit_distance (and joseph_2001): slopes from the last inward crossing of g_fd = delta_ss + d to the contact, and from
-/// the separation to the first outward crossing. A flight that does not reach g_fd (a low apex) is fitted, both sides
-/// alike, over half its excursion (a constant deceleration keeps 71 % of the speed there): what a camera sees of it.
-nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double g_fd,
-                                            double d_fit, double stall_speed) {
-  nlohmann::ordered_json fd;
-  const double g0 = g_fd - d_fit;
-  const std::optional<double> rise = short_excursion(tr, f, g0, d_fit, stall_speed);
-  if (rise) {
-    d_fit = 0.5 * *rise;
-    g_fd = g0 + d_fit;
+/// Half a flight's excursion above the gap g0 where it is shorter than d, else d: the approach's fall from the largest
+/// gap of its flight (`approach`), or the rebound's rise to its apex once the apex is known (the flight ends before the
+/// run does, or the run ended with the rebound stalled: U_rel above −stall_speed). A camera sees all of a short
+/// excursion; its first half keeps 71 % of the speed under a constant deceleration.
+double camera_distance(const Track& tr, const Flights& f, double g0, double d, double stall_speed, bool approach) {
+  double x = INFINITY;
+  if (approach && !f.started && f.a1 > f.a0) x = tr.gap[highest(tr, f.a0, f.a1)] - g0;
+  if (!approach && f.sep) {
+    const std::size_t ia = highest(tr, f.r0, f.r1);
+    const bool at_end = f.last && ia + 1 >= tr.t.size();
+    if (!at_end || tr.u.back() > -stall_speed) x = tr.gap[ia] - g0;
   }
+  return x > 0 && x < d ? 0.5 * x : d;
+}
+
+/// fit_distance (and joseph_2001): slopes from the last inward crossing of delta_ss + d to the contact, and from the
+/// separation to the first outward crossing; each side over half its flight's excursion where that is shorter
+/// (camera_distance).
+nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double g0, double d,
+                                            double stall_speed) {
+  nlohmann::ordered_json fd;
+  const double d_in = camera_distance(tr, f, g0, d, stall_speed, true), d_out = camera_distance(tr, f, g0, d, stall_speed, false);
+  const double g_in = g0 + d_in, g_out = g0 + d_out;
   std::optional<double> fd_in, fd_out, ta, tb;
   for (std::size_t i = std::max<std::size_t>(f.a0, 1); i <= f.a1 && i < tr.t.size(); ++i)
-    if (tr.gap[i - 1] >= g_fd && tr.gap[i] < g_fd) ta = tr.cross(i, g_fd);
+    if (tr.gap[i - 1] >= g_in && tr.gap[i] < g_in) ta = tr.cross(i, g_in);
   if (f.started) fd_in = f.c.u_in;
   else if (ta) fd_in = fitted_u(tr, rate, *ta, f.c.t_in);
   if (f.sep)
     for (std::size_t i = std::max<std::size_t>(f.r0, 1); i <= f.r1 && !tb; ++i)
-      if (tr.gap[i - 1] < g_fd && tr.gap[i] >= g_fd) tb = tr.cross(i, g_fd);
+      if (tr.gap[i - 1] < g_out && tr.gap[i] >= g_out) tb = tr.cross(i, g_out);
   if (f.sep && tb) fd_out = fitted_u(tr, rate, f.t_sep, *tb);
   else if (!f.sep) fd_out = 0.0;
   put_e(fd, fd_in, fd_out, "the fitted rebound moves toward the target; e clipped to 0");
-  fd["distance_m"] = d_fit;
-  if (rise) fd["shortened_to_half_the_excursion"] = true;
+  fd["distance_m"] = d;
+  if (d_in < d) fd["approach_distance_m"] = d_in;
+  if (d_out < d) fd["rebound_distance_m"] = d_out;
   if (!fd_in && !f.started) fd["missing"] = "the approach did not start beyond delta_ss + fit_distance";
   else if (f.sep && !tb) fd["missing"] = "the rebound did not reach delta_ss + fit_distance (the run ended before its apex)";
   return fd;
@@ -333,7 +329,7 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
   const std::vector<Contact>& cs = watch.contacts.contacts();
   const std::vector<Crossing>& inst = watch.instant.crossings();
   const double D = 2 * model.radius(0);
-  const double d_fit = sc.measure.fit_distance * D, g_at = sc.measure.at_gap * D, g_fd = model.delta_ss_m() + d_fit;
+  const double d_fit = sc.measure.fit_distance * D, g_at = sc.measure.at_gap * D;
   const double t_final = tr.t.empty() ? 0.0 : tr.t.back();
   const std::vector<double> rate = gap_rate(tr);
   const char* e_name = to_string(sc.measure.e);
@@ -359,12 +355,12 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
                                               sc.measure.ends_tolerance, model.n_spheres() == 2);
     em["yang_hunt_2006"] = fit_time_measure(tr, rate, f, kYangHuntWindow);
     em["yang_hunt_2006"]["reference"] = "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms";
-    em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m() + kJosephDistance * D, kJosephDistance * D, stall_speed);
+    em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), kJosephDistance * D, stall_speed);
     em["joseph_2001"]["reference"] = "Joseph, Zenit, Hunt & Rosenwinkel, J. Fluid Mech. 433 (2001): lines over the last/first 0.1 D (our reading)";
     em["gondret_2002"] = peak_rebound_measure(tr, f);
     em["gondret_2002"]["reference"] = "Gondret, Lance & Petit, Phys. Fluids 14, 643 (2002): peak speeds of the position signal (our reading)";
     em["fit_time"] = fit_time_measure(tr, rate, f, sc.measure.window);
-    em["fit_distance"] = fit_distance_measure(tr, rate, f, g_fd, d_fit, stall_speed);
+    em["fit_distance"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), d_fit, stall_speed);
     em["at_gap"] = at_gap_measure(tr, f, g_at, model.initial_gap());
     em["peak_rebound"] = peak_rebound_measure(tr, f);
     em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};

@@ -55,7 +55,9 @@ nlohmann::ordered_json energy_budget(const Track& tr, const CollisionTimes& time
   if (tr.work.size() != tr.t.size() || tr.t.empty()) return nullptr;
   const std::size_t a0 = sample_at(tr, times.t_from), c0 = sample_at(tr, times.t_in);
   const std::size_t r0 = sample_at(tr, times.t_sep.value_or(times.t_next)), r1 = sample_at(tr, times.t_next);
-  const double ke_ref = tr.ke_spheres[c0] + tr.ke_added[c0];
+  // The unit: the largest kinetic energy of the approach (the impact as a camera sees it, before the film brakes it).
+  double ke_ref = 0;
+  for (std::size_t i = a0; i <= c0; ++i) ke_ref = std::max(ke_ref, tr.ke_spheres[i] + tr.ke_added[i]);
   nlohmann::ordered_json b;
   b["impact_kinetic_energy_J"] = ke_ref;
   nlohmann::ordered_json phases = nlohmann::ordered_json::array();

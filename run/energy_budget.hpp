@@ -22,7 +22,7 @@ struct CollisionTimes {
   double t_next = 0;
 };
 
-/// The budget's JSON: `impact_kinetic_energy_J` (spheres and added mass at the inward δ_SS crossing), and per phase
+/// The budget's JSON: `impact_kinetic_energy_J` (spheres and added mass, the largest over the approach), and per phase
 /// (approach, contact, rebound, collision) its times, kinetic energies at both ends, `work_J`, `dissipated_J` (both by
 /// force, and the latter also in units of the impact kinetic energy) and `closure_J`. Null without the work samples.
 nlohmann::ordered_json energy_budget(const Track& tr, const CollisionTimes& times);

@@ -252,6 +252,12 @@ void check_plausibility(const CollisionModel& model, const Scene& sc, const Firs
       os << "by the flow coupling's grid (flow.cells_per_diameter = " << sc.flow.cells_per_diameter << ", flow.levels = " << sc.flow.levels
          << ") and blend (contact.delta_sl = " << sc.contact.delta_sl << "), not by solver.rtol: compare grids with `imcol work-precision "
          << sc.path << "`, or refine the grid";
+    else if (sc.contact.law == ContactLawKind::hertz && sc.has(Effect::added_mass))
+      os << "not by integration error: the Hertz law's damping is fitted so that the dry pair (reduced mass m*) returns e_dry, but "
+            "the immersed spheres also move the liquid's added mass (" << std::setprecision(2)
+         << 100 * model.implicit_added_mass(model.delta_ss_m()).m11 / model.mass(0)
+         << " % of sphere 1's mass at contact), and more inertia on the same dashpot is a more elastic contact (energy_budget: the "
+            "contact's loss)";
     else
       os << "by integration error (tighten solver.rtol, now " << sc.solver.rtol << ")";
     if (pair && sc.has(Effect::added_mass) && sc.added_mass.model == AddedMassModel::seed)
