@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""Plot one imcol run: positions, velocities and force terms against time.
+"""Plot one imcol run: positions, velocities and force terms against time, and the first collision's energy budget.
 
 Usage: /usr/bin/python3 scripts/plot_run.py OUT_DIR   (writes OUT_DIR/trajectory.png)
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
@@ -43,6 +43,35 @@ def draw_e_fits(ax, ax_u, summary) -> None:
             first = False
 
 
+# The budget's forces (summary.json `energy_budget`) and the trajectory's force columns they are.
+BUDGET_FORCES = {"drag": "f_drag", "lubrication": "f_lub", "added_mass": "f_am", "history": "f_hist", "contact": "f_contact",
+                 "gravity": "f_grav", "simulated": "f_sim"}
+
+
+def draw_energy_budget(ax, summary) -> None:
+    """The first collision's energy budget (summary `energy_budget`): what each force dissipated in each phase, in
+    units of the impact kinetic energy (negative: the force gave energy to the spheres)."""
+    budget = summary.get("energy_budget")
+    if not budget:
+        ax.set_visible(False)
+        return
+    phases = [p for p in budget["phases"] if p["phase"] != "collision"]
+    stems = list(FORCE_NAMES)  # the force panel's colours, by the budget's names of the same forces
+    colour = {f: f"C{stems.index(stem)}" for f, stem in BUDGET_FORCES.items()}
+    forces = [f for f in BUDGET_FORCES if any(abs(p["dissipated_per_impact_energy"].get(f, 0.0)) > 1e-4 for p in phases)]
+    width = 0.8 / max(1, len(forces))
+    for i, f in enumerate(forces):
+        xs = [k + (i - (len(forces) - 1) / 2) * width for k in range(len(phases))]
+        ax.bar(xs, [p["dissipated_per_impact_energy"].get(f, 0.0) for p in phases], width, label=f.replace("_", " "),
+               color=colour[f])
+    ax.axhline(0, color="k", lw=0.6)
+    ax.set_xticks(range(len(phases)), [f"{p['phase']}\n{1e3 * p['t0_s']:.2f}-{1e3 * p['t1_s']:.2f} ms" for p in phases])
+    worst = max(abs(p["closure_per_impact_energy"]) for p in budget["phases"])
+    ax.set_ylabel("energy dissipated /\nimpact kinetic energy")
+    ax.set_title(f"energy budget of the first collision: impact kinetic energy {1e6 * budget['impact_kinetic_energy_J']:.4g} uJ, "
+                 f"closes to {worst:.1g} of it", fontsize=9)
+
+
 def main() -> int:
     out = out_dir(__doc__)
     if out is None:
@@ -54,7 +83,14 @@ def main() -> int:
 
     coupled = "H" in col  # the flow effect: f_SIM against f_THR and the blend in a panel of their own
     pair = "z2" in col
-    fig, ax = plt.subplots(4 if coupled else 3, 1, figsize=(10.5, 13 if coupled else 10), sharex=True)
+    n_time = 4 if coupled else 3
+    fig, ax_all = plt.subplots(n_time + 1, 1, figsize=(10.5, 16 if coupled else 13),
+                               gridspec_kw={"height_ratios": [1] * n_time + [0.8]})
+    ax, ax_energy = list(ax_all[:n_time]), ax_all[n_time]
+    for a in ax[1:]:
+        a.sharex(ax[0])
+    for a in ax[:-1]:
+        a.tick_params(labelbottom=False)
     # One colour per force term, the same for both spheres (sphere 2 dashed); one colour per sphere for z and u.
     term_colour = {stem: f"C{i}" for i, stem in enumerate(FORCE_NAMES)}
     term_colour.update({"f_sim": "C0", "f_thr": "C1"})
@@ -105,7 +141,8 @@ def main() -> int:
         for b, t, z in zip(bounces, ax_t, ax_z):
             ax[0].annotate("%.2f mm" % (1e3 * b["apex_gap_m"]), (t, z), fontsize=7, xytext=(3, 5), textcoords="offset points")
     draw_e_fits(ax[0], ax[1], summary)
-    for a in ax:  # beside the panel (and the H axis), so that no legend hides a curve
+    draw_energy_budget(ax_energy, summary)
+    for a in ax + [ax_energy]:  # beside the panel (and the H axis), so that no legend hides a curve
         a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.09 if coupled else 1.01, 1.0))
         a.grid(alpha=0.3)
     e = summary.get("e")
