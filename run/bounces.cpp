@@ -364,7 +364,8 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
     em["at_gap"] = at_gap_measure(tr, f, g_at, model.initial_gap());
     em["peak_rebound"] = peak_rebound_measure(tr, f);
     em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};
-    if (em["fit_time"].contains("e_raw") || em["yang_hunt_2006"].contains("e_raw")) clipped.push_back(k + 1);
+    // A clipped fit is a warning where it is e; elsewhere its entry's e_raw and note say it.
+    if (em[e_name].contains("e_raw")) clipped.push_back(k + 1);
     if (sc.measure.e == EMeasure::contact_ends && em["contact_ends"].contains("warning")) ends_warned.push_back(k + 1);
     b["e"] = em[e_name]["e"];
     b["e_is"] = e_name;
@@ -396,8 +397,8 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
     std::ostringstream os;
     os << "at contact";
     for (std::size_t i = 0; i < clipped.size(); ++i) os << (i ? ", " : " ") << clipped[i];
-    os << " a rebound fit over a fixed window (fit_time, yang_hunt_2006) points toward the target (the sphere fell back "
-          "within the window): that measure's e is clipped to 0 (e_raw in its e_measures entry)";
+    os << " the rebound fit of e (" << e_name << ") points toward the target (the sphere fell back within its window): e is "
+          "clipped to 0 (e_raw in its e_measures entry)";
     warnings.push_back(os.str());
   }
   return out;
