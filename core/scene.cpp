@@ -449,6 +449,7 @@ void read_measure(Reader& top, Scene& sc) {
     r.in_range("disagreement", m.disagreement, 0.0, 1.0, true, false);
     m.max_samples = r.number("max_samples", m.max_samples);
     r.in_range("max_samples", m.max_samples, 1e3, 1e9, false, false);
+    m.energy_budget = r.boolean("energy_budget", m.energy_budget);
     r.finish();
   }
   if (m.instant_gap < 0) m.instant_gap = sc.contact.delta_ss;

@@ -153,6 +153,7 @@ struct Scene {
     int samples_per_window = 32;  // the measures' own sampling: at least this many samples per contact_ends window
     double disagreement = 0.05;   // warn where a named measure's e differs from `e` by more than this
     double max_samples = 1e7;     // refuse a run whose measures would sample it more often than this up to t_end
+    bool energy_budget = true;    // carry the work of each force beside the solver (summary `energy_budget`)
   } measure;
   struct Output { double dt = 0; } output;  // s, trajectory rows; 0 = measure.window/100 (set by the reader)
   FlowSpec flow;  // the embedded flow kernel, used with the `flow` effect

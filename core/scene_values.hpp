@@ -117,6 +117,7 @@ inline std::string scene_values(const Scene& sc) {
   put("measure.ends_tolerance", num(m.ends_tolerance));
   put("measure.samples_per_window", std::to_string(m.samples_per_window));
   put("measure.disagreement", num(m.disagreement));
+  put("measure.energy_budget", m.energy_budget ? "true" : "false");
   put("measure.max_samples", num(m.max_samples));
   put("output.dt", num(sc.output.dt));
   const FlowSpec& f = sc.flow;

@@ -298,10 +298,11 @@ void CollisionModel::residual(double t, std::span<const double> y, std::span<con
   if (history_) history_->residual(y, yp, r);
 }
 
-std::size_t CollisionModel::quadrature_size() const { return kForceKinds; }
+std::size_t CollisionModel::quadrature_size() const { return scene_.measure.energy_budget ? kForceKinds : 0; }
 
 std::vector<std::string> CollisionModel::quadrature_names() const {
   std::vector<std::string> names;
+  if (quadrature_size() == 0) return names;
   for (ForceKind k : kAllForceKinds) names.push_back(std::string("work_") + to_string(k));
   return names;
 }

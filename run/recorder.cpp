@@ -182,7 +182,7 @@ void Recorder::quadratures(std::span<const double> q) {
 void Recorder::add_to_track(double t, const Evaluation& ev) {
   if (!track_.t.empty() && !(t > track_.t.back())) return;  // an event sampled twice (at the same t)
   const bool pair = model_.n_spheres() == 2;
-  track_.work.push_back(work_);
+  if (model_.quadrature_size() > 0) track_.work.push_back(work_);
   double ke = 0;
   for (std::size_t m = 0; m < model_.n_spheres(); ++m) ke += 0.5 * model_.mass(static_cast<int>(m)) * ev.u[m] * ev.u[m];
   track_.ke_spheres.push_back(ke);

@@ -104,6 +104,16 @@ TEST(EnergyBudget, WorkOfTheForcesAccountsForTheKineticEnergyToTheSolversToleran
                 "bouncing_steel (gravity)");
 }
 
+TEST(EnergyBudget, TheBudgetDoesNotTouchTheSolutionAndCanBeLeftOut) {
+  const auto with = simulate(load_scene(budget_scene("default"))).summary_json;
+  const auto without = simulate(load_scene(budget_scene("default"), {{"measure.energy_budget", "false"}})).summary_json;
+  EXPECT_TRUE(with["energy_budget"].is_object());
+  EXPECT_TRUE(without["energy_budget"].is_null());
+  // The quadratures take no part in the error test: the same steps, the same e to the last digit.
+  EXPECT_EQ(with["e"].get<double>(), without["e"].get<double>());
+  EXPECT_EQ(with["solver"]["steps"].get<long>(), without["solver"]["steps"].get<long>());
+}
+
 TEST(EnergyBudget, ADryCollisionLosesOneMinusEDrySquaredInTheContactAndNothingElsewhere) {
   const auto s = simulate(load_scene(budget_scene("dry_steel_steel"))).summary_json;
   expect_closes(s, 1e-7, "dry");

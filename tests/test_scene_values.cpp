@@ -76,7 +76,7 @@ TEST(SceneValues, EveryCollisionKeyChangesTheText) {
        {"measure.instant_gap", "0.05"}, {"measure.stall_fraction", "0.02"}, {"measure.bounces", "\"all\""},
        {"measure.fit_distance", "0.2"}, {"measure.at_gap", "0.2"}, {"measure.e", "\"fit_time\""},
        {"measure.ends_distance", "0.03"}, {"measure.ends_speed_change", "0.3"}, {"measure.ends_tolerance", "0.03"},
-       {"measure.samples_per_window", "40"}, {"measure.disagreement", "0.1"}, {"measure.max_samples", "1e6"},
+       {"measure.samples_per_window", "40"}, {"measure.disagreement", "0.1"}, {"measure.max_samples", "1e6"}, {"measure.energy_budget", "false"},
        {"output.dt", "1e-5"}});
 }
 
