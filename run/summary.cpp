@@ -37,7 +37,7 @@ nlohmann::ordered_json or_null(const std::optional<std::string>& v) {
   return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
 }
 
-/// The collision phase's dissipation by force (those that did any) and the largest |closure| of a phase.
+/// The collision phase's dissipation by force (above 5e-4 of the impact energy) and the largest |closure| of a phase.
 void put_energy(RunSummary& s, const nlohmann::ordered_json& budget) {
   if (!budget.is_object()) return;
   double closure = 0;
@@ -45,7 +45,7 @@ void put_energy(RunSummary& s, const nlohmann::ordered_json& budget) {
     closure = std::max(closure, std::abs(p["closure_per_impact_energy"].get<double>()));
     if (p["phase"] != "collision") continue;
     for (const auto& [force, d] : p["dissipated_per_impact_energy"].items())
-      if (d.get<double>() != 0.0) s.dissipated_share.push_back({force, d.get<double>()});
+      if (std::abs(d.get<double>()) > 5e-4) s.dissipated_share.push_back({force, d.get<double>()});
   }
   s.energy_closure = closure;
 }

@@ -20,7 +20,7 @@ SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li
 LEGENDRE_ST_C = 35.0
 
 
-MEASURES = (("e", "e (the measure e_is names; default contact_ends)", "o"),
+MEASURES = (("e", "e (the measure e_is names: joseph_2001 for a wall, yang_hunt_2006 for a pair by default)", "o"),
             ("e_fit_time", "fit_time (lines over measure.window)", "s"),
             ("e_instant", "e_instant (at measure.instant_gap)", "x"),
             ("e_fit_distance", "fit over measure.fit_distance", "^"),

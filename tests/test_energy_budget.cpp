@@ -102,6 +102,8 @@ TEST(EnergyBudget, WorkOfTheForcesAccountsForTheKineticEnergyToTheSolversToleran
                 "seed_run2, hertz");
   expect_closes(simulate(load_scene(budget_scene("bouncing_steel"), with({{"measure.bounces", "\"first\""}}))).summary_json, 1e-6,
                 "bouncing_steel (gravity)");
+  expect_closes(simulate(load_scene(budget_scene("steel_glass_rough"), tight)).summary_json, 1e-6,
+                "steel_glass_rough (the film ends at the roughness height)");
 }
 
 TEST(EnergyBudget, TheBudgetDoesNotTouchTheSolutionAndCanBeLeftOut) {
