@@ -603,6 +603,17 @@ struct Integrator::Impl {
   void give_quadratures(std::span<const double> q) {
     if (quad.active()) observer.quadratures(q);
   }
+  /// A sample of the state y at t (not an event), with its quadratures.
+  void sample_at(double t_s) {
+    give_quadratures(quad.value());
+    observer.sample(t_s, view(y.get()), false);
+  }
+  /// Integrates the quadratures from t to t1 within the last step, the state at t1 from the solver's interpolant.
+  void integrate_quadratures_to(double t1) {
+    if (!quad.active()) return;
+    be->interpolate(t1, yi.get());
+    integrate_quadratures(t1, yi.get());
+  }
   /// Integrates the quadratures over the last step, from t to t1 (y1 = y(t1)).
   void integrate_quadratures(double t1, N_Vector y1) {
     if (!quad.active() || !(t1 > t)) return;
@@ -771,11 +782,7 @@ double Integrator::advance(double t_target) {
   while (!m.done) {
     const double t_eps = 1e-12 * std::max(1.0, std::abs(t));  // times closer than this count as reached
     const double tstop = sys.stop_time();
-    if (t >= tstop - t_eps) {
-      m.done = true;
-      break;
-    }
-    if (t >= t_target - t_eps) break;
+    if ((m.done = t >= tstop - t_eps) || t >= t_target - t_eps) break;  // the stop time ends the run; t_target, the call
     const double bp = sys.next_breakpoint(t);
     const double t_limit = std::min({tstop, bp, t_target});
     double t_new = t;
@@ -784,8 +791,7 @@ double Integrator::advance(double t_target) {
       // The solver has stepped past t_limit (an event or a sample moved the stop time back, which CVODE's
       // stop time cannot follow): the samples and the state at t_limit come from its interpolant.
       t_new = t_limit;
-      be->interpolate(t_new, m.yi.get());
-      m.integrate_quadratures(t_new, m.yi.get());
+      m.integrate_quadratures_to(t_new);
       if (m.emit_outputs(t_new, false)) continue;
       be->interpolate(t_new, m.y.get());
     } else {
@@ -815,10 +821,7 @@ double Integrator::advance(double t_target) {
       sys.at_breakpoint(t, view(m.y.get()));
       ++m.stats.breakpoints;
     }
-    if (t >= sys.stop_time() - t_eps_new && !(std::abs(m.t_sampled - t) <= t_eps_new)) {
-      m.give_quadratures(m.quad.value());
-      m.observer.sample(t, view(m.y.get()), false);
-    }
+    if (t >= sys.stop_time() - t_eps_new && !(std::abs(m.t_sampled - t) <= t_eps_new)) m.sample_at(t);
     // A ringing BDF order 3-5 (RingingDetector): restart here with the order at most 2 (A-stable, it damps), until the next event.
     if (!m.order_capped && m.st.max_order > 2 && t < sys.stop_time() - t_eps_new && m.ringing.step(view(m.y.get()), m.atol, be->last_order())) {
       ++m.stats.order_caps;

@@ -126,7 +126,7 @@ nlohmann::ordered_json parabola(const Track& tr, const std::vector<double>& z, c
   return {{"t_ref_s", p->t_ref}, {"z_m", p->value}, {"u_m_s", p->slope}, {"a_m_s2", p->accel}};
 }
 
-/// contact_ends (the default e): parabolas z = z0 + U t + ½ a t² fitted by least squares to the gap over a window
+/// contact_ends (the model's own e; 66 lines: the window's bounds and its report are one procedure): parabolas z = z0 + U t + ½ a t² fitted by least squares to the gap over a window
 /// before the contact and after the separation, the velocities being their slopes at the contact's ends (the inward
 /// δ_SS crossing, the separation). The window is the time to travel `distance` (m) at the impact speed (U_rel at the
 /// inward δ_SS crossing), shortened alike to the flights and to where U_rel has changed by `speed_change` of its value
@@ -306,6 +306,28 @@ nlohmann::ordered_json peak_rebound_measure(const Track& tr, const Flights& f) {
   return pr;
 }
 
+/// Every named measure of one contact (docs/bounces.md), by name.
+nlohmann::ordered_json named_measures(const CollisionModel& model, const Scene& sc, const Track& tr, const std::vector<double>& rate,
+                                      const Flights& f, const std::vector<Crossing>& inst) {
+  const double D = 2 * model.radius(0);
+  const double stall_speed = 2 * sc.measure.stall_fraction * std::abs(f.c.u_in);  // a rebound this slow has stalled
+  nlohmann::ordered_json em;
+  em["contact_ends"] = contact_ends_measure(tr, rate, f, sc.measure.ends_distance * D, sc.measure.ends_speed_change,
+                                            sc.measure.ends_tolerance, model.n_spheres() == 2);
+  em["yang_hunt_2006"] = fit_time_measure(tr, rate, f, kYangHuntWindow);
+  em["yang_hunt_2006"]["reference"] = "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms";
+  em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), kJosephDistance * D, stall_speed);
+  em["joseph_2001"]["reference"] = "Joseph, Zenit, Hunt & Rosenwinkel, J. Fluid Mech. 433 (2001): lines over the last/first 0.1 D (our reading)";
+  em["gondret_2002"] = peak_rebound_measure(tr, f);
+  em["gondret_2002"]["reference"] = "Gondret, Lance & Petit, Phys. Fluids 14, 643 (2002): peak speeds of the position signal (our reading)";
+  em["fit_time"] = fit_time_measure(tr, rate, f, sc.measure.window);
+  em["fit_distance"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), sc.measure.fit_distance * D, stall_speed);
+  em["at_gap"] = at_gap_measure(tr, f, sc.measure.at_gap * D, model.initial_gap());
+  em["peak_rebound"] = peak_rebound_measure(tr, f);
+  em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};
+  return em;
+}
+
 }  // namespace
 
 std::string measure_label(const Scene& sc, const std::string& name) {
@@ -328,8 +350,6 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
                                        std::vector<std::string>& warnings) {
   const std::vector<Contact>& cs = watch.contacts.contacts();
   const std::vector<Crossing>& inst = watch.instant.crossings();
-  const double D = 2 * model.radius(0);
-  const double d_fit = sc.measure.fit_distance * D, g_at = sc.measure.at_gap * D;
   const double t_final = tr.t.empty() ? 0.0 : tr.t.back();
   const std::vector<double> rate = gap_rate(tr);
   const char* e_name = to_string(sc.measure.e);
@@ -344,26 +364,9 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
     const Flights f{c, t_from, t_next, t_sep, c.t_out.has_value(), model.started_in_contact() && k == 0, k + 1 == cs.size(),
                     tr.first_at_or_after(t_from), tr.first_at_or_after(c.t_in), tr.first_at_or_after(t_sep),
                     std::min(tr.first_at_or_after(t_next), tr.t.size() - 1)};
-    const double stall_speed = 2 * sc.measure.stall_fraction * std::abs(c.u_in);  // a rebound this slow has stalled
-    nlohmann::ordered_json b;
-    b["contact"] = k + 1;
-    b["t_contact_s"] = c.t_in;
-    b["t_separation_s"] = or_null(c.t_out);
-    b["impact_speed_at_delta_ss_m_s"] = c.u_in;
-    nlohmann::ordered_json em;
-    em["contact_ends"] = contact_ends_measure(tr, rate, f, sc.measure.ends_distance * D, sc.measure.ends_speed_change,
-                                              sc.measure.ends_tolerance, model.n_spheres() == 2);
-    em["yang_hunt_2006"] = fit_time_measure(tr, rate, f, kYangHuntWindow);
-    em["yang_hunt_2006"]["reference"] = "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms";
-    em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), kJosephDistance * D, stall_speed);
-    em["joseph_2001"]["reference"] = "Joseph, Zenit, Hunt & Rosenwinkel, J. Fluid Mech. 433 (2001): lines over the last/first 0.1 D (our reading)";
-    em["gondret_2002"] = peak_rebound_measure(tr, f);
-    em["gondret_2002"]["reference"] = "Gondret, Lance & Petit, Phys. Fluids 14, 643 (2002): peak speeds of the position signal (our reading)";
-    em["fit_time"] = fit_time_measure(tr, rate, f, sc.measure.window);
-    em["fit_distance"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), d_fit, stall_speed);
-    em["at_gap"] = at_gap_measure(tr, f, g_at, model.initial_gap());
-    em["peak_rebound"] = peak_rebound_measure(tr, f);
-    em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};
+    nlohmann::ordered_json b = {{"contact", k + 1}, {"t_contact_s", c.t_in}, {"t_separation_s", or_null(c.t_out)},
+                                {"impact_speed_at_delta_ss_m_s", c.u_in}};
+    nlohmann::ordered_json em = named_measures(model, sc, tr, rate, f, inst);
     // A clipped fit is a warning where it is e; elsewhere its entry's e_raw and note say it.
     if (em[e_name].contains("e_raw")) clipped.push_back(k + 1);
     if (sc.measure.e == EMeasure::contact_ends && em["contact_ends"].contains("warning")) ends_warned.push_back(k + 1);
