@@ -247,17 +247,17 @@ void check_plausibility(const CollisionModel& model, const Scene& sc, const Firs
   if (e && sc.has(Effect::elastic) && *e > model.e_dry() * (1 + 1e-9)) {
     // More elastic than the solids alone: energy was created. Known for the seed's per-sphere added mass with unequal spheres.
     std::ostringstream os;
-    os << "e = " << *e << " exceeds the dry restitution e_dry = " << model.e_dry() << ": energy was created, ";
+    const bool hertz_added_mass = !sc.has(Effect::flow) && sc.contact.law == ContactLawKind::hertz && sc.has(Effect::added_mass);
+    os << "e = " << *e << " exceeds the dry restitution e_dry = " << model.e_dry() << (hertz_added_mass ? ": " : ": energy was created, ");
     if (sc.has(Effect::flow))  // coupled: e follows the grid far more than rtol (docs/coupling.md "Divergence")
       os << "by the flow coupling's grid (flow.cells_per_diameter = " << sc.flow.cells_per_diameter << ", flow.levels = " << sc.flow.levels
          << ") and blend (contact.delta_sl = " << sc.contact.delta_sl << "), not by solver.rtol: compare grids with `imcol work-precision "
          << sc.path << "`, or refine the grid";
-    else if (sc.contact.law == ContactLawKind::hertz && sc.has(Effect::added_mass))
-      os << "not by integration error: the Hertz law's damping is fitted so that the dry pair (reduced mass m*) returns e_dry, but "
-            "the immersed spheres also move the liquid's added mass (" << std::setprecision(2)
-         << 100 * model.implicit_added_mass(model.delta_ss_m()).m11 / model.mass(0)
-         << " % of sphere 1's mass at contact), and more inertia on the same dashpot is a more elastic contact (energy_budget: the "
-            "contact's loss)";
+    else if (hertz_added_mass)
+      os << "the Hertz law's damping is fitted so that the dry pair (reduced mass m*) returns e_dry, but the immersed spheres also "
+            "move the liquid's added mass (" << std::setprecision(2) << 100 * model.implicit_added_mass(model.delta_ss_m()).m11 / model.mass(0)
+         << " % of sphere 1's mass at contact), and more inertia on the same dashpot is a more elastic contact; no energy is created "
+            "(energy_budget: the contact's loss closes with the kinetic energy)";
     else
       os << "by integration error (tighten solver.rtol, now " << sc.solver.rtol << ")";
     if (pair && sc.has(Effect::added_mass) && sc.added_mass.model == AddedMassModel::seed)
