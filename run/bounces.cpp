@@ -120,14 +120,22 @@ nlohmann::ordered_json fit_time_measure(const Track& tr, const std::vector<doubl
 
 /// One fitted parabola of a sphere's position, for drawing: z(t) = z + u (t − t_ref) + ½ a (t − t_ref)².
 nlohmann::ordered_json parabola(const Track& tr, const std::vector<double>& z, const std::vector<double>& u, double t0, double t1,
-                                double t_ref) {
-  const auto p = fit_polynomial_hermite(tr.t, z, u, t0, t1, 2, t_ref);
+                                double t_ref, int degree) {
+  const auto p = fit_polynomial_hermite(tr.t, z, u, t0, t1, degree, t_ref);
   if (!p) return nullptr;
   return {{"t_ref_s", p->t_ref}, {"z_m", p->value}, {"u_m_s", p->slope}, {"a_m_s2", p->accel}};
 }
 
-/// contact_ends (the model's own e; 66 lines: the window's bounds and its report are one procedure): parabolas z = z0 + U t + ½ a t² fitted by least squares to the gap over a window
-/// before the contact and after the separation, the velocities being their slopes at the contact's ends (the inward
+/// A measure's window [t0, t1] and each sphere's fitted position in it (degree 1: a line, 2: a parabola), for
+/// trajectory.png.
+nlohmann::ordered_json fitted_window(const Track& tr, double t0, double t1, double t_ref, int degree, bool pair) {
+  nlohmann::ordered_json s = {{"t0_s", t0}, {"t1_s", t1}, {"z1", parabola(tr, tr.z1, tr.u1, t0, t1, t_ref, degree)}};
+  if (pair) s["z2"] = parabola(tr, tr.z2, tr.u2, t0, t1, t_ref, degree);
+  return s;
+}
+
+/// contact_ends (the model's own e; over 60 lines: the window's bounds and its report are one procedure): parabolas
+/// z = z0 + U t + ½ a t² fitted by least squares to the gap over a window before the contact and after the separation, the velocities being their slopes at the contact's ends (the inward
 /// δ_SS crossing, the separation). The window is the time to travel `distance` (m) at the impact speed (U_rel at the
 /// inward δ_SS crossing), shortened alike to the flights and to where U_rel has changed by `speed_change` of its value
 /// at either end. A steady force (gravity, drag nearly) is a constant acceleration: the parabola takes it up instead of
@@ -189,13 +197,8 @@ nlohmann::ordered_json contact_ends_measure(const Track& tr, const std::vector<d
     ce["warning"] = os.str();
   }
   // The windows and each sphere's fitted position in them (for trajectory.png).
-  auto side = [&](double t0, double t1, double t_ref) {
-    nlohmann::ordered_json s = {{"t0_s", t0}, {"t1_s", t1}, {"z1", parabola(tr, tr.z1, tr.u1, t0, t1, t_ref)}};
-    if (pair) s["z2"] = parabola(tr, tr.z2, tr.u2, t0, t1, t_ref);
-    return s;
-  };
-  ce["approach"] = f.started ? nlohmann::ordered_json(nullptr) : side(a0, f.c.t_in, f.c.t_in);
-  ce["rebound"] = f.sep ? side(f.t_sep, r1, f.t_sep) : nlohmann::ordered_json(nullptr);
+  ce["approach"] = f.started ? nlohmann::ordered_json(nullptr) : fitted_window(tr, a0, f.c.t_in, f.c.t_in, 2, pair);
+  ce["rebound"] = f.sep ? fitted_window(tr, f.t_sep, r1, f.t_sep, 2, pair) : nlohmann::ordered_json(nullptr);
   if (!ui && !f.started) ce["missing"] = "the approach window is not covered by the run";
   else if (f.sep && !ur) ce["missing"] = "the rebound window is not covered by the run";
   return ce;
@@ -248,7 +251,7 @@ double camera_distance(const Track& tr, const Flights& f, double g0, double d, d
 /// separation to the first outward crossing; each side over half its flight's excursion where that is shorter
 /// (camera_distance).
 nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double g0, double d,
-                                            double stall_speed) {
+                                            double stall_speed, bool pair) {
   nlohmann::ordered_json fd;
   const double d_in = camera_distance(tr, f, g0, d, stall_speed, true), d_out = camera_distance(tr, f, g0, d, stall_speed, false);
   const double g_in = g0 + d_in, g_out = g0 + d_out;
@@ -266,6 +269,9 @@ nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<d
   fd["distance_m"] = d;
   if (d_in < d) fd["approach_distance_m"] = d_in;
   if (d_out < d) fd["rebound_distance_m"] = d_out;
+  // The stretches and each sphere's fitted line in them (for trajectory.png).
+  fd["approach"] = ta ? fitted_window(tr, *ta, f.c.t_in, 0.5 * (*ta + f.c.t_in), 1, pair) : nlohmann::ordered_json(nullptr);
+  fd["rebound"] = tb ? fitted_window(tr, f.t_sep, *tb, 0.5 * (f.t_sep + *tb), 1, pair) : nlohmann::ordered_json(nullptr);
   if (!fd_in && !f.started) fd["missing"] = "the approach did not start beyond delta_ss + fit_distance";
   else if (f.sep && !tb) fd["missing"] = "the rebound did not reach delta_ss + fit_distance (the run ended before its apex)";
   return fd;
@@ -311,17 +317,18 @@ nlohmann::ordered_json named_measures(const CollisionModel& model, const Scene& 
                                       const Flights& f, const std::vector<Crossing>& inst) {
   const double D = 2 * model.radius(0);
   const double stall_speed = 2 * sc.measure.stall_fraction * std::abs(f.c.u_in);  // a rebound this slow has stalled
+  const bool pair = model.n_spheres() == 2;
   nlohmann::ordered_json em;
   em["contact_ends"] = contact_ends_measure(tr, rate, f, sc.measure.ends_distance * D, sc.measure.ends_speed_change,
-                                            sc.measure.ends_tolerance, model.n_spheres() == 2);
+                                            sc.measure.ends_tolerance, pair);
   em["yang_hunt_2006"] = fit_time_measure(tr, rate, f, kYangHuntWindow);
   em["yang_hunt_2006"]["reference"] = "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms";
-  em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), kJosephDistance * D, stall_speed);
+  em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), kJosephDistance * D, stall_speed, pair);
   em["joseph_2001"]["reference"] = "Joseph, Zenit, Hunt & Rosenwinkel, J. Fluid Mech. 433 (2001): lines over the last/first 0.1 D (our reading)";
   em["gondret_2002"] = peak_rebound_measure(tr, f);
   em["gondret_2002"]["reference"] = "Gondret, Lance & Petit, Phys. Fluids 14, 643 (2002): peak speeds of the position signal (our reading)";
   em["fit_time"] = fit_time_measure(tr, rate, f, sc.measure.window);
-  em["fit_distance"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), sc.measure.fit_distance * D, stall_speed);
+  em["fit_distance"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), sc.measure.fit_distance * D, stall_speed, pair);
   em["at_gap"] = at_gap_measure(tr, f, sc.measure.at_gap * D, model.initial_gap());
   em["peak_rebound"] = peak_rebound_measure(tr, f);
   em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};

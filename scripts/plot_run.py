@@ -12,21 +12,21 @@ from imcol_plot import FORCE_NAMES, force_label, out_dir, plt, read_rows, save_p
 
 
 def draw_e_fits(ax, ax_u, summary) -> None:
-    """The windows and fitted parabolas behind e (contact_ends, first contact) on the position panel; the fitted
-    velocities at the contact's ends as crosses on the velocity panel."""
+    """The windows and fitted curves behind e (first contact) on the position panel: the lines of joseph_2001 and
+    fit_distance, the parabolas of contact_ends; their slopes as crosses on the velocity panel."""
     em = summary.get("e_measures") or {}
     name = summary.get("e_is")
     m = em.get(name) if isinstance(em, dict) else None
-    if not m or name != "contact_ends":
+    if not m or not (m.get("approach") or m.get("rebound")):
         return
+    curve = "parabolas" if name == "contact_ends" else "lines"
     first = True
     for side in ("approach", "rebound"):
         w = m.get(side)
         if not w:
             continue
         t0, t1 = w["t0_s"], w["t1_s"]
-        ax.axvspan(1e3 * t0, 1e3 * t1, color="orange", alpha=0.25, lw=0,
-                   label="contact_ends windows (%.3g ms)" % (1e3 * m["window_s"]) if first else None)
+        ax.axvspan(1e3 * t0, 1e3 * t1, color="orange", alpha=0.25, lw=0, label=f"{name}: the stretches fitted" if first else None)
         span = t1 - t0
         for k in ("z1", "z2"):
             p = w.get(k)
@@ -37,7 +37,7 @@ def draw_e_fits(ax, ax_u, summary) -> None:
             ts = [a + (b - a) * i / 60 for i in range(61)]
             zs = [p["z_m"] + p["u_m_s"] * (t - p["t_ref_s"]) + 0.5 * p["a_m_s2"] * (t - p["t_ref_s"]) ** 2 for t in ts]
             ax.plot([1e3 * t for t in ts], [1e3 * z for z in zs], color="k", lw=0.9, ls="--",
-                    label="fitted parabolas (slopes at the contact's ends)" if first else None)
+                    label=f"fitted {curve} (their slopes give e)" if first else None)
             ax_u.plot([1e3 * p["t_ref_s"]], [p["u_m_s"]], "x", color="k", ms=7,
                       label="fitted velocities behind e" if first else None)
             first = False
