@@ -84,9 +84,10 @@ def main() -> int:
     coupled = "H" in col  # the flow effect: f_SIM against f_THR and the blend in a panel of their own
     pair = "z2" in col
     n_time = 4 if coupled else 3
-    fig, ax_all = plt.subplots(n_time + 1, 1, figsize=(10.5, 16 if coupled else 13),
-                               gridspec_kw={"height_ratios": [1] * n_time + [0.8]})
-    ax, ax_energy = list(ax_all[:n_time]), ax_all[n_time]
+    budget = bool(summary.get("energy_budget"))  # a panel of its own below the time axis (none for a free sphere)
+    fig, ax_all = plt.subplots(n_time + budget, 1, figsize=(10.5, 3.25 * n_time + 3.25 * budget),
+                               gridspec_kw={"height_ratios": [1] * n_time + [0.8] * budget})
+    ax, ax_energy = list(ax_all[:n_time]), (ax_all[n_time] if budget else None)
     for a in ax[1:]:
         a.sharex(ax[0])
     for a in ax[:-1]:
@@ -141,8 +142,9 @@ def main() -> int:
         for b, t, z in zip(bounces, ax_t, ax_z):
             ax[0].annotate("%.2f mm" % (1e3 * b["apex_gap_m"]), (t, z), fontsize=7, xytext=(3, 5), textcoords="offset points")
     draw_e_fits(ax[0], ax[1], summary)
-    draw_energy_budget(ax_energy, summary)
-    for a in ax + [ax_energy]:  # beside the panel (and the H axis), so that no legend hides a curve
+    if budget:
+        draw_energy_budget(ax_energy, summary)
+    for a in ax + ([ax_energy] if budget else []):  # beside the panel (and the H axis), so that no legend hides a curve
         a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.09 if coupled else 1.01, 1.0))
         a.grid(alpha=0.3)
     e = summary.get("e")
