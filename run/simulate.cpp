@@ -55,9 +55,20 @@ nlohmann::ordered_json events_block(const CollisionModel& model) {
   return ev;
 }
 
+/// The scene a run integrates: `scene`, or for a kinematic recording (e alone: sweeps, calibrations) its copy in `lean`
+/// without the energy budget.
+const Scene& scene_to_run(const Scene& scene, Recording recording, Scene& lean) {
+  if (recording != Recording::kinematics || !scene.measure.energy_budget) return scene;
+  lean = scene;
+  lean.measure.energy_budget = false;
+  return lean;
+}
+
 }  // namespace
 
-RunResult simulate(const Scene& sc, bool progress, Recording recording, const flow::FileSink& fields) {
+RunResult simulate(const Scene& scene, bool progress, Recording recording, const flow::FileSink& fields) {
+  Scene lean;
+  const Scene& sc = scene_to_run(scene, recording, lean);
   // A scene that can never collide is refused before anything is integrated: its trajectory would be the whole
   // run to t_end with nothing to measure.
   if (const auto why = model::never_approaching(sc)) throw InputError(sc.path, "sphere[0].velocity", *why);

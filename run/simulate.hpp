@@ -24,7 +24,7 @@ struct RunResult {
 
 /// What the trajectory rows carry. `kinematics`: positions, velocities and events only (what e is measured from);
 /// the forces are evaluated only where the model needs them to end the run (at rest), so that sweeps skip their
-/// cost; the summary's max_contact_force_N and max_history_force_N are then null.
+/// cost; the summary's max_contact_force_N and max_history_force_N are then null, and it has no energy budget.
 enum class Recording { full, kinematics };
 
 /// Runs one scene. Throws InputError (bad scene), SolverError (integration failed).
