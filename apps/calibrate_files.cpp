@@ -185,6 +185,7 @@ void sort_evaluations(calib::SearchResult& r) {
   });
 }
 
+// One JSON object (79 lines): calibration.json's keys in the order the file shows them, each one line.
 json calibration_json(const CalibrationRecord& rec) {
   const auto& res = rec.result;
   const bool trajectory = std::holds_alternative<MeasuredTrajectory>(rec.data);

@@ -331,15 +331,10 @@ void read_added_mass(Reader& top, Scene& sc) {
   r.finish();
 }
 
-/// Default delta_ss: 0.017 D for a wall, 0.024 D for a pair.
-void read_contact(Reader& top, Scene& sc) {
+/// The [contact] table's keys (none without it).
+void read_contact_table(const toml::table* t, Scene& sc) {
   auto& c = sc.contact;
-  c.delta_ss = sc.wall ? 0.017 : 0.024;
   const bool rough = sc.lubrication.limit == LubricationLimit::roughness;
-  if (rough) c.delta_ss = sc.lubrication.roughness / sc.spheres[0].diameter;  // the solids touch at the roughness height
-  const auto* t = top.table("contact");
-  if (rough && !(t && (*t)["law"].value_or(std::string()) == "hertz"))
-    throw InputError(sc.path, "lubrication.limit", "'roughness' needs contact.law = \"hertz\": the solids touch at the roughness height");
   if (!t) return;
   Reader r(*t, "contact", sc.path);
   c.delta_ss = r.number("delta_ss", c.delta_ss);
@@ -355,6 +350,17 @@ void read_contact(Reader& top, Scene& sc) {
   r.choice("law", c.law);
   if (r.has("beta") && c.law != ContactLawKind::ramp) r.fail("beta", "applies only to law = 'ramp'");
   r.finish();
+}
+
+/// Default delta_ss: 0.017 D for a wall, 0.024 D for a pair.
+void read_contact(Reader& top, Scene& sc) {
+  auto& c = sc.contact;
+  c.delta_ss = sc.wall ? 0.017 : 0.024;
+  const bool rough = sc.lubrication.limit == LubricationLimit::roughness;
+  if (rough) c.delta_ss = sc.lubrication.roughness / sc.spheres[0].diameter;  // the solids touch at the roughness height
+  read_contact_table(top.table("contact"), sc);
+  if (rough && c.law != ContactLawKind::hertz)
+    throw InputError(sc.path, "lubrication.limit", "'roughness' needs contact.law = \"hertz\": the solids touch at the roughness height");
 }
 
 void read_history(Reader& top, Scene& sc) {

@@ -74,9 +74,8 @@ class DynamicalSystem {
   virtual void at_step(double /*t*/, std::span<const double> /*y*/, bool /*restart*/) {}
 
   /// Quadratures carried beside the state (integrals q' = w(t, y) the solution does not depend on, such as the work of
-  /// each force): their number, names and integrands. They take no part in the error test or the Newton iteration.
+  /// each force): their number and integrands. They take no part in the error test or the Newton iteration.
   virtual std::size_t quadrature_size() const { return 0; }
-  virtual std::vector<std::string> quadrature_names() const { return {}; }
   virtual void quadrature_rhs(double /*t*/, std::span<const double> /*y*/, std::span<double> /*qdot*/) {}
 
   /// Fills the modal structure at (t, y) and returns true, or returns false if the state has none.

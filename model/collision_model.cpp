@@ -300,13 +300,6 @@ void CollisionModel::residual(double t, std::span<const double> y, std::span<con
 
 std::size_t CollisionModel::quadrature_size() const { return scene_.measure.energy_budget ? kForceKinds : 0; }
 
-std::vector<std::string> CollisionModel::quadrature_names() const {
-  std::vector<std::string> names;
-  if (quadrature_size() == 0) return names;
-  for (ForceKind k : kAllForceKinds) names.push_back(std::string("work_") + to_string(k));
-  return names;
-}
-
 void CollisionModel::quadrature_rhs(double t, std::span<const double> y, std::span<double> qdot) {
   const auto p = force_powers(evaluate(t, y), n_spheres_);
   std::copy(p.begin(), p.end(), qdot.begin());

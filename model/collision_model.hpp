@@ -69,7 +69,6 @@ class CollisionModel : public DynamicalSystem {
   void residual(double t, std::span<const double> y, std::span<const double> yp, std::span<double> r) override;
   /// The work of each force (model/force_work.hpp), carried as quadratures by the integrator.
   std::size_t quadrature_size() const override;
-  std::vector<std::string> quadrature_names() const override;
   void quadrature_rhs(double t, std::span<const double> y, std::span<double> qdot) override;
   std::vector<RootSpec> roots() const override { return armed_; }
   void root_values(double t, std::span<const double> y, std::span<double> g) override;

@@ -179,15 +179,19 @@ void Recorder::quadratures(std::span<const double> q) {
   for (std::size_t k = 0; k < work_.size() && k < q.size(); ++k) work_[k] = q[k];
 }
 
-void Recorder::add_to_track(double t, const Evaluation& ev) {
-  if (!track_.t.empty() && !(t > track_.t.back())) return;  // an event sampled twice (at the same t)
-  const bool pair = model_.n_spheres() == 2;
-  if (model_.quadrature_size() > 0) track_.work.push_back(work_);
+void Recorder::add_energies(const Evaluation& ev) {
+  track_.work.push_back(work_);
   double ke = 0;
   for (std::size_t m = 0; m < model_.n_spheres(); ++m) ke += 0.5 * model_.mass(static_cast<int>(m)) * ev.u[m] * ev.u[m];
   track_.ke_spheres.push_back(ke);
   const model::AddedMassMatrix M = sc_.has(Effect::added_mass) ? model_.implicit_added_mass(ev.gap) : model::AddedMassMatrix{};
   track_.ke_added.push_back(0.5 * (M.m11 * ev.u[0] * ev.u[0] + M.m22 * ev.u[1] * ev.u[1]) + M.m12 * ev.u[0] * ev.u[1]);
+}
+
+void Recorder::add_to_track(double t, const Evaluation& ev) {
+  if (!track_.t.empty() && !(t > track_.t.back())) return;  // an event sampled twice (at the same t)
+  const bool pair = model_.n_spheres() == 2;
+  if (model_.quadrature_size() > 0) add_energies(ev);
   track_.t.push_back(t);
   track_.gap.push_back(ev.gap);
   track_.u.push_back(ev.u_rel);

@@ -77,6 +77,8 @@ class Recorder : public Observer {
  private:
   void show_progress(double t);
   void add_to_track(double t, const model::Evaluation& ev);
+  /// The energy budget's samples (Track::work, ke_spheres, ke_added) at a sample of the track.
+  void add_energies(const model::Evaluation& ev);
   /// The row of columns() at (t, ev); updates the peak history force.
   std::vector<double> make_row(double t, const model::Evaluation& ev, bool at_event);
 

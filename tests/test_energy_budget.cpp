@@ -34,7 +34,6 @@ class QuadraticWork : public DynamicalSystem {
   double stop_time() const override { return 2.0; }
   double max_step(double, std::span<const double>) const override { return 0.05; }
   std::size_t quadrature_size() const override { return 1; }
-  std::vector<std::string> quadrature_names() const override { return {"q"}; }
   void quadrature_rhs(double t, std::span<const double>, std::span<double> w) override { w[0] = t * t; }
 };
 
