@@ -23,7 +23,7 @@
 #include "apps/cluster.hpp"
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
-#include "apps/parallel_runs.hpp"
+#include "study/parallel_runs.hpp"
 #include "apps/plot.hpp"
 #include "apps/scene_value.hpp"
 #include "calibrate/evaluation_cache.hpp"
@@ -325,7 +325,7 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
     if (const int refused = cluster::on_rank0([&] { cache_writer.emplace(opt.cache, in.cache, in.cache_context); })) return refused;
   }
 
-  const int jobs = job_count(opt.jobs, 1u << 20);  // threads a rank (each stage uses at most one per work item)
+  const int jobs = study::job_count(opt.jobs, 1u << 20);  // threads a rank (each stage uses at most one per work item)
   const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
   std::vector<double> start;
   for (const auto& s : in.start) start.push_back(s.value);

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "apps/cluster.hpp"
-#include "apps/parallel_runs.hpp"
+#include "study/parallel_runs.hpp"
 
 namespace imcol {
 
@@ -14,7 +14,7 @@ calib::Runner cluster_runner(int jobs) {
   r.run = [jobs](std::size_t n, const std::function<std::string(std::size_t)>& work,
                  const std::function<void(std::size_t, std::string, int)>& done) {
     // At least one thread, also for no items: every rank must ask rank 0 once to learn that there is nothing.
-    cluster::run_distributed(n, std::max(1, job_count(jobs, n)), work, [&done](std::size_t i, std::string bytes, int rank) {
+    cluster::run_distributed(n, std::max(1, study::job_count(jobs, n)), work, [&done](std::size_t i, std::string bytes, int rank) {
       done(i, std::move(bytes), rank);
       return true;  // every item runs: a failed evaluation is a result too
     });

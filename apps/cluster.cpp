@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "apps/parallel_runs.hpp"
+#include "study/parallel_runs.hpp"
 #include "apps/run_failure.hpp"
 #include "core/errors.hpp"
 
@@ -30,7 +30,7 @@ World world() { return {}; }
 
 void run_distributed(std::size_t n, int jobs, const std::function<std::string(std::size_t)>& work,
                      const std::function<bool(std::size_t, std::string, int)>& done) {
-  run_parallel(n, jobs, work, [&](std::size_t i, std::string r) { return done(i, std::move(r), 0); });
+  study::run_parallel(n, jobs, work, [&](std::size_t i, std::string r) { return done(i, std::move(r), 0); });
 }
 
 void share(std::string&) {}
@@ -191,7 +191,7 @@ World world() {
 void run_distributed(std::size_t n, int jobs, const std::function<std::string(std::size_t)>& work,
                      const std::function<bool(std::size_t, std::string, int)>& done) {
   const World w = world();
-  if (w.size == 1) return run_parallel(n, jobs, work, [&](std::size_t i, std::string r) { return done(i, std::move(r), 0); });
+  if (w.size == 1) return study::run_parallel(n, jobs, work, [&](std::size_t i, std::string r) { return done(i, std::move(r), 0); });
   g_released = false;
   if (w.rank == 0) coordinator(n, jobs, work, done, w.size);
   else worker(jobs, work);

@@ -14,7 +14,7 @@
 
 #include "apps/format.hpp"
 #include "apps/output_unit.hpp"
-#include "apps/parallel_runs.hpp"
+#include "study/parallel_runs.hpp"
 #include "apps/plot.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
@@ -103,7 +103,7 @@ double run_cells(const std::vector<Scene>& scenes, std::vector<Cell>& cells, int
                 << std::setprecision(1) << seconds_since(start) << " s   " << std::defaultfloat << std::flush;
     return true;
   };
-  run_parallel(cells.size(), jobs, run_cell, take);
+  study::run_parallel(cells.size(), jobs, run_cell, take);
   if (tty) std::cerr << "\n";
   return seconds_since(start);
 }
@@ -189,7 +189,7 @@ int history_sweep(const std::string& scene_path, const std::vector<Override>& ov
       c.series = s;
       cells.push_back(std::move(c));
     }
-  const int jobs = job_count(sw.jobs, cells.size());
+  const int jobs = study::job_count(sw.jobs, cells.size());
   const double wall = run_cells(scenes, cells, jobs, sw.progress);
 
   const Cell* first = nullptr;

@@ -20,7 +20,7 @@
 #include "apps/format.hpp"
 #include "core/number_text.hpp"
 #include "apps/output_unit.hpp"
-#include "apps/parallel_runs.hpp"
+#include "study/parallel_runs.hpp"
 #include "apps/plot.hpp"
 #include "apps/rank_inputs.hpp"
 #include "run/measured_run.hpp"
@@ -408,7 +408,7 @@ Tally run_points(const std::vector<Scene>& scenes, std::vector<PointResult>& pts
     return tally.write_error.empty();  // a failed write stops the sweep taking points
   };
   if (cluster::world().size == 1) {
-    run_parallel(pts.size(), jobs, run_point, take);
+    study::run_parallel(pts.size(), jobs, run_point, take);
   } else {  // over the MPI job's ranks: every point, rank 0's own too, goes through the bytes a worker sends
     cluster::run_distributed(
         pts.size(), jobs, [&](std::size_t i) { return encode_point(run_point(i)); },
@@ -584,7 +584,7 @@ int sweep(const std::string& scene_path, const std::vector<Override>& overrides,
   const double scenes_check_s = seconds_since(t_scenes);
   std::vector<PointResult> pts(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) pts[i].value = values[i];
-  const int jobs = job_count(opt.jobs, pts.size());
+  const int jobs = study::job_count(opt.jobs, pts.size());
   // The folder is one unit (apps/output_unit.hpp): the sweep is built beside it and swapped in when complete.
   // sweep.partial marks sweep.csv as incomplete until then; a sweep stopped by a write error keeps both beside the folder.
   // Under mpirun, rank 0 alone takes the folder, writes and prints; a refused folder ends every rank.

@@ -7,7 +7,7 @@
 
 #include <optional>
 
-#include "apps/parallel_runs.hpp"
+#include "study/parallel_runs.hpp"
 #include "apps/sweep.hpp"
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
@@ -86,8 +86,8 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
     py::gil_scoped_release free;
     const Scene base = load(overrides);
     const std::vector<Scene> scenes = sweep_scenes(load, overrides, base, vary, values);
-    run_parallel(
-        scenes.size(), job_count(jobs, scenes.size()), [&](std::size_t i) { return run_sweep_point(scenes[i], values[i]); },
+    study::run_parallel(
+        scenes.size(), study::job_count(jobs, scenes.size()), [&](std::size_t i) { return run_sweep_point(scenes[i], values[i]); },
         [&](std::size_t i, SweepPoint p) {
           pts[i] = std::move(p);
           return true;

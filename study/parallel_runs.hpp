@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Independent runs on a few threads (the sweeps): each run apart, its result taken in under one lock.
+// Independent runs on a few threads (the studies): each run apart, its result taken in under one lock.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-namespace imcol {
+namespace imcol::study {
 
 /// The threads for n runs: `requested` (0 = all cores), at most n.
 inline int job_count(int requested, std::size_t n) {
@@ -34,4 +34,4 @@ void run_parallel(std::size_t n, int jobs, Work work, Done done) {
   for (auto& t : threads) t.join();
 }
 
-}  // namespace imcol
+}  // namespace imcol::study
