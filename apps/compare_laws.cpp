@@ -108,22 +108,23 @@ const std::vector<std::pair<std::string, std::optional<double>>>& law_numbers(co
 
 /// Names in first-seen order over every row: the named measures of e, or the laws' numbers.
 template <class Get>
-std::vector<std::string> union_of_names(const std::vector<LawRow>& rows, Get get) {
-  std::vector<std::string> names;
+auto union_of_names(const std::vector<LawRow>& rows, Get get) {
+  std::vector<std::decay_t<decltype(get(rows.front()).front().first)>> names;
   for (const auto& r : rows)
     for (const auto& [k, v] : get(r))
       if (std::find(names.begin(), names.end(), k) == names.end()) names.push_back(k);
   return names;
 }
 
-std::optional<double> lookup(const std::vector<std::pair<std::string, std::optional<double>>>& list, const std::string& name) {
+template <class K>
+std::optional<double> lookup(const std::vector<std::pair<K, std::optional<double>>>& list, const K& name) {
   for (const auto& [k, v] : list)
     if (k == name) return v;
   return std::nullopt;
 }
 
-const std::vector<std::pair<std::string, std::optional<double>>>& measures(const LawRow& r) {
-  static const std::vector<std::pair<std::string, std::optional<double>>> none;
+const std::vector<std::pair<EMeasure, std::optional<double>>>& measures(const LawRow& r) {
+  static const std::vector<std::pair<EMeasure, std::optional<double>>> none;
   return r.ran() ? r.run.summary.e_measures : none;
 }
 
@@ -192,7 +193,7 @@ void print_scene_table(const std::vector<LawRow>& rows, const std::string& e_is)
     if (r.ran()) std::cout << std::setw(9) << r.law;
   std::cout << "\n";
   for (const auto& m : names) {
-    std::cout << std::left << std::setw(22) << (m == e_is ? m + " (e)" : m) << std::right;
+    std::cout << std::left << std::setw(22) << (to_string(m) == e_is ? std::string(to_string(m)) + " (e)" : std::string(to_string(m))) << std::right;
     for (const auto& r : rows)
       if (r.ran()) std::cout << std::setw(9) << cell(lookup(measures(r), m), 4);
     std::cout << "\n";
@@ -244,7 +245,7 @@ std::string laws_csv(const std::vector<LawRow>& rows, const std::string& column)
   if (!column.empty()) csv << "point," << column << ",";
   csv << "law,status,e,e_minus_e_ramp,St,contact_time_s,max_contact_force_N,max_overlap_m,min_gap_m,impact_speed_m_s,steps,rhs_evals,"
          "cpu_time_s,wall_time_s,setup_time_s";
-  for (const auto& m : measure_names) csv << ",e_" << m;
+  for (const auto& m : measure_names) csv << ",e_" << to_string(m);
   for (const auto& n : number_names) csv << ",law_" << n;
   csv << ",message\n";
   for (const auto& r : rows) {
@@ -296,7 +297,7 @@ Json law_json(const LawRow& r, const std::vector<LawRow>& rows) {
   j["wall_time_s"] = s.wall_time_s;
   j["setup_time_s"] = s.setup_time_s;
   Json jm = Json::object(), jn = Json::object(), model = Json::object();
-  for (const auto& [k, v] : measures(r)) jm[k] = run::finite_or_null(v);
+  for (const auto& [k, v] : measures(r)) jm[to_string(k)] = run::finite_or_null(v);
   for (const auto& [k, v] : law_numbers(r)) jn[k] = run::finite_or_null(v);
   for (const auto& [k, v] : s.model)
     if (k.rfind("contact.", 0) == 0) model[k] = v;

@@ -227,9 +227,9 @@ const std::vector<SweepColumn>& sweep_columns() {
       {"e", [](P p) { return p.ok ? p.summary.e : V(); }, nullptr},
       {"e_instant", [](P p) { return p.ok ? p.summary.e_instant : V(); }, nullptr},
       // The named measures of e (docs/bounces.md); `e` is the one e_is names (measure.e).
-      {"e_fit_distance", [](P p) { return p.ok ? p.summary.measure_e("fit_distance") : V(); }, nullptr},
-      {"e_at_gap", [](P p) { return p.ok ? p.summary.measure_e("at_gap") : V(); }, nullptr},
-      {"e_peak_rebound", [](P p) { return p.ok ? p.summary.measure_e("peak_rebound") : V(); }, nullptr},
+      {"e_fit_distance", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::fit_distance) : V(); }, nullptr},
+      {"e_at_gap", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::at_gap) : V(); }, nullptr},
+      {"e_peak_rebound", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::peak_rebound) : V(); }, nullptr},
       {"separated", [](P p) { return p.ok ? V(p.summary.separated ? 1.0 : 0.0) : V(); }, nullptr},
       {"min_gap_m", [](P p) { return p.ok ? p.summary.min_gap_m : V(); }, nullptr},
       {"steps", [](P p) { return p.ok ? V(static_cast<double>(p.summary.solver.stats.steps)) : V(); }, nullptr},
@@ -239,10 +239,10 @@ const std::vector<SweepColumn>& sweep_columns() {
       {"message", nullptr, [](P p) { return p.message; }},
       {"e_is", nullptr, [](P p) { return p.ok ? p.summary.e_is : std::string(); }},
       {"e_status", nullptr, [](P p) { return p.ok ? e_status(p.summary) : std::string(); }},
-      {"e_fit_time", [](P p) { return p.ok ? p.summary.measure_e("fit_time") : V(); }, nullptr},
-      {"e_yang_hunt_2006", [](P p) { return p.ok ? p.summary.measure_e("yang_hunt_2006") : V(); }, nullptr},
-      {"e_joseph_2001", [](P p) { return p.ok ? p.summary.measure_e("joseph_2001") : V(); }, nullptr},
-      {"e_gondret_2002", [](P p) { return p.ok ? p.summary.measure_e("gondret_2002") : V(); }, nullptr},
+      {"e_fit_time", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::fit_time) : V(); }, nullptr},
+      {"e_yang_hunt_2006", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::yang_hunt_2006) : V(); }, nullptr},
+      {"e_joseph_2001", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::joseph_2001) : V(); }, nullptr},
+      {"e_gondret_2002", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::gondret_2002) : V(); }, nullptr},
   };
   return cols;
 }

@@ -99,7 +99,7 @@ void bind_run(py::module_& m) {
           "measures",
           [](const PyResult& r) {
             py::dict d;
-            for (const auto& [name, e] : r.run.summary.e_measures) d[py::str(name)] = opt(e);
+            for (const auto& [m, e] : r.run.summary.e_measures) d[py::str(to_string(m))] = opt(e);
             return d;
           },
           "The first contact's named measures of e, name -> e (None where not measured).")

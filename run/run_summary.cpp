@@ -12,9 +12,9 @@ const char* to_string(Configuration c) {
   return "";
 }
 
-std::optional<double> RunSummary::measure_e(const std::string& name) const {
+std::optional<double> RunSummary::measure_e(EMeasure m) const {
   for (const auto& [k, v] : e_measures)
-    if (k == name) return v;
+    if (k == m) return v;
   return std::nullopt;
 }
 

@@ -65,8 +65,8 @@ struct RunSummary {
   std::optional<std::string> e_missing;    // why e is undefined (only without e; may be unknown)
   std::optional<double> e_fit_raw, e_instant;
   double e_instant_gap_m = 0;
-  /// The first contact's named measures, name → e (empty without a contact), in summary.json's order.
-  std::vector<std::pair<std::string, std::optional<double>>> e_measures;
+  /// The first contact's named measures, measure → e (empty without a contact), in summary.json's order.
+  std::vector<std::pair<EMeasure, std::optional<double>>> e_measures;
   std::optional<std::string> e_by_measure;  // one line: e by each distinct measure and their spread
   /// The first collision's energy budget over approach, contact and rebound (run/energy_budget.hpp): what each force
   /// dissipated, in units of the impact kinetic energy, and the largest |closure| of a phase in those units.
@@ -102,8 +102,8 @@ struct RunSummary {
   double wall_time_s = 0;   // integration and measures
   double setup_time_s = 0;  // model construction, incl. one-off lookup tables
 
-  /// e of named measure `name` at the first contact; nullopt when not measured or without a contact.
-  std::optional<double> measure_e(const std::string& name) const;
+  /// e of named measure `m` at the first contact; nullopt when not measured or without a contact.
+  std::optional<double> measure_e(EMeasure m) const;
   /// A model choice's display value (summary.json `model`), nullopt when the model has none of that name.
   std::optional<std::string> model_choice(const std::string& name) const;
 };

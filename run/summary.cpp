@@ -64,7 +64,8 @@ void measure_summary(RunSummary& s, const CollisionModel& model, const Watch& wa
   s.e_instant_gap_m = sc.measure.instant_gap * 2 * model.radius(0);
   // The named measures of the first contact (each contact's are in `bounces`).
   if (!bounces.empty()) {
-    for (const auto& [name, x] : bounces[0]["e_measures"].items()) s.e_measures.push_back({name, number_or_none(x.value("e", nlohmann::ordered_json(nullptr)))});
+    for (const auto& [name, x] : bounces[0]["e_measures"].items())
+      s.e_measures.push_back({*choice_from_string<EMeasure>(name), number_or_none(x.value("e", nlohmann::ordered_json(nullptr)))});
     for (const auto& [name, x] : bounces[0]["measures_disagree"].items()) s.measures_disagree.push_back({name, x.get<double>()});
     put_energy(s, bounces[0]["energy_budget"]);
   }
