@@ -137,7 +137,8 @@ HistoryFiles report_rows(const std::vector<Row>& rows, bool collision, const std
   for (const auto& r : rows) {
     const auto& s = r.run.summary;
     const SolverStats& sol = s.solver.stats;
-    const std::string modes = s.history_modes ? std::to_string(*s.history_modes) : "-";
+    const std::optional<long> hm = s.history ? s.history->modes : std::nullopt;
+    const std::string modes = hm ? std::to_string(*hm) : "-";
     const double wall = s.wall_time_s, setup = s.setup_time_s;
     std::cout << std::left << std::setw(12) << r.kernel << std::setw(8) << r.evaluator << std::right << std::setw(12)
               << (std::isnan(r.metric) ? "-" : fixed(r.metric, 6)) << std::setw(10) << sci(r.metric - none_metric, 1)
@@ -148,7 +149,7 @@ HistoryFiles report_rows(const std::vector<Row>& rows, bool collision, const std
     // A value that is not there (no direct reference, no e) is an empty cell, as in the other CSV files.
     csv << r.kernel << "," << r.evaluator << "," << csv_number(r.metric) << "," << csv_number(r.metric - none_metric) << ","
         << csv_number(r.peak) << "," << csv_number(r.d_metric) << "," << csv_number(r.d_force) << ","
-        << (s.history_modes ? std::to_string(*s.history_modes) : "") << "," << sol.state_size << "," << sol.steps << ","
+        << (hm ? std::to_string(*hm) : "") << "," << sol.state_size << "," << sol.steps << ","
         << sol.rhs_evals << "," << sol.linear_solver << "," << csv_number(wall) << "," << csv_number(setup) << "\n";
     if (r.kernel != "none")
       for (const auto& [t, f] : force_trace(r.run))

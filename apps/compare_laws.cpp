@@ -358,7 +358,10 @@ Json laws_json(const std::string& scene_path, const std::vector<Override>& overr
     j["e_dry"] = cx.contact->e_dry;
     j["delta_ss_m"] = cx.contact->delta_ss_m;
   }
-  if (cx.first_ran) j["effects"] = cx.first_ran->run.summary.effects;
+  if (cx.first_ran) {
+    j["effects"] = Json::array();
+    for (Effect x : cx.first_ran->run.summary.effects) j["effects"].push_back(to_string(x));
+  }
   if (!sw.vary.empty()) put_sweep_settings(j, sw, column);
   Json jrows = Json::array();
   for (const auto& r : rows) jrows.push_back(law_json(r, rows));
@@ -401,7 +404,7 @@ int compare_laws(const std::string& scene_path, const std::vector<Override>& ove
   LawsContext cx;
   for (const auto& r : rows)
     if (r.ran() && !cx.first_ran) cx.first_ran = &r;
-  cx.e_is = cx.first_ran ? cx.first_ran->run.summary.e_is : to_string(base.measure.e);
+  cx.e_is = to_string(cx.first_ran ? cx.first_ran->run.summary.e_is : base.measure.e);
   cx.contact = cx.first_ran ? cx.first_ran->run.summary.contact : std::nullopt;
   const std::string& e_is = cx.e_is;
   const std::optional<ContactSummary>& contact = cx.contact;

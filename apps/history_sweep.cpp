@@ -71,7 +71,7 @@ std::string sweep_csv(const std::vector<Cell>& cells, const char* column) {
     csv << c.point << "," << csv_number(c.value) << "," << c.series.kernel << "," << c.series.evaluator << "," << c.status << ","
         << csv_cell(if_ok(c, s.St)) << "," << csv_cell(if_ok(c, s.e)) << "," << csv_cell(if_ok(c, s.St_initial)) << ","
         << csv_cell(if_ok(c, s.Re)) << "," << csv_cell(c.ok() && s.contact ? s.contact->impact_speed_m_s : std::nullopt) << ","
-        << (c.ok() ? s.e_is : "") << "," << (c.ok() ? std::to_string(s.solver.stats.steps) : "") << ","
+        << (c.ok() ? to_string(s.e_is) : "") << "," << (c.ok() ? std::to_string(s.solver.stats.steps) : "") << ","
         << (c.ok() ? csv_number(s.wall_time_s) : "") << "," << msg << "\n";
   }
   return csv.str();
@@ -197,7 +197,7 @@ int history_sweep(const std::string& scene_path, const std::vector<Override>& ov
     if (c.ok() && !first) first = &c;
   std::cout << "scene " << base.name << ": e per history kernel at " << sw.points << " points of " << sw.vary << " from " << sw.from
             << " to " << sw.to << " (" << sw.spacing << " spacing, " << cells.size() << " runs on " << jobs << (jobs == 1 ? " job, " : " jobs, ")
-            << std::fixed << std::setprecision(2) << wall << " s); e = " << (first ? first->summary.e_is : to_string(base.measure.e))
+            << std::fixed << std::setprecision(2) << wall << " s); e = " << to_string(first ? first->summary.e_is : base.measure.e)
             << std::defaultfloat << "\n";
   print_table(cells, series, values, column);
   int failed = 0;

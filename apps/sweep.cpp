@@ -29,6 +29,7 @@
 #include "core/report.hpp"
 #include "core/timing.hpp"
 #include "run/json_util.hpp"
+#include "run/summary_json.hpp"
 
 namespace imcol {
 
@@ -97,62 +98,28 @@ PointResult point_result(const Scene& scene, std::size_t i, double value) {
   return r;
 }
 
-std::optional<double> json_opt(const nlohmann::json& v) { return v.is_null() ? std::nullopt : std::optional<double>(v.get<double>()); }
-
 /// A finished point as a worker rank sends it to rank 0 (docs/cluster.md): its CSV row as formatted where it ran, and
-/// the summary's values that rank 0's table, sweep.json and export read. JSON numbers read back to the same doubles.
+/// its summary, as CBOR of summary.json's object (run/summary_json.hpp): doubles keep every bit.
 std::string encode_point(const PointResult& r) {
-  nlohmann::json j;
+  run::Json j;
   j["ok"] = r.ok;
   j["value"] = r.value;
   j["message"] = r.message;
   j["row"] = r.row;
-  if (r.ok) {
-    const RunSummary& s = r.summary;
-    j["St"] = run::finite_or_null(s.St);
-    j["St_B_eq_6_2"] = run::finite_or_null(s.St_B_eq_6_2);
-    j["Re"] = run::finite_or_null(s.Re);
-    j["e"] = run::finite_or_null(s.e);
-    j["U_i1"] = run::finite_or_null(s.U_i1);
-    j["U_i2"] = run::finite_or_null(s.U_i2);
-    j["steps"] = s.solver.stats.steps;
-    j["wall_time_s"] = s.wall_time_s;
-    j["e_is"] = s.e_is;
-    j["measures_disagree"] = s.measures_disagree;
-    j["St_convention"] = s.St_convention;
-    j["effects"] = s.effects;
-    j["e_dry"] = s.contact ? nlohmann::json(s.contact->e_dry) : nlohmann::json(nullptr);
-  }
-  return j.dump();
+  if (r.ok) j["summary"] = r.summary;
+  const auto v = run::Json::to_cbor(j);
+  return std::string(v.begin(), v.end());
 }
 
 PointResult decode_point(const std::string& bytes) {
-  const nlohmann::json j = nlohmann::json::parse(bytes);
+  const run::Json j = run::Json::from_cbor(bytes);
   PointResult r;
   r.done = true;
   r.ok = j["ok"].get<bool>();
   r.value = j["value"].get<double>();
   r.message = j["message"].get<std::string>();
   r.row = j["row"].get<std::string>();
-  if (r.ok) {
-    RunSummary& s = r.summary;
-    s.St = json_opt(j["St"]);
-    s.St_B_eq_6_2 = json_opt(j["St_B_eq_6_2"]);
-    s.Re = json_opt(j["Re"]);
-    s.e = json_opt(j["e"]);
-    s.U_i1 = json_opt(j["U_i1"]);
-    s.U_i2 = json_opt(j["U_i2"]);
-    s.solver.stats.steps = j["steps"].get<decltype(s.solver.stats.steps)>();
-    s.wall_time_s = j["wall_time_s"].get<double>();
-    s.e_is = j["e_is"].get<std::string>();
-    s.measures_disagree = j["measures_disagree"].get<std::vector<std::pair<std::string, double>>>();
-    s.St_convention = j["St_convention"].get<std::string>();
-    s.effects = j["effects"].get<std::vector<std::string>>();
-    if (!j["e_dry"].is_null()) {
-      s.contact.emplace();
-      s.contact->e_dry = j["e_dry"].get<double>();
-    }
-  }
+  if (r.ok) r.summary = j["summary"].get<RunSummary>();
   return r;
 }
 
@@ -172,7 +139,7 @@ std::string point_message(const RunSummary& s, double t_end_scene, double t_end_
   if (!s.e) return e_missing_message(s, t_end_scene, t_end_run);
   if (extended) os << "t_end extended to " << t_end_run << " s";
   if (e_status(s) == "measures_disagree") {
-    os << (extended ? "; " : "") << "measures disagree with e (" << s.e_is << ") by more than "
+    os << (extended ? "; " : "") << "measures disagree with e (" << to_string(s.e_is) << ") by more than "
        << "measure.disagreement:";
     for (const auto& [k, v] : s.measures_disagree) os << " " << k << " = " << v;
   }
@@ -237,7 +204,7 @@ const std::vector<SweepColumn>& sweep_columns() {
       {"wall_time_s", [](P p) { return p.ok ? V(p.summary.wall_time_s) : V(); }, nullptr},
       {"status", nullptr, [](P p) { return std::string(p.ok ? "ok" : "failed"); }},
       {"message", nullptr, [](P p) { return p.message; }},
-      {"e_is", nullptr, [](P p) { return p.ok ? p.summary.e_is : std::string(); }},
+      {"e_is", nullptr, [](P p) { return p.ok ? std::string(to_string(p.summary.e_is)) : std::string(); }},
       {"e_status", nullptr, [](P p) { return p.ok ? e_status(p.summary) : std::string(); }},
       {"e_fit_time", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::fit_time) : V(); }, nullptr},
       {"e_yang_hunt_2006", [](P p) { return p.ok ? p.summary.measure_e(EMeasure::yang_hunt_2006) : V(); }, nullptr},
@@ -558,8 +525,9 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
   const auto ran = std::find_if(pts.begin(), pts.end(), [](const PointResult& p) { return p.ok; });
   j["St_convention"] = ran == pts.end() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(ran->summary.St_convention);
   if (ran != pts.end()) {
-    j["effects"] = ran->summary.effects;
-    j["e_is"] = ran->summary.e_is;
+    j["effects"] = nlohmann::ordered_json::array();
+    for (Effect x : ran->summary.effects) j["effects"].push_back(to_string(x));
+    j["e_is"] = to_string(ran->summary.e_is);
     if (ran->summary.contact) j["e_dry"] = ran->summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
   }
   j["e_not_measured_points"] = out.counts.missing;

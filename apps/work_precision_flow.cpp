@@ -17,6 +17,7 @@
 #include "apps/run_failure.hpp"
 #include "run/json_util.hpp"
 #include "run/simulate.hpp"
+#include "run/summary_json.hpp"
 #include "run/summary.hpp"
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
@@ -38,7 +39,7 @@ struct FlowRung {
 struct FlowRungResult {
   double e = NAN, e_instant = NAN, wall_time_s = NAN, dt = NAN, ms_per_step = NAN, krylov = NAN;
   long steps = 0;
-  nlohmann::ordered_json flow;  // run::flow_block
+  nlohmann::ordered_json flow;  // summary.json's flow block
   RunFailure failure;
 };
 
@@ -78,7 +79,7 @@ FlowRungResult run_flow_rung(const Scene& base, const std::vector<Override>& ove
     out.e = s.e.value_or(NAN), out.e_instant = s.e_instant.value_or(NAN), out.wall_time_s = s.wall_time_s;
     out.dt = f.stats.dt, out.ms_per_step = f.ms_per_step, out.krylov = f.krylov_iterations_per_step;
     out.steps = static_cast<long>(f.stats.steps);
-    out.flow = run::flow_block(f);
+    out.flow = run::Json(f);
   } catch (const std::exception&) {
     out.failure = RunFailure::current();
   }

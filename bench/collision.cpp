@@ -18,7 +18,7 @@ namespace {
 
 using namespace imcol;
 
-void run(benchmark::State& state, const Scene& sc) {
+void run_scene(benchmark::State& state, const Scene& sc) {
   RunResult r = simulate(sc);  // warm-up
   for (auto _ : state) {
     r = simulate(sc);
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
         if (history) ov.push_back({"history.evaluator", std::string("\"") + in.evaluator + "\""});
         const Scene sc = bench::scene(bench::kWallScene, history, 0, ov);
         const std::string name = std::string("collision/") + in.name + "/rtol:" + rtol + "/history:" + (history ? "on" : "off");
-        benchmark::RegisterBenchmark(name.c_str(), [sc](benchmark::State& st) { run(st, sc); })->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(name.c_str(), [sc](benchmark::State& st) { run_scene(st, sc); })->Unit(benchmark::kMillisecond);
       }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -44,7 +44,7 @@ struct Exact {
   }
 };
 
-Result run(const std::string& path, std::vector<Override> ov, double relax_times, int repeat = 3) {
+Result run_case(const std::string& path, std::vector<Override> ov, double relax_times, int repeat = 3) {
   const auto [alpha, gamma, f] = Exact(load_scene(path, ov));
   const double t_end = relax_times / alpha;
   ov.push_back({"solver.t_end", num(t_end)});
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
   struct Entry { std::string ev, setting; Result r; };
   std::vector<Entry> all;
   for (double tol : {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9}) {
-    const Result r = run(path, {{"history.evaluator", "\"soe\""}, {"history.tolerance", num(tol)}, {"solver.rtol", num(tol / 10)},
+    const Result r = run_case(path, {{"history.evaluator", "\"soe\""}, {"history.tolerance", num(tol)}, {"solver.rtol", num(tol / 10)},
                                 {"solver.atol", num(tol / 100)}}, 100);
     std::ostringstream st;
     st << "tol " << tol << " rtol " << tol / 10;
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   const double alpha = Exact(load_scene(path)).alpha;
   for (int n : {250, 500, 1000, 2000, 4000, 8000}) {
     const double dt = 100 / alpha / n;  // 100 relaxation times in n steps
-    const Result r = run(path, {{"history.evaluator", "\"direct\""}, {"history.direct_step", num(dt)},
+    const Result r = run_case(path, {{"history.evaluator", "\"direct\""}, {"history.direct_step", num(dt)},
                                 {"solver.rtol", "1e-10"}, {"solver.atol", "1e-12"}}, 100, 1);
     all.push_back({"direct", "N = " + std::to_string(n) + " steps", r});
   }
@@ -106,9 +106,9 @@ int main(int argc, char** argv) {
             << "direct ms" << std::setw(10) << "steps" << std::setw(12) << "soe error" << std::setw(12) << "dir error" << "\n";
   const double dt = 100 / alpha / 1000;
   for (double L : {25.0, 50.0, 100.0, 200.0, 400.0}) {
-    const Result so = run(path, {{"history.evaluator", "\"soe\""}, {"history.tolerance", "1e-6"}, {"solver.rtol", "1e-7"},
+    const Result so = run_case(path, {{"history.evaluator", "\"soe\""}, {"history.tolerance", "1e-6"}, {"solver.rtol", "1e-7"},
                                  {"solver.atol", "1e-8"}}, L);
-    const Result di = run(path, {{"history.evaluator", "\"direct\""}, {"history.direct_step", num(dt)},
+    const Result di = run_case(path, {{"history.evaluator", "\"direct\""}, {"history.direct_step", num(dt)},
                                  {"solver.rtol", "1e-7"}, {"solver.atol", "1e-8"}}, L, 1);
     std::cout << std::setw(12) << L << std::setw(12) << so.ms << std::setw(10) << so.steps << std::setw(12) << di.ms
               << std::setw(10) << di.steps << std::setw(12) << so.error << std::setw(12) << di.error << "\n";

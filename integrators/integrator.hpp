@@ -6,6 +6,8 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/choices.hpp"
 #include "core/system.hpp"
@@ -44,6 +46,8 @@ struct SolverStats {
   std::string linear_solver;   // what ran: dense | schur | gmres
   std::size_t state_size = 0;
   std::map<std::string, long> as_map() const;
+  /// The counters (all but linear_solver and state_size) by name, as as_map names them.
+  static const std::vector<std::pair<const char*, long SolverStats::*>>& counters();
 };
 
 /// A stateful CVODE/IDA integration of one DynamicalSystem (as Cantera's Integrator driven by ReactorNet::advance):

@@ -30,23 +30,31 @@
 
 namespace imcol {
 
+const std::vector<std::pair<const char*, long SolverStats::*>>& SolverStats::counters() {
+  static const std::vector<std::pair<const char*, long SolverStats::*>> list = {
+      {"steps", &SolverStats::steps},
+      {"rhs_evals", &SolverStats::rhs_evals},
+      {"jac_evals", &SolverStats::jac_evals},
+      {"nonlin_iters", &SolverStats::nonlin_iters},
+      {"nonlin_conv_fails", &SolverStats::nonlin_conv_fails},
+      {"error_test_fails", &SolverStats::error_test_fails},
+      {"root_fn_evals", &SolverStats::root_fn_evals},
+      {"root_events", &SolverStats::root_events},
+      {"reinits", &SolverStats::reinits},
+      {"lin_iters", &SolverStats::lin_iters},
+      {"lin_conv_fails", &SolverStats::lin_conv_fails},
+      {"prec_setups", &SolverStats::prec_setups},
+      {"prec_solves", &SolverStats::prec_solves},
+      {"breakpoints", &SolverStats::breakpoints},
+      {"order_caps", &SolverStats::order_caps}};
+  return list;
+}
+
 std::map<std::string, long> SolverStats::as_map() const {
-  return {{"steps", steps},
-          {"rhs_evals", rhs_evals},
-          {"jac_evals", jac_evals},
-          {"nonlin_iters", nonlin_iters},
-          {"nonlin_conv_fails", nonlin_conv_fails},
-          {"error_test_fails", error_test_fails},
-          {"root_fn_evals", root_fn_evals},
-          {"root_events", root_events},
-          {"reinits", reinits},
-          {"lin_iters", lin_iters},
-          {"lin_conv_fails", lin_conv_fails},
-          {"prec_setups", prec_setups},
-          {"prec_solves", prec_solves},
-          {"breakpoints", breakpoints},
-          {"order_caps", order_caps},
-          {"state_size", static_cast<long>(state_size)}};
+  std::map<std::string, long> m;
+  for (const auto& [name, field] : counters()) m[name] = this->*field;
+  m["state_size"] = static_cast<long>(state_size);
+  return m;
 }
 
 namespace {

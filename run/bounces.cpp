@@ -9,7 +9,6 @@
 
 #include "core/measure.hpp"
 #include "run/energy_budget.hpp"
-#include "run/json_util.hpp"
 
 namespace imcol::run {
 
@@ -51,18 +50,18 @@ std::optional<double> fitted_u(const Track& tr, const std::vector<double>& rate,
 
 /// e from an impact and a rebound U_rel (< 0 moving apart), and those velocities: negative values are clipped to 0
 /// and say why.
-void put_e(nlohmann::ordered_json& j, std::optional<double> u_in, std::optional<double> u_out, const char* why_negative) {
-  j["impact_velocity_m_s"] = or_null(u_in);
-  j["rebound_velocity_m_s"] = or_null(u_out);
+void put_e(MeasureResult& m, std::optional<double> u_in, std::optional<double> u_out, const char* why_negative) {
+  m.impact_velocity_m_s = u_in;
+  m.rebound_velocity_m_s = u_out;
   if (!u_in || !u_out || !(*u_in > 0)) {
-    j["e"] = nullptr;
+    m.e.reset();
     return;
   }
   const double e = -*u_out / *u_in;
-  j["e"] = std::max(0.0, e);
+  m.e = std::max(0.0, e);
   if (e < 0) {
-    j["e_raw"] = e;
-    j["note"] = why_negative;
+    m.e_raw = e;
+    m.note = why_negative;
   }
 }
 
@@ -106,31 +105,31 @@ double speed_change_time(const Track& tr, double t0, double u0, double fraction,
 }
 
 /// fit_time (and yang_hunt_2006): least-squares slopes over windows of W before the contact and after the separation.
-nlohmann::ordered_json fit_time_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double W) {
-  nlohmann::ordered_json ft;
+MeasureResult fit_time_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double W) {
+  MeasureResult ft;
   const double Wk = flight_window(f, W);
   std::optional<double> ui = f.started ? std::optional<double>(f.c.u_in) : fitted_u(tr, rate, f.c.t_in - Wk, f.c.t_in);
   std::optional<double> ur = f.sep ? fitted_u(tr, rate, f.t_sep, f.t_sep + Wk) : std::optional<double>(0.0);
   put_e(ft, ui, ur, "the rebound fit's slope points toward the target: the sphere fell back within the window; e clipped to 0");
-  ft["window_s"] = Wk;
-  ft["cut_by_end_of_run"] = f.sep && f.last && f.t_next - f.t_sep < W * (1 - 1e-9) && Wk == f.t_next - f.t_sep;
-  if (!f.sep && ft["e"].is_number()) ft["e"] = 0.0;
+  ft.window_s = Wk;
+  ft.cut_by_end_of_run = f.sep && f.last && f.t_next - f.t_sep < W * (1 - 1e-9) && Wk == f.t_next - f.t_sep;
+  if (!f.sep && ft.e) ft.e = 0.0;
   return ft;
 }
 
 /// One fitted parabola of a sphere's position, for drawing: z(t) = z + u (t − t_ref) + ½ a (t − t_ref)².
-nlohmann::ordered_json parabola(const Track& tr, const std::vector<double>& z, const std::vector<double>& u, double t0, double t1,
-                                double t_ref, int degree) {
+std::optional<FittedPosition> parabola(const Track& tr, const std::vector<double>& z, const std::vector<double>& u, double t0,
+                                       double t1, double t_ref, int degree) {
   const auto p = fit_polynomial_hermite(tr.t, z, u, t0, t1, degree, t_ref);
-  if (!p) return nullptr;
-  return {{"t_ref_s", p->t_ref}, {"z_m", p->value}, {"u_m_s", p->slope}, {"a_m_s2", p->accel}};
+  if (!p) return std::nullopt;
+  return FittedPosition{p->t_ref, p->value, p->slope, p->accel};
 }
 
 /// A measure's window [t0, t1] and each sphere's fitted position in it (degree 1: a line, 2: a parabola), for
 /// trajectory.png.
-nlohmann::ordered_json fitted_window(const Track& tr, double t0, double t1, double t_ref, int degree, bool pair) {
-  nlohmann::ordered_json s = {{"t0_s", t0}, {"t1_s", t1}, {"z1", parabola(tr, tr.z1, tr.u1, t0, t1, t_ref, degree)}};
-  if (pair) s["z2"] = parabola(tr, tr.z2, tr.u2, t0, t1, t_ref, degree);
+FittedStretch fitted_window(const Track& tr, double t0, double t1, double t_ref, int degree, bool pair) {
+  FittedStretch s{t0, t1, parabola(tr, tr.z1, tr.u1, t0, t1, t_ref, degree), std::nullopt, pair};
+  if (pair) s.z2 = parabola(tr, tr.z2, tr.u2, t0, t1, t_ref, degree);
   return s;
 }
 
@@ -141,12 +140,12 @@ nlohmann::ordered_json fitted_window(const Track& tr, double t0, double t1, doub
 /// at either end. A steady force (gravity, drag nearly) is a constant acceleration: the parabola takes it up instead of
 /// tilting the velocity. A dry collision gives e = e_d exactly. The end slopes are compared with U_rel at the δ_SS
 /// crossings (`end_mismatch`, in units of the impact speed); above `tolerance` the entry carries a `warning`.
-nlohmann::ordered_json contact_ends_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double distance,
-                                            double speed_change, double tolerance, bool pair) {
-  nlohmann::ordered_json ce;
+MeasureResult contact_ends_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double distance,
+                                   double speed_change, double tolerance, bool pair) {
+  MeasureResult ce;
   if (!(f.c.u_in > 0)) {
     put_e(ce, std::nullopt, std::nullopt, "");
-    ce["missing"] = "no approach at the contact (U_rel <= 0 at the inward delta_ss crossing)";
+    ce.missing = "no approach at the contact (U_rel <= 0 at the inward delta_ss crossing)";
     return ce;
   }
   const double W = distance / f.c.u_in;
@@ -173,19 +172,19 @@ nlohmann::ordered_json contact_ends_measure(const Track& tr, const std::vector<d
   std::optional<double> ui = f.started ? std::optional<double>(f.c.u_in) : fitted_u(tr, rate, a0, f.c.t_in, 2, f.c.t_in);
   std::optional<double> ur = f.sep ? fitted_u(tr, rate, f.t_sep, r1, 2, f.t_sep) : std::optional<double>(0.0);
   put_e(ce, ui, ur, "the rebound parabola's slope at the separation points toward the target; e clipped to 0");
-  if (!f.sep && ce["e"].is_number()) ce["e"] = 0.0;
-  ce["distance_m"] = distance;
-  ce["window_s"] = Wk;
+  if (!f.sep && ce.e) ce.e = 0.0;
+  ce.distance_m = distance;
+  ce.window_s = Wk;
   if (!by.empty()) {
-    ce["shortened_from_s"] = W;
-    ce["shortened_by"] = by;
+    ce.shortened_from_s = W;
+    ce.shortened_by = by;
   }
-  ce["cut_by_end_of_run"] = by == "end of run";
+  ce.cut_by_end_of_run = by == "end of run";
   // The end slopes against U_rel at the δ_SS crossings (the model's exact values), in units of the impact speed.
   std::optional<double> mis_in, mis_out;
   if (ui && !f.started) mis_in = std::abs(*ui - f.c.u_in) / f.c.u_in;
   if (ur && f.sep && f.c.u_out) mis_out = std::abs(*ur - *f.c.u_out) / f.c.u_in;
-  ce["end_mismatch"] = {{"approach", or_null(mis_in)}, {"rebound", or_null(mis_out)}};
+  ce.end_mismatch = EndMismatch{mis_in, mis_out};
   const bool bad_in = mis_in && *mis_in > tolerance, bad_out = mis_out && *mis_out > tolerance;
   if (bad_in || bad_out) {
     std::ostringstream os;
@@ -194,34 +193,36 @@ nlohmann::ordered_json contact_ends_measure(const Track& tr, const std::vector<d
        << " of the impact speed (more than measure.ends_tolerance = " << tolerance << "): U_rel changes fast there";
     if (!by.empty()) os << " (window " << 1e3 * Wk << " ms, shortened from " << 1e3 * W << " ms by the " << by << ")";
     os << ", so a parabola over a trajectory's stretch misses it";
-    ce["warning"] = os.str();
+    ce.warning = os.str();
   }
   // The windows and each sphere's fitted position in them (for trajectory.png).
-  ce["approach"] = f.started ? nlohmann::ordered_json(nullptr) : fitted_window(tr, a0, f.c.t_in, f.c.t_in, 2, pair);
-  ce["rebound"] = f.sep ? fitted_window(tr, f.t_sep, r1, f.t_sep, 2, pair) : nlohmann::ordered_json(nullptr);
-  if (!ui && !f.started) ce["missing"] = "the approach window is not covered by the run";
-  else if (f.sep && !ur) ce["missing"] = "the rebound window is not covered by the run";
+  ce.stretches = true;
+  if (!f.started) ce.approach = fitted_window(tr, a0, f.c.t_in, f.c.t_in, 2, pair);
+  if (f.sep) ce.rebound = fitted_window(tr, f.t_sep, r1, f.t_sep, 2, pair);
+  if (!ui && !f.started) ce.missing = "the approach window is not covered by the run";
+  else if (f.sep && !ur) ce.missing = "the rebound window is not covered by the run";
   return ce;
 }
 
 /// e_instant: the U_rel at the inward crossing of instant_gap and at the next outward one.
-nlohmann::ordered_json instant_e(const std::vector<Crossing>& inst, const Flights& f) {
+std::optional<double> instant_e(const std::vector<Crossing>& inst, const Flights& f) {
   std::optional<double> ii, io;
   for (const auto& x : inst) {
     if (x.in && x.t >= f.t_from && x.t <= f.t_sep) ii = x.u;
     if (!x.in && ii && !io && x.t >= f.c.t_in && x.t <= f.t_next) io = x.u;
   }
   if (ii && io) return std::max(0.0, -*io / *ii);
-  return ii && !f.sep ? nlohmann::ordered_json(0.0) : nlohmann::ordered_json(nullptr);
+  return ii && !f.sep ? std::optional<double>(0.0) : std::nullopt;
 }
 
 /// The apex: the largest gap between this contact and the next one (or the end); none without a flight.
-void put_apex(const Track& tr, const Flights& f, nlohmann::ordered_json& b) {
+void put_apex(const Track& tr, const Flights& f, Bounce& b) {
   std::size_t ia = tr.first_at_or_after(f.c.t_in);
   for (std::size_t i = ia; i <= f.r1; ++i)
     if (tr.gap[i] > tr.gap[ia]) ia = i;
-  b["apex_gap_m"] = f.sep ? nlohmann::ordered_json(tr.gap[ia]) : nlohmann::ordered_json(nullptr);
-  b["t_apex_s"] = f.sep ? nlohmann::ordered_json(tr.t[ia]) : nlohmann::ordered_json(nullptr);
+  if (!f.sep) return;
+  b.apex_gap_m = tr.gap[ia];
+  b.t_apex_s = tr.t[ia];
 }
 
 /// The largest gap among samples i0..i1.
@@ -250,9 +251,9 @@ double camera_distance(const Track& tr, const Flights& f, double g0, double d, d
 /// fit_distance (and joseph_2001): slopes from the last inward crossing of delta_ss + d to the contact, and from the
 /// separation to the first outward crossing; each side over half its flight's excursion where that is shorter
 /// (camera_distance).
-nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double g0, double d,
-                                            double stall_speed, bool pair) {
-  nlohmann::ordered_json fd;
+MeasureResult fit_distance_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double g0, double d,
+                                   double stall_speed, bool pair) {
+  MeasureResult fd;
   const double d_in = camera_distance(tr, f, g0, d, stall_speed, true), d_out = camera_distance(tr, f, g0, d, stall_speed, false);
   const double g_in = g0 + d_in, g_out = g0 + d_out;
   std::optional<double> fd_in, fd_out, ta, tb;
@@ -266,21 +267,22 @@ nlohmann::ordered_json fit_distance_measure(const Track& tr, const std::vector<d
   if (f.sep && tb) fd_out = fitted_u(tr, rate, f.t_sep, *tb);
   else if (!f.sep) fd_out = 0.0;
   put_e(fd, fd_in, fd_out, "the fitted rebound moves toward the target; e clipped to 0");
-  fd["distance_m"] = d;
-  if (d_in < d) fd["approach_distance_m"] = d_in;
-  if (d_out < d) fd["rebound_distance_m"] = d_out;
+  fd.distance_m = d;
+  if (d_in < d) fd.approach_distance_m = d_in;
+  if (d_out < d) fd.rebound_distance_m = d_out;
   // The stretches and each sphere's fitted line in them (for trajectory.png).
-  fd["approach"] = ta ? fitted_window(tr, *ta, f.c.t_in, 0.5 * (*ta + f.c.t_in), 1, pair) : nlohmann::ordered_json(nullptr);
-  fd["rebound"] = tb ? fitted_window(tr, f.t_sep, *tb, 0.5 * (f.t_sep + *tb), 1, pair) : nlohmann::ordered_json(nullptr);
-  if (!fd_in && !f.started) fd["missing"] = "the approach did not start beyond delta_ss + fit_distance";
-  else if (f.sep && !tb) fd["missing"] = "the rebound did not reach delta_ss + fit_distance (the run ended before its apex)";
+  fd.stretches = true;
+  if (ta) fd.approach = fitted_window(tr, *ta, f.c.t_in, 0.5 * (*ta + f.c.t_in), 1, pair);
+  if (tb) fd.rebound = fitted_window(tr, f.t_sep, *tb, 0.5 * (f.t_sep + *tb), 1, pair);
+  if (!fd_in && !f.started) fd.missing = "the approach did not start beyond delta_ss + fit_distance";
+  else if (f.sep && !tb) fd.missing = "the rebound did not reach delta_ss + fit_distance (the run ended before its apex)";
   return fd;
 }
 
 /// at_gap: U_rel where the gap last crossed g_at inward before the separation and first crossed it outward after
 /// the contact (`initial_gap`: a start inside the contact zone below g_at takes the initial velocity).
-nlohmann::ordered_json at_gap_measure(const Track& tr, const Flights& f, double g_at, double initial_gap) {
-  nlohmann::ordered_json ag;
+MeasureResult at_gap_measure(const Track& tr, const Flights& f, double g_at, double initial_gap) {
+  MeasureResult ag;
   std::optional<double> ag_in, ag_out;
   const std::size_t s1 = std::min(tr.first_at_or_after(f.t_sep), tr.t.size() - 1);
   for (std::size_t i = std::max<std::size_t>(f.a0, 1); i <= s1; ++i)
@@ -293,113 +295,111 @@ nlohmann::ordered_json at_gap_measure(const Track& tr, const Flights& f, double 
     ag_out = 0.0;
   }
   put_e(ag, ag_in, ag_out, "");
-  ag["gap_m"] = g_at;
-  if (!ag_in) ag["missing"] = "the approach did not cross at_gap inward";
-  else if (f.sep && !ag_out) ag["missing"] = "the rebound did not reach at_gap (apex below it, or the run ended)";
+  ag.gap_m = g_at;
+  if (!ag_in) ag.missing = "the approach did not cross at_gap inward";
+  else if (f.sep && !ag_out) ag.missing = "the rebound did not reach at_gap (apex below it, or the run ended)";
   return ag;
 }
 
 /// peak_rebound: the largest rebound speed over the rebound's flight / the largest approach speed over the approach's.
-nlohmann::ordered_json peak_rebound_measure(const Track& tr, const Flights& f) {
-  nlohmann::ordered_json pr;
+MeasureResult peak_rebound_measure(const Track& tr, const Flights& f) {
+  MeasureResult pr;
   double u_max_in = f.started ? f.c.u_in : 0.0, u_max_out = 0.0;
   for (std::size_t i = f.a0; i <= f.a1 && i < tr.t.size(); ++i) u_max_in = std::max(u_max_in, tr.u[i]);
   if (f.sep)
     for (std::size_t i = f.r0; i <= f.r1; ++i) u_max_out = std::max(u_max_out, -tr.u[i]);
   put_e(pr, u_max_in > 0 ? std::optional<double>(u_max_in) : std::nullopt, -u_max_out, "");
-  pr["impact_speed_m_s"] = u_max_in;
-  pr["rebound_speed_m_s"] = u_max_out;
+  pr.impact_speed_m_s = u_max_in;
+  pr.rebound_speed_m_s = u_max_out;
   return pr;
 }
 
-/// Every named measure of one contact (docs/bounces.md), by name.
-nlohmann::ordered_json named_measures(const CollisionModel& model, const Scene& sc, const Track& tr, const std::vector<double>& rate,
-                                      const Flights& f, const std::vector<Crossing>& inst) {
+MeasureResult with_reference(MeasureResult m, const char* reference) {
+  m.reference = reference;
+  return m;
+}
+
+/// Every named measure of one contact (docs/bounces.md), in summary.json's order.
+std::vector<std::pair<EMeasure, MeasureResult>> named_measures(const CollisionModel& model, const Scene& sc, const Track& tr,
+                                                               const std::vector<double>& rate, const Flights& f,
+                                                               const std::vector<Crossing>& inst) {
   const double D = 2 * model.radius(0);
   const double stall_speed = 2 * sc.measure.stall_fraction * std::abs(f.c.u_in);  // a rebound this slow has stalled
   const bool pair = model.n_spheres() == 2;
-  nlohmann::ordered_json em;
-  em["contact_ends"] = contact_ends_measure(tr, rate, f, sc.measure.ends_distance * D, sc.measure.ends_speed_change,
-                                            sc.measure.ends_tolerance, pair);
-  em["yang_hunt_2006"] = fit_time_measure(tr, rate, f, kYangHuntWindow);
-  em["yang_hunt_2006"]["reference"] = "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms";
-  em["joseph_2001"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), kJosephDistance * D, stall_speed, pair);
-  em["joseph_2001"]["reference"] = "Joseph, Zenit, Hunt & Rosenwinkel, J. Fluid Mech. 433 (2001): lines over the last/first 0.1 D (our reading)";
-  em["gondret_2002"] = peak_rebound_measure(tr, f);
-  em["gondret_2002"]["reference"] = "Gondret, Lance & Petit, Phys. Fluids 14, 643 (2002): peak speeds of the position signal (our reading)";
-  em["fit_time"] = fit_time_measure(tr, rate, f, sc.measure.window);
-  em["fit_distance"] = fit_distance_measure(tr, rate, f, model.delta_ss_m(), sc.measure.fit_distance * D, stall_speed, pair);
-  em["at_gap"] = at_gap_measure(tr, f, sc.measure.at_gap * D, model.initial_gap());
-  em["peak_rebound"] = peak_rebound_measure(tr, f);
-  em["instant"] = {{"e", instant_e(inst, f)}, {"gap_m", sc.measure.instant_gap * D}};
-  return em;
+  MeasureResult instant;
+  instant.velocities = false;
+  instant.e = instant_e(inst, f);
+  instant.gap_m = sc.measure.instant_gap * D;
+  return {
+      {EMeasure::contact_ends, contact_ends_measure(tr, rate, f, sc.measure.ends_distance * D, sc.measure.ends_speed_change,
+                                                    sc.measure.ends_tolerance, pair)},
+      {EMeasure::yang_hunt_2006, with_reference(fit_time_measure(tr, rate, f, kYangHuntWindow),
+                                                "Yang & Hunt, Phys. Fluids 18, 121506 (2006); seed eq. 6.1: lines over 10 ms")},
+      {EMeasure::joseph_2001,
+       with_reference(fit_distance_measure(tr, rate, f, model.delta_ss_m(), kJosephDistance * D, stall_speed, pair),
+                      "Joseph, Zenit, Hunt & Rosenwinkel, J. Fluid Mech. 433 (2001): lines over the last/first 0.1 D (our reading)")},
+      {EMeasure::gondret_2002, with_reference(peak_rebound_measure(tr, f), "Gondret, Lance & Petit, Phys. Fluids 14, 643 (2002): peak "
+                                                                           "speeds of the position signal (our reading)")},
+      {EMeasure::fit_time, fit_time_measure(tr, rate, f, sc.measure.window)},
+      {EMeasure::fit_distance, fit_distance_measure(tr, rate, f, model.delta_ss_m(), sc.measure.fit_distance * D, stall_speed, pair)},
+      {EMeasure::at_gap, at_gap_measure(tr, f, sc.measure.at_gap * D, model.initial_gap())},
+      {EMeasure::peak_rebound, peak_rebound_measure(tr, f)},
+      {EMeasure::instant, instant}};
 }
 
-}  // namespace
+/// The flights around contact k of cs (the run's last sample at t_final).
+Flights flights(const CollisionModel& model, const Track& tr, const std::vector<Contact>& cs, std::size_t k, double t_final) {
+  const Contact& c = cs[k];
+  const double t_from = k == 0 ? 0.0 : cs[k - 1].t_out.value_or(cs[k - 1].t_in);  // this approach's flight begins
+  const double t_next = k + 1 < cs.size() ? cs[k + 1].t_in : t_final;               // the rebound's flight ends
+  const double t_sep = c.t_out.value_or(t_next);
+  return Flights{c, t_from, t_next, t_sep, c.t_out.has_value(), model.started_in_contact() && k == 0, k + 1 == cs.size(),
+                 tr.first_at_or_after(t_from), tr.first_at_or_after(c.t_in), tr.first_at_or_after(t_sep),
+                 std::min(tr.first_at_or_after(t_next), tr.t.size() - 1)};
+}
 
-std::string measure_label(const Scene& sc, const std::string& name) {
-  // Pairs identical by construction: the generic measure first, the paper's procedure second.
-  const struct {
-    const char *generic, *paper;
-    bool same;
-  } pairs[] = {{"fit_time", "yang_hunt_2006", sc.measure.window == kYangHuntWindow},
-               {"fit_distance", "joseph_2001", sc.measure.fit_distance == kJosephDistance},
-               {"peak_rebound", "gondret_2002", true}};
-  for (const auto& p : pairs) {
-    if (!p.same) continue;
-    if (name == p.generic) return std::string(p.generic) + "/" + p.paper;
-    if (name == p.paper) return "";
+/// The distinct measures whose e differs from the bounce's e by more than measure.disagreement (a pair identical by
+/// construction once, under both names).
+void put_disagreement(const Scene& sc, Bounce& b) {
+  if (!b.e) return;
+  for (const auto& [name, m] : b.e_measures) {
+    const std::string label = measure_label(sc, name);
+    if (!label.empty() && m.e && std::abs(*m.e - *b.e) > sc.measure.disagreement) b.measures_disagree.push_back({label, *m.e});
   }
-  return name;
 }
 
-nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch& watch, const Scene& sc, const Track& tr,
-                                       std::vector<std::string>& warnings) {
-  const std::vector<Contact>& cs = watch.contacts.contacts();
-  const std::vector<Crossing>& inst = watch.instant.crossings();
-  const double t_final = tr.t.empty() ? 0.0 : tr.t.back();
-  const std::vector<double> rate = gap_rate(tr);
-  const char* e_name = to_string(sc.measure.e);
-  nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  std::vector<std::size_t> clipped;  // contacts whose fixed-window rebound line was clipped
-  std::vector<std::size_t> ends_warned;  // contacts whose contact_ends e misses U_rel at the δ_SS crossings
-  for (std::size_t k = 0; k < cs.size(); ++k) {
-    const Contact& c = cs[k];
-    const double t_from = k == 0 ? 0.0 : cs[k - 1].t_out.value_or(cs[k - 1].t_in);  // this approach's flight begins
-    const double t_next = k + 1 < cs.size() ? cs[k + 1].t_in : t_final;               // the rebound's flight ends
-    const double t_sep = c.t_out.value_or(t_next);
-    const Flights f{c, t_from, t_next, t_sep, c.t_out.has_value(), model.started_in_contact() && k == 0, k + 1 == cs.size(),
-                    tr.first_at_or_after(t_from), tr.first_at_or_after(c.t_in), tr.first_at_or_after(t_sep),
-                    std::min(tr.first_at_or_after(t_next), tr.t.size() - 1)};
-    nlohmann::ordered_json b = {{"contact", k + 1}, {"t_contact_s", c.t_in}, {"t_separation_s", or_null(c.t_out)},
-                                {"impact_speed_at_delta_ss_m_s", c.u_in}};
-    nlohmann::ordered_json em = named_measures(model, sc, tr, rate, f, inst);
-    // A clipped fit is a warning where it is e; elsewhere its entry's e_raw and note say it.
-    if (em[e_name].contains("e_raw")) clipped.push_back(k + 1);
-    if (sc.measure.e == EMeasure::contact_ends && em["contact_ends"].contains("warning")) ends_warned.push_back(k + 1);
-    b["e"] = em[e_name]["e"];
-    b["e_is"] = e_name;
-    b["impact_velocity_m_s"] = em[e_name].value("impact_velocity_m_s", nlohmann::ordered_json(nullptr));
-    b["rebound_velocity_m_s"] = f.sep ? em[e_name].value("rebound_velocity_m_s", nlohmann::ordered_json(nullptr)) : nullptr;
-    b["e_instant"] = em["instant"]["e"];
-    put_apex(tr, f, b);
-    b["energy_budget"] = energy_budget(tr, {t_from, c.t_in, c.t_out, t_next});
-    // The distinct measures whose e differs from `e` by more than measure.disagreement (a pair identical by construction
-    // once, under both names).
-    nlohmann::ordered_json dis = nlohmann::ordered_json::object();
-    if (b["e"].is_number())
-      for (const auto& [name, m] : em.items()) {
-        const std::string label = measure_label(sc, name);
-        if (!label.empty() && m["e"].is_number() && std::abs(m["e"].get<double>() - b["e"].get<double>()) > sc.measure.disagreement)
-          dis[label] = m["e"];
-      }
-    b["measures_disagree"] = dis;
-    b["e_measures"] = em;
-    out.push_back(b);
+/// One contact: its times, the named measures, e by measure.e, the apex, the energy budget and the disagreement.
+Bounce measure_bounce(const CollisionModel& model, const Scene& sc, const Track& tr, const std::vector<double>& rate, const Flights& f,
+                      const std::vector<Crossing>& inst, int number) {
+  Bounce b;
+  b.contact = number;
+  b.t_contact_s = f.c.t_in;
+  b.t_separation_s = f.c.t_out;
+  b.impact_speed_at_delta_ss_m_s = f.c.u_in;
+  b.e_measures = named_measures(model, sc, tr, rate, f, inst);
+  const MeasureResult& m = *b.measure(sc.measure.e);
+  b.e = m.e;
+  b.e_is = sc.measure.e;
+  b.impact_velocity_m_s = m.impact_velocity_m_s;
+  if (f.sep) b.rebound_velocity_m_s = m.rebound_velocity_m_s;
+  b.e_instant = b.measure(EMeasure::instant)->e;
+  put_apex(tr, f, b);
+  b.energy_budget = energy_budget(tr, {f.t_from, f.c.t_in, f.c.t_out, f.t_next});
+  put_disagreement(sc, b);
+  return b;
+}
+
+/// The warnings on the measure e is: contact_ends' slopes that miss U_rel at δ_SS, fits clipped to 0.
+void warn_on_measures(const Scene& sc, const std::vector<Bounce>& out, std::vector<std::string>& warnings) {
+  std::vector<int> clipped, ends_warned;
+  for (const auto& b : out) {
+    const MeasureResult& m = *b.measure(sc.measure.e);
+    if (m.e_raw) clipped.push_back(b.contact);  // a clipped fit is a warning where it is e; elsewhere its e_raw and note say it
+    if (sc.measure.e == EMeasure::contact_ends && m.warning) ends_warned.push_back(b.contact);
   }
   if (!ends_warned.empty()) {
     std::ostringstream os;
-    os << "e (contact_ends) at contact " << ends_warned[0] << ": " << out[ends_warned[0] - 1]["e_measures"]["contact_ends"]["warning"].get<std::string>();
+    os << "e (contact_ends) at contact " << ends_warned[0] << ": " << *out[ends_warned[0] - 1].measure(EMeasure::contact_ends)->warning;
     for (std::size_t i = 1; i < ends_warned.size(); ++i) os << (i == 1 ? "; also at contact " : ", ") << ends_warned[i];
     warnings.push_back(os.str());
   }
@@ -407,10 +407,39 @@ nlohmann::ordered_json measure_bounces(const CollisionModel& model, const Watch&
     std::ostringstream os;
     os << "at contact";
     for (std::size_t i = 0; i < clipped.size(); ++i) os << (i ? ", " : " ") << clipped[i];
-    os << " the rebound fit of e (" << e_name << ") points toward the target (the sphere fell back within its window): e is "
-          "clipped to 0 (e_raw in its e_measures entry)";
+    os << " the rebound fit of e (" << to_string(sc.measure.e) << ") points toward the target (the sphere fell back within its window): "
+          "e is clipped to 0 (e_raw in its e_measures entry)";
     warnings.push_back(os.str());
   }
+}
+
+}  // namespace
+
+std::string measure_label(const Scene& sc, EMeasure m) {
+  // Pairs identical by construction: the generic measure first, the paper's procedure second.
+  const struct {
+    EMeasure generic, paper;
+    bool same;
+  } pairs[] = {{EMeasure::fit_time, EMeasure::yang_hunt_2006, sc.measure.window == kYangHuntWindow},
+               {EMeasure::fit_distance, EMeasure::joseph_2001, sc.measure.fit_distance == kJosephDistance},
+               {EMeasure::peak_rebound, EMeasure::gondret_2002, true}};
+  for (const auto& p : pairs) {
+    if (!p.same) continue;
+    if (m == p.generic) return std::string(to_string(p.generic)) + "/" + to_string(p.paper);
+    if (m == p.paper) return "";
+  }
+  return to_string(m);
+}
+
+std::vector<Bounce> measure_bounces(const CollisionModel& model, const Watch& watch, const Scene& sc, const Track& tr,
+                                    std::vector<std::string>& warnings) {
+  const std::vector<Contact>& cs = watch.contacts.contacts();
+  const double t_final = tr.t.empty() ? 0.0 : tr.t.back();
+  const std::vector<double> rate = gap_rate(tr);
+  std::vector<Bounce> out;
+  for (std::size_t k = 0; k < cs.size(); ++k)
+    out.push_back(measure_bounce(model, sc, tr, rate, flights(model, tr, cs, k, t_final), watch.instant.crossings(), static_cast<int>(k + 1)));
+  warn_on_measures(sc, out, warnings);
   return out;
 }
 

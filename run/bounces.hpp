@@ -4,13 +4,13 @@
 // yang_hunt_2006, joseph_2001, gondret_2002, and fit_time, fit_distance, at_gap, peak_rebound, instant; the apex
 // between contacts. Velocities in m/s, gaps in m, times in s.
 #include <array>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "model/collision_model.hpp"
 #include "model/force_work.hpp"
 #include "core/scene.hpp"
+#include "run/bounce.hpp"
 #include "run/watch.hpp"
 
 namespace imcol::run {
@@ -31,16 +31,16 @@ struct Track {
   std::size_t first_at_or_after(double t0) const;
 };
 
-/// The name under which measure `name` is compared and reported in measures_disagree: measures identical by construction
+/// The name under which measure `m` is compared and reported in measures_disagree: measures identical by construction
 /// at the scene's settings share one, e.g. "fit_time/yang_hunt_2006" (measure.window = 10 ms), "fit_distance/joseph_2001"
 /// (measure.fit_distance = 0.1), "peak_rebound/gondret_2002"; empty for the second name of such a pair.
-std::string measure_label(const Scene& sc, const std::string& name);
+std::string measure_label(const Scene& sc, EMeasure m);
 
-/// One object per contact, in order: times, velocities and e of the measure measure.e names, e_instant, apex,
-/// `e_measures` and `measures_disagree` (the distinct measures, by measure_label, whose e differs from e by more than
-/// measure.disagreement).
+/// One Bounce per contact, in order: times, velocities and e of the measure measure.e names, e_instant, apex,
+/// every named measure, the energy budget and the measures that disagree (by measure_label: the distinct measures
+/// whose e differs from e by more than measure.disagreement).
 /// Appends a warning when a fit e was clipped to 0.
-nlohmann::ordered_json measure_bounces(const model::CollisionModel& model, const Watch& watch, const Scene& sc, const Track& tr,
+std::vector<Bounce> measure_bounces(const model::CollisionModel& model, const Watch& watch, const Scene& sc, const Track& tr,
                                        std::vector<std::string>& warnings);
 
 }  // namespace imcol::run

@@ -7,9 +7,9 @@
 //   ΔKE_spheres + ΔKE_added = Σ_{k ≠ added mass} W_k + (W_added_mass + ΔKE_added)
 // The last bracket is zero for a conservative added mass (the lagrangian form): `added_mass_J` in `dissipated_J`.
 // Each force's dissipation is −W_k; the sum of all of them is the loss of kinetic energy (spheres and added mass).
-#include <nlohmann/json.hpp>
 #include <optional>
 
+#include "run/bounce.hpp"
 #include "run/bounces.hpp"
 
 namespace imcol::run {
@@ -22,9 +22,9 @@ struct CollisionTimes {
   double t_next = 0;
 };
 
-/// The budget's JSON: `impact_kinetic_energy_J` (spheres and added mass, the largest over the approach), and per phase
-/// (approach, contact, rebound, collision) its times, kinetic energies at both ends, `work_J`, `dissipated_J` (both by
-/// force, and the latter also in units of the impact kinetic energy) and `closure_J`. Null without the work samples.
-nlohmann::ordered_json energy_budget(const Track& tr, const CollisionTimes& times);
+/// The budget: the impact kinetic energy (spheres and added mass, the largest over the approach), and per phase
+/// (approach, contact, rebound, collision) its times, kinetic energies at both ends, the work and dissipation of each
+/// force (the latter also in units of the impact kinetic energy) and the closure. None without the work samples.
+std::optional<EnergyBudget> energy_budget(const Track& tr, const CollisionTimes& times);
 
 }  // namespace imcol::run

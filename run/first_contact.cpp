@@ -190,19 +190,20 @@ FirstContact measure_first_contact(const CollisionModel& model, const Watch& wat
   return m;
 }
 
-std::string e_by_measure_line(const Scene& sc, const nlohmann::ordered_json& measures, const std::string& e_name) {
+std::string e_by_measure_line(const Scene& sc, const Bounce& b) {
   std::ostringstream os;
   os << std::fixed << std::setprecision(3);
   double lo = INFINITY, hi = -INFINITY;
   std::string rest;
   // e's measure may share its label with a generic one ("fit_distance/joseph_2001"), listed under the generic name.
-  std::string e_label = measure_label(sc, e_name);
-  for (const auto& [k, v] : measures.items())
+  const std::string e_name = to_string(b.e_is);
+  std::string e_label = measure_label(sc, b.e_is);
+  for (const auto& [k, v] : b.e_measures)
     if (e_label.empty() && measure_label(sc, k).ends_with("/" + e_name)) e_label = measure_label(sc, k);
-  for (const auto& [k, v] : measures.items()) {
+  for (const auto& [k, v] : b.e_measures) {
     const std::string label = measure_label(sc, k);
-    if (label.empty() || !v["e"].is_number()) continue;
-    const double e = v["e"].get<double>();
+    if (label.empty() || !v.e) continue;
+    const double e = *v.e;
     lo = std::min(lo, e);
     hi = std::max(hi, e);
     std::ostringstream one;
@@ -214,31 +215,30 @@ std::string e_by_measure_line(const Scene& sc, const nlohmann::ordered_json& mea
   return os.str();
 }
 
-void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstContact& m, std::vector<std::string>& warnings) {
+void choose_e(const Scene& sc, const std::vector<Bounce>& bounces, FirstContact& m, std::vector<std::string>& warnings) {
   // Without a contact, or before a separation, e is the approach's verdict: 0 when the pair stopped or moves on
   // together (at rest, group motion), null when a longer run could still show a rebound.
-  if (bounces.empty() || bounces[0]["t_separation_s"].is_null()) return;
-  const auto& b = bounces[0];
+  if (bounces.empty() || !bounces[0].t_separation_s) return;
+  const Bounce& b = bounces[0];
   const char* name = to_string(sc.measure.e);
-  const auto& em = b["e_measures"][name];
-  m.e_fit_raw.reset();
-  if (em["e"].is_number()) {
-    m.e = em["e"].get<double>();
-    if (em.contains("e_raw")) m.e_fit_raw = em["e_raw"].get<double>();
+  const MeasureResult& em = *b.measure(sc.measure.e);
+  m.e_fit_raw = em.e_raw;
+  if (em.e) {
+    m.e = em.e;
     m.e_missing.reset();
   } else {
     m.e.reset();
-    if (!m.e_missing) m.e_missing = std::string(name) + ": " + em.value("missing", std::string("the measure could not be taken"));
+    if (!m.e_missing) m.e_missing = std::string(name) + ": " + em.missing.value_or("the measure could not be taken");
     warnings.push_back("e is undefined: " + *m.e_missing);
   }
   // t_end too short: judged by the measure e is, when the run stopped at t_end (not at rest, not by measure.bounces):
   // its rebound window was cut by the run's end, or it could not be taken.
-  if (m.stopped_by_t_end && (em.value("cut_by_end_of_run", false) || (!m.e && bounces.size() == 1))) {
+  if (m.stopped_by_t_end && (em.cut_by_end_of_run.value_or(false) || (!m.e && bounces.size() == 1))) {
     m.t_end_too_short = true;
     warnings.push_back(m.e ? "t_end cut the " + std::string(name) + " rebound window short"
                            : "t_end ended the run before " + std::string(name) + " could measure the rebound");
   }
-  if (m.e) m.e_by_measure = e_by_measure_line(sc, b["e_measures"], name);
+  if (m.e) m.e_by_measure = e_by_measure_line(sc, b);
 }
 
 void check_plausibility(const CollisionModel& model, const Scene& sc, const FirstContact& m, std::vector<std::string>& warnings) {

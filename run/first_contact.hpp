@@ -3,7 +3,6 @@
 // The first contact of a run measured as the seed does (MODEL.md §3): impact and rebound velocities from
 // least-squares lines over measure.window (m/s, fit_time), e (seed 6.1, fit_time), e_instant at measure.instant_gap, St (6.2) and
 // Re at impact, the group velocity of a pair that moves on together; with the warnings that qualify them.
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -30,7 +29,7 @@ struct FirstContact {
 };
 
 /// One plain line: e by each distinct named measure of a contact (measure_label), e's own first, and their spread.
-std::string e_by_measure_line(const Scene& sc, const nlohmann::ordered_json& measures, const std::string& e_name);
+std::string e_by_measure_line(const Scene& sc, const Bounce& b);
 
 /// St in the reported convention (eq. 6.2 for a wall, half of it for a pair: seed Table 6.1) and St by (6.2).
 std::pair<double, double> stokes_numbers(const model::CollisionModel& model, const Scene& sc, double u_rel);
@@ -41,7 +40,7 @@ FirstContact measure_first_contact(const model::CollisionModel& model, const Wat
 
 /// `e` is the first contact's named measure measure.e (from measure_bounces); without a contact, the approach's e
 /// (0 when the liquid stopped it). The other measures' e go to one plain line (e_by_measure), not to the warnings.
-void choose_e(const Scene& sc, const nlohmann::ordered_json& bounces, FirstContact& m, std::vector<std::string>& warnings);
+void choose_e(const Scene& sc, const std::vector<Bounce>& bounces, FirstContact& m, std::vector<std::string>& warnings);
 
 /// Warnings for an e that cannot be trusted: above e_dry (energy created), or from loose tolerances.
 void check_plausibility(const model::CollisionModel& model, const Scene& sc, const FirstContact& m,

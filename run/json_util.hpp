@@ -1,18 +1,35 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// A measured value or JSON null ("not measured"; JSON has no NaN or infinity either).
+// The JSON edge's small pieces: a measured value or JSON null ("not measured"; JSON has no NaN or infinity either),
+// optional keys written only when present, and the same read back.
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 
 namespace imcol::run {
 
-inline nlohmann::ordered_json or_null(const std::optional<double>& v) {
-  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+using Json = nlohmann::ordered_json;
+
+inline Json or_null(const std::optional<double>& v) { return v ? Json(*v) : Json(nullptr); }
+inline Json or_null(const std::optional<std::string>& v) { return v ? Json(*v) : Json(nullptr); }
+
+inline Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+inline Json finite_or_null(const std::optional<double>& v) { return v ? finite_or_null(*v) : Json(nullptr); }
+
+/// j[key] = *v when v holds a value; nothing otherwise.
+template <class T>
+void put_if(Json& j, const char* key, const std::optional<T>& v) {
+  if (v) j[key] = *v;
 }
 
-inline nlohmann::ordered_json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); }
-
-inline nlohmann::ordered_json finite_or_null(const std::optional<double>& v) { return v ? finite_or_null(*v) : nlohmann::ordered_json(nullptr); }
+/// j[key] as T; none when the key is absent or null.
+template <class T>
+std::optional<T> get_opt(const Json& j, const char* key) {
+  const auto it = j.find(key);
+  if (it == j.end() || it->is_null()) return std::nullopt;
+  return it->template get<T>();
+}
 
 }  // namespace imcol::run

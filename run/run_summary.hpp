@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// The results of a collision run as typed values: what the commands and benchmarks read. summary.json carries the
-// same numbers under the same names (run/summary.hpp writes it); absent and null there are std::nullopt here.
-// Units: SI (m, s, m/s, N).
+// The results of a collision run as typed values: what the commands, the studies, the benchmarks and Python read.
+// summary.json is written from them alone (run/summary_json.hpp), under the same names; absent and null there are
+// std::nullopt here. Units: SI (m, s, m/s, N, J).
 #include <optional>
 #include <string>
 #include <utility>
@@ -11,6 +11,7 @@
 #include "core/scene.hpp"
 #include "coupling/flow_coupling.hpp"
 #include "integrators/integrator.hpp"
+#include "run/bounce.hpp"
 
 namespace imcol {
 
@@ -18,17 +19,9 @@ enum class Configuration { free_sphere, sphere_wall, sphere_sphere };
 /// "free sphere", "sphere-wall", "sphere-sphere" (summary.json `configuration`).
 const char* to_string(Configuration c);
 
-/// One contact (summary.json `bounces`): times, and e and velocities by the measure measure.e names.
-struct BounceSummary {
-  int contact = 0;  // 1, 2, …
-  double t_contact_s = 0;
-  std::optional<double> t_separation_s, e, impact_velocity_m_s, rebound_velocity_m_s, e_instant;
-  std::optional<double> apex_gap_m, t_apex_s;  // the apex after the rebound
-};
-
 /// The `contact` block: the law and the first contact's times and impact speed; the law's own numbers by name.
 struct ContactSummary {
-  std::string law;
+  ContactLawKind law = ContactLawKind::ramp;
   std::optional<double> t_contact_s, t_separation_s, impact_speed_m_s;
   std::vector<std::pair<std::string, std::optional<double>>> law_numbers;
   double e_dry = 1, delta_ss_m = 0;
@@ -37,8 +30,8 @@ struct ContactSummary {
 /// The `flow` block of a coupled run: the kernel's statistics and what is derived from them.
 struct FlowSummary {
   coupling::FlowRunStats stats;
-  std::string start;                      // flow.start
-  std::string force_in_step;              // flow.force_in_step
+  FlowStart start = FlowStart::impulsive;  // flow.start
+  ForceInStep force_in_step = ForceInStep::linear;  // flow.force_in_step
   double ms_per_step = 0;                 // kernel wall time per coupled step
   double krylov_iterations_per_step = 0;
   double flow_share = 0, ode_share = 0;   // of the run's wall time
@@ -46,12 +39,29 @@ struct FlowSummary {
 
 /// The `solver` block's settings and statistics.
 struct SolverSummary {
-  std::string integrator;
+  IntegratorMethod integrator = IntegratorMethod::cvode;
   double rtol = 0, atol = 0;
+  std::vector<double> absolute_tolerances;  // per state component
+  std::vector<std::string> state;           // the state components' names
+  double max_step_s = 0;                    // the step bound outside contact
   double t_final_s = 0;
   double measure_interval_s = 0;  // the integrator's sampling, which the measures read
   std::size_t measure_samples = 0;
   SolverStats stats;
+};
+
+/// One event of the run (summary.json `events`), in the order they happened.
+struct EventSummary {
+  double t_s = 0;
+  std::string event;  // what happened, e.g. "gap=delta_ss (in)"
+  double gap_m = 0, u_rel_m_s = 0;
+};
+
+/// The history force's kernel and evaluator, and its exponentials (soe evaluators).
+struct HistorySummary {
+  KernelKind kernel = KernelKind::basset;
+  HistoryEvaluator evaluator = HistoryEvaluator::soe_step;
+  std::optional<long> modes;
 };
 
 struct RunSummary {
@@ -61,21 +71,22 @@ struct RunSummary {
 
   // e and its measures (docs/bounces.md)
   std::optional<double> e;
-  std::string e_is;                        // the named measure e is (measure.e)
+  EMeasure e_is = EMeasure::contact_ends;  // the named measure e is (measure.e)
   std::optional<std::string> e_missing;    // why e is undefined (only without e; may be unknown)
   std::optional<double> e_fit_raw, e_instant;
   double e_instant_gap_m = 0;
   /// The first contact's named measures, measure → e (empty without a contact), in summary.json's order.
   std::vector<std::pair<EMeasure, std::optional<double>>> e_measures;
   std::optional<std::string> e_by_measure;  // one line: e by each distinct measure and their spread
-  /// The first collision's energy budget over approach, contact and rebound (run/energy_budget.hpp): what each force
-  /// dissipated, in units of the impact kinetic energy, and the largest |closure| of a phase in those units.
-  std::vector<std::pair<std::string, double>> dissipated_share;
+  /// The first collision's energy budget over approach, contact and rebound (run/energy_budget.hpp), and from it what
+  /// each force dissipated (above 5e-4), in units of the impact kinetic energy, and the largest |closure| of a phase.
+  std::optional<run::EnergyBudget> energy_budget;
+  std::vector<std::pair<model::ForceKind, double>> dissipated_share;
   std::optional<double> energy_closure;
   /// The distinct measures whose e differs from e by more than measure.disagreement, label → e.
   std::vector<std::pair<std::string, double>> measures_disagree;
-  std::string bounces_mode;                // measure.bounces
-  std::vector<BounceSummary> bounces;
+  BouncesMode bounces_mode = BouncesMode::first;  // measure.bounces
+  std::vector<run::Bounce> bounces;
 
   // Dimensionless numbers at impact (the conventions: summary.json St_convention, docs/model-notes.md)
   std::optional<double> St, St_B_table_6_1, St_B_eq_6_2, St_L, St_initial, Re;
@@ -93,10 +104,11 @@ struct RunSummary {
   std::optional<double> u1_final_m_s, u2_final_m_s;
   std::optional<ContactSummary> contact;  // a target and the elastic effect
 
-  std::vector<std::string> effects;
-  std::vector<std::pair<std::string, std::string>> model;  // the model's choices, for display
-  std::optional<long> history_modes;                       // the history kernel's exponentials (soe evaluators)
+  std::vector<Effect> effects;
+  std::vector<std::pair<std::string, std::string>> model;  // the model's choices, for display (summary.json `model`)
+  std::optional<HistorySummary> history;                   // with the history effect
   SolverSummary solver;
+  std::vector<EventSummary> events;
   std::optional<FlowSummary> flow;  // coupled runs
   std::vector<std::string> warnings;
   double wall_time_s = 0;   // integration and measures
@@ -104,8 +116,11 @@ struct RunSummary {
 
   /// e of named measure `m` at the first contact; nullopt when not measured or without a contact.
   std::optional<double> measure_e(EMeasure m) const;
-  /// A model choice's display value (summary.json `model`), nullopt when the model has none of that name.
-  std::optional<std::string> model_choice(const std::string& name) const;
+  bool has(Effect x) const;
 };
+
+/// The first contact's views in s, from s.bounces[0]: e_measures, measures_disagree, energy_budget, and from the
+/// budget dissipated_share and energy_closure (all empty without a contact).
+void first_contact_views(RunSummary& s);
 
 }  // namespace imcol

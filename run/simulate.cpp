@@ -2,7 +2,7 @@
 #include "run/simulate.hpp"
 
 #include <algorithm>
-#include <memory>
+#include <optional>
 
 #include "model/approach.hpp"
 #include "model/collision_model.hpp"
@@ -16,6 +16,7 @@
 #include "run/first_contact.hpp"
 #include "run/recorder.hpp"
 #include "run/summary.hpp"
+#include "run/summary_json.hpp"
 #include "run/watch.hpp"
 
 namespace imcol {
@@ -36,23 +37,28 @@ IntegratorSettings integrator_settings(const Scene& sc) {
   return st;
 }
 
-/// The effects that ran and the model's choices (summary.json's `effects` and `model`).
-void put_effects_and_model(RunSummary& s, nlohmann::ordered_json& j, const CollisionModel& model, const Scene& sc) {
-  for (Effect x : sc.effects) s.effects.push_back(to_string(x));
-  j["effects"] = s.effects;
+/// The effects that ran, the model's choices and the history force's (summary.json's `effects` and `model`).
+void put_effects_and_model(RunSummary& s, const CollisionModel& model, const Scene& sc) {
+  for (Effect x : sc.effects) s.effects.push_back(x);
   s.model = model.choices();
-  nlohmann::ordered_json mod = nlohmann::ordered_json::object();
-  for (const auto& [k, v] : s.model) mod[k] = v;
-  j["model"] = mod;
-  if (model.history(0) && model.history_options().evaluator != HistoryEvaluator::direct)
-    s.history_modes = static_cast<long>(model.history(0)->modes());
+  if (!sc.has(Effect::history)) return;
+  HistorySummary h{sc.history.kernel, sc.history.evaluator, std::nullopt};
+  if (model.history(0) && model.history_options().evaluator != HistoryEvaluator::direct) h.modes = static_cast<long>(model.history(0)->modes());
+  s.history = h;
 }
 
 /// The events in the order they happened (summary.json's `events`).
-nlohmann::ordered_json events_block(const CollisionModel& model) {
-  nlohmann::ordered_json ev = nlohmann::ordered_json::array();
-  for (const auto& x : model.events()) ev.push_back({{"t", x.t}, {"event", x.name}, {"gap_m", x.gap}, {"u_rel_m_s", x.u_rel}});
+std::vector<EventSummary> events_of(const CollisionModel& model) {
+  std::vector<EventSummary> ev;
+  for (const auto& x : model.events()) ev.push_back({x.t, x.name, x.gap, x.u_rel});
   return ev;
+}
+
+/// The `solver` block: settings, tolerances, state names and statistics.
+SolverSummary solver_summary(const CollisionModel& model, const IntegratorSettings& st, const SolverStats& stats, double t_final,
+                             std::size_t samples) {
+  return {st.method, st.rtol, st.atol, model.absolute_tolerances(st.atol), model.component_names(), model.max_step_outside_contact(),
+          t_final, st.output_dt, samples, stats};
 }
 
 /// The scene a run integrates: `scene`, or for a kinematic recording (e alone: sweeps, calibrations) its copy in `lean`
@@ -62,6 +68,70 @@ const Scene& scene_to_run(const Scene& scene, Recording recording, Scene& lean) 
   lean = scene;
   lean.measure.energy_budget = false;
   return lean;
+}
+
+}  // namespace
+
+namespace {
+
+/// What one integration gave: the model's statistics and the flow kernel's (coupled runs), and the wall time.
+struct Integration {
+  SolverStats stats;
+  std::optional<coupling::FlowRunStats> flow;
+  double wall = 0;
+};
+
+/// Integrates the model alone, or coupled to the flow kernel, into the recorder.
+Integration integrate_run(CollisionModel& model, const Scene& sc, const IntegratorSettings& st, run::Recorder& rec, bool progress,
+                          const flow::FileSink& fields) {
+  const auto wall_start = WallClock::now();
+  Integration out;
+  try {
+    if (sc.has(Effect::flow)) {
+      coupling::FlowCoupling coupled(model, sc);
+      if (progress) coupled.set_progress([&rec](const std::string& text) { rec.show_status(text); });
+      if (fields) coupled.set_file_sink(fields);
+      out.stats = coupled.run(st, rec);
+      out.flow = coupled.stats();
+    } else {
+      out.stats = integrate(model, st, rec);
+    }
+  } catch (...) {
+    rec.finish_progress();
+    throw;
+  }
+  rec.finish_progress();
+  out.wall = seconds_since(wall_start);
+  return out;
+}
+
+/// The measures and the summary of an integrated run.
+RunSummary summarize(const CollisionModel& model, const run::Watch& watch, const Scene& sc, const run::Recorder& rec,
+                     const std::vector<std::vector<double>>& rows, const IntegratorSettings& st, const Integration& in) {
+  // Measure: the first contact as the seed does, then every contact with each named measure.
+  std::vector<std::string> warnings;
+  run::FirstContact first = run::measure_first_contact(model, watch, sc, rec.track(), warnings);
+  std::vector<run::Bounce> bounces;
+  if (model.has_target() && sc.has(Effect::elastic) && !rec.track().t.empty())
+    bounces = run::measure_bounces(model, watch, sc, rec.track(), warnings);
+  run::choose_e(sc, bounces, first, warnings);
+  run::check_plausibility(model, sc, first, warnings);
+
+  RunSummary s;
+  s.scene = sc.name;
+  s.scene_file = sc.path;
+  s.configuration = !model.has_target() ? Configuration::free_sphere
+                                        : (model.has_wall() ? Configuration::sphere_wall : Configuration::sphere_sphere);
+  s.fluid = sc.fluid;
+  run::measure_summary(s, model, watch, sc, first, std::move(bounces), rec, rows);
+  if (model.has_target() && sc.has(Effect::elastic)) s.contact = run::contact_summary(model);
+  put_effects_and_model(s, model, sc);
+  s.solver = solver_summary(model, st, in.stats, rows.empty() ? 0.0 : rows.back()[0], rec.track().t.size());
+  s.events = events_of(model);
+  s.warnings = warnings;
+  if (in.flow) s.flow = run::flow_summary(*in.flow, sc, in.wall);
+  s.wall_time_s = in.wall;
+  return s;
 }
 
 }  // namespace
@@ -77,80 +147,20 @@ RunResult simulate(const Scene& scene, bool progress, Recording recording, const
   run::Watch watch(model, sc);  // not const: the model updates its watchers
   const double setup = seconds_since(setup_start);
 
-  // Integrate: the reduced-order model alone, or coupled to the flow kernel.
-  const auto wall_start = WallClock::now();
   // The integrator samples at the measures' own interval; the recorder keeps rows every output.dt.
   IntegratorSettings st = integrator_settings(sc);
   st.output_dt = run::measure_interval(model, sc);
   run::Recorder rec(model, sc, progress, recording == Recording::full, st.output_dt);
-  std::unique_ptr<coupling::FlowCoupling> coupled;
-  SolverStats stats;
-  try {
-    if (sc.has(Effect::flow)) {
-      coupled = std::make_unique<coupling::FlowCoupling>(model, sc);
-      if (progress) coupled->set_progress([&rec](const std::string& text) { rec.show_status(text); });
-      if (fields) coupled->set_file_sink(fields);
-      stats = coupled->run(st, rec);
-    } else {
-      stats = integrate(model, st, rec);
-    }
-  } catch (...) {
-    rec.finish_progress();
-    throw;
-  }
-  rec.finish_progress();
-  const double wall = seconds_since(wall_start);
+  const Integration in = integrate_run(model, sc, st, rec, progress, fields);
 
   RunResult res;
   res.scene = sc;
   res.columns = rec.columns();
   res.rows = std::move(rec.rows());
   res.contact_rows = std::move(rec.contact_rows());
-  const double t_final = res.rows.empty() ? 0.0 : res.rows.back()[0];
-
-  // Measure: the first contact as the seed does, then every contact with each named measure.
-  std::vector<std::string> warnings;
-  run::FirstContact first = run::measure_first_contact(model, watch, sc, rec.track(), warnings);
-  nlohmann::ordered_json bounces = nlohmann::ordered_json::array();
-  if (model.has_target() && sc.has(Effect::elastic) && !rec.track().t.empty())
-    bounces = run::measure_bounces(model, watch, sc, rec.track(), warnings);
-  run::choose_e(sc, bounces, first, warnings);
-  run::check_plausibility(model, sc, first, warnings);
-
-  // Report: the typed summary, and summary.json from the same values.
-  RunSummary& s = res.summary;
-  auto& j = res.summary_json;
-  s.scene = sc.name;
-  s.scene_file = sc.path;
-  s.configuration = !model.has_target() ? Configuration::free_sphere
-                                        : (model.has_wall() ? Configuration::sphere_wall : Configuration::sphere_sphere);
-  run::measure_summary(s, model, watch, sc, first, bounces, rec, res.rows);
-  j["scene"] = s.scene;
-  j["scene_file"] = s.scene_file;
-  j["configuration"] = to_string(s.configuration);
-  s.fluid = sc.fluid;
-  if (s.fluid) j["fluid"] = run::fluid_block(*s.fluid);
-  run::put_measurements(j, s, sc, bounces);
-  if (model.has_target() && sc.has(Effect::elastic)) {
-    s.contact = run::contact_summary(model);
-    j["contact"] = run::contact_block(*s.contact);
-  }
-  put_effects_and_model(s, j, model, sc);
-  s.solver = {to_string(st.method), st.rtol, st.atol, t_final, st.output_dt, rec.track().t.size(), stats};
-  j["solver"] = run::solver_block(model, st, stats, t_final);
-  j["solver"]["measure_interval_s"] = s.solver.measure_interval_s;  // the integrator's sampling, which the measures read
-  j["solver"]["measure_samples"] = s.solver.measure_samples;
-  j["events"] = events_block(model);
-  s.warnings = warnings;
-  j["warnings"] = s.warnings;
-  if (coupled) {
-    s.flow = run::flow_summary(coupled->stats(), sc, wall);
-    j["flow"] = run::flow_block(*s.flow);
-  }
-  s.wall_time_s = wall;
-  s.setup_time_s = setup;  // model construction, incl. one-off lookup tables
-  j["wall_time_s"] = s.wall_time_s;
-  j["setup_time_s"] = s.setup_time_s;
+  res.summary = summarize(model, watch, sc, rec, res.rows, st, in);
+  res.summary.setup_time_s = setup;  // model construction, incl. one-off lookup tables
+  res.summary_json = res.summary;    // summary.json, written from the typed summary alone
   return res;
 }
 

@@ -22,7 +22,7 @@ std::string wall_scene(const std::string& fluid, double u, const std::string& ex
   return fluid + test::sphere("steel", 0.0127, -0.0127, u) + test::wall("zerodur", 0.0) + "[contact]\ne_dry = 0.9\n" + extra;
 }
 
-RunResult run(const std::string& toml, std::vector<Override> ov = {}) {
+RunResult collision_run(const std::string& toml, std::vector<Override> ov = {}) {
   return simulate(parse_scene(toml, "test.toml", ov));
 }
 double e_of(const RunResult& r) { return r.summary_json["e"].get<double>(); }
@@ -34,13 +34,13 @@ using test::fluid;
 class DryCollision : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(DryCollision, WallReturnsDryRestitution) {
-  auto r = run(wall_scene("", 0.2, "[solver]\nrtol = 1e-10\n"), {{"solver.integrator", "\"" + GetParam() + "\""}});
+  auto r = collision_run(wall_scene("", 0.2, "[solver]\nrtol = 1e-10\n"), {{"solver.integrator", "\"" + GetParam() + "\""}});
   EXPECT_NEAR(e_of(r), 0.9, 1e-6);
   EXPECT_NEAR(r.summary_json["e_instant"].get<double>(), 0.9, 1e-6);
   EXPECT_TRUE(r.summary_json["separated"].get<bool>());
   EXPECT_TRUE(r.summary_json["St"].is_null());
   // e_instant at a gap outside the contact zone (the rebound must run on until it is reached).
-  auto far = run(wall_scene("", 0.2, "[solver]\nrtol = 1e-10\n[measure]\ninstant_gap = 0.3\n"),
+  auto far = collision_run(wall_scene("", 0.2, "[solver]\nrtol = 1e-10\n[measure]\ninstant_gap = 0.3\n"),
                  {{"solver.integrator", "\"" + GetParam() + "\""}});
   EXPECT_NEAR(far.summary_json["e_instant"].get<double>(), 0.9, 1e-6);
   EXPECT_NEAR(e_of(far), 0.9, 1e-6);
@@ -48,7 +48,7 @@ TEST_P(DryCollision, WallReturnsDryRestitution) {
 
 TEST_P(DryCollision, PairReturnsDryRestitutionAndConservesMomentum) {
   // Both spheres moving, unequal sizes and materials: e = min(e_steel, e_glass) = 0.97.
-  auto r = run(pair_scene("", 0.15, -0.05, "[solver]\nrtol = 1e-10\n"), {{"solver.integrator", "\"" + GetParam() + "\""}});
+  auto r = collision_run(pair_scene("", 0.15, -0.05, "[solver]\nrtol = 1e-10\n"), {{"solver.integrator", "\"" + GetParam() + "\""}});
   EXPECT_NEAR(e_of(r), 0.97, 1e-6);
   // Momentum m1 u1 + m2 u2 at every sample equals the initial one.
   const double pi = 3.141592653589793;
@@ -67,7 +67,7 @@ TEST(ImmersedCollision, AddedMassForcesAreConservative) {
   // Ideal fluid limit (added mass only): ½ m_a(δ) U² is conserved outside the contact, so the
   // relative speed at any gap comes back multiplied by exactly e_d.
   for (double gap : {0.017, 0.05, 0.3}) {
-    auto r = run("effects = [\"added_mass\", \"elastic\"]\n" + wall_scene(fluid(0.01, 1200), 0.5),
+    auto r = collision_run("effects = [\"added_mass\", \"elastic\"]\n" + wall_scene(fluid(0.01, 1200), 0.5),
                  {{"solver.rtol", "1e-10"}, {"measure.instant_gap", std::to_string(gap)}});
     EXPECT_NEAR(r.summary_json["e_instant"].get<double>(), 0.9, 1e-6) << "gap " << gap;
     EXPECT_LE(e_of(r), 0.9 + 1e-9);
@@ -78,8 +78,8 @@ TEST(AddedMassModels, LagrangianEqualsSeedForEqualSpheres) {
   // (For a wall both names run the same code: A(δ) U_rel² reduces to the (6.8) terms.)
   const std::string equal = fluid(0.01) + test::sphere("glass", 0.0127, 0.0, 0.1) + test::sphere("glass", 0.0127, 0.016, 0.0);
   // Same relative motion: the pair's relative kinetic energy is ½ (m_p + ½ m_f (1 + 3W)) U_rel² / 2 in both.
-  EXPECT_NEAR(e_of(run(equal, {{"added_mass.model", "lagrangian"}, {"solver.rtol", "1e-10"}})),
-              e_of(run(equal, {{"added_mass.model", "seed"}, {"solver.rtol", "1e-10"}})), 1e-6);
+  EXPECT_NEAR(e_of(collision_run(equal, {{"added_mass.model", "lagrangian"}, {"solver.rtol", "1e-10"}})),
+              e_of(collision_run(equal, {{"added_mass.model", "seed"}, {"solver.rtol", "1e-10"}})), 1e-6);
 }
 
 TEST(AddedMassModels, LagrangianPairIsConservative) {
@@ -87,7 +87,7 @@ TEST(AddedMassModels, LagrangianPairIsConservative) {
   // Σ (m_p + ½ m_f) U is conserved at every sample.
   const std::string scene = "effects = [\"added_mass\", \"elastic\"]\n" + pair_scene(fluid(0.01, 1200), 0.5, 0.0);
   for (double gap : {0.03, 0.1}) {
-    auto r = run(scene, {{"added_mass.model", "lagrangian"}, {"solver.rtol", "1e-10"}, {"measure.instant_gap", std::to_string(gap)}});
+    auto r = collision_run(scene, {{"added_mass.model", "lagrangian"}, {"solver.rtol", "1e-10"}, {"measure.instant_gap", std::to_string(gap)}});
     EXPECT_NEAR(r.summary_json["e_instant"].get<double>(), 0.97, 1e-6) << gap;
     EXPECT_LE(e_of(r), 0.97 + 1e-9);
     const double pi = 3.141592653589793;
@@ -104,15 +104,15 @@ TEST(AddedMassModels, SeedPerSphereFormIsNotConservativeForUnequalPairs) {
   // Characterises the seed's (6.8) applied per sphere: for unequal spheres it transfers energy into
   // the relative motion, so an ideal-fluid collision rebounds faster than a dry one (e > e_d).
   const std::string scene = "effects = [\"added_mass\", \"elastic\"]\n" + pair_scene(fluid(0.01, 1200), 0.5, 0.0, "[added_mass]\nmodel = \"seed\"\n");
-  auto r = run(scene, {{"solver.rtol", "1e-10"}, {"measure.instant_gap", "0.1"}});
+  auto r = collision_run(scene, {{"solver.rtol", "1e-10"}, {"measure.instant_gap", "0.1"}});
   EXPECT_GT(r.summary_json["e_instant"].get<double>(), 0.97 + 1e-3);
 }
 
 TEST(ImmersedCollision, CvodeAndIdaAgree) {
   for (const std::string& scene : {wall_scene(fluid(0.02), 0.3), pair_scene(fluid(0.01), 0.2, 0.0),
                                    pair_scene(fluid(0.01), 0.2, 0.0, "[added_mass]\nmodel = \"lagrangian\"\n")}) {
-    auto a = run(scene, {{"solver.rtol", "1e-10"}});
-    auto b = run(scene, {{"solver.rtol", "1e-10"}, {"solver.integrator", "\"ida\""}});
+    auto a = collision_run(scene, {{"solver.rtol", "1e-10"}});
+    auto b = collision_run(scene, {{"solver.rtol", "1e-10"}, {"solver.integrator", "\"ida\""}});
     EXPECT_NEAR(e_of(a), e_of(b), 1e-6);
     EXPECT_NEAR(a.summary_json["min_gap_m"].get<double>(), b.summary_json["min_gap_m"].get<double>(), 1e-9);
     EXPECT_NEAR(a.summary_json["St"].get<double>() / b.summary_json["St"].get<double>(), 1.0, 1e-7);
@@ -121,10 +121,10 @@ TEST(ImmersedCollision, CvodeAndIdaAgree) {
 
 TEST(ImmersedCollision, RestitutionConvergesAsRtolTightens) {
   const std::string scene = wall_scene(fluid(0.02), 0.3);
-  const double ref = e_of(run(scene, {{"solver.rtol", "1e-12"}}));
+  const double ref = e_of(collision_run(scene, {{"solver.rtol", "1e-12"}}));
   double prev = 1;
   for (const char* rt : {"1e-6", "1e-8", "1e-10"}) {
-    const double err = std::abs(e_of(run(scene, {{"solver.rtol", rt}})) - ref);
+    const double err = std::abs(e_of(collision_run(scene, {{"solver.rtol", rt}})) - ref);
     EXPECT_LT(err, prev) << "rtol " << rt;
     prev = err;
   }
@@ -135,7 +135,7 @@ TEST(ImmersedCollision, RestitutionRisesWithStokesAndStaysBelowDry) {
   // Sweep the viscosity at fixed impact speed; every case reaches contact.
   double prev_e = -1, prev_st = 0;
   for (double mu : {0.5, 0.2, 0.08, 0.03, 0.01, 0.003}) {
-    auto r = run(wall_scene(fluid(mu, 1200), 0.3, "[solver]\nt_end = 0.3\n"));
+    auto r = collision_run(wall_scene(fluid(mu, 1200), 0.3, "[solver]\nt_end = 0.3\n"));
     SCOPED_TRACE("mu " + std::to_string(mu));
     ASSERT_EQ(r.summary_json["contacts"].get<int>(), 1);
     const double e = e_of(r);
@@ -159,12 +159,12 @@ TEST(ImmersedCollision, RestitutionRisesWithStokesAndStaysBelowDry) {
 
 TEST(ImmersedCollision, ApproachStoppedByTheFluidGivesZeroRestitution) {
   // Without the history force (with it the approach decays like t^-1/2 and reaches the wall).
-  auto r = run("effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n" + wall_scene(fluid(2.0, 1200), 0.3, "[solver]\nt_end = 0.3\n"));
+  auto r = collision_run("effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n" + wall_scene(fluid(2.0, 1200), 0.3, "[solver]\nt_end = 0.3\n"));
   EXPECT_EQ(r.summary_json["contacts"].get<int>(), 0);
   EXPECT_EQ(e_of(r), 0.0);
   EXPECT_GT(r.summary_json["min_gap_m"].get<double>(), 0.017 * 0.0127);
   // Without a stop the run reports no e at all.
-  auto cut = run(wall_scene(fluid(0.02), 0.3), {{"solver.t_end", "0.005"}});
+  auto cut = collision_run(wall_scene(fluid(0.02), 0.3), {{"solver.t_end", "0.005"}});
   EXPECT_TRUE(cut.summary_json["e"].is_null());
   EXPECT_FALSE(cut.summary_json["warnings"].empty());
 }
@@ -189,7 +189,7 @@ TEST(ImmersedCollision, SeedGroupMotionCaseBNeverTouches) {
 
 TEST(ImmersedCollision, PairLubricationConservesMomentum) {
   // Lubrication and contact act equal and opposite: Σ m_p u is constant without drag and added mass.
-  auto r = run("effects = [\"lubrication\", \"elastic\"]\n" + pair_scene(fluid(0.05), 0.3, -0.1), {{"solver.rtol", "1e-10"}});
+  auto r = collision_run("effects = [\"lubrication\", \"elastic\"]\n" + pair_scene(fluid(0.05), 0.3, -0.1), {{"solver.rtol", "1e-10"}});
   const double pi = 3.141592653589793;
   const double m1 = 7780 * pi / 6 * std::pow(0.0127, 3), m2 = 2540 * pi / 6 * std::pow(0.010, 3);
   const double p0 = m1 * 0.3 - m2 * 0.1;
@@ -203,7 +203,7 @@ TEST(ImmersedCollision, PairLubricationConservesMomentum) {
 TEST(ImmersedCollision, SeedLubricationActsInTheRatioOfTheRadii) {
   // lubrication.model = "seed": 6πμ a_m (λ(h/a*) − 1) U_rel on sphere m, so f_lub2 = −(a2/a1) f_lub1 (steel 12.7 mm,
   // glass 10 mm), and the summary says that the forces differ.
-  auto r = run("effects = [\"lubrication\", \"elastic\"]\n" + pair_scene(fluid(0.05), 0.3, -0.1, "[lubrication]\nmodel = \"seed\"\n"),
+  auto r = collision_run("effects = [\"lubrication\", \"elastic\"]\n" + pair_scene(fluid(0.05), 0.3, -0.1, "[lubrication]\nmodel = \"seed\"\n"),
                {{"solver.rtol", "1e-10"}});
   const auto col = [&](const std::string& c) { return std::find(r.columns.begin(), r.columns.end(), c) - r.columns.begin(); };
   const auto i1 = col("f_lub1"), i2 = col("f_lub2"), iu = col("u_rel");
@@ -238,7 +238,7 @@ TEST(ImmersedCollision, SeedLubricationActsInTheRatioOfTheRadii) {
 TEST(ImmersedCollision, SeedLubricationOnAWallIsBrenner) {
   // For a wall a* = a: the seed's law is Brenner's series, and the whole run is the same.
   const std::string scene = "effects = [\"drag\", \"lubrication\", \"added_mass\", \"elastic\"]\n" + wall_scene(fluid(0.05), 0.2);
-  const auto b = run(scene, {{"lubrication.model", "\"brenner\""}}), s = run(scene, {{"lubrication.model", "\"seed\""}});
+  const auto b = collision_run(scene, {{"lubrication.model", "\"brenner\""}}), s = collision_run(scene, {{"lubrication.model", "\"seed\""}});
   EXPECT_EQ(e_of(s), e_of(b));
   EXPECT_EQ(s.summary_json["solver"]["steps"], b.summary_json["solver"]["steps"]);
   EXPECT_GT(e_of(b), 0.0);
@@ -246,7 +246,7 @@ TEST(ImmersedCollision, SeedLubricationOnAWallIsBrenner) {
 }
 
 TEST(ImmersedCollision, OnlyTheListedEffectsRun) {
-  auto r = run("effects = [\"drag\", \"elastic\"]\n" + wall_scene(fluid(0.02), 0.3));
+  auto r = collision_run("effects = [\"drag\", \"elastic\"]\n" + wall_scene(fluid(0.02), 0.3));
   const auto& cols = r.columns;
   auto has = [&](const std::string& c) { return std::find(cols.begin(), cols.end(), c) != cols.end(); };
   EXPECT_TRUE(has("f_drag1"));
@@ -255,7 +255,7 @@ TEST(ImmersedCollision, OnlyTheListedEffectsRun) {
   EXPECT_EQ(r.summary_json["effects"].size(), 2u);
   EXPECT_FALSE(r.summary_json["model"].contains("lubrication.model"));
   // Without lubrication and added mass, less is dissipated.
-  EXPECT_GT(e_of(r), e_of(run(wall_scene(fluid(0.02), 0.3))));
+  EXPECT_GT(e_of(r), e_of(collision_run(wall_scene(fluid(0.02), 0.3))));
 }
 
 TEST(HardCases, ExtremeSpeedsAndViscositiesStayStable) {
@@ -272,7 +272,7 @@ TEST(HardCases, ExtremeSpeedsAndViscositiesStayStable) {
         for (const std::string& scene :
              {wall_scene(fluid(mu, 1200), u), pair_scene(fluid(mu, 1200), u, 0.0, "[added_mass]\nmodel = \"lagrangian\"\n")}) {
           RunResult r;
-          ASSERT_NO_THROW(r = run(scene, ov));
+          ASSERT_NO_THROW(r = collision_run(scene, ov));
           for (const auto& row : r.rows)
             for (double v : row) ASSERT_TRUE(std::isfinite(v));
           ASSERT_FALSE(r.summary_json["e"].is_null());

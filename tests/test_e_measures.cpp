@@ -225,7 +225,8 @@ TEST(EMeasures, DryCollisionGivesTheDryRestitutionInEveryFitMeasure) {
 TEST(EMeasures, MeasureEPicksTheReportedMeasureAndDisagreementsAreNamed) {
   // A 2 mm glass bead on steel in 50 wt% glycerol-water at St ~ 18: the 10 ms line and the parabolas differ by ~0.25.
   const std::string bead = test::fluid(0.006, 1126) + test::sphere("glass", 0.002, -0.002, 0.2) + test::wall("steel", 0.0);
-  const auto d = simulate(parse_scene(bead, "bead.toml", {{"measure.e", "\"contact_ends\""}})).summary_json;
+  const RunResult d_run = simulate(parse_scene(bead, "bead.toml", {{"measure.e", "\"contact_ends\""}}));
+  const auto& d = d_run.summary_json;
   const auto f = simulate(parse_scene(bead, "bead.toml", {{"measure.e", "\"fit_time\""}})).summary_json;
   EXPECT_EQ(f["e_is"], "fit_time");
   EXPECT_DOUBLE_EQ(f["e"].get<double>(), f["e_measures"]["fit_time"]["e"].get<double>());
@@ -237,7 +238,7 @@ TEST(EMeasures, MeasureEPicksTheReportedMeasureAndDisagreementsAreNamed) {
   EXPECT_FALSE(d["measures_disagree"].contains("yang_hunt_2006"));
   // The spread of the measures is information, not a warning: one plain line, e's measure first.
   for (const auto& w : d["warnings"]) EXPECT_EQ(w.get<std::string>().find("measure"), std::string::npos) << w;
-  const std::string t = run::e_by_measure_line(parse_scene(bead, "bead.toml"), d["e_measures"], "contact_ends");
+  const std::string t = run::e_by_measure_line(parse_scene(bead, "bead.toml"), d_run.summary.bounces.at(0));
   EXPECT_EQ(t.find("contact_ends "), 0u) << t;
   EXPECT_NE(t.find("(e)"), std::string::npos) << t;
   EXPECT_NE(t.find("fit_time/yang_hunt_2006 "), std::string::npos) << t;
@@ -246,11 +247,11 @@ TEST(EMeasures, MeasureEPicksTheReportedMeasureAndDisagreementsAreNamed) {
   EXPECT_EQ(t.find('\n'), std::string::npos) << t;
   // With another measure.window the two are different measures, compared under their own names.
   const Scene other = parse_scene(bead, "bead.toml", {{"measure.window", "0.012"}, {"measure.fit_distance", "0.2"}});
-  EXPECT_EQ(run::measure_label(other, "fit_time"), "fit_time");
-  EXPECT_EQ(run::measure_label(other, "yang_hunt_2006"), "yang_hunt_2006");
-  EXPECT_EQ(run::measure_label(other, "joseph_2001"), "joseph_2001");
-  EXPECT_EQ(run::measure_label(other, "gondret_2002"), "");
-  EXPECT_EQ(run::measure_label(other, "peak_rebound"), "peak_rebound/gondret_2002");
+  EXPECT_EQ(run::measure_label(other, EMeasure::fit_time), "fit_time");
+  EXPECT_EQ(run::measure_label(other, EMeasure::yang_hunt_2006), "yang_hunt_2006");
+  EXPECT_EQ(run::measure_label(other, EMeasure::joseph_2001), "joseph_2001");
+  EXPECT_EQ(run::measure_label(other, EMeasure::gondret_2002), "");
+  EXPECT_EQ(run::measure_label(other, EMeasure::peak_rebound), "peak_rebound/gondret_2002");
   // The windows and the fitted parabolas are reported for the picture.
   const auto& ce = d["e_measures"]["contact_ends"];
   EXPECT_LT(ce["approach"]["t0_s"].get<double>(), ce["approach"]["t1_s"].get<double>());
