@@ -239,11 +239,8 @@ std::string interval_text(const calib::Profile& p, const FitParameter& f, const 
   return "[" + end(p.lo, f.lo) + ", " + end(p.hi, f.hi) + "] (" + why + ")";
 }
 
-/// The closing lines on stdout: the stages, the best values with their intervals, the validation.
-void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::SearchResult& res, const StageTimes& times,
-                  const Validation* val, double wall, int jobs, int ranks) {
-  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
-  const std::string unit = trajectory ? " m" : "";
+/// The per-stage table (evaluations, failures, best rms, wall time) and the totals line.
+void print_stages(const calib::SearchResult& res, const StageTimes& times, double wall, int jobs, int ranks) {
   std::cout << std::left << std::setw(10) << "stage" << std::right << std::setw(12) << "evaluations" << std::setw(8) << "failed"
             << std::setw(14) << "best rms" << std::setw(10) << "wall s" << "\n";
   for (const auto stage : {calib::Stage::start, calib::Stage::scan, calib::Stage::local, calib::Stage::profile, calib::Stage::edge}) {
@@ -262,8 +259,11 @@ void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::Se
   }
   std::cout << res.evaluations.size() << " evaluations (" << res.failed << " failed) in " << fixed(wall, 2) << " s on " << jobs
             << (jobs == 1 ? " thread" : " threads") << (ranks > 1 ? " on each of " + std::to_string(ranks) + " ranks" : std::string()) << "\n";
-  if (!res.best_eval.ok) return;
-  std::cout << "best: rms " << sci(res.best_eval.rms, 3) << unit << " (objective " << sci(res.best_eval.objective, 3)
+}
+
+/// The best values with their intervals, and notes on intervals open at both bounds or not resolved.
+void print_best(const Inputs& in, const CalibrateOptions& opt, const calib::SearchResult& res, bool trajectory) {
+  std::cout << "best: rms " << sci(res.best_eval.rms, 3) << (trajectory ? " m" : "") << " (objective " << sci(res.best_eval.objective, 3)
             << (trajectory ? " m^2" : "") << ")";
   if (res.best_eval.tau) std::cout << ", time offset tau = " << fixed(1e3 * *res.best_eval.tau, 3) << " ms (measurement clock minus simulation)";
   std::cout << "\n";
@@ -282,110 +282,127 @@ void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::Se
       std::cout << "note: after " << opt.search.refine << " rounds (--refine) an end of the interval of " << in.params[k].key
                 << " still lies in a bracket wider than " << value_text(opt.search.refine_to)
                 << " of the interval (--refine-to): raise --refine for sharper ends\n";
-  if (!val) return;
+}
+
+/// The hold-out's rms under the fitted values; a table's rows, measured against simulated.
+void print_validation(const Inputs& in, const CalibrateOptions& opt, const Validation& val, bool trajectory) {
   std::cout << "validation on " << opt.validate << " (not used in the fit";
   if (trajectory) std::cout << "; the time offset refitted";
   std::cout << "): ";
-  if (!val->eval.ok) {
-    std::cout << "failed: " << val->eval.message << "\n";
+  if (!val.eval.ok) {
+    std::cout << "failed: " << val.eval.message << "\n";
     return;
   }
-  std::cout << "rms " << sci(val->eval.rms, 3) << unit;
-  if (val->eval.tau) std::cout << ", tau = " << fixed(1e3 * *val->eval.tau, 3) << " ms";
+  std::cout << "rms " << sci(val.eval.rms, 3) << (trajectory ? " m" : "");
+  if (val.eval.tau) std::cout << ", tau = " << fixed(1e3 * *val.eval.tau, 3) << " ms";
   std::cout << "\n";
   if (const auto* t = std::get_if<MeasuredTable>(&*in.held_out))
     for (std::size_t r = 0; r < t->e.size(); ++r) {
       std::cout << "  " << t->path << ":" << t->lines[r] << ":";
       for (std::size_t k = 0; k < t->keys.size(); ++k) std::cout << " " << t->keys[k] << " = " << value_text(t->values[r][k]);
-      const double sim = r < val->eval.e_sim.size() ? val->eval.e_sim[r] : NAN;
+      const double sim = r < val.eval.e_sim.size() ? val.eval.e_sim[r] : NAN;
       std::cout << ": e_meas " << fixed(t->e[r], 4) << ", e_sim " << (std::isfinite(sim) ? fixed(sim, 4) : "-") << "\n";
     }
 }
 
-}  // namespace
-
-// The command's steps in order (125 lines: inputs, rank agreement, folder, cache, search, report, files), each a call; what they share (inputs, unit, cache) would otherwise be passed between pieces.
-int calibrate(const std::string& scene_path, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
-  Inputs in = read_inputs(scene_path, overrides, opt);
-
-  // MPI starts here, every rank having checked the same inputs. Rank 0 alone writes: its output folder is taken
-  // now, and a refusal (another run writing it, a folder imcol did not write) ends every rank.
-  const cluster::World world = cluster::world();
-  if (const int differ = cluster::agree(calibrate_inputs(in.base, in.data, in.held_out, opt))) return differ;  // ranks on other inputs: refused
-  std::optional<OutputUnit> unit;
-  if (const int refused = cluster::on_rank0([&] { unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path,
-                                                                  std::vector<RunInput>{{"--data", opt.data}, {"--validate", opt.validate}, {"--cache", opt.cache}}); }))
-    return refused;
-  // The cache as rank 0 read it is every rank's (rank 0 alone appends to it, from here on).
-  std::optional<calib::CacheWriter> cache_writer;
-  if (!opt.cache.empty()) {
-    std::string text = in.cache_text;
-    cluster::share(text);
-    if (world.rank > 0) in.cache = calib::EvaluationCache(opt.cache, text, in.cache_context);
-    if (const int refused = cluster::on_rank0([&] { cache_writer.emplace(opt.cache, in.cache, in.cache_context); })) return refused;
-  }
-
-  const int jobs = study::job_count(opt.jobs, 1u << 20);  // threads a rank (each stage uses at most one per work item)
+/// The closing lines on stdout: the stages, the best values with their intervals, the validation.
+void print_result(const Inputs& in, const CalibrateOptions& opt, const calib::SearchResult& res, const StageTimes& times,
+                  const Validation* val, double wall, int jobs, int ranks) {
   const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
+  print_stages(res, times, wall, jobs, ranks);
+  if (!res.best_eval.ok) return;
+  print_best(in, opt, res, trajectory);
+  if (val) print_validation(in, opt, *val, trajectory);
+}
+
+/// Rank 0's output folder, taken before anything runs; non-zero when refused (another run writing it, a folder
+/// imcol did not write), which ends every rank.
+int take_output_unit(std::optional<OutputUnit>& unit, const Inputs& in, const CalibrateOptions& opt) {
+  return cluster::on_rank0([&] {
+    unit.emplace(opt.out, fs::path("out") / (in.base.name + "-calibrate"), in.base.path,
+                 std::vector<RunInput>{{"--data", opt.data}, {"--validate", opt.validate}, {"--cache", opt.cache}});
+  });
+}
+
+/// The cache as rank 0 read it made every rank's, and rank 0's writer (rank 0 alone appends to it, from here on);
+/// non-zero when refused.
+int open_cache(Inputs& in, const CalibrateOptions& opt, int rank, std::optional<calib::CacheWriter>& writer) {
+  if (opt.cache.empty()) return 0;
+  std::string text = in.cache_text;
+  cluster::share(text);
+  if (rank > 0) in.cache = calib::EvaluationCache(opt.cache, text, in.cache_context);
+  return cluster::on_rank0([&] { writer.emplace(opt.cache, in.cache, in.cache_context); });
+}
+
+/// The runner over the cluster; with a cache, each finished work item appended to it before the search uses it.
+calib::Runner search_runner(const CalibrateOptions& opt, std::optional<calib::CacheWriter>& cache_writer) {
+  calib::Runner runner = cluster_runner(opt.jobs);
+  if (cache_writer) runner.run = [run = runner.run, &cache_writer](std::size_t n, const std::function<std::string(std::size_t)>& work,
+                                                                  const std::function<void(std::size_t, std::string, int)>& done) {
+    run(n, work, [&](std::size_t i, std::string bytes, int rank) {
+      cache_writer->add_item(bytes);  // before the search uses it: a kill after this loses nothing
+      done(i, std::move(bytes), rank);
+    });
+  };
+  return runner;
+}
+
+/// The search on every rank from the start values, evaluations found in the cache taken from it.
+calib::SearchResult run_search(const Inputs& in, const std::string& scene_path, const std::vector<Override>& overrides,
+                               const CalibrateOptions& opt, ProgressLine& progress, std::optional<calib::CacheWriter>& cache_writer,
+                               int rank) {
   std::vector<double> start;
   for (const auto& s : in.start) start.push_back(s.value);
-  ProgressLine progress(world.rank == 0 && opt.progress && isatty(STDERR_FILENO), in.params.size(), opt.search,
-                        jobs * world.size, trajectory ? "m" : "");
   auto evaluate = [&](const std::vector<double>& values) {
     if (auto held = in.cache.find(values)) return *held;
     calib::Evaluation e = score(in, in.data, in.window, scene_path, overrides, values);
     progress.add_evaluation(e.wall_s);
     return e;
   };
-  const auto t0 = WallClock::now();
-  calib::SearchResult res;
-  {
-    cluster::Hold hold;  // the ranks wait on each other from stage to stage
-    calib::SearchOptions so = opt.search;
-    so.inner_parameters = trajectory ? 1 : 0;  // the time offset tau, fitted in every evaluation
-    calib::Runner runner = cluster_runner(opt.jobs);
-    if (cache_writer) runner.run = [run = runner.run, &cache_writer](std::size_t n, const std::function<std::string(std::size_t)>& work,
-                                                                    const std::function<void(std::size_t, std::string, int)>& done) {
-      run(n, work, [&](std::size_t i, std::string bytes, int rank) {
-        cache_writer->add_item(bytes);  // before the search uses it: a kill after this loses nothing
-        done(i, std::move(bytes), rank);
-      });
-    };
-    res = calib::search(in.params, start, evaluate, so, runner, world.rank == 0 ? progress.callback() : calib::Progress{});
-  }
-  const double wall = seconds_since(t0);
-  progress.finish();
-  if (world.rank > 0) return 0;
+  cluster::Hold hold;  // the ranks wait on each other from stage to stage
+  calib::SearchOptions so = opt.search;
+  so.inner_parameters = std::holds_alternative<MeasuredTrajectory>(in.data) ? 1 : 0;  // the time offset tau, fitted in every evaluation
+  return calib::search(in.params, start, evaluate, so, search_runner(opt, cache_writer), rank == 0 ? progress.callback() : calib::Progress{});
+}
 
-  sort_evaluations(res);
-  // The fitted run, for best.csv and its summary's blocks; the hold-out under the fitted values.
-  std::optional<RunResult> best_run;
-  std::string best_run_error;
-  if (res.best_eval.ok && trajectory) {
-    try {
-      best_run = simulate(calib::trajectory_scene(*in.window, scene_path, with_values(overrides, in.params, res.best)), false,
-                          Recording::kinematics);
-      // The same run the search scored: the same objective (best.csv shows what was fitted).
-      const double again = calib::trajectory_objective(std::get<MeasuredTrajectory>(in.data), *in.window, *best_run).objective;
-      if (!(std::abs(again - res.best_eval.objective) <= 1e-9 * res.best_eval.objective))
-        std::cerr << "imcol: warning: the fitted run scored again gives objective " << again << " against the search's "
-                  << res.best_eval.objective << "; best.csv holds the run made again\n";
-    } catch (const std::exception& e) {
-      best_run_error = e.what();
-    }
+/// A trajectory's fitted run, for best.csv and its summary's blocks; none for a table, without a best or when it
+/// fails (`error` says why).
+std::optional<RunResult> fitted_run(const Inputs& in, const std::string& scene_path, const std::vector<Override>& overrides,
+                                    const calib::SearchResult& res, std::string& error) {
+  std::optional<RunResult> run;
+  if (!res.best_eval.ok || !std::holds_alternative<MeasuredTrajectory>(in.data)) return run;
+  try {
+    run = simulate(calib::trajectory_scene(*in.window, scene_path, with_values(overrides, in.params, res.best)), false,
+                   Recording::kinematics);
+    // The same run the search scored: the same objective (best.csv shows what was fitted).
+    const double again = calib::trajectory_objective(std::get<MeasuredTrajectory>(in.data), *in.window, *run).objective;
+    if (!(std::abs(again - res.best_eval.objective) <= 1e-9 * res.best_eval.objective))
+      std::cerr << "imcol: warning: the fitted run scored again gives objective " << again << " against the search's "
+                << res.best_eval.objective << "; best.csv holds the run made again\n";
+  } catch (const std::exception& e) {
+    error = e.what();
   }
-  std::optional<Validation> val;
-  if (in.held_out && res.best_eval.ok) {
-    val.emplace();
-    val->eval = score(in, *in.held_out, in.held_window, scene_path, overrides, res.best);
-  }
+  return run;
+}
 
+/// The hold-out scored under the fitted values; none without a hold-out or a best.
+std::optional<Validation> held_out_validation(const Inputs& in, const std::string& scene_path, const std::vector<Override>& overrides,
+                                              const calib::SearchResult& res) {
+  if (!in.held_out || !res.best_eval.ok) return std::nullopt;
+  Validation val;
+  val.eval = score(in, *in.held_out, in.held_window, scene_path, overrides, res.best);
+  return val;
+}
+
+void print_heading(const Inputs& in, const CalibrateOptions& opt) {
   std::cout << "scene " << in.base.name << ": calibrating";
   for (const auto& p : in.params) std::cout << " " << p.key;
   std::cout << " against " << opt.data << " (" << kind_of(in.data) << ")\n";
-  print_result(in, opt, res, progress.stage_times(), val ? &*val : nullptr, wall, jobs, world.size);
+}
 
-  const fs::path& dir = unit->dir();
+/// The record the files are written from (its validation and fitted run point into the caller's).
+CalibrationRecord calibration_record(const Inputs& in, const std::string& scene_path, const std::vector<Override>& overrides,
+                                     const CalibrateOptions& opt, const calib::SearchResult& res) {
   CalibrationRecord rec;
   rec.scene_path = scene_path;
   rec.overrides = overrides;
@@ -398,8 +415,71 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   rec.held_out = in.held_out;
   rec.held_window = in.held_window;
   rec.search = opt.search;
-  rec.search.inner_parameters = trajectory ? 1 : 0;
+  rec.search.inner_parameters = std::holds_alternative<MeasuredTrajectory>(in.data) ? 1 : 0;
   rec.result = res;
+  return rec;
+}
+
+/// The cache's use (held, reused, added) into the record, and its line on stdout.
+void add_cache_use(CalibrationRecord& rec, const Inputs& in, const CalibrateOptions& opt, const calib::CacheWriter& writer) {
+  const calib::SearchResult& res = rec.result;
+  rec.cache.emplace();
+  rec.cache->path = opt.cache;
+  rec.cache->held = in.cache.size();
+  for (const auto& e : res.evaluations) rec.cache->reused += in.cache.contains(e.values) ? 1 : 0;
+  rec.cache->added = writer.added();
+  std::cout << "cache " << opt.cache << ": " << rec.cache->reused << " of " << res.evaluations.size()
+            << " evaluations taken from it, " << rec.cache->added << " added\n";
+}
+
+/// Writes the files (and the plot) into the unit and commits it; 3 when no evaluation succeeded.
+int write_output(OutputUnit& unit, const CalibrateOptions& opt, const CalibrationRecord& rec) {
+  write_calibration_files(unit.dir(), rec, unit.run());
+  if (opt.plot) {
+    std::cout.flush();
+    run_plot_script("plot_calibration.py", unit, "calibration.png");
+  }
+  unit.commit();
+  const fs::path& target = unit.target();
+  std::cout << "wrote " << (target / "calibration.json").string() << ", calibration.csv, measured.csv and best.csv\n";
+  if (!rec.result.best_eval.ok) {
+    std::cout.flush();
+    std::cerr << "imcol: error: no evaluation succeeded; their reasons are in " << (target / "calibration.csv").string() << " (status, message)\n";
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int calibrate(const std::string& scene_path, const std::vector<Override>& overrides, const CalibrateOptions& opt) {
+  Inputs in = read_inputs(scene_path, overrides, opt);
+  // MPI starts here, every rank having checked the same inputs. Rank 0 alone writes.
+  const cluster::World world = cluster::world();
+  if (const int differ = cluster::agree(calibrate_inputs(in.base, in.data, in.held_out, opt))) return differ;  // ranks on other inputs: refused
+  std::optional<OutputUnit> unit;
+  if (const int refused = take_output_unit(unit, in, opt)) return refused;
+  std::optional<calib::CacheWriter> cache_writer;
+  if (const int refused = open_cache(in, opt, world.rank, cache_writer)) return refused;
+
+  const int jobs = study::job_count(opt.jobs, 1u << 20);  // threads a rank (each stage uses at most one per work item)
+  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(in.data);
+  ProgressLine progress(world.rank == 0 && opt.progress && isatty(STDERR_FILENO), in.params.size(), opt.search,
+                        jobs * world.size, trajectory ? "m" : "");
+  const auto t0 = WallClock::now();
+  calib::SearchResult res = run_search(in, scene_path, overrides, opt, progress, cache_writer, world.rank);
+  const double wall = seconds_since(t0);
+  progress.finish();
+  if (world.rank > 0) return 0;
+
+  sort_evaluations(res);
+  std::string best_run_error;
+  const std::optional<RunResult> best_run = fitted_run(in, scene_path, overrides, res, best_run_error);
+  const std::optional<Validation> val = held_out_validation(in, scene_path, overrides, res);
+  print_heading(in, opt);
+  print_result(in, opt, res, progress.stage_times(), val ? &*val : nullptr, wall, jobs, world.size);
+
+  CalibrationRecord rec = calibration_record(in, scene_path, overrides, opt, res);
   rec.validation = val ? &*val : nullptr;
   rec.best_run = best_run ? &*best_run : nullptr;
   rec.best_run_error = best_run_error;
@@ -407,29 +487,8 @@ int calibrate(const std::string& scene_path, const std::vector<Override>& overri
   rec.jobs = jobs;
   rec.ranks = world.size;
   rec.stage_times = progress.stage_times();
-  if (cache_writer) {
-    rec.cache.emplace();
-    rec.cache->path = opt.cache;
-    rec.cache->held = in.cache.size();
-    for (const auto& e : res.evaluations) rec.cache->reused += in.cache.contains(e.values) ? 1 : 0;
-    rec.cache->added = cache_writer->added();
-    std::cout << "cache " << opt.cache << ": " << rec.cache->reused << " of " << res.evaluations.size()
-              << " evaluations taken from it, " << rec.cache->added << " added\n";
-  }
-  write_calibration_files(dir, rec, unit->run());
-  if (opt.plot) {
-    std::cout.flush();
-    run_plot_script("plot_calibration.py", *unit, "calibration.png");
-  }
-  unit->commit();
-  const fs::path& target = unit->target();
-  std::cout << "wrote " << (target / "calibration.json").string() << ", calibration.csv, measured.csv and best.csv\n";
-  if (!res.best_eval.ok) {
-    std::cout.flush();
-    std::cerr << "imcol: error: no evaluation succeeded; their reasons are in " << (target / "calibration.csv").string() << " (status, message)\n";
-    return 3;
-  }
-  return 0;
+  if (cache_writer) add_cache_use(rec, in, opt, *cache_writer);
+  return write_output(*unit, opt, rec);
 }
 
 }  // namespace imcol

@@ -176,27 +176,15 @@ std::string best_csv(const CalibrationRecord& rec) {
   return out;
 }
 
-}  // namespace
-
-void sort_evaluations(calib::SearchResult& r) {
-  std::stable_sort(r.evaluations.begin(), r.evaluations.end(), [](const calib::EvaluationRecord& a, const calib::EvaluationRecord& b) {
-    if (a.stage != b.stage) return a.stage < b.stage;
-    return a.item < b.item;
-  });
+json objective_json(bool trajectory) {
+  return trajectory ? json{{"is", "mean square of z_sim(t - tau) - z_meas(t) over the window's samples and the measured columns, "
+                                  "minimised over the time offset tau in [-tau_max, tau_max]"},
+                           {"unit", "m^2"},
+                           {"rms_unit", "m"}}
+                    : json{{"is", "mean square of e_sim - e_meas over the rows"}, {"unit", "1"}, {"rms_unit", "1"}};
 }
 
-// One JSON object (79 lines): calibration.json's keys in the order the file shows them, each one line.
-json calibration_json(const CalibrationRecord& rec) {
-  const auto& res = rec.result;
-  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(rec.data);
-  json j = scene_json(rec.scene_path, rec.overrides, rec.base);
-  j["measurement"] = measurement_json(rec.data, rec.window);
-  j["objective"] = trajectory
-                       ? json{{"is", "mean square of z_sim(t - tau) - z_meas(t) over the window's samples and the measured columns, "
-                                     "minimised over the time offset tau in [-tau_max, tau_max]"},
-                              {"unit", "m^2"},
-                              {"rms_unit", "m"}}
-                       : json{{"is", "mean square of e_sim - e_meas over the rows"}, {"unit", "1"}, {"rms_unit", "1"}};
+json parameters_json(const CalibrationRecord& rec) {
   json params = json::array();
   for (std::size_t k = 0; k < rec.params.size(); ++k) {
     const auto& p = rec.params[k];
@@ -204,17 +192,30 @@ json calibration_json(const CalibrationRecord& rec) {
     params.push_back({{"key", p.key}, {"lo", p.lo}, {"hi", p.hi}, {"scale", p.scale == calib::Scale::log ? "log" : "linear"},
                       {"start", s.value}, {"scene_value", run::finite_or_null(s.scene)}, {"start_from", s.from}});
   }
-  j["parameters"] = params;
+  return params;
+}
+
+json search_json(const CalibrationRecord& rec) {
   const auto& so = rec.search;
   const int d = static_cast<int>(rec.params.size());
-  j["search"] = {{"scan", so.scan < 0 ? 8 * d + 1 : so.scan}, {"starts", so.starts}, {"max_evals", so.max_evals}, {"xtol", so.xtol},
-                 {"profile_points", so.profile_points}, {"factor", run::finite_or_null(so.factor)},
-                 {"confidence", so.factor ? json(nullptr) : json(so.confidence)}, {"refine", so.refine}, {"refine_to", so.refine_to}};
+  return {{"scan", so.scan < 0 ? 8 * d + 1 : so.scan}, {"starts", so.starts}, {"max_evals", so.max_evals}, {"xtol", so.xtol},
+          {"profile_points", so.profile_points}, {"factor", run::finite_or_null(so.factor)},
+          {"confidence", so.factor ? json(nullptr) : json(so.confidence)}, {"refine", so.refine}, {"refine_to", so.refine_to}};
+}
+
+/// The best evaluation with its values by key.
+json best_json(const CalibrationRecord& rec) {
+  const auto& res = rec.result;
   json best = evaluation_json(res.best_eval);
   json values = json::object();
   for (std::size_t k = 0; k < rec.params.size() && k < res.best.size(); ++k) values[rec.params[k].key] = res.best[k];
   best["values"] = values;
-  j["best"] = best;
+  return best;
+}
+
+/// The evaluations counted by stage and by rank, with each stage's wall time.
+json evaluations_json(const CalibrationRecord& rec) {
+  const auto& res = rec.result;
   json by_stage = json::object(), stage_wall = json::object();
   for (auto s : kStages) {
     const auto n = std::count_if(res.evaluations.begin(), res.evaluations.end(), [s](const auto& e) { return e.stage == s; });
@@ -225,10 +226,18 @@ json calibration_json(const CalibrationRecord& rec) {
   std::vector<int> by_rank(static_cast<std::size_t>(std::max(1, rec.ranks)), 0);
   for (const auto& e : res.evaluations)
     if (e.rank >= 0 && static_cast<std::size_t>(e.rank) < by_rank.size()) ++by_rank[static_cast<std::size_t>(e.rank)];
-  j["evaluations"] = {{"count", res.evaluations.size()}, {"failed", res.failed}, {"by_stage", by_stage}, {"by_rank", by_rank},
-                      {"stage_wall_s", stage_wall}, {"file", "calibration.csv"}};
-  j["cache"] = rec.cache ? json{{"path", rec.cache->path}, {"held", rec.cache->held}, {"reused", rec.cache->reused}, {"added", rec.cache->added}}
-                         : json(nullptr);
+  return {{"count", res.evaluations.size()}, {"failed", res.failed}, {"by_stage", by_stage}, {"by_rank", by_rank},
+          {"stage_wall_s", stage_wall}, {"file", "calibration.csv"}};
+}
+
+json cache_json(const CalibrationRecord& rec) {
+  return rec.cache ? json{{"path", rec.cache->path}, {"held", rec.cache->held}, {"reused", rec.cache->reused}, {"added", rec.cache->added}}
+                   : json(nullptr);
+}
+
+/// Each parameter's profile with its interval (an end null: the objective stays within the factor up to the bound).
+json profiles_json(const CalibrationRecord& rec) {
+  const auto& res = rec.result;
   json profiles = json::array();
   const auto& rule = res.rule;
   const json factor_rule = rule.given ? json{{"kind", "given"}}
@@ -245,11 +254,11 @@ json calibration_json(const CalibrationRecord& rec) {
                         {"threshold", run::finite_or_null(rule.threshold)},
                         {"interval", {{"lo", run::finite_or_null(p.lo)}, {"hi", run::finite_or_null(p.hi)}, {"resolved", p.resolved}}}});
   }
-  j["profiles"] = profiles;  // an interval end null: the objective stays within the factor up to the bound
-  if (rec.validation) j["validation"] = validation_json(rec);
-  j["wall_time_s"] = rec.wall_s;
-  j["jobs"] = rec.jobs;  // threads a rank
-  j["ranks"] = rec.ranks;
+  return profiles;
+}
+
+/// best_run: the fitted run's blocks; a table's shared effects; or null (with best_run_error when it failed).
+void add_best_run(json& j, const CalibrationRecord& rec, bool trajectory) {
   if (rec.best_run) {
     const auto& s = rec.best_run->summary_json;
     json br;
@@ -264,6 +273,33 @@ json calibration_json(const CalibrationRecord& rec) {
     j["best_run"] = nullptr;
     if (!rec.best_run_error.empty()) j["best_run_error"] = rec.best_run_error;
   }
+}
+
+}  // namespace
+
+void sort_evaluations(calib::SearchResult& r) {
+  std::stable_sort(r.evaluations.begin(), r.evaluations.end(), [](const calib::EvaluationRecord& a, const calib::EvaluationRecord& b) {
+    if (a.stage != b.stage) return a.stage < b.stage;
+    return a.item < b.item;
+  });
+}
+
+json calibration_json(const CalibrationRecord& rec) {
+  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(rec.data);
+  json j = scene_json(rec.scene_path, rec.overrides, rec.base);
+  j["measurement"] = measurement_json(rec.data, rec.window);
+  j["objective"] = objective_json(trajectory);
+  j["parameters"] = parameters_json(rec);
+  j["search"] = search_json(rec);
+  j["best"] = best_json(rec);
+  j["evaluations"] = evaluations_json(rec);
+  j["cache"] = cache_json(rec);
+  j["profiles"] = profiles_json(rec);
+  if (rec.validation) j["validation"] = validation_json(rec);
+  j["wall_time_s"] = rec.wall_s;
+  j["jobs"] = rec.jobs;  // threads a rank
+  j["ranks"] = rec.ranks;
+  add_best_run(j, rec, trajectory);
   return j;
 }
 

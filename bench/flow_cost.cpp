@@ -30,6 +30,7 @@
 #include "flow/flow_scene.hpp"
 #include "flow/solver.hpp"
 #include "run/flow_run.hpp"
+#include "run/flow_run_json.hpp"
 
 using namespace imcol::flow;
 using imcol::seconds_since;
@@ -235,7 +236,7 @@ int refine_mode(const std::string& path, const std::vector<int>& cells) {
     o.quiet = true;
     o.cells_per_diameter = c;
     o.dt = sc.dt * sc.cells_per_diameter / c;
-    const auto j = imcol::run_flow_scene(sc, o).summary;
+    const auto j = imcol::flow_summary_json(imcol::run_flow_scene(sc, o));
     const double cd = j["drag_coefficient"].get<double>();
     cds.push_back(cd);
     std::string order = "-";
@@ -316,8 +317,8 @@ void steady_mode(int steady_cells) {
   imcol::FlowRunOptions o;
   o.quiet = true;
   if (steady_cells > 0) o.cells_per_diameter = steady_cells;
-  const auto j =
-      imcol::run_flow_scene(imcol::flow::load_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml"), o).summary;
+  const auto j = imcol::flow_summary_json(
+      imcol::run_flow_scene(imcol::flow::load_flow_scene(std::string(IMCOL_DATA_DIR) + "/scenes/flow/fixed_sphere_re100.toml"), o));
   std::printf("Re = 100 cold start, %d cells/D, %d levels: C_D = %.4f (standard %.4f, %+.2f %%); within 3 %% from t = %s after %s s wall; "
               "whole run %.2f s for %ld steps\n",
               j["grid"]["cells_per_diameter"].get<int>(), j["grid"]["levels"].get<int>(), j["drag_coefficient"].get<double>(),

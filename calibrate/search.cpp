@@ -116,34 +116,71 @@ struct Stages {
       if (r.eval.ok && (!b || r.eval.objective < b->eval.objective)) b = &r;
     return b;
   }
+
+  /// Counts the failed evaluations and sets the best; false without any success.
+  bool set_best() {
+    for (const auto& r : result.evaluations) result.failed += !r.eval.ok;
+    const EvaluationRecord* b = best_record();
+    if (!b) return false;
+    result.best = b->values;
+    result.best_eval = b->eval;
+    return true;
+  }
 };
 
-}  // namespace
+/// A work item's best objective (+inf: none succeeded).
+double item_best(const std::vector<EvaluationRecord>& item) {
+  double f = std::numeric_limits<double>::infinity();
+  for (const auto& r : item)
+    if (r.eval.ok) f = std::min(f, r.eval.objective);
+  return f;
+}
 
-SearchResult search(const std::vector<FitParameter>& params, const std::vector<double>& start,
-                    const std::function<Evaluation(const std::vector<double>&)>& evaluate, const SearchOptions& opt,
-                    const Runner& runner, const Progress& progress) {
-  SearchResult result;
-  const std::size_t d = params.size();
-  if (d == 0) return result;
-  Stages st{params, evaluate, runner, progress, result};
-  const std::vector<double> u_start = st.unit_of_values(start);
+/// Rows sorted by u (stable).
+void sort_by_u(std::vector<std::pair<double, double>>& p) {
+  std::stable_sort(p.begin(), p.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
+}
 
-  // 1. The start and the scan points: a grid of cell centres for one parameter, a Halton set for more.
-  const std::size_t n_scan = opt.scan < 0 ? 8 * d + 1 : static_cast<std::size_t>(opt.scan);
-  std::vector<std::vector<double>> scan_u;
-  for (std::size_t i = 0; i < n_scan; ++i)
-    scan_u.push_back(d == 1 ? std::vector<double>{(static_cast<double>(i) + 0.5) / static_cast<double>(n_scan)} : halton(i + 1, d));
-  st.run(
-      Stage::scan, n_scan + 1, [](std::size_t i) { return i == 0 ? Stage::start : Stage::scan; },
-      [](std::size_t i) { return i == 0 ? 0 : static_cast<int>(i - 1); },
-      [&](std::size_t i, const auto& eval) { eval(i == 0 ? u_start : scan_u[i - 1]); });
+/// Per parameter and side, the bracket (u inside, u outside) of an interval's finite end.
+struct Bracket {
+  std::size_t j;
+  double in, out;
+};
 
-  // 2. Local searches from the best `starts` distinct points of stage 1 (the start when none succeeded).
-  std::vector<std::vector<double>> starts;
-  {
+/// The stages in order, over the state they share.
+struct StagedSearch {
+  using Eval = std::function<double(const std::vector<double>&)>;
+  Stages& st;
+  const SearchOptions& opt;
+  std::size_t d;
+  std::vector<double> u_start, u_best;
+  std::size_t n_scan = 0, P = 0;
+  double step = 0;
+  int profile_evals = 0;
+  std::vector<std::vector<std::pair<double, double>>> pts;  // (u_j, objective) of each parameter's profile (rank 0)
+  std::vector<Bracket> brackets;
+  std::vector<double> ub;  // the best point when the brackets were set
+
+  StagedSearch(Stages& s, const SearchOptions& o, const std::vector<double>& start)
+      : st(s), opt(o), d(s.params.size()), u_start(s.unit_of_values(start)), pts(d) {}
+
+  /// 1. The start and the scan points: a grid of cell centres for one parameter, a Halton set for more.
+  void scan() {
+    n_scan = opt.scan < 0 ? 8 * d + 1 : static_cast<std::size_t>(opt.scan);
+    std::vector<std::vector<double>> scan_u;
+    for (std::size_t i = 0; i < n_scan; ++i)
+      scan_u.push_back(d == 1 ? std::vector<double>{(static_cast<double>(i) + 0.5) / static_cast<double>(n_scan)} : halton(i + 1, d));
+    st.run(
+        Stage::scan, n_scan + 1, [](std::size_t i) { return i == 0 ? Stage::start : Stage::scan; },
+        [](std::size_t i) { return i == 0 ? 0 : static_cast<int>(i - 1); },
+        [&](std::size_t i, const auto& eval) { eval(i == 0 ? u_start : scan_u[i - 1]); });
+  }
+
+  /// The best `starts` distinct points of stage 1 (the start when none succeeded), rank 0's.
+  std::vector<std::vector<double>> local_starts() const {
+    std::vector<std::vector<double>> starts;
     std::vector<const EvaluationRecord*> ok;
-    for (const auto& r : result.evaluations)
+    for (const auto& r : st.result.evaluations)
       if (r.eval.ok) ok.push_back(&r);
     std::stable_sort(ok.begin(), ok.end(), [](auto* a, auto* b) { return a->eval.objective < b->eval.objective; });
     for (const auto* r : ok) {
@@ -157,24 +194,24 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
       if (!seen) starts.push_back(u);
     }
     if (starts.empty() && opt.starts > 0) starts.push_back(u_start);
+    return starts;
   }
-  starts = st.share(starts);
-  // The first step: half the scan's spacing along each axis (a quarter of the range without a scan).
-  const double per_axis = n_scan > 0 ? std::ceil(std::pow(static_cast<double>(n_scan), 1.0 / static_cast<double>(d))) : 1.0;
-  const double step = std::clamp(0.5 / per_axis, 0.02, 0.25);
-  st.run(
-      Stage::local, starts.size(), [](std::size_t) { return Stage::local; }, [](std::size_t i) { return static_cast<int>(i); },
-      [&](std::size_t i, const auto& eval) { local_search(starts[i], opt.max_evals, opt.xtol, step, eval); });
 
-  // 3. Profiles: each parameter across its bounds, the others re-optimised from the best (more than one parameter).
-  std::vector<double> u_best = u_start;
-  if (const auto* b = st.best_record()) u_best = st.unit_of_values(b->values);
-  u_best = st.share({u_best})[0];
-  const std::size_t P = opt.profile_points > 0 ? static_cast<std::size_t>(opt.profile_points) : 0;
-  auto profile_u = [&](std::size_t p) { return P == 1 ? 0.5 : static_cast<double>(p) / static_cast<double>(P - 1); };
-  const int profile_evals = std::max(10, opt.max_evals / 4);  // per profile point, d > 1
-  // One profile point: parameter j at u_j, the others at their best (one parameter) or re-optimised from there.
-  auto profile_point = [&](std::size_t j, double uj, const std::function<double(const std::vector<double>&)>& eval) {
+  /// 2. Local searches from the shared starts; the first step: half the scan's spacing along each axis (a quarter
+  /// of the range without a scan).
+  void local() {
+    const std::vector<std::vector<double>> starts = st.share(local_starts());
+    const double per_axis = n_scan > 0 ? std::ceil(std::pow(static_cast<double>(n_scan), 1.0 / static_cast<double>(d))) : 1.0;
+    step = std::clamp(0.5 / per_axis, 0.02, 0.25);
+    st.run(
+        Stage::local, starts.size(), [](std::size_t) { return Stage::local; }, [](std::size_t i) { return static_cast<int>(i); },
+        [&](std::size_t i, const auto& eval) { local_search(starts[i], opt.max_evals, opt.xtol, step, eval); });
+  }
+
+  double profile_u(std::size_t p) const { return P == 1 ? 0.5 : static_cast<double>(p) / static_cast<double>(P - 1); }
+
+  /// One profile point: parameter j at u_j, the others at their best (one parameter) or re-optimised from there.
+  void profile_point(std::size_t j, double uj, const Eval& eval) const {
     std::vector<double> u = u_best;
     u[j] = uj;
     if (d == 1) {
@@ -189,132 +226,156 @@ SearchResult search(const std::vector<FitParameter>& params, const std::vector<d
       for (std::size_t k = 0, m = 0; k < d; ++k) full[k] = k == j ? uj : o[m++];
       return eval(full);
     });
-  };
-  // A work item's best objective (+inf: none succeeded).
-  auto item_best = [](const std::vector<EvaluationRecord>& item) {
-    double f = std::numeric_limits<double>::infinity();
-    for (const auto& r : item)
-      if (r.eval.ok) f = std::min(f, r.eval.objective);
-    return f;
-  };
-  // (u_j, objective) of each parameter's profile: its points and, later, the refined ends' points (rank 0).
-  std::vector<std::vector<std::pair<double, double>>> pts(d);
-  if (P > 0) {
+  }
+
+  /// 3. Profiles: each parameter across its bounds, the others re-optimised from the best (more than one parameter).
+  void profiles() {
+    u_best = u_start;
+    if (const auto* b = st.best_record()) u_best = st.unit_of_values(b->values);
+    u_best = st.share({u_best})[0];
+    P = opt.profile_points > 0 ? static_cast<std::size_t>(opt.profile_points) : 0;
+    profile_evals = std::max(10, opt.max_evals / 4);  // per profile point, d > 1
+    if (P == 0) return;
     const auto items = st.run(
         Stage::profile, d * P, [](std::size_t) { return Stage::profile; }, [](std::size_t i) { return static_cast<int>(i); },
         [&](std::size_t i, const auto& eval) { profile_point(i / P, profile_u(i % P), eval); });
     for (std::size_t i = 0; i < items.size(); ++i) pts[i / P].emplace_back(profile_u(i % P), item_best(items[i]));
   }
-  if (P == 0) {
-    for (const auto& r : result.evaluations) result.failed += !r.eval.ok;
-    if (const EvaluationRecord* b = st.best_record()) result.best = b->values, result.best_eval = b->eval;
-    return result;
+
+  /// The threshold rule: factor × the best so far, the factor given or 1 + q / (n - p).
+  void init_rule() {
+    FactorRule& rule = st.result.rule;
+    rule.given = opt.factor.has_value();
+    rule.p = d + static_cast<std::size_t>(std::max(0, opt.inner_parameters));
+    if (!rule.given) {
+      rule.confidence = opt.confidence;
+      rule.q = chi2_1_quantile(opt.confidence);
+    }
   }
 
-  // The threshold: factor × the best so far, the factor given or 1 + q / (n - p) (rank 0 decides; the others follow
-  // the shared brackets).
-  FactorRule& rule = result.rule;
-  rule.given = opt.factor.has_value();
-  rule.p = d + static_cast<std::size_t>(std::max(0, opt.inner_parameters));
-  if (!rule.given) {
-    rule.confidence = opt.confidence;
-    rule.q = chi2_1_quantile(opt.confidence);
-  }
-  auto set_threshold = [&](const EvaluationRecord* b) {
-    if (!b) return;
-    rule.n = b->eval.residuals;
+  void set_threshold(const EvaluationRecord& b) {
+    FactorRule& rule = st.result.rule;
+    rule.n = b.eval.residuals;
     rule.factor = rule.given ? *opt.factor : confidence_factor(opt.confidence, rule.n, rule.p);
-    rule.threshold = rule.factor * b->eval.objective;
-  };
+    rule.threshold = rule.factor * b.eval.objective;
+  }
 
-  // 4. Edges: per parameter and side, the bracket (u inside, u outside) of the interval's end where it is finite,
-  // set from the profile's points so far and the threshold of the best so far (an edge point may improve the best,
-  // which lowers the threshold); each round evaluates the brackets' middles as profile points, which join the profile.
-  struct Bracket {
-    std::size_t j;
-    double in, out;
-  };
-  std::vector<Bracket> brackets;
-  std::vector<double> ub;  // the best point when the brackets were set
-  auto set_brackets = [&] {
+  /// Parameter j's brackets from its profile's points so far and the best so far.
+  void add_brackets(std::size_t j, const EvaluationRecord& b) {
+    const double threshold = st.result.rule.threshold;
+    auto p = pts[j];
+    p.emplace_back(ub[j], b.eval.objective);
+    sort_by_u(p);
+    std::size_t m = 0;
+    for (std::size_t i = 1; i < p.size(); ++i)
+      if (p[i].second < p[m].second) m = i;
+    if (!(p[m].second <= threshold)) return;
+    for (std::size_t i = m; i-- > 0;)
+      if (!(p[i].second <= threshold)) {
+        brackets.push_back({j, p[i + 1].first, p[i].first});
+        break;
+      }
+    for (std::size_t i = m + 1; i < p.size(); ++i)
+      if (!(p[i].second <= threshold)) {
+        brackets.push_back({j, p[i - 1].first, p[i].first});
+        break;
+      }
+  }
+
+  /// The brackets from the best so far (which sets the threshold); none on a rank other than 0.
+  void set_brackets() {
     brackets.clear();
     const EvaluationRecord* b = st.best_record();
     if (!b) return;  // none succeeded, or a rank other than 0: rank 0's brackets come shared
-    set_threshold(b);
+    set_threshold(*b);
     ub = st.unit_of_values(b->values);
-    for (std::size_t j = 0; j < d; ++j) {
-      auto p = pts[j];
-      p.emplace_back(ub[j], b->eval.objective);
-      std::stable_sort(p.begin(), p.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
-      std::size_t m = 0;
-      for (std::size_t i = 1; i < p.size(); ++i)
-        if (p[i].second < p[m].second) m = i;
-      if (!(p[m].second <= rule.threshold)) continue;
-      for (std::size_t i = m; i-- > 0;)
-        if (!(p[i].second <= rule.threshold)) {
-          brackets.push_back({j, p[i + 1].first, p[i].first});
-          break;
-        }
-      for (std::size_t i = m + 1; i < p.size(); ++i)
-        if (!(p[i].second <= rule.threshold)) {
-          brackets.push_back({j, p[i - 1].first, p[i].first});
-          break;
-        }
-    }
-  };
-  // A bracket is fine enough once it is refine_to of its interval's width, which is at least the span of the
-  // interval's inside points (its ends' inside points and the best).
-  auto too_wide = [&](const Bracket& b) {
+    for (std::size_t j = 0; j < d; ++j) add_brackets(j, *b);
+  }
+
+  /// A bracket is fine enough once it is refine_to of its interval's width, which is at least the span of the
+  /// interval's inside points (its ends' inside points and the best).
+  bool too_wide(const Bracket& b) const {
     double lo = ub[b.j], hi = ub[b.j];
     for (const auto& c : brackets)
       if (c.j == b.j) lo = std::min(lo, c.in), hi = std::max(hi, c.in);
     return std::abs(b.out - b.in) > opt.refine_to * (hi - lo);
-  };
-  int edge_item = 0;
-  for (int round = 0;; ++round) {
-    set_brackets();
-    if (round >= opt.refine) break;
-    // This round's points (j, u_j) of the brackets still too wide, rank 0's, made every rank's.
+  }
+
+  /// This round's points (j, u_j): the middles of the brackets still too wide, rank 0's, made every rank's.
+  std::vector<std::vector<double>> bracket_middles() const {
     std::vector<std::vector<double>> mids;
     for (const auto& b : brackets)
       if (too_wide(b)) mids.push_back({static_cast<double>(b.j), 0.5 * (b.in + b.out)});
-    mids = st.share(mids);
-    if (mids.empty()) break;
-    const int first = edge_item;
-    const auto items = st.run(
-        Stage::edge, mids.size(), [](std::size_t) { return Stage::edge; }, [first](std::size_t i) { return first + static_cast<int>(i); },
-        [&](std::size_t i, const auto& eval) { profile_point(static_cast<std::size_t>(mids[i][0]), mids[i][1], eval); });
-    edge_item += static_cast<int>(mids.size());
-    for (std::size_t i = 0; i < items.size(); ++i) pts[static_cast<std::size_t>(mids[i][0])].emplace_back(mids[i][1], item_best(items[i]));
+    return st.share(mids);
   }
 
-  // The best of all evaluations, and each profile's interval within factor × best: the profile's points and the
-  // refined ends' (an end's last bracket holds no other point, so the end is interpolated inside it).
-  for (const auto& r : result.evaluations) result.failed += !r.eval.ok;
-  const EvaluationRecord* b = st.best_record();
-  if (!b) return result;
-  result.best = b->values;
-  result.best_eval = b->eval;
-  const std::vector<double> u_final = st.unit_of_values(result.best);
-  for (std::size_t j = 0; j < d; ++j) {
+  /// 4. Edges: each round sets the brackets from the profiles and the threshold of the best so far (an edge point
+  /// may improve the best, which lowers the threshold) and evaluates their middles as profile points, which join
+  /// the profile.
+  void edges() {
+    int edge_item = 0;
+    for (int round = 0;; ++round) {
+      set_brackets();
+      if (round >= opt.refine) break;
+      const std::vector<std::vector<double>> mids = bracket_middles();
+      if (mids.empty()) break;
+      const int first = edge_item;
+      const auto items = st.run(
+          Stage::edge, mids.size(), [](std::size_t) { return Stage::edge; }, [first](std::size_t i) { return first + static_cast<int>(i); },
+          [&](std::size_t i, const auto& eval) { profile_point(static_cast<std::size_t>(mids[i][0]), mids[i][1], eval); });
+      edge_item += static_cast<int>(mids.size());
+      for (std::size_t i = 0; i < items.size(); ++i) pts[static_cast<std::size_t>(mids[i][0])].emplace_back(mids[i][1], item_best(items[i]));
+    }
+  }
+
+  /// Parameter j's profile and its interval within factor × best: the profile's points and the refined ends' (an
+  /// end's last bracket holds no other point, so the end is interpolated inside it).
+  Profile profile_of(std::size_t j, const std::vector<double>& u_final) const {
+    const FitParameter& param = st.params[j];
     auto p = pts[j];
-    p.emplace_back(u_final[j], result.best_eval.objective);
-    std::stable_sort(p.begin(), p.end(), [](const auto& a, const auto& c) { return a.first < c.first; });
+    p.emplace_back(u_final[j], st.result.best_eval.objective);
+    sort_by_u(p);
     std::vector<double> u, f;
     Profile prof;
     for (const auto& [x, y] : p) {
       u.push_back(x);
       f.push_back(y);
-      prof.values.push_back(value_of(params[j], x));
+      prof.values.push_back(value_of(param, x));
       prof.objective.push_back(y);
     }
-    const auto [lo, hi] = profile_interval(u, f, rule.threshold);
-    if (lo) prof.lo = value_of(params[j], *lo);
-    if (hi) prof.hi = value_of(params[j], *hi);
+    const auto [lo, hi] = profile_interval(u, f, st.result.rule.threshold);
+    if (lo) prof.lo = value_of(param, *lo);
+    if (hi) prof.hi = value_of(param, *hi);
     for (const auto& b : brackets)
       if (b.j == j && too_wide(b)) prof.resolved = false;
-    result.profiles.push_back(std::move(prof));
+    return prof;
   }
+
+  void intervals() {
+    const std::vector<double> u_final = st.unit_of_values(st.result.best);
+    for (std::size_t j = 0; j < d; ++j) st.result.profiles.push_back(profile_of(j, u_final));
+  }
+};
+
+}  // namespace
+
+SearchResult search(const std::vector<FitParameter>& params, const std::vector<double>& start,
+                    const std::function<Evaluation(const std::vector<double>&)>& evaluate, const SearchOptions& opt,
+                    const Runner& runner, const Progress& progress) {
+  SearchResult result;
+  if (params.empty()) return result;
+  Stages st{params, evaluate, runner, progress, result};
+  StagedSearch s(st, opt, start);
+  s.scan();
+  s.local();
+  s.profiles();
+  if (s.P == 0) {
+    st.set_best();
+    return result;
+  }
+  s.init_rule();
+  s.edges();
+  if (st.set_best()) s.intervals();
   return result;
 }
 

@@ -5,6 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include "calibrate/objective.hpp"
 #include "core/number_text.hpp"
@@ -106,27 +109,37 @@ std::pair<std::size_t, std::size_t> window_rows(const MeasuredTrajectory& m, con
   return {k0, k1};
 }
 
-Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWindow& w, const RunResult& run) {
-  Evaluation ev;
+namespace {
+
+/// The run's column of each measured column; none (and ev's message) when one is missing or the run has too few rows.
+std::optional<std::vector<std::size_t>> simulated_columns(const MeasuredTrajectory& m, const RunResult& run, Evaluation& ev) {
   std::vector<std::size_t> sim_col;
   for (const auto& name : m.columns) {
     const auto it = std::find(run.columns.begin(), run.columns.end(), name);
     if (it == run.columns.end()) {
       ev.objective = std::numeric_limits<double>::infinity();
       ev.message = "the run has no column " + name;
-      return ev;
+      return std::nullopt;
     }
     sim_col.push_back(static_cast<std::size_t>(it - run.columns.begin()));
   }
   if (run.rows.size() < 2 || run.columns.empty() || run.columns[0] != "t") {
     ev.objective = std::numeric_limits<double>::infinity();
     ev.message = "the run recorded fewer than two rows";
-    return ev;
+    return std::nullopt;
   }
-  const auto [k0, k1] = window_rows(m, w);
-  ev.residuals = (k1 - k0) * m.columns.size();
-  const double count = static_cast<double>(ev.residuals);
-  auto f = [&](double tau) {
+  return sim_col;
+}
+
+/// The mean square misfit over the window's rows [k0, k1) and the measured columns, the run shifted by tau.
+struct WindowMisfit {
+  const MeasuredTrajectory& m;
+  const RunResult& run;
+  const std::vector<std::size_t>& sim_col;
+  std::size_t k0, k1;
+  double count;
+
+  double operator()(double tau) const {
     double sum = 0;
     for (std::size_t c = 0; c < m.columns.size(); ++c) {
       std::size_t j = 0;
@@ -136,30 +149,46 @@ Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWin
       }
     }
     return sum / count;
-  };
-  // tau: a coarse scan over [-tau_max, tau_max], then golden-section search between the best scan point's neighbours.
+  }
+};
+
+/// The best (tau, f(tau)) for |tau| <= tau_max: a coarse scan, then golden-section search between the best scan
+/// point's neighbours; tau = 0 when tau_max is 0.
+std::pair<double, double> best_offset(const WindowMisfit& f, double tau_max) {
   constexpr int kScan = 40;  // intervals
   double best_tau = 0, best = f(0.0);
-  if (w.tau_max > 0) {
-    const double h = 2 * w.tau_max / kScan;
-    for (int i = 0; i <= kScan; ++i) {
-      const double tau = -w.tau_max + i * h;
-      const double v = f(tau);
-      if (v < best) best = v, best_tau = tau;
-    }
-    double a = std::max(-w.tau_max, best_tau - h), b = std::min(w.tau_max, best_tau + h);
-    const double g = (std::sqrt(5.0) - 1) / 2;
-    double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = f(x1), f2 = f(x2);
-    while (b - a > 1e-9 * w.tau_max) {
-      if (f1 < f2) {
-        b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = f(x1);
-      } else {
-        a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = f(x2);
-      }
-    }
-    const double tau = (a + b) / 2, v = f(tau);
+  if (!(tau_max > 0)) return {best_tau, best};
+  const double h = 2 * tau_max / kScan;
+  for (int i = 0; i <= kScan; ++i) {
+    const double tau = -tau_max + i * h;
+    const double v = f(tau);
     if (v < best) best = v, best_tau = tau;
   }
+  double a = std::max(-tau_max, best_tau - h), b = std::min(tau_max, best_tau + h);
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double x1 = b - g * (b - a), x2 = a + g * (b - a), f1 = f(x1), f2 = f(x2);
+  while (b - a > 1e-9 * tau_max) {
+    if (f1 < f2) {
+      b = x2, x2 = x1, f2 = f1, x1 = b - g * (b - a), f1 = f(x1);
+    } else {
+      a = x1, x1 = x2, f1 = f2, x2 = a + g * (b - a), f2 = f(x2);
+    }
+  }
+  const double tau = (a + b) / 2, v = f(tau);
+  if (v < best) best = v, best_tau = tau;
+  return {best_tau, best};
+}
+
+}  // namespace
+
+Evaluation trajectory_objective(const MeasuredTrajectory& m, const TrajectoryWindow& w, const RunResult& run) {
+  Evaluation ev;
+  const auto sim_col = simulated_columns(m, run, ev);
+  if (!sim_col) return ev;
+  const auto [k0, k1] = window_rows(m, w);
+  ev.residuals = (k1 - k0) * m.columns.size();
+  const WindowMisfit f{m, run, *sim_col, k0, k1, static_cast<double>(ev.residuals)};
+  const auto [best_tau, best] = best_offset(f, w.tau_max);
   ev.ok = std::isfinite(best);
   ev.objective = ev.ok ? best : std::numeric_limits<double>::infinity();
   ev.rms = std::sqrt(ev.objective);

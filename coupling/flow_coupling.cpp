@@ -390,6 +390,40 @@ void FlowCoupling::maybe_snapshot(double t, double gap) {
   }
 }
 
+void FlowCoupling::start_series() {
+  // The flow fields are computed only when something writes them (a file sink): sweeps and comparisons skip them.
+  if (sc_.flow.fields && sink_) series_.emplace(sc_.flow.fields_format, sink_);
+  if (series_ && sc_.flow.fields_every > 0) {  // the flow the spheres start in
+    take_regular();
+    next_every_ = sc_.flow.fields_every;
+  }
+}
+
+void FlowCoupling::finish_series() {
+  if (!series_) return;
+  take_snapshot("flow_end", "end of run,");
+  series_->finish();
+  stats_.fields_seconds = series_->seconds();
+}
+
+double FlowCoupling::advance(Integrator& integ, const DivergenceWatch& watch, double t1) {
+  double t = 0;
+  const auto t0 = WallClock::now();
+  try {
+    t = integ.advance(t1);
+  } catch (const SolverError& e) {
+    // A contact at an impossible speed (contact.delta_ss) or a stalled integrator after the flow fed the spheres
+    // energy: name the flow coupling first (the integrator's facts kept).
+    if (watch.energy_exceeded(integ.state())) throw SolverError(watch.energy_message(integ.time(), integ.state(), e.what()), e);
+    throw;
+  } catch (const std::exception& e) {
+    if (watch.energy_exceeded(integ.state())) throw SolverError(watch.energy_message(integ.time(), integ.state(), e.what()));
+    throw;
+  }
+  stats_.ode_seconds += seconds_since(t0);
+  return t;
+}
+
 SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) {
   start_up();
   Integrator integ(model_, st, observer);
@@ -400,12 +434,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
   watch.check_kernel_force(0.0, dt, acting(start_force_, integ.state()), integ.state());
   double t = 0;
   long n = 0;
-  // The flow fields are computed only when something writes them (a file sink): sweeps and comparisons skip them.
-  if (sc_.flow.fields && sink_) series_.emplace(sc_.flow.fields_format, sink_);
-  if (series_ && sc_.flow.fields_every > 0) {  // the flow the spheres start in
-    take_regular();
-    next_every_ = sc_.flow.fields_every;
-  }
+  start_series();
   while (!integ.finished()) {
     const double t1 = static_cast<double>(n + 1) * dt;
     const Predicted p = predict(t, integ.state(), dt);
@@ -423,19 +452,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     std::array<double, 2> z0{}, u0{};
     model_.sphere_states(integ.state(), z0, u0);
     const double t_start = t;
-    const auto t0 = WallClock::now();
-    try {
-      t = integ.advance(t1);
-    } catch (const SolverError& e) {
-      // A contact at an impossible speed (contact.delta_ss) or a stalled integrator after the flow fed the spheres
-      // energy: name the flow coupling first (the integrator's facts kept).
-      if (watch.energy_exceeded(integ.state())) throw SolverError(watch.energy_message(integ.time(), integ.state(), e.what()), e);
-      throw;
-    } catch (const std::exception& e) {
-      if (watch.energy_exceeded(integ.state())) throw SolverError(watch.energy_message(integ.time(), integ.state(), e.what()));
-      throw;
-    }
-    stats_.ode_seconds += seconds_since(t0);
+    t = advance(integ, watch, t1);
     ++n;
     stats_.steps = n;
     watch.check_step(t_start, t, u0, integ.state());
@@ -446,11 +463,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     if (t < t1 - 1e-12 * std::max(1.0, t1) && !integ.finished())
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
-  if (series_) {
-    take_snapshot("flow_end", "end of run,");
-    series_->finish();
-    stats_.fields_seconds = series_->seconds();
-  }
+  finish_series();
   return integ.stats();
 }
 

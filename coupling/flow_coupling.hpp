@@ -30,6 +30,7 @@
 #include "model/collision_model.hpp"
 #include "core/timing.hpp"
 #include "core/scene.hpp"
+#include "coupling/flow_run_stats.hpp"
 #include "coupling/step_rule.hpp"
 #include "flow/field_series.hpp"
 #include "flow/solver.hpp"
@@ -37,29 +38,7 @@
 
 namespace imcol::coupling {
 
-struct FlowRunStats {
-  long steps = 0;             // coupled flow steps
-  long pre_steps = 0;         // prescribed steps before t = 0 (start-up)
-  double dt = 0;              // flow step, s
-  double h = 0;               // finest spacing, m
-  int nr = 0, nz = 0, levels = 0, cells_per_diameter = 0;
-  double flow_seconds = 0, ode_seconds = 0, pre_seconds = 0;  // wall time in the kernel, in CVODE/IDA, in the start-up
-  long krylov_iterations = 0;
-  int max_krylov_iterations = 0;
-  double max_krylov_residual = 0, max_slip = 0;  // m/s
-  double cfl = 0;                  // Courant number of U_ref that gave dt (0: flow.dt given)
-  double max_courant = 0;          // the fluid's largest advective Courant number (flow/solver.hpp max_courant)
-  double max_energy_ratio = 0;     // largest kinetic energy / available energy (coupling/divergence_watch.hpp)
-  long min_gap_clamped_steps = 0;  // steps where the kernel's gap was held at min_gap_cells·h
-  double frame_travel = 0;         // m, how far the grid moved with the spheres
-  std::size_t bytes = 0;
-  // Estimated before the grid was allocated (coupling/run_cost.hpp), s and B: the start-up's steps, the force
-  // system's blocks, the coupled steps up to t_end, and the solver's memory.
-  double est_start_up_s = 0, est_blocks_s = 0, est_steps_s = 0, est_bytes = 0;
-  double est_total_s() const { return est_start_up_s + est_blocks_s + est_steps_s; }
-  int field_snapshots = 0;         // flow-field snapshots taken
-  double fields_seconds = 0;       // wall time computing and writing them, s
-};
+class DivergenceWatch;
 
 class FlowCoupling {
  public:
@@ -109,6 +88,10 @@ class FlowCoupling {
   void maybe_snapshot(double t, double gap);
   void take_snapshot(const std::string& name, const std::string& label);
   void take_regular();  // the flow.fields_every snapshot named by the step
+  void start_series();   // the field series when flow.fields and a sink, its first regular snapshot
+  void finish_series();  // the end's snapshot
+  /// integ.advance(t1) timed; a failure after the flow fed the spheres energy is named as the coupling's.
+  double advance(Integrator& integ, const DivergenceWatch& watch, double t1);
   std::array<double, 2> acting(const std::array<double, 2>& f_rest, std::span<const double> y) const;  // (1 − H) f_rest
   flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
 

@@ -84,14 +84,20 @@ double wall_gap(const FlowScene& sc, std::size_t i, double t) {
   return p.position + p.velocity * t - 0.5 * p.diameter - *sc.wall_position;
 }
 
-void check_flow_scene(const FlowScene& sc) {
+namespace {
+
+/// Some relative motion, and a time step that ends inside the run.
+void check_motion(const FlowScene& sc) {
   if (sc.U() == 0)
     throw InputError(sc.where(sc.line_stream > 0 ? sc.line_stream : sc.spheres.front().line), "stream.velocity",
                      "no relative motion: give a stream or a sphere velocity");
   if (sc.dt > sc.t_end)
     throw InputError(sc.where(sc.line_dt, {"--dt", "--t-end"}), "time.dt",
                      "dt = " + fmt_number(sc.dt) + " exceeds t_end = " + fmt_number(sc.t_end) + " (no step would end inside the run)");
-  // neighbours stay apart (gaps are linear in t apart from the oscillations); a min_gap stop ends the run first
+}
+
+/// Neighbours stay apart (gaps are linear in t apart from the oscillations); a min_gap stop ends the run first.
+void check_neighbours(const FlowScene& sc) {
   for (std::size_t i = 0; i + 1 < sc.spheres.size(); ++i) {
     const auto &p = sc.spheres[i], &q = sc.spheres[i + 1];
     for (double t : {0.0, sc.t_end}) {
@@ -109,43 +115,68 @@ void check_flow_scene(const FlowScene& sc) {
       }
     }
   }
-  // every sphere inside the finest level over the whole run, 3 cells clear of its edges
+}
+
+/// The finest level's extent (m) and spacing.
+struct FinestBox {
+  double zlo, zhi, rhi, h;
+};
+
+FinestBox finest_box(const FlowScene& sc) {
   const Settings s = sc.settings();
-  const double zlo = s.z_center - 0.5 * s.nz * s.h, zhi = s.z_center + 0.5 * s.nz * s.h, rhi = s.nr * s.h;
-  if (sc.wall_position) {
-    const double zw = *sc.wall_position;
-    if (sc.stream != 0)
-      throw InputError(sc.where(sc.line_stream), "stream.velocity",
-                       "a stream cannot be combined with a [wall] (the fluid far away is at rest with the wall; move the sphere instead)");
-    if (zw < zlo + 3 * s.h || zw > zhi - 3 * s.h)
-      throw InputError(sc.where(sc.line_wall, {"--cells"}), "wall.position",
-                       "the wall z = " + fmt_number(zw) + " must lie inside the finest grid (z in [" + fmt_number(zlo) + ", " + fmt_number(zhi) +
-                           "], 3 cells clear)");
-    for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
-      const auto& p = sc.spheres[i];
-      for (double t : {0.0, sc.t_end}) {
-        if (t > 0 && sc.min_gap > 0) continue;
-        const double gap = wall_gap(sc, i, t) - (t > 0 ? std::abs(p.amplitude) : 0.0);
-        if (gap <= 0)
-          throw InputError(t > 0 ? sc.where(p.line, {"--t-end"}) : sc.where(p.line), "sphere[" + std::to_string(i) + "]",
-                           t > 0 ? "sphere " + std::to_string(i + 1) + " would reach the wall by t = " + fmt_number(t) +
-                                       " (shorten time.t_end or set output.min_gap)"
-                                 : "sphere " + std::to_string(i + 1) + " touches the wall or is below it at t = 0 (spheres go on the wall's +z side)");
-      }
+  return {s.z_center - 0.5 * s.nz * s.h, s.z_center + 0.5 * s.nz * s.h, s.nr * s.h, s.h};
+}
+
+/// A wall: no stream, inside the finest level 3 cells clear, every sphere on its +z side over the run.
+void check_wall(const FlowScene& sc, const FinestBox& box) {
+  const double zlo = box.zlo, zhi = box.zhi;
+  const double zw = *sc.wall_position;
+  if (sc.stream != 0)
+    throw InputError(sc.where(sc.line_stream), "stream.velocity",
+                     "a stream cannot be combined with a [wall] (the fluid far away is at rest with the wall; move the sphere instead)");
+  if (zw < zlo + 3 * box.h || zw > zhi - 3 * box.h)
+    throw InputError(sc.where(sc.line_wall, {"--cells"}), "wall.position",
+                     "the wall z = " + fmt_number(zw) + " must lie inside the finest grid (z in [" + fmt_number(zlo) + ", " + fmt_number(zhi) +
+                         "], 3 cells clear)");
+  for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
+    const auto& p = sc.spheres[i];
+    for (double t : {0.0, sc.t_end}) {
+      if (t > 0 && sc.min_gap > 0) continue;
+      const double gap = wall_gap(sc, i, t) - (t > 0 ? std::abs(p.amplitude) : 0.0);
+      if (gap <= 0)
+        throw InputError(t > 0 ? sc.where(p.line, {"--t-end"}) : sc.where(p.line), "sphere[" + std::to_string(i) + "]",
+                         t > 0 ? "sphere " + std::to_string(i + 1) + " would reach the wall by t = " + fmt_number(t) +
+                                     " (shorten time.t_end or set output.min_gap)"
+                               : "sphere " + std::to_string(i + 1) + " touches the wall or is below it at t = 0 (spheres go on the wall's +z side)");
     }
   }
+}
+
+/// Every sphere inside the finest level over the whole run, 3 cells clear of its edges.
+void check_inside_grid(const FlowScene& sc, const FinestBox& box) {
+  const double zlo = box.zlo, zhi = box.zhi, rhi = box.rhi;
   for (std::size_t i = 0; i < sc.spheres.size(); ++i) {
     const auto& p = sc.spheres[i];
     const double a = 0.5 * p.diameter;
     for (double t : {0.0, sc.t_end}) {
       const double z = p.position + p.velocity * t + p.amplitude, A = std::abs(p.amplitude);
-      if (z - a - A < zlo + 3 * s.h || z + a + A > zhi - 3 * s.h || a > rhi - 3 * s.h)
+      if (z - a - A < zlo + 3 * box.h || z + a + A > zhi - 3 * box.h || a > rhi - 3 * box.h)
         throw InputError(t > 0 ? sc.where(p.line, {"--cells", "--t-end"}) : sc.where(p.line, {"--cells"}),
                          "sphere[" + std::to_string(i) + "]",
                          "sphere outside the finest grid at t = " + fmt_number(t) + " (grid z in [" + fmt_number(zlo) + ", " + fmt_number(zhi) +
                              "], r < " + fmt_number(rhi) + ", 3 cells clear)");
     }
   }
+}
+
+}  // namespace
+
+void check_flow_scene(const FlowScene& sc) {
+  check_motion(sc);
+  check_neighbours(sc);
+  const FinestBox box = finest_box(sc);
+  if (sc.wall_position) check_wall(sc, box);
+  check_inside_grid(sc, box);
 }
 
 namespace {

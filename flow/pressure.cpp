@@ -187,66 +187,82 @@ std::vector<double> cell_to_vertex(const LevelGeometry& g, const CellField& c) {
   return v;
 }
 
+namespace {
+
+/// The immersed-boundary force density H g on this level's faces: every point inside the level spread with this
+/// level's delta — the sphere points (the kernel spreads them on the finest level only) and the wall points of this
+/// level and of the finer ones (the kernel's coarsify carries their vorticity source here); the coarser levels'
+/// wall points lie outside. `f` comes sized (zeros) as the level's face velocity.
+void add_point_forces(const Solver& s, int level, FaceField& f) {
+  const LevelGeometry& g = s.levels().at(level).g;
+  const Eigen::VectorXd& gp = s.point_forces();
+  const std::size_t ns = 2 * s.points().size();
+  if (gp.size() == 0) return;
+  auto add = [&](const BodyPoints& pts, std::size_t offset) {
+    if (pts.size() == 0) return;
+    const std::vector<double> part(gp.data() + offset, gp.data() + offset + 2 * pts.size());
+    const FaceField h = spread(g, pts, part);
+    for (std::size_t p = 0; p < f.uz.size(); ++p) f.uz[p] += h.uz[p];
+    for (std::size_t p = 0; p < f.ur.size(); ++p) f.ur[p] += h.ur[p];
+  };
+  add(s.points(), 0);
+  std::size_t o = ns;
+  const auto& wall = s.wall_points();
+  for (int l = 0; l < static_cast<int>(wall.size()); ++l) {
+    if (l <= level) add(wall[l], o);
+    o += 2 * wall[l].size();
+  }
+}
+
+/// The Lamb vector and the body force on the faces: F_z(i+½, j) = ω ū_r, F_r(i, j+½) = −ω ū_z (Solver::nonlinear's
+/// averages; one-sided on the level's boundary lines), plus H g.
+struct FaceForce {
+  const Level& L;
+  const LevelGeometry& g;
+  FaceField u, f;
+
+  double uz(int i, int j) const { return u.uz[static_cast<std::size_t>(i) * (g.nz + 1) + j]; }  // (i+½, j)
+  double ur(int i, int j) const { return u.ur[static_cast<std::size_t>(i) * g.nz + j]; }        // (i, j+½)
+  double om(int i, int j) const { return i == 0 ? 0.0 : L.eta[g.at(i, j)] / g.r(i); }
+
+  double Fz(int i, int j) const {
+    double sum = 0;
+    int n = 0;
+    for (int jj : {j - 1, j})
+      if (jj >= 0 && jj < g.nz) {
+        sum += ur(i, jj) + ur(i + 1, jj);
+        n += 2;
+      }
+    return 0.5 * (om(i, j) + om(i + 1, j)) * sum / n + f.uz[static_cast<std::size_t>(i) * (g.nz + 1) + j];
+  }
+  double Fr(int i, int j) const {
+    double sum = 0;
+    int n = 0;
+    for (int ii : {i - 1, i})
+      if (ii < g.nr) {
+        sum += uz(ii, j) + uz(ii, j + 1);
+        n += 2;
+      }
+    return -0.5 * (om(i, j) + om(i, j + 1)) * sum / n + f.ur[static_cast<std::size_t>(i) * g.nz + j];
+  }
+};
+
+}  // namespace
+
 std::vector<double> stagnation_source(const Solver& s, int level) {
   const Level& L = s.levels().at(level);
   const LevelGeometry& g = L.g;
   const int nr = g.nr, nz = g.nz;
-  const FaceField u = frame_velocity(L, s.settings().u_inf);
-  auto uz = [&](int i, int j) { return u.uz[static_cast<std::size_t>(i) * (nz + 1) + j]; };  // (i+½, j)
-  auto ur = [&](int i, int j) { return u.ur[static_cast<std::size_t>(i) * nz + j]; };        // (i, j+½)
-  auto om = [&](int i, int j) { return i == 0 ? 0.0 : L.eta[g.at(i, j)] / g.r(i); };
-  // the immersed-boundary force density H g on this level's faces: every point inside the level spread with this
-  // level's delta — the sphere points (the kernel spreads them on the finest level only) and the wall points of this
-  // level and of the finer ones (the kernel's coarsify carries their vorticity source here); the coarser levels'
-  // wall points lie outside
-  FaceField f;
-  f.uz.assign(u.uz.size(), 0.0);
-  f.ur.assign(u.ur.size(), 0.0);
-  const Eigen::VectorXd& gp = s.point_forces();
-  const std::size_t ns = 2 * s.points().size();
-  if (gp.size() > 0) {
-    auto add = [&](const BodyPoints& pts, std::size_t offset) {
-      if (pts.size() == 0) return;
-      const std::vector<double> part(gp.data() + offset, gp.data() + offset + 2 * pts.size());
-      const FaceField h = spread(g, pts, part);
-      for (std::size_t p = 0; p < f.uz.size(); ++p) f.uz[p] += h.uz[p];
-      for (std::size_t p = 0; p < f.ur.size(); ++p) f.ur[p] += h.ur[p];
-    };
-    add(s.points(), 0);
-    std::size_t o = ns;
-    const auto& wall = s.wall_points();
-    for (int l = 0; l < static_cast<int>(wall.size()); ++l) {
-      if (l <= level) add(wall[l], o);
-      o += 2 * wall[l].size();
-    }
-  }
-  // F_z(i+½, j) = ω ū_r, F_r(i, j+½) = −ω ū_z (Solver::nonlinear's averages; one-sided on the level's boundary lines)
-  auto Fz = [&](int i, int j) {
-    double sum = 0;
-    int n = 0;
-    for (int jj : {j - 1, j})
-      if (jj >= 0 && jj < nz) {
-        sum += ur(i, jj) + ur(i + 1, jj);
-        n += 2;
-      }
-    return 0.5 * (om(i, j) + om(i + 1, j)) * sum / n + f.uz[static_cast<std::size_t>(i) * (nz + 1) + j];
-  };
-  auto Fr = [&](int i, int j) {
-    double sum = 0;
-    int n = 0;
-    for (int ii : {i - 1, i})
-      if (ii < nr) {
-        sum += uz(ii, j) + uz(ii, j + 1);
-        n += 2;
-      }
-    return -0.5 * (om(i, j) + om(i, j + 1)) * sum / n + f.ur[static_cast<std::size_t>(i) * nz + j];
-  };
+  FaceForce F{L, g, frame_velocity(L, s.settings().u_inf), {}};
+  F.f.uz.assign(F.u.uz.size(), 0.0);
+  F.f.ur.assign(F.u.ur.size(), 0.0);
+  add_point_forces(s, level, F.f);
   std::vector<double> rhs(static_cast<std::size_t>(nr) * nz);
   for (int i = 0; i < nr; ++i) {
     const double ri = g.r(i), rp = g.r(i + 1), rc = g.r(i + 0.5);
     for (int j = 0; j < nz; ++j) {
-      const double fr_out = rp * Fr(i + 1, j), fr_in = i == 0 ? 0.0 : ri * Fr(i, j);
-      rhs[static_cast<std::size_t>(i) * nz + j] = (Fz(i, j + 1) - Fz(i, j)) / g.h + (fr_out - fr_in) / (rc * g.h);
+      const double fr_out = rp * F.Fr(i + 1, j), fr_in = i == 0 ? 0.0 : ri * F.Fr(i, j);
+      rhs[static_cast<std::size_t>(i) * nz + j] = (F.Fz(i, j + 1) - F.Fz(i, j)) / g.h + (fr_out - fr_in) / (rc * g.h);
     }
   }
   return rhs;

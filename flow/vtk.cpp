@@ -127,6 +127,77 @@ std::string wall_vtp(const Solver& s, const SnapshotFrame& f, const std::string&
   return os.str();
 }
 
+/// The point data's arrays: vectors first (their components gathered as (r, z, 0)), then the scalars, in the
+/// fields' order; the vectors' names and the first scalar's.
+struct PointArrays {
+  std::string xml;
+  std::vector<std::string> vectors;
+  std::string first_scalar;
+};
+
+PointArrays point_arrays(const LevelFields& L, Appended& ap) {
+  const std::size_t np = L.g.size();
+  PointArrays out;
+  for (const auto& f : L.fields)
+    if (f.component >= 0 && std::find(out.vectors.begin(), out.vectors.end(), f.name) == out.vectors.end()) out.vectors.push_back(f.name);
+  for (const auto& name : out.vectors) {
+    std::vector<double> v(3 * np, 0.0);
+    for (const auto& f : L.fields)
+      if (f.name == name)
+        for (std::size_t k = 0; k < np; ++k) v[3 * k + f.component] = f.values[k];
+    out.xml += ap.array(name, 3, v);
+  }
+  for (const auto& f : L.fields)
+    if (f.component < 0) {
+      if (out.first_scalar.empty()) out.first_scalar = f.name;
+      out.xml += ap.array(f.name, 1, f.values);
+    }
+  return out;
+}
+
+/// The vertices as (r, z, 0).
+std::vector<double> vertex_xyz(const LevelFields& L) {
+  const auto& g = L.g;
+  std::vector<double> xyz(3 * g.size(), 0.0);
+  for (int i = 0; i <= g.nr; ++i)
+    for (int j = 0; j <= g.nz; ++j) {
+      const std::size_t k = g.at(i, j);
+      xyz[3 * k] = L.r(i);
+      xyz[3 * k + 1] = L.z(j);
+    }
+  return xyz;
+}
+
+/// Quads counter-clockwise in (r, z); cell data: the level, and whether the next finer level covers the cell.
+/// Int32 indices: a level has far fewer than 2³¹ vertices (flow/cost.hpp refuses grids beyond half the memory).
+struct QuadCells {
+  std::vector<std::int32_t> conn, offsets;
+  std::vector<std::uint8_t> types, finer, lev;
+};
+
+QuadCells quad_cells(const std::vector<LevelFields>& levels, std::size_t level) {
+  const auto& g = levels[level].g;
+  const std::size_t nc = static_cast<std::size_t>(g.nr) * g.nz;
+  QuadCells q{std::vector<std::int32_t>(4 * nc), std::vector<std::int32_t>(nc), std::vector<std::uint8_t>(nc, 9),  // 9: VTK_QUAD
+              std::vector<std::uint8_t>(nc, 0), std::vector<std::uint8_t>(nc, static_cast<std::uint8_t>(level))};
+  const LevelGeometry* fg = level > 0 ? &levels[level - 1].g : nullptr;
+  std::size_t c = 0;
+  for (int i = 0; i < g.nr; ++i)
+    for (int j = 0; j < g.nz; ++j, ++c) {
+      const auto p = static_cast<std::int32_t>(g.at(i, j)), r = static_cast<std::int32_t>(g.at(i + 1, j));
+      q.conn[4 * c] = p;
+      q.conn[4 * c + 1] = r;
+      q.conn[4 * c + 2] = r + 1;
+      q.conn[4 * c + 3] = p + 1;
+      q.offsets[c] = static_cast<std::int32_t>(4 * (c + 1));
+      if (fg) {
+        const double rc = g.r(i + 0.5), zc = g.z(j + 0.5);
+        q.finer[c] = rc < fg->r(fg->nr) && zc > fg->z0 && zc < fg->z(fg->nz);
+      }
+    }
+  return q;
+}
+
 }  // namespace
 
 std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level, const std::string& label) {
@@ -134,53 +205,11 @@ std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level,
   const auto& g = L.g;
   const std::size_t np = g.size(), nc = static_cast<std::size_t>(g.nr) * g.nz;
   Appended ap;
-  std::string point_data, names;
-  // Vectors first (their components gathered as (r, z, 0)), then the scalars, in the fields' order.
-  std::vector<std::string> vectors;
-  for (const auto& f : L.fields)
-    if (f.component >= 0 && std::find(vectors.begin(), vectors.end(), f.name) == vectors.end()) vectors.push_back(f.name);
-  for (const auto& name : vectors) {
-    std::vector<double> v(3 * np, 0.0);
-    for (const auto& f : L.fields)
-      if (f.name == name)
-        for (std::size_t k = 0; k < np; ++k) v[3 * k + f.component] = f.values[k];
-    point_data += ap.array(name, 3, v);
-  }
-  std::string first_scalar;
-  for (const auto& f : L.fields)
-    if (f.component < 0) {
-      if (first_scalar.empty()) first_scalar = f.name;
-      point_data += ap.array(f.name, 1, f.values);
-    }
-  std::vector<double> xyz(3 * np, 0.0);
-  for (int i = 0; i <= g.nr; ++i)
-    for (int j = 0; j <= g.nz; ++j) {
-      const std::size_t k = g.at(i, j);
-      xyz[3 * k] = L.r(i);
-      xyz[3 * k + 1] = L.z(j);
-    }
-  // Quads counter-clockwise in (r, z); cell data: the level, and whether the next finer level covers the cell.
-  // Int32 indices: a level has far fewer than 2³¹ vertices (flow/cost.hpp refuses grids beyond half the memory).
-  std::vector<std::int32_t> conn(4 * nc), offsets(nc);
-  std::vector<std::uint8_t> types(nc, 9), finer(nc, 0), lev(nc, static_cast<std::uint8_t>(level));  // 9: VTK_QUAD
-  const LevelGeometry* fg = level > 0 ? &levels[level - 1].g : nullptr;
-  std::size_t c = 0;
-  for (int i = 0; i < g.nr; ++i)
-    for (int j = 0; j < g.nz; ++j, ++c) {
-      const auto p = static_cast<std::int32_t>(g.at(i, j)), q = static_cast<std::int32_t>(g.at(i + 1, j));
-      conn[4 * c] = p;
-      conn[4 * c + 1] = q;
-      conn[4 * c + 2] = q + 1;
-      conn[4 * c + 3] = p + 1;
-      offsets[c] = static_cast<std::int32_t>(4 * (c + 1));
-      if (fg) {
-        const double rc = g.r(i + 0.5), zc = g.z(j + 0.5);
-        finer[c] = rc < fg->r(fg->nr) && zc > fg->z0 && zc < fg->z(fg->nz);
-      }
-    }
-  std::string cell_data = ap.array("level", 1, lev) + ap.array("finer", 1, finer);
-  const std::string points = ap.array("", 3, xyz);
-  const std::string cells = ap.array("connectivity", 1, conn) + ap.array("offsets", 1, offsets) + ap.array("types", 1, types);
+  const PointArrays pd = point_arrays(L, ap);
+  const QuadCells q = quad_cells(levels, level);
+  const std::string cell_data = ap.array("level", 1, q.lev) + ap.array("finer", 1, q.finer);
+  const std::string points = ap.array("", 3, vertex_xyz(L));
+  const std::string cells = ap.array("connectivity", 1, q.conn) + ap.array("offsets", 1, q.offsets) + ap.array("types", 1, q.types);
 
   std::ostringstream os;
   os << file_head("UnstructuredGrid") << "<!-- imcol: flow fields, level " << level << " (0 the finest, spacing " << std::setprecision(17)
@@ -189,9 +218,9 @@ std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level,
         "cell data: level, finer = 1 where a finer level covers the cell -->\n"
      << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << np << "\" NumberOfCells=\"" << nc << "\">\n"
      << "<PointData";
-  if (!vectors.empty()) os << " Vectors=\"" << vectors.front() << "\"";
-  if (!first_scalar.empty()) os << " Scalars=\"" << first_scalar << "\"";
-  os << ">\n" << point_data << "</PointData>\n<CellData Scalars=\"finer\">\n" << cell_data << "</CellData>\n<Points>\n" << points
+  if (!pd.vectors.empty()) os << " Vectors=\"" << pd.vectors.front() << "\"";
+  if (!pd.first_scalar.empty()) os << " Scalars=\"" << pd.first_scalar << "\"";
+  os << ">\n" << pd.xml << "</PointData>\n<CellData Scalars=\"finer\">\n" << cell_data << "</CellData>\n<Points>\n" << points
      << "</Points>\n<Cells>\n" << cells << "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
   std::string out = os.str();
   out += ap.blob();

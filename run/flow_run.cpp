@@ -19,8 +19,6 @@ namespace imcol {
 
 namespace {
 
-using json = nlohmann::ordered_json;
-
 /// The options' overrides replace scene keys; each gets the scene key's check (exit 2 naming the option).
 void apply_overrides(flow::FlowScene& sc, const FlowRunOptions& opt) {
   auto positive = [](const char* option, const char* key, double v) {
@@ -89,9 +87,13 @@ class FlowRun {
   bool watch_pair_gap(double t, const std::vector<flow::SphereState>& next);
   void progress_line(long n, double t, double wall, double cd, const flow::StepInfo& info) const;
   void take_snapshot();
-  json summary(double wall_total) const;
-  void one_sphere_summary(json& j, bool settled) const;
-  void grid_and_solver_summary(json& j, double wall_total) const;
+  /// The typed result but the force history.
+  FlowRunResult result(double wall_total) const;
+  FlowDragComparison drag_comparison() const;
+  FlowOneSphere one_sphere(bool settled) const;
+  void add_references(FlowRunResult& r) const;  // gaps, f_SIM vs f_THR, the wall, the oscillating sphere
+  FlowGrid grid() const;
+  void add_steps_and_solver(FlowRunResult& r, double wall_total) const;
 
   const flow::FlowScene& sc_;
   const FlowRunOptions& opt_;
@@ -113,7 +115,7 @@ class FlowRun {
   std::ostringstream hist_;
   // two spheres, or a sphere and a wall: simulated vs reduced-order force at a few gaps (the seed's Fig. 6.4)
   std::vector<double> report_gaps_ = {1.0, 0.5, 0.25, 0.1, 0.05};
-  json thr_rows_ = json::array();
+  std::vector<FlowGapForces> thr_rows_;
   std::vector<double> cds_, times_, walls_;
   long krylov_total_ = 0;
   int krylov_max_ = 0;
@@ -203,8 +205,8 @@ bool FlowRun::watch_wall(double t, const std::vector<flow::SphereState>& next, c
   const double gap = next[0].z - next[0].radius - *sc_.wall_position;
   while (!report_gaps_.empty() && gap <= report_gaps_.front() * D_) {
     // the sphere's and the wall's delta kernels (3 h wide each) overlap below a 3-cell gap
-    thr_rows_.push_back({{"gap_D", gap / D_}, {"gap_cells", gap / set_.h}, {"resolved", gap >= 3 * set_.h}, {"F1", info.force[0]},
-                         {"F_THR1", brenner_wall_force(mu_, next[0], *sc_.wall_position)}, {"F_wall", info.wall_force}});
+    thr_rows_.push_back({gap / D_, gap / set_.h, gap >= 3 * set_.h, info.force[0], brenner_wall_force(mu_, next[0], *sc_.wall_position),
+                         std::nullopt, std::nullopt, info.wall_force});
     report_gaps_.erase(report_gaps_.begin());
   }
   if (gap < 3 * set_.h && min_gap_seen_ >= 3 * set_.h && !opt_.quiet)
@@ -272,8 +274,7 @@ bool FlowRun::advance(long n) {
     while (!report_gaps_.empty() && gap <= report_gaps_.front() * D_) {
       const auto [t1, t2] = thr_->at(next);
       // the two spheres' delta kernels (3 h wide each) overlap below a 3-cell gap: f_SIM is not resolved there
-      thr_rows_.push_back({{"gap_D", gap / D_}, {"gap_cells", gap / set_.h}, {"resolved", gap >= 3 * set_.h}, {"F1", info.force[0]},
-                           {"F_THR1", t1}, {"F2", info.force[1]}, {"F_THR2", t2}});
+      thr_rows_.push_back({gap / D_, gap / set_.h, gap >= 3 * set_.h, info.force[0], t1, info.force[1], t2, std::nullopt});
       report_gaps_.erase(report_gaps_.begin());
     }
   }
@@ -291,10 +292,12 @@ FlowRunResult FlowRun::run() {
   const double wall_total = seconds_since(t0_);
   if (sc_.snapshots > 0 && snap_ < sc_.snapshots) take_snapshot();  // stopped early: one last snapshot
   if (series_) series_->finish();
-  return {hist_.str(), summary(wall_total)};
+  FlowRunResult r = result(wall_total);
+  r.forces_csv = hist_.str();
+  return r;
 }
 
-json FlowRun::summary(double wall_total) const {
+FlowDragComparison FlowRun::drag_comparison() const {
   // the standard (steady) drag curve is a reference only for one sphere at constant velocity whose drag has settled:
   // at least 100 steps, the fluid has passed at least 5 D (t U / D >= 5), and the change over the last tenth of the run,
   // read as the tail of an unsteady-Stokes decay C_D = C_inf + c t^(-1/2) (which changes by 5.4 % of what is left over
@@ -303,74 +306,79 @@ json FlowRun::summary(double wall_total) const {
   const double cd_change = cds_.empty() ? NAN : std::abs(last_cd_ - cds_[k90]) / std::abs(last_cd_);
   const double cd_left = cd_change / (1 / std::sqrt(0.9) - 1);
   const double passed_D = steps_done_ * sc_.dt * U_ / D_;
-  const bool settled = nb_ == 1 && !osc_ && s0_.amplitude == 0 && cds_.size() >= 100 && passed_D >= 5 && cd_left < 0.005;
-  json j;
-  j["scene"] = sc_.path;
-  j["name"] = sc_.name;
-  j["Re"] = Re_;
-  j["drag_coefficient"] = last_cd_;
-  j["drag_change_last_tenth_percent"] = 100 * cd_change;
-  j["drag_settled"] = settled;
-  j["drag_left_to_settle_percent"] = 100 * cd_left;  // extrapolated, t^(-1/2) tail
-  j["distance_passed_D"] = passed_D;
-  j["drag_coefficient_standard"] = !settled || std::isnan(cd_ref_) ? json() : json(cd_ref_);
-  j["drag_error_percent"] = !settled || std::isnan(cd_ref_) ? json() : json(100 * (last_cd_ - cd_ref_) / cd_ref_);
-  j["stokes_drag_ratio"] = drag_sign_ * last_force_[0] / f_stokes_;  // F / 6πμaU
-  if (nb_ == 1) one_sphere_summary(j, settled);
-  j["forces_N"] = last_force_;
-  if (nb_ > 1 || wall1_) {
-    j["min_gap_D"] = min_gap_seen_ / D_;
-    j["gap_resolved"] = min_gap_seen_ >= 3 * set_.h;  // false: the forces below a 3-cell gap are not resolved
+  FlowDragComparison d;
+  d.coefficient = last_cd_;
+  d.change_last_tenth_percent = 100 * cd_change;
+  d.settled = nb_ == 1 && !osc_ && s0_.amplitude == 0 && cds_.size() >= 100 && passed_D >= 5 && cd_left < 0.005;
+  d.left_to_settle_percent = 100 * cd_left;
+  d.distance_passed_D = passed_D;
+  if (d.settled && !std::isnan(cd_ref_)) {
+    d.standard = cd_ref_;
+    d.error_percent = 100 * (last_cd_ - cd_ref_) / cd_ref_;
   }
-  if (nb_ == 2 || wall1_) j["f_sim_vs_f_thr"] = thr_rows_;
-  if (sc_.wall_position) j["wall"] = {{"position", *sc_.wall_position}, {"force_N", last_wall_force_},
-                                       {"f_thr", wall1_ ? "Brenner (1961): -lambda(h/a) 6 pi mu a U, quasi-steady Stokes" : ""}};
-  if (osc_) j["oscillating"] = {{"reference", "F = -6 pi mu a (1 + a/delta) U - 3 pi a^2 sqrt(2 mu rho/omega) (1 + 2a/(9 delta)) dU/dt, at mid-step"},
-                                {"delta_over_a", f_osc_->delta() / a_},
-                                {"max_error_last_period_rel_amplitude", osc_amp_ > 0 ? osc_err_ / osc_amp_ : NAN}};
-  grid_and_solver_summary(j, wall_total);
-  return j;
+  d.stokes_drag_ratio = drag_sign_ * last_force_[0] / f_stokes_;
+  return d;
 }
 
-void FlowRun::one_sphere_summary(json& j, bool settled) const {
-  j["wake_length_D"] = settled && sc_.stream != 0 ? json(solver_.wake_length(0) / D_) : json();  // steady runs in a stream only
+FlowOneSphere FlowRun::one_sphere(bool settled) const {
+  FlowOneSphere s;
+  if (settled && sc_.stream != 0) s.wake_length_D = solver_.wake_length(0) / D_;  // steady runs in a stream only
   // first time after which C_D stays within 3 % of the standard curve
   long k = static_cast<long>(cds_.size());
   while (k > 0 && std::abs(cds_[k - 1] - cd_ref_) <= 0.03 * cd_ref_) --k;
   if (settled && k < static_cast<long>(cds_.size())) {
-    j["time_to_3pct_s"] = times_[k];
-    j["wall_time_to_3pct_s"] = walls_[k];
-  } else {
-    j["time_to_3pct_s"] = nullptr;
-    j["wall_time_to_3pct_s"] = nullptr;
+    s.time_to_3pct_s = times_[k];
+    s.wall_time_to_3pct_s = walls_[k];
   }
-  if (Re_ <= 1 && !osc_ && basset_any_)
-    j["impulsive_start"] = {{"reference", "F = 6 pi mu a U (1 + a / sqrt(pi nu t)), t > 0"},
-                            {"window", "0.8 <= nu t / a^2 <= 4"},
-                            {"window_t", {basset_t0_, std::min(basset_t1_, steps_done_ * sc_.dt)}},
-                            {"max_rel_error", basset_err_}};
+  if (Re_ <= 1 && !osc_ && basset_any_) s.impulsive_start = FlowImpulsiveStart{basset_t0_, std::min(basset_t1_, steps_done_ * sc_.dt), basset_err_};
+  return s;
 }
 
-void FlowRun::grid_and_solver_summary(json& j, double wall_total) const {
+void FlowRun::add_references(FlowRunResult& r) const {
+  if (nb_ > 1 || wall1_) r.gap = FlowGapSeen{min_gap_seen_ / D_, min_gap_seen_ >= 3 * set_.h};
+  if (nb_ == 2 || wall1_) r.gap_forces = thr_rows_;
+  if (sc_.wall_position) r.wall = FlowWall{*sc_.wall_position, last_wall_force_, wall1_};
+  if (osc_) r.oscillating = FlowOscillating{f_osc_->delta() / a_, osc_amp_ > 0 ? osc_err_ / osc_amp_ : NAN};
+}
+
+FlowGrid FlowRun::grid() const {
   const auto& L0 = solver_.levels().front().g;
   const auto& Lc = solver_.levels().back().g;
-  j["grid"] = {{"cells_per_diameter", sc_.cells_per_diameter},
-               {"h", set_.h},
-               {"levels", set_.levels},
-               {"nr", set_.nr},
-               {"nz", set_.nz},
-               {"finest", {{"r_max", L0.r(L0.nr)}, {"z_min", L0.z0}, {"z_max", L0.z(L0.nz)}}},
-               {"coarsest", {{"r_max", Lc.r(Lc.nr)}, {"z_min", Lc.z0}, {"z_max", Lc.z(Lc.nz)}}},
-               {"body_points", solver_.points().size()}};
-  j["dt"] = sc_.dt;
-  j["theta"] = sc_.theta;
-  j["steps"] = steps_done_;
-  j["t_end"] = steps_done_ * sc_.dt;
-  j["wall_time_s"] = wall_total;
-  j["ms_per_step"] = 1e3 * wall_total / std::max(1L, steps_done_);
-  j["memory_bytes"] = solver_.bytes();
-  j["force_solver"] = {{"krylov_tol", sc_.krylov_tol}, {"krylov_iterations_mean", steps_done_ ? double(krylov_total_) / steps_done_ : 0.0},
-                       {"krylov_iterations_max", krylov_max_}, {"max_slip", slip_max_}};
+  FlowGrid g;
+  g.cells_per_diameter = sc_.cells_per_diameter;
+  g.h = set_.h;
+  g.levels = set_.levels;
+  g.nr = set_.nr;
+  g.nz = set_.nz;
+  g.finest = {L0.r(L0.nr), L0.z0, L0.z(L0.nz)};
+  g.coarsest = {Lc.r(Lc.nr), Lc.z0, Lc.z(Lc.nz)};
+  g.body_points = solver_.points().size();
+  return g;
+}
+
+void FlowRun::add_steps_and_solver(FlowRunResult& r, double wall_total) const {
+  r.dt = sc_.dt;
+  r.theta = sc_.theta;
+  r.steps = steps_done_;
+  r.t_end = steps_done_ * sc_.dt;
+  r.wall_time_s = wall_total;
+  r.ms_per_step = 1e3 * wall_total / std::max(1L, steps_done_);
+  r.memory_bytes = solver_.bytes();
+  r.force_solver = {sc_.krylov_tol, steps_done_ ? double(krylov_total_) / steps_done_ : 0.0, krylov_max_, slip_max_};
+}
+
+FlowRunResult FlowRun::result(double wall_total) const {
+  FlowRunResult r;
+  r.scene = sc_.path;
+  r.name = sc_.name;
+  r.Re = Re_;
+  r.drag = drag_comparison();
+  if (nb_ == 1) r.one_sphere = one_sphere(r.drag.settled);
+  r.forces_N = last_force_;
+  add_references(r);
+  r.grid = grid();
+  add_steps_and_solver(r, wall_total);
+  return r;
 }
 
 }  // namespace

@@ -7,10 +7,9 @@
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "flow/field_series.hpp"
 #include "flow/flow_scene.hpp"
+#include "run/flow_run_result.hpp"
 
 namespace imcol {
 
@@ -22,11 +21,6 @@ struct FlowRunOptions {
   std::optional<long> levels;              // grid.levels
   std::optional<double> dt;                // time.dt
   bool allow_long = false;  // run even if the estimated wall time exceeds an hour
-};
-
-struct FlowRunResult {
-  std::string forces_csv;          // the force history (forces.csv)
-  nlohmann::ordered_json summary;  // summary.json (without the `run` block)
 };
 
 /// Runs the scene with the options' overrides. Throws InputError (overrides, a grid beyond the memory, an estimated

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/scene.hpp"
-#include "coupling/flow_coupling.hpp"
+#include "coupling/flow_run_stats.hpp"
 #include "integrators/integrator.hpp"
 #include "run/bounce.hpp"
 
