@@ -114,7 +114,7 @@ nlohmann::ordered_json result_json(const WorkPrecisionResult& res, nlohmann::ord
   nlohmann::ordered_json j;
   j["scene"] = res.scene;
   j["metric"] = res.metric;
-  j["reference"] = {{"integrator", res.reference.integrator}, {"evaluator", res.reference.evaluator}, {"rtol", res.ref_rtol},
+  j["reference"] = {{"integrator", res.reference.integrator_name()}, {"evaluator", res.reference.evaluator_name()}, {"rtol", res.ref_rtol},
                     {"atol", res.ref_rtol}, {"history_tolerance", res.history ? nlohmann::ordered_json(res.ref_history_tol) : nullptr},
                     {"value", res.value}, {"uncertainty", res.uncertainty}, {"wall_time_s", res.wall_time_s},
                     {"solver", res.solver}};  // the reference run's solver block as in its summary.json

@@ -68,8 +68,8 @@ py::object optional_number(const std::optional<double>& v) { return v ? py::obje
 /// The reference, the observed orders and the cheapest settings as dicts (the keys of work_precision.json).
 void add_work_precision_blocks(PyWorkPrecision& r) {
   const auto& res = r.result;
-  r.reference["integrator"] = res.reference.integrator;
-  r.reference["evaluator"] = res.reference.evaluator;
+  r.reference["integrator"] = res.reference.integrator_name();
+  r.reference["evaluator"] = res.reference.evaluator_name();
   r.reference["rtol"] = res.ref_rtol;
   r.reference["history_tolerance"] = res.history ? py::object(py::float_(res.ref_history_tol)) : py::object(py::none());
   r.reference["value"] = res.value;

@@ -62,11 +62,11 @@ Scene scene_for(const Scene& base, const LadderConfig& c, double rtol, double di
   Scene sc = base;
   sc.solver.rtol = rtol;
   sc.solver.atol = rtol;
-  sc.solver.integrator = c.integrator == "ida" ? IntegratorMethod::ida : IntegratorMethod::cvode;
-  sc.solver.linear_solver = c.integrator == "cvode-gmres" ? LinearSolverChoice::gmres : LinearSolverChoice::dense;
-  if (c.evaluator != "none") {
-    sc.history.evaluator = *choice_from_string<HistoryEvaluator>(c.evaluator);
-    if (c.evaluator == "soe" || c.evaluator == "soe-step") {
+  sc.solver.integrator = c.integrator == LadderIntegrator::ida ? IntegratorMethod::ida : IntegratorMethod::cvode;
+  sc.solver.linear_solver = c.integrator == LadderIntegrator::cvode_gmres ? LinearSolverChoice::gmres : LinearSolverChoice::dense;
+  if (c.evaluator) {
+    sc.history.evaluator = *c.evaluator;
+    if (c.soe()) {
       sc.history.modes = 0;
       sc.history.tolerance = history_tol;
     } else {
@@ -235,7 +235,8 @@ double reference_uncertainty(const std::vector<WorkPrecisionRow>& rows, const Wo
   double ref_unc = 0;
   const double tightest = *std::min_element(plan.opt.rtols.begin(), plan.opt.rtols.end());
   for (const auto& p : rows)
-    if (p.ok && p.cfg.integrator == "cvode-dense" && p.cfg.evaluator == plan.ref_cfg.evaluator && p.rtol == tightest) ref_unc = p.err_e;
+    if (p.ok && p.cfg.integrator == LadderIntegrator::cvode_dense && p.cfg.evaluator == plan.ref_cfg.evaluator && p.rtol == tightest)
+      ref_unc = p.err_e;
   return ref_unc;
 }
 

@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/choices.hpp"
 #include "core/scene.hpp"
 #include "study/executor.hpp"
 #include "study/table_column.hpp"
@@ -35,10 +36,19 @@ struct WorkPrecisionOptions {
   bool add_history = false;             // add the history effect (Basset) to a scene without it
 };
 
-/// One integrator (cvode-dense | cvode-gmres | ida) with one history evaluator (none | soe-step | soe | direct).
+/// The integrator of a ladder with its linear solver: CVODE dense, CVODE GMRES, IDA (dense).
+enum class LadderIntegrator { cvode_dense, cvode_gmres, ida };
+std::string to_string(LadderIntegrator i);  // cvode-dense | cvode-gmres | ida
+
+/// One integrator with one history evaluator (none: the scene has no history).
 struct LadderConfig {
-  std::string integrator, evaluator;
-  std::string label() const { return evaluator == "none" ? integrator : integrator + " / " + evaluator; }
+  LadderIntegrator integrator = LadderIntegrator::cvode_dense;
+  std::optional<HistoryEvaluator> evaluator;
+  std::string integrator_name() const { return to_string(integrator); }
+  std::string evaluator_name() const { return evaluator ? std::string(imcol::to_string(*evaluator)) : "none"; }  // none | soe-step | soe | direct
+  std::string label() const { return evaluator ? integrator_name() + " / " + evaluator_name() : integrator_name(); }
+  bool soe() const { return evaluator == HistoryEvaluator::soe || evaluator == HistoryEvaluator::soe_step; }
+  bool direct() const { return evaluator == HistoryEvaluator::direct; }
 };
 
 /// One setting of a ladder: rtol along the rtols, or for the direct evaluator its step (s) at direct_rtol.

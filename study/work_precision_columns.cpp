@@ -28,8 +28,8 @@ std::string one_cell(const Row& r) {
 
 std::vector<WorkPrecisionColumn> work_precision_columns(const std::string& metric) {
   using namespace work_precision_columns_impl;
-  return {word("integrator", [](const Row& r) { return r.cfg.integrator; }),
-          word("evaluator", [](const Row& r) { return r.cfg.evaluator; }),
+  return {word("integrator", [](const Row& r) { return r.cfg.integrator_name(); }),
+          word("evaluator", [](const Row& r) { return r.cfg.evaluator_name(); }),
           number("rtol", [](const Row& r) { return r.rtol; }),
           number("atol", [](const Row& r) { return r.rtol; }),
           number("direct_step_s", [](const Row& r) { return r.direct_step; }),

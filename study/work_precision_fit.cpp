@@ -24,12 +24,12 @@ std::vector<ObservedOrder> observed_orders(const std::vector<LadderConfig>& conf
     std::vector<std::pair<double, double>> by_tol, by_steps;
     for (const auto& p : rows)
       if (p.cfg.label() == c.label() && p.ok && p.err_e > floor) {
-        by_tol.push_back({c.evaluator == "direct" ? p.direct_step : p.rtol, p.err_e});
+        by_tol.push_back({c.direct() ? p.direct_step : p.rtol, p.err_e});
         by_steps.push_back({static_cast<double>(p.steps), p.err_e});
       }
     ObservedOrder o;
     o.config = c.label();
-    o.vs = c.evaluator == "direct" ? "direct_step" : "rtol";
+    o.vs = c.direct() ? "direct_step" : "rtol";
     o.exponent = loglog_slope(by_tol);
     if (const auto q = loglog_slope(by_steps)) o.order_in_steps = -*q;
     o.points = by_tol.size();

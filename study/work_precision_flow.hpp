@@ -36,7 +36,7 @@ struct FlowLadderResult {
   std::string scene;
   std::vector<FlowLadderRow> rows;  // the grid ladder, then the step ladder
   int ranks = 1;
-  bool cancelled = false;  // the hooks stopped it: rows hold what finished
+  bool cancelled = false;  // the hooks stopped it: no rows (each needs its ladder's finest rung)
 };
 
 /// The scene with the given keys set over the caller's own (a rung: flow.cells_per_diameter, flow.cfl).
