@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "study/parallel_runs.hpp"
-#include "apps/run_failure.hpp"
+#include "study/run_failure.hpp"
 #include "core/errors.hpp"
 
 #ifdef IMCOL_MPI

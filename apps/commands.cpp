@@ -220,7 +220,7 @@ Subcommand add_validate(CLI::App& app) {
   val->add_option("--out", o->v.out, "output directory (default out/validate_seed, or out/validate_seed_flow with --flow)")->check(path_rule("--out"));
   val->add_flag("--flow", o->v.flow, "couple the flow kernel (f_SIM) into every run, beside the reduced-order model");
   val->add_option("--models", o->v.models, "seed (the seed's gap law), asymptotic (Jeffrey & Onishi's leading terms, exact as h -> 0); default both")
-      ->delimiter(',')->check(CLI::Validator([](std::string& name) { validate_models({name}); return std::string(); }, "seed | asymptotic"));
+      ->delimiter(',')->check(CLI::Validator([](std::string& name) { study::validate_models({name}); return std::string(); }, "seed | asymptotic"));
   val->add_option("--tolerance", o->v.tolerance, "|e - e_seed| counted as agreement in the closing lines (default 0.05)")
       ->check(number_rule("--tolerance", {0, 1, true, false}));
   val->add_flag("--no-plot", o->no_plot, "skip DIR/validate_seed.png");
@@ -356,7 +356,7 @@ Subcommand add_work_precision(CLI::App& app) {
   wp->add_option("--evaluators", w.evaluators, "history evaluators soe-step, soe, direct (default all three if the scene has history)")
       ->delimiter(',')->check(choice_rule("--evaluators", choice_names<HistoryEvaluator>()));
   wp->add_option("--direct-steps", w.direct_steps, "direct evaluator: multiples of its default step")->delimiter(',')
-      ->check(number_rule("--direct-steps", {kDirectStepMin, kDirectStepMax}));
+      ->check(number_rule("--direct-steps", {study::kDirectStepMin, study::kDirectStepMax}));
   wp->add_option("--direct-rtol", w.direct_rtol, "direct evaluator: rtol while its step varies")->check(number_rule("--direct-rtol", kRtol));
   wp->add_option("--ref-rtol", w.ref_rtol, "reference run: rtol = atol")->check(number_rule("--ref-rtol", kRtol));
   wp->add_option("--ref-history-tolerance", w.ref_history_tol, "reference run: soe fit tolerance")

@@ -19,6 +19,7 @@
 #include "core/errors.hpp"
 #include "core/report.hpp"
 #include "run/simulate.hpp"
+#include "run/summary_json.hpp"
 #include "run/json_util.hpp"
 
 namespace imcol {
@@ -358,10 +359,7 @@ Json laws_json(const std::string& scene_path, const std::vector<Override>& overr
     j["e_dry"] = cx.contact->e_dry;
     j["delta_ss_m"] = cx.contact->delta_ss_m;
   }
-  if (cx.first_ran) {
-    j["effects"] = Json::array();
-    for (Effect x : cx.first_ran->run.summary.effects) j["effects"].push_back(to_string(x));
-  }
+  if (cx.first_ran) j["effects"] = effects_to_json(cx.first_ran->run.summary.effects);
   if (!sw.vary.empty()) put_sweep_settings(j, sw, column);
   Json jrows = Json::array();
   for (const auto& r : rows) jrows.push_back(law_json(r, rows));

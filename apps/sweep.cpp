@@ -525,8 +525,7 @@ nlohmann::ordered_json sweep_json(const std::string& scene_path, const std::vect
   const auto ran = std::find_if(pts.begin(), pts.end(), [](const PointResult& p) { return p.ok; });
   j["St_convention"] = ran == pts.end() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(ran->summary.St_convention);
   if (ran != pts.end()) {
-    j["effects"] = nlohmann::ordered_json::array();
-    for (Effect x : ran->summary.effects) j["effects"].push_back(to_string(x));
+    j["effects"] = effects_to_json(ran->summary.effects);
     j["e_is"] = to_string(ran->summary.e_is);
     if (ran->summary.contact) j["e_dry"] = ran->summary.contact->e_dry;  // the swept quantities (velocity, viscosity, diameter, density) leave it unchanged
   }

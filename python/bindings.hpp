@@ -11,6 +11,7 @@ void bind_errors(pybind11::module_& m);  // InputError -> ValueError, SolverErro
 void bind_scene(pybind11::module_& m);   // imcol.Scene
 void bind_run(pybind11::module_& m);     // imcol.run and imcol.Result
 void bind_sweep(pybind11::module_& m);   // imcol.sweep and imcol.SweepResult
+void bind_studies_precision(pybind11::module_& m);  // imcol.work_precision, imcol.validate_seed and their results
 void bind_choices(pybind11::module_& m); // imcol.history_kernels(), …, imcol.scenes(), imcol.choices()
 
 /// NumPy's C API table, made at the module's import under its GIL (python/numpy_api.cpp); without NumPy the module

@@ -10,5 +10,6 @@ PYBIND11_MODULE(_imcol, m) {
   imcol::python::bind_scene(m);
   imcol::python::bind_run(m);
   imcol::python::bind_sweep(m);
+  imcol::python::bind_studies_precision(m);
   imcol::python::bind_choices(m);
 }

@@ -118,12 +118,7 @@ void get_numbers(const Json& j, RunSummary& s) {
 
 /// The model block's choices, and the history's typed (its kernel, evaluator and modes are model block lines).
 void get_model(const Json& j, RunSummary& s) {
-  s.effects.clear();
-  for (const auto& x : j.at("effects")) {
-    const auto e = effect_from_string(x.get<std::string>());
-    if (!e) throw std::invalid_argument("unknown effect in a run's summary: " + x.get<std::string>());
-    s.effects.push_back(*e);
-  }
+  s.effects = effects_of(j.at("effects"));
   s.model.clear();
   for (const auto& [k, v] : j.at("model").items()) s.model.push_back({k, v.get<std::string>()});
   s.history.reset();
@@ -144,9 +139,7 @@ void to_json(Json& j, const RunSummary& s) {
   put_e(j, s);
   put_numbers(j, s);
   if (s.contact) j["contact"] = *s.contact;
-  Json effects = Json::array();
-  for (Effect x : s.effects) effects.push_back(to_string(x));
-  j["effects"] = effects;
+  j["effects"] = effects_to_json(s.effects);
   Json mod = Json::object();
   for (const auto& [k, v] : s.model) mod[k] = v;
   j["model"] = mod;
@@ -175,6 +168,22 @@ void from_json(const Json& j, RunSummary& s) {
   s.wall_time_s = j.at("wall_time_s").get<double>();
   s.setup_time_s = j.at("setup_time_s").get<double>();
   first_contact_views(s);
+}
+
+Json effects_to_json(const std::vector<Effect>& effects) {
+  Json j = Json::array();
+  for (Effect x : effects) j.push_back(to_string(x));
+  return j;
+}
+
+std::vector<Effect> effects_of(const Json& names) {
+  std::vector<Effect> out;
+  for (const auto& x : names) {
+    const auto e = effect_from_string(x.get<std::string>());
+    if (!e) throw std::invalid_argument("unknown effect in a run's summary: " + x.get<std::string>());
+    out.push_back(*e);
+  }
+  return out;
 }
 
 void to_json(Json& j, const ContactSummary& c) {

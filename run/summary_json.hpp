@@ -23,4 +23,8 @@ void from_json(const run::Json& j, FluidSpec& f);
 void to_json(run::Json& j, const EventSummary& e);
 void from_json(const run::Json& j, EventSummary& e);
 
+/// The effects as summary.json lists them (names), and back (an unknown name: std::invalid_argument).
+run::Json effects_to_json(const std::vector<Effect>& effects);
+std::vector<Effect> effects_of(const run::Json& names);
+
 }  // namespace imcol

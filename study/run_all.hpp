@@ -18,12 +18,12 @@ namespace imcol::study {
 /// T as the bytes that cross ranks, and back.
 template <class T>
 std::string to_bytes(const T& x) {
-  const auto v = nlohmann::json::to_cbor(nlohmann::json(x));
+  const auto v = nlohmann::ordered_json::to_cbor(nlohmann::ordered_json(x));
   return std::string(v.begin(), v.end());
 }
 template <class T>
 T from_bytes(const std::string& bytes) {
-  return nlohmann::json::from_cbor(bytes).get<T>();
+  return nlohmann::ordered_json::from_cbor(bytes).get<T>();
 }
 
 /// Runs run(i) for i < n on `ex`; take(i, T&&) on the deciding process as each finishes (returns false to hand out no

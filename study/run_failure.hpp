@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// What a run threw, as data: a run on another MPI rank (apps/cluster.hpp) reports its exception to rank 0 so, and
-// rank 0 rethrows it as the same kind (InputError exit 2, SolverError exit 3, anything else exit 1).
+// What a run threw, as data: a study's run on another MPI rank (study/executor.hpp) reports its exception to the
+// deciding rank so (as JSON: to_json/from_json), which rethrows it as the same kind (InputError exit 2, SolverError
+// exit 3, anything else exit 1).
 #include <exception>
 #include <stdexcept>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "core/errors.hpp"
 
@@ -40,5 +43,14 @@ struct RunFailure {
     throw std::runtime_error(what);
   }
 };
+
+/// Its kind and text cross ranks; the exception itself stays where it was thrown.
+inline void to_json(nlohmann::ordered_json& j, const RunFailure& f) {
+  j = {{"kind", f.kind}, {"what", f.what}, {"where", f.where}, {"key", f.key}, {"problem", f.problem}};
+}
+inline void from_json(const nlohmann::ordered_json& j, RunFailure& f) {
+  f.kind = j.at("kind").get<int>();
+  j.at("what").get_to(f.what), j.at("where").get_to(f.where), j.at("key").get_to(f.key), j.at("problem").get_to(f.problem);
+}
 
 }  // namespace imcol

@@ -1,21 +1,33 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "apps/validate_speed.hpp"
+#include "study/validate_speed.hpp"
 
 #include <cmath>
+#include <string>
 
-#include "apps/format.hpp"
+#include "core/number_text.hpp"
 
-namespace imcol {
+namespace imcol::study {
+
+namespace validate_speed_impl {  // named: study/ is built in unity batches
+
+/// A key's value: 12 significant digits.
+std::string number_value(double v) {
+  std::string s;
+  append_number(s, v, 12);
+  return s;
+}
+
+}  // namespace validate_speed_impl
 
 std::vector<Override> speed_overrides(const Scene& sc, double scale) {
   std::vector<Override> ov;
   for (std::size_t i = 0; i < sc.spheres.size(); ++i)
-    ov.push_back({"sphere[" + std::to_string(i) + "].velocity", csv_number(scale * sc.spheres[i].velocity)});
+    ov.push_back({"sphere[" + std::to_string(i) + "].velocity", validate_speed_impl::number_value(scale * sc.spheres[i].velocity)});
   if (sc.spheres.size() == 2) {
     const auto& a = sc.spheres[0];
     const auto& b = sc.spheres[1];
     const double touch = 0.5 * (a.diameter + b.diameter);
-    ov.push_back({"sphere[1].position", csv_number(a.position + touch + scale * (b.position - a.position - touch))});
+    ov.push_back({"sphere[1].position", validate_speed_impl::number_value(a.position + touch + scale * (b.position - a.position - touch))});
   }
   return ov;
 }
@@ -34,4 +46,4 @@ double scale_to_St(double St_1, double St_target, const std::function<std::optio
   return s2;
 }
 
-}  // namespace imcol
+}  // namespace imcol::study

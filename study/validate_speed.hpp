@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// `imcol validate seed`, the St_B set: a Table 6.1 run's approach speed scaled until the run's St_B(Table 6.1)
+// The seed validation's St_B set (study/validate.hpp): a Table 6.1 run's approach speed scaled until the run's St_B(Table 6.1)
 // is the printed St_B.
 #include <functional>
 #include <optional>
@@ -8,7 +8,7 @@
 
 #include "core/scene.hpp"
 
-namespace imcol {
+namespace imcol::study {
 
 /// The overrides that run a pair scene at `scale` times its approach speed: every sphere's velocity times scale and
 /// the starting gap times scale (the same time before contact, about 30 ms in the seed_run scenes).
@@ -22,4 +22,4 @@ double approach_speed(const Scene& sc);
 /// at that scale and returns its St; the returned scale is the last one run.
 double scale_to_St(double St_1, double St_target, const std::function<std::optional<double>(double)>& St_at, double tol = 0.01);
 
-}  // namespace imcol
+}  // namespace imcol::study
