@@ -17,6 +17,7 @@
 #include "study/parallel_runs.hpp"
 #include "study/run_failure.hpp"
 #include "core/errors.hpp"
+#include "core/timing.hpp"
 
 #ifdef IMCOL_MPI
 #include <mpi.h>
@@ -303,3 +304,27 @@ int on_rank0(const std::function<void()>& step) {
 }
 
 }  // namespace imcol::cluster
+
+namespace imcol {
+
+study::Executor cluster_executor(int jobs, ResultTaken taken) {
+  study::Executor ex;
+  ex.jobs = jobs;
+  const cluster::World w = cluster::world();
+  ex.rank = w.rank;
+  ex.ranks = w.size;
+  ex.distribute = [taken](std::size_t n, int threads, const std::function<std::string(std::size_t)>& work,
+                          const std::function<bool(std::size_t, std::string, int)>& done) {
+    if (!taken) return cluster::run_distributed(n, threads, work, done);
+    cluster::run_distributed(n, threads, work, [&](std::size_t i, std::string bytes, int rank) {
+      const std::size_t size = bytes.size();
+      const auto t0 = WallClock::now();
+      const bool more = done(i, std::move(bytes), rank);
+      taken(rank, size, seconds_since(t0));
+      return more;
+    });
+  };
+  return ex;
+}
+
+}  // namespace imcol

@@ -8,6 +8,8 @@
 #include <functional>
 #include <string>
 
+#include "study/executor.hpp"
+
 namespace imcol::cluster {
 
 /// This process's rank and the job's size: {0, 1} unless started by mpirun (or srun) of an MPI build.
@@ -65,3 +67,16 @@ class Hold {
 };
 
 }  // namespace imcol::cluster
+
+namespace imcol {
+
+/// What rank 0 did with one result: the rank that ran it, its size in bytes, and the seconds rank 0 spent taking it
+/// in (decoding it and the study's own handling).
+using ResultTaken = std::function<void(int rank, std::size_t bytes, double seconds)>;
+
+/// A study's Executor over this job's ranks (study/executor.hpp): `jobs` threads on each (0 = all cores), the
+/// results carried to rank 0 as bytes by run_distributed; world()'s rank and size. `taken`, if given, on rank 0
+/// after each result is taken in.
+study::Executor cluster_executor(int jobs, ResultTaken taken = {});
+
+}  // namespace imcol

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// `imcol history`: one scene with every history kernel × evaluator (and none), side by side.
+// `imcol history`: one scene with every history kernel × evaluator (and none), side by side (the engine:
+// study/history.hpp).
 #include <string>
 #include <vector>
 
 #include "apps/sweep.hpp"
 #include "core/scene.hpp"
+#include "study/history.hpp"
 
 namespace imcol {
 
@@ -18,8 +20,7 @@ struct HistoryCompareOptions {
   SweepOptions sweep;  // sweep.vary empty: the scene alone; else vary, from, to, points, spacing, jobs
 };
 
-/// The scene with the history force of `kernel` evaluated by `evaluator`, or without it ("none").
-Scene with_history_kernel(const Scene& base, const std::string& kernel, const std::string& evaluator);
+using study::with_history_kernel;
 
 /// --kernels and --evaluators: unknown names refused (InputError).
 void check_history_choices(const HistoryCompareOptions& opt);

@@ -5,12 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "study/scene_catalog.hpp"
+
 namespace imcol {
 
 /// PATTERN: a part of the name or description (case-insensitive), or a glob on the name (`*`, `?`); "" lists all.
 int cmd_scenes(const std::string& pattern);
 
 /// The names of the shipped scenes `imcol scenes PATTERN` lists, in its order (grouped by folder).
-std::vector<std::string> matching_scenes(const std::string& pattern);
+using study::matching_scenes;
 
 }  // namespace imcol

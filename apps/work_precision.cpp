@@ -14,7 +14,8 @@
 #include "apps/format.hpp"
 #include "apps/plot.hpp"
 #include "apps/rank_inputs.hpp"
-#include "apps/study_executor.hpp"
+#include "apps/cluster.hpp"
+#include "run/summary_json.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
 

@@ -10,7 +10,8 @@
 #include "apps/cluster.hpp"
 #include "apps/format.hpp"
 #include "apps/rank_inputs.hpp"
-#include "apps/study_executor.hpp"
+#include "apps/cluster.hpp"
+#include "run/summary_json.hpp"
 #include "core/report.hpp"
 
 namespace imcol {

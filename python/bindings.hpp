@@ -13,6 +13,10 @@ void bind_run(pybind11::module_& m);     // imcol.run and imcol.Result
 void bind_sweep(pybind11::module_& m);   // imcol.sweep and imcol.SweepResult
 void bind_studies_precision(pybind11::module_& m);  // imcol.work_precision, imcol.validate_seed and their results
 void bind_choices(pybind11::module_& m); // imcol.history_kernels(), …, imcol.scenes(), imcol.choices()
+void bind_table(pybind11::module_& m);   // imcol.StudyTable
+void bind_laws(pybind11::module_& m);    // imcol.laws
+void bind_history(pybind11::module_& m); // imcol.history
+void bind_dem_fit(pybind11::module_& m); // imcol.dem_fit
 
 /// NumPy's C API table, made at the module's import under its GIL (python/numpy_api.cpp); without NumPy the module
 /// still imports.

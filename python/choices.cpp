@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The names a scene or a call may choose from, listed from the code that reads them: the choice enums' spellings
-// (core/choices.hpp), the effects (core/scene.hpp), the sweep quantities (apps/sweep.hpp) and the shipped scenes
-// (apps/scenes_command.hpp, as `imcol scenes PATTERN` lists them).
+// (core/choices.hpp), the effects (core/scene.hpp), the sweep quantities (study/sweep_points.hpp) and the shipped
+// scenes (study/scene_catalog.hpp, as `imcol scenes PATTERN` lists them).
 #include <pybind11/stl.h>
 
-#include "apps/scenes_command.hpp"
-#include "apps/sweep.hpp"
 #include "core/choices.hpp"
 #include "core/scene.hpp"
 #include "python/bindings.hpp"
+#include "study/scene_catalog.hpp"
+#include "study/sweep_points.hpp"
 
 namespace py = pybind11;
 
@@ -52,8 +52,8 @@ void bind_choices(py::module_& m) {
   m.def("drag_laws", &choice_names<DragLaw>, "drag.law's values.");
   m.def("e_measures", &choice_names<EMeasure>, "The named measures of e: measure.e's values (docs/bounces.md).");
   m.def("effects", &effect_names, "The names `effects` may list.");
-  m.def("sweep_quantities", &sweep_quantities, "What imcol.sweep can vary (imcol sweep --vary).");
-  m.def("scenes", &matching_scenes, py::arg("pattern") = "",
+  m.def("sweep_quantities", &study::sweep_quantities, "What imcol.sweep can vary (imcol sweep --vary).");
+  m.def("scenes", &study::matching_scenes, py::arg("pattern") = "",
         "The shipped scenes' names (imcol.Scene.load takes them) that `imcol scenes PATTERN` lists: PATTERN a part of "
         "the name or description (case-insensitive) or a glob on the name ('coupled/*'); \"\" lists all.");
   m.def("choices", &scene_choices, "Every choice key of a scene -> its allowed values (as Scene.set and --set check them).");

@@ -12,4 +12,8 @@ PYBIND11_MODULE(_imcol, m) {
   imcol::python::bind_sweep(m);
   imcol::python::bind_studies_precision(m);
   imcol::python::bind_choices(m);
+  imcol::python::bind_table(m);
+  imcol::python::bind_laws(m);
+  imcol::python::bind_history(m);
+  imcol::python::bind_dem_fit(m);
 }

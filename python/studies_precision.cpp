@@ -29,17 +29,17 @@ struct PyTable {
 };
 
 template <class Row, class Cell>
-PyTable make_table(const std::vector<study::TableColumn<Cell>>& columns, const std::vector<Row>& rows,
+PyTable make_table(const std::vector<study::RowColumn<Cell>>& columns, const std::vector<Row>& rows,
                    const std::function<Cell(const Row&)>& cell) {
   PyTable t;
   const auto n = static_cast<py::ssize_t>(rows.size());
   for (const auto& c : columns) {
     py::object a;
-    if (c.kind == study::TableColumn<Cell>::word) {
+    if (c.kind == study::RowColumn<Cell>::word) {
       py::list words;
       for (const auto& r : rows) words.append(c.text(cell(r)));
       a = py::module_::import("numpy").attr("array")(words, py::arg("dtype") = "str");
-    } else if (c.kind == study::TableColumn<Cell>::integer) {
+    } else if (c.kind == study::RowColumn<Cell>::integer) {
       py::array_t<long long> v(n);
       for (py::ssize_t i = 0; i < n; ++i) v.mutable_at(i) = static_cast<long long>(c.value(cell(rows[static_cast<std::size_t>(i)])));
       a = v;

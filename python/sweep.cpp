@@ -1,32 +1,28 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // imcol.sweep and imcol.SweepResult: e against St over values of one quantity, as `imcol sweep` runs it: the points'
-// scenes from apps/sweep.hpp sweep_scenes (all checked before anything runs), each point run by run_sweep_point on
-// run_parallel's threads, the GIL released for both, and sweep.csv's columns (sweep_columns) as NumPy arrays.
+// scenes from study/sweep_points.hpp sweep_scenes (all checked before anything runs), the points run by
+// study/sweep.hpp run_sweep on this process's threads, the GIL released for both, and sweep.csv's columns
+// (sweep_columns) as NumPy arrays.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
 #include <optional>
 
-#include "study/parallel_runs.hpp"
-#include "apps/sweep.hpp"
+#include "study/sweep.hpp"
+#include "study/sweep_columns.hpp"
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
+#include "python/sweep.hpp"
 
 namespace py = pybind11;
 
 namespace imcol::python {
 
-namespace sweep_impl {  // this file's helpers: named, as the module is one unity unit
+using study::SweepPoint;
 
-/// A sweep's points as columns: name -> 1-D array, in sweep.csv's order (`point`, the varied quantity's, then
-/// sweep_columns(): numbers as float64 with NaN where the point has none, words as str arrays).
-struct PySweepResult {
-  std::string vary, column;
-  py::list columns;
-  py::dict table;
-};
+namespace sweep_impl {  // this file's helpers: named, as the module is one unity unit
 
 py::array_t<double> number_array(const std::vector<SweepPoint>& pts, std::optional<double> (*get)(const SweepPoint&)) {
   py::array_t<double> a(static_cast<py::ssize_t>(pts.size()));
@@ -44,7 +40,7 @@ py::object word_array(const std::vector<SweepPoint>& pts, std::string (*get)(con
 PySweepResult make_result(const std::string& vary, const std::vector<SweepPoint>& pts) {
   PySweepResult r;
   r.vary = vary;
-  r.column = sweep_column(vary);
+  r.column = study::sweep_column(vary);
   auto put = [&](const std::string& name, py::object a) {
     r.columns.append(name);
     r.table[py::str(name)] = std::move(a);
@@ -53,7 +49,7 @@ PySweepResult make_result(const std::string& vary, const std::vector<SweepPoint>
   for (std::size_t i = 0; i < pts.size(); ++i) point.mutable_at(static_cast<py::ssize_t>(i)) = static_cast<long long>(i);
   put("point", point);
   put(r.column, number_array(pts, [](const SweepPoint& p) { return std::optional<double>(p.value); }));
-  for (const auto& c : sweep_columns()) put(c.name, c.number ? py::object(number_array(pts, c.number)) : word_array(pts, c.word));
+  for (const auto& c : study::sweep_columns()) put(c.name, c.number ? py::object(number_array(pts, c.number)) : word_array(pts, c.word));
   return r;
 }
 
@@ -69,10 +65,10 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
                     const std::optional<std::string>& integrator) {
   require_numpy("imcol.sweep");  // before anything runs: its values and its result are arrays
   const PyScene scene = py::isinstance<py::str>(scene_arg) ? PyScene::load(scene_arg.cast<std::string>()) : scene_arg.cast<PyScene>();
-  check_sweep_quantity(vary, "imcol.sweep", "vary");
+  study::check_sweep_quantity(vary, "imcol.sweep", "vary");
   if (values_arg.is_none()) throw InputError("imcol.sweep", "values", "missing: give the values of " + vary + " (SI units)");
   const std::vector<double> values = values_from(values_arg);
-  check_sweep_values(vary, values, "imcol.sweep", "values");
+  study::check_sweep_values(vary, values, "imcol.sweep", "values");
   if (jobs < 0) throw InputError("imcol.sweep", "jobs", "must be >= 0 (0 = all cores)");
 
   // The scene's keys, then the solver's as given here (as --set, then --rtol/--atol/--integrator), then the point's.
@@ -80,20 +76,22 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
   for (auto& o : solver_overrides(rtol, atol, integrator)) overrides.push_back(o);
   const auto load = [&](const std::vector<Override>& ov) { return parse_scene(scene.text(), scene.path(), ov); };
 
-  std::vector<SweepPoint> pts(values.size());
+  study::SweepResult run;
+  bool liquid = false, pair = false;
   {
     // Reading the points' scenes and running them touch no Python object.
     py::gil_scoped_release free;
     const Scene base = load(overrides);
-    const std::vector<Scene> scenes = sweep_scenes(load, overrides, base, vary, values);
-    study::run_parallel(
-        scenes.size(), study::job_count(jobs, scenes.size()), [&](std::size_t i) { return run_sweep_point(scenes[i], values[i]); },
-        [&](std::size_t i, SweepPoint p) {
-          pts[i] = std::move(p);
-          return true;
-        });
+    liquid = base.fluid.has_value();
+    pair = base.spheres.size() == 2;
+    const std::vector<Scene> scenes = study::sweep_scenes(load, overrides, base, vary, values);
+    run = study::run_sweep(scenes, vary, values, study::threads(jobs));
   }
-  return make_result(vary, pts);
+  PySweepResult r = make_result(vary, run.points);
+  r.result = std::move(run);
+  r.liquid = liquid;
+  r.pair = pair;
+  return r;
 }
 
 py::object column(const PySweepResult& r, const std::string& name) { return r.table[py::str(name)]; }

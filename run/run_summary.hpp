@@ -77,7 +77,7 @@ struct RunSummary {
   double e_instant_gap_m = 0;
   /// The first contact's named measures, measure → e (empty without a contact), in summary.json's order.
   std::vector<std::pair<EMeasure, std::optional<double>>> e_measures;
-  std::optional<std::string> e_by_measure;  // one line: e by each distinct measure and their spread
+  std::optional<std::string> e_by_measure;  // one printed line: e by each distinct measure and their spread (not in summary.json)
   /// The first collision's energy budget over approach, contact and rebound (run/energy_budget.hpp), and from it what
   /// each force dissipated (above 5e-4), in units of the impact kinetic energy, and the largest |closure| of a phase.
   std::optional<run::EnergyBudget> energy_budget;

@@ -8,7 +8,7 @@
 namespace imcol::study {
 
 template <class Row>
-struct TableColumn {
+struct RowColumn {
   enum Kind { number, integer, word } kind;
   std::string name;
   std::function<double(const Row&)> value;      // number, integer

@@ -95,7 +95,7 @@ struct ValidateCell {
   const ValidateResult& result;
   const ValidateRow& row;
 };
-using ValidateColumn = TableColumn<ValidateCell>;
+using ValidateColumn = RowColumn<ValidateCell>;
 
 /// The table's columns, in order (with flow, the coupled run's and the reduced-order one's).
 std::vector<ValidateColumn> validate_columns(bool flow);

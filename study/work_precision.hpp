@@ -134,7 +134,7 @@ WorkPrecisionResult work_precision(const WorkPrecisionPlan& plan, const Executor
                                    const RunNotice& notice = {});
 
 /// A column of the rows' table (work_precision.csv).
-using WorkPrecisionColumn = TableColumn<WorkPrecisionRow>;
+using WorkPrecisionColumn = RowColumn<WorkPrecisionRow>;
 
 /// The table's columns, in order; `metric` names the metric's columns.
 std::vector<WorkPrecisionColumn> work_precision_columns(const std::string& metric);

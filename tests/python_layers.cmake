@@ -1,0 +1,27 @@
+# SPDX-License-Identifier: BSD-3-Clause
+# The Python module binds study/ and below, never apps/: its extension lists no MPI library (ldd), and no source of
+# python/ includes an apps/ header or CLI11 (header-only, so only its sources can show it).
+# -D: MODULE (the extension's file), SOURCES (the python/ folder).
+execute_process(COMMAND ldd ${MODULE} OUTPUT_VARIABLE libs RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "ldd ${MODULE} failed (${rc})")
+endif()
+if(NOT libs MATCHES "libpython|libstdc\\+\\+|libc\\.so")
+  message(FATAL_ERROR "ldd listed nothing recognisable for ${MODULE}:\n${libs}")
+endif()
+string(REGEX MATCHALL "[^\n]*(libmpi|libopen-pal|libopen-rte|libpmix|libmpich)[^\n]*" mpi "${libs}")
+if(mpi)
+  message(FATAL_ERROR "the Python extension links MPI:\n${mpi}")
+endif()
+file(GLOB_RECURSE files ${SOURCES}/*.cpp ${SOURCES}/*.hpp ${SOURCES}/*.h)
+list(LENGTH files n)
+if(n LESS 5)
+  message(FATAL_ERROR "found only ${n} sources under ${SOURCES}")
+endif()
+foreach(f ${files})
+  file(STRINGS ${f} includes REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](apps/|CLI/)")
+  if(includes)
+    message(FATAL_ERROR "${f} includes ${includes}: the Python module binds study/, never apps/ or CLI11")
+  endif()
+endforeach()
+message(STATUS "${MODULE}: no MPI library; ${n} python/ sources include no apps/ or CLI/ header")
