@@ -26,8 +26,6 @@ KindSlots kind_slots(const ForceTerms& terms) {
   return s;
 }
 
-std::unique_ptr<ForceTerm> make_constant_force_term(const Scene& sc, const PairGeometry& p);  // constant_force_term.cpp
-
 ForceTerms make_force_terms(const Scene& sc, const PairGeometry& p) {
   ForceTerms t;
   // The registration order is the summation order of the forces and of the mass matrix's diagonal.
@@ -37,7 +35,6 @@ ForceTerms make_force_terms(const Scene& sc, const PairGeometry& p) {
   if (sc.has(Effect::elastic)) t.push_back(make_contact_term(sc, p));
   if (sc.has(Effect::gravity)) t.push_back(make_gravity_term(sc, p));
   if (sc.has(Effect::history)) t.push_back(make_history_term(sc, p));
-  if (sc.has(Effect::gravity)) t.push_back(make_constant_force_term(sc, p));
   place_terms(t, 2 * p.n_spheres);
   return t;
 }
