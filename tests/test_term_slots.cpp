@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -41,7 +42,8 @@ std::vector<std::vector<double>> slot_states(const model::CollisionModel& m) {
 }
 
 TEST(TermSlots, TheRegistrationOrderIsTheSummationOrder) {
-  const model::CollisionModel m(load_scene(slots_scene("default.toml")));
+  const std::string all = R"(["history", "gravity", "elastic", "added_mass", "lubrication", "drag"])";  // listed backwards
+  const model::CollisionModel m(load_scene(slots_scene("default.toml"), {{"effects", all}}));
   const std::vector<ForceKind> order = {ForceKind::drag, ForceKind::lubrication, ForceKind::added_mass,
                                         ForceKind::contact, ForceKind::gravity, ForceKind::history};
   ASSERT_EQ(m.terms().size(), order.size());
@@ -54,8 +56,11 @@ TEST(TermSlots, TheRegistrationOrderIsTheSummationOrder) {
 }
 
 TEST(TermSlots, TheAccelerationIsTheSumOfTheSlotsInRegistrationOrderExactly) {
-  for (const char* name : {"default.toml", "hard/unequal_small_target.toml"}) {
-    model::CollisionModel m(load_scene(slots_scene(name)));
+  const std::vector<Override> all = {{"effects", R"(["drag", "lubrication", "added_mass", "elastic", "gravity", "history"])"}};
+  const std::vector<std::pair<const char*, std::vector<Override>>> runs = {
+      {"default.toml", {}}, {"default.toml", all}, {"hard/unequal_small_target.toml", {}}, {"hard/unequal_small_target.toml", all}};
+  for (const auto& [name, overrides] : runs) {
+    model::CollisionModel m(load_scene(slots_scene(name), overrides));
     for (const auto& y : slot_states(m)) {
       const auto ev = raw_slots(m, 0.0, y);
       std::vector<double> ydot(m.size());
