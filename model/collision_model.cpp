@@ -78,8 +78,11 @@ void CollisionModel::build_terms(const Scene& sc) {
   terms_ = make_force_terms(sc, pair_);
   slots_ = model::kind_slots(terms_);
   fluid_ = FluidSlots(terms_);
-  for (const auto& t : terms_)
-    if (t->properties().mass == TermMass::implicit) implicit_slot_ = t->slot();
+  for (const auto& t : terms_) {
+    const TermMass mass = t->properties().mass;
+    if (mass == TermMass::implicit) implicit_slot_ = t->slot();
+    if (mass != TermMass::none) mass_slots_.push_back(t->slot());
+  }
   history_ = find_term<HistoryTerm>(terms_);
   for (const auto& t : terms_) {
     states_ += t->states();
@@ -196,16 +199,14 @@ double CollisionModel::max_step(double, std::span<const double> y) const {
 }
 
 void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev) const {
-  for (std::size_t m = 0; m < n_spheres_; ++m) ev.f[m] = SphereForces{};
-  ev.m_pair = 0;
-  ev.m_couple = 0;
+  // ev is fresh (its forces and masses zero): each term writes only its own slot.
   const TermInput in{t, y, phase_ != Phase::approach, phase_ == Phase::loading || phase_ == Phase::unloading};
   for (const auto& term : terms_) term->add(in, ev);
   // The mass matrix's diagonal: m_p, the terms' masses in registration order, the pair added mass A.
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     const auto& f = ev.f[m];
     double d = pair_.mp[m];
-    for (std::size_t s = 0; s < terms_.size(); ++s) d += f.mass[s];
+    for (std::size_t s : mass_slots_) d += f.mass[s];
     ev.m_eff[m] = d + ev.m_pair;
   }
   if (flow_) flow_->apply(t, sim_, implicit_added_mass(ev.gap), ev);

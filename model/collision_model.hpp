@@ -147,8 +147,8 @@ class CollisionModel : public DynamicalSystem {
   std::array<double, 2> total_forces(const Evaluation& ev) const;
   /// Reports the full added-mass and blended-mass forces of an evaluated state, with their acceleration parts.
   void add_acceleration_parts(const std::array<double, 2>& acc, Evaluation& ev) const;
-  /// Forces without the added-mass acceleration terms: each term's slots, then m_eff in a fixed order, then the
-  /// flow blend (MODEL.md (6.10), §5); fills ev.f, ev.m_eff and ev.m_couple.
+  /// Forces without the added-mass acceleration terms: each term's slots, then m_eff in registration order, then the
+  /// flow blend (MODEL.md (6.10), §5); fills ev.f, ev.m_eff and ev.m_couple of a fresh ev (kinematics() done).
   void forces(double t, std::span<const double> y, Evaluation& ev) const;
   /// f_THR of sphere m from an evaluated state (forces() done) and the accelerations.
   double analytic_fluid_force(const Evaluation& ev, const std::array<double, 2>& a, std::size_t m) const;
@@ -168,6 +168,7 @@ class CollisionModel : public DynamicalSystem {
   KindSlots slots_;          // the slot of each kind of force (the energy budget's, the contact's)
   FluidSlots fluid_;         // the fluid terms' slots and the blended masses (f_THR, the flow blend)
   std::optional<std::size_t> implicit_slot_;  // the term whose mass is kept implicit (the added mass), if any
+  std::vector<std::size_t> mass_slots_;       // the slots of the terms with a mass, in registration order
   std::size_t states_ = 0;   // the terms' states, after the core states
   double term_step_cap_ = std::numeric_limits<double>::infinity();  // the terms' cap on the step (direct history grid), s
   const HistoryTerm* history_ = nullptr;  // among terms_, or null: its options and memories, for reporting
