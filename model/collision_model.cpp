@@ -85,6 +85,7 @@ void CollisionModel::build_terms(const Scene& sc) {
   }
   history_ = find_term<HistoryTerm>(terms_);
   for (const auto& t : terms_) {
+    if (t->states() > 0) stateful_.push_back(t.get());
     states_ += t->states();
     term_step_cap_ = std::min(term_step_cap_, t->step_cap());
   }
@@ -316,7 +317,7 @@ void CollisionModel::rhs(double t, std::span<const double> y, std::span<double> 
     ydot[2] = ev.u[1];
     ydot[3] = acc[1];
   }
-  for (const auto& term : terms_) term->state_rhs(acc, y, ydot);
+  for (const ForceTerm* term : stateful_) term->state_rhs(acc, y, ydot);
 }
 
 void CollisionModel::residual(double t, std::span<const double> y, std::span<const double> yp, std::span<double> r) {
@@ -332,7 +333,7 @@ void CollisionModel::residual(double t, std::span<const double> y, std::span<con
     r[2] = yp[2] - ev.u[1];
     r[3] = ev.m_couple * yp[1] + ev.m_eff[1] * yp[3] - g[1];
   }
-  for (const auto& term : terms_) term->residual(y, yp, r);
+  for (const ForceTerm* term : stateful_) term->residual(y, yp, r);
 }
 
 std::size_t CollisionModel::quadrature_size() const { return scene_.measure.energy_budget ? kForceKinds : 0; }

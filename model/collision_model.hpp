@@ -170,6 +170,7 @@ class CollisionModel : public DynamicalSystem {
   std::optional<std::size_t> implicit_slot_;  // the term whose mass is kept implicit (the added mass), if any
   std::vector<std::size_t> mass_slots_;       // the slots of the terms with a mass, in registration order
   std::size_t states_ = 0;   // the terms' states, after the core states
+  std::vector<const ForceTerm*> stateful_;  // the terms with states, in registration order (their rhs and residual rows)
   double term_step_cap_ = std::numeric_limits<double>::infinity();  // the terms' cap on the step (direct history grid), s
   const HistoryTerm* history_ = nullptr;  // among terms_, or null: its options and memories, for reporting
   AddedMassForm added_mass_;        // the model's own added mass, also the flow blend's estimate
