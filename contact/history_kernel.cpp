@@ -431,9 +431,43 @@ std::complex<double> soe_transfer(const SumOfExponentials& soe, double omega) {
 namespace {
 constexpr double samples_per_decade = 20;  // fit samples on [min_lag, horizon]
 constexpr double tikhonov = 1e-9;         // μ relative to ‖M‖_F
+
+/// The least-squares fit's operator on n_s samples s_j log-spaced by ds on [min_lag, horizon].
+struct SoeFit {
+  int n_s = 0;
+  double ds = 0;
+  Eigen::VectorXd rho;  // ρ_j = Σ_i M_ji
+  Eigen::MatrixXd P;    // the Tikhonov pseudo-inverse of M, m × n_s
+};
+
+// Fit in relative variables w_i = w_B,i (1 + c_i) with rows scaled by 1/K_B(s_j):
+//   M_ji = w_base,i √s_j e^(−λ_i s_j),  target b_j = (φ(s_j/s_c) − 1) ρ_j,  ρ_j = Σ_i M_ji,
+// i.e. the fit is to φ × (Basset SoE), so the Basset SoE's own error is not amplified by 1/φ in
+// the tail, and b = 0 (w = w_B) at Re = 0. c = P b, P the Tikhonov pseudo-inverse (QR of [M; μI]).
+SoeFit soe_fit(const SumOfExponentials& base, const std::vector<double>& rate) {
+  const std::size_t m = rate.size();
+  const double delta = base.min_lag, T = base.horizon;
+  SoeFit f;
+  f.n_s = std::max(static_cast<int>(std::ceil(samples_per_decade * std::log10(T / delta))) + 1, static_cast<int>(m));
+  const int n_s = f.n_s;
+  f.ds = std::log(T / delta) / (n_s - 1);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n_s + m, m);
+  f.rho.resize(n_s);
+  for (int j = 0; j < n_s; ++j) {
+    const double s = delta * std::exp(j * f.ds);
+    for (std::size_t i = 0; i < m; ++i)
+      A(j, i) = base.weight[i] * std::sqrt(s) * std::exp(-rate[i] * s);
+    f.rho[j] = A.row(j).sum();
+  }
+  const double mu = tikhonov * A.topRows(n_s).norm();
+  for (std::size_t i = 0; i < m; ++i) A(n_s + i, i) = mu;
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(A);
+  const Eigen::MatrixXd Q1 = (qr.householderQ() * Eigen::MatrixXd::Identity(n_s + m, m)).topRows(n_s);
+  f.P = qr.matrixQR().topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(Q1.transpose());
+  return f;
+}
 }  // namespace
 
-// One constructor (71 lines): the fit of the kernel by exponentials (samples, least squares, checks), one computation whose steps share its arrays.
 SoeKernel::SoeKernel(const HistoryKernel& kernel, const SumOfExponentials& base)
     : kernel_(kernel), base_(base), rate_(base.rate) {
   const std::size_t m = rate_.size();
@@ -450,27 +484,11 @@ SoeKernel::SoeKernel(const HistoryKernel& kernel, const SumOfExponentials& base)
   kappa_basset_ = C * base.kappa;
   if (kernel.kind() == KernelKind::basset) return;
 
-  // Fit in relative variables w_i = w_B,i (1 + c_i) with rows scaled by 1/K_B(s_j):
-  //   M_ji = w_base,i √s_j e^(−λ_i s_j),  target b_j = (φ(s_j/s_c) − 1) ρ_j,  ρ_j = Σ_i M_ji,
-  // i.e. the fit is to φ × (Basset SoE), so the Basset SoE's own error is not amplified by 1/φ in
-  // the tail, and b = 0 (w = w_B) at Re = 0. c = P b, P the Tikhonov pseudo-inverse (QR of [M; μI]).
-  const int n_s = std::max(static_cast<int>(std::ceil(samples_per_decade * std::log10(T / delta))) + 1,
-                           static_cast<int>(m));
-  const double ds = std::log(T / delta) / (n_s - 1);
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n_s + m, m);
-  Eigen::VectorXd rho(n_s);
-  for (int j = 0; j < n_s; ++j) {
-    const double s = delta * std::exp(j * ds);
-    for (std::size_t i = 0; i < m; ++i)
-      A(j, i) = base.weight[i] * std::sqrt(s) * std::exp(-rate_[i] * s);
-    rho[j] = A.row(j).sum();
-  }
-  const double mu = tikhonov * A.topRows(n_s).norm();
-  for (std::size_t i = 0; i < m; ++i) A(n_s + i, i) = mu;
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(A);
-  const Eigen::MatrixXd Q1 = (qr.householderQ() * Eigen::MatrixXd::Identity(n_s + m, m)).topRows(n_s);
-  const Eigen::MatrixXd P =
-      qr.matrixQR().topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(Q1.transpose());  // m × n_s
+  const SoeFit fit = soe_fit(base, rate_);
+  const int n_s = fit.n_s;
+  const double ds = fit.ds;
+  const Eigen::VectorXd& rho = fit.rho;
+  const Eigen::MatrixXd& P = fit.P;
 
   // Nodes τ_k = ln s_c with spacing ds (a finer one changes nothing measurable), from s_c(Re = ∞)
   // up to where 1 − φ(T/s_c) ≈ c1 (T/s_c)^p < 1e-3 max_rel_error; the top node is Basset itself

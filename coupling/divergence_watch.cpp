@@ -10,9 +10,10 @@
 
 namespace imcol::coupling {
 
-bool is_solid_contact(model::EventKind k) {
-  using K = model::EventKind;
-  return k == K::contact_in || k == K::contact_out || k == K::unload || k == K::touch || k == K::start_in_contact;
+bool is_solid_contact(model::EventTag k) {
+  using model::tag;
+  using R = model::ModelRoot;
+  return k == tag(R::contact_in) || k == tag(R::contact_out) || k == tag(R::unload) || k == tag(R::touch) || k == tag(R::start_in_contact);
 }
 
 DivergenceWatch::DivergenceWatch(const model::CollisionModel& model, const Scene& sc, std::span<const double> y0, FlowStep step)

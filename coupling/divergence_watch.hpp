@@ -24,9 +24,9 @@
 
 namespace imcol::coupling {
 
-/// Whether an event is solid contact (the δ_SS crossings, unloading, the gap closing, a start in contact): a flow step
-/// holding one is not judged by the speed jump.
-bool is_solid_contact(model::EventKind kind);
+/// Whether an event (its tag) is solid contact, one of the model's roots (the δ_SS crossings, unloading, the gap
+/// closing, a start in contact): a flow step holding one is not judged by the speed jump.
+bool is_solid_contact(model::EventTag kind);
 
 class DivergenceWatch {
  public:

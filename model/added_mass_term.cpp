@@ -27,12 +27,14 @@ AddedMassMatrix AddedMassForm::matrix(double gap) const {
 }
 
 namespace {
-/// Fills m_added (and m_pair, m_couple for the lagrangian pair) and the velocity part of f_AM.
+/// Fills its mass (and m_pair, m_couple for the lagrangian pair) and the velocity part of f_AM.
 class AddedMassTerm : public ForceTerm {
  public:
   AddedMassTerm(const Scene& sc, const PairGeometry& p) : f_(sc, p) {
     choices_ = {{"added_mass.model", to_string(sc.added_mass.model)}, {"added_mass.dw_floor", choice_number(f_.wall.dw_floor())}};
   }
+
+  TermSlot properties() const override { return {ForceKind::added_mass, "f_am", true, TermMass::implicit}; }
 
   void add(const TermInput&, Evaluation& ev) const override {
     double W = 0, dW = 0;
@@ -42,10 +44,10 @@ class AddedMassTerm : public ForceTerm {
     }
     for (std::size_t m = 0; m < f_.n_spheres; ++m) {
       if (f_.lagrangian_pair) {
-        ev.m_added[m] = 0.5 * f_.mf[m];  // free-space part; the gap part A is m_pair
+        ev.f[m].mass[slot()] = 0.5 * f_.mf[m];  // free-space part; the gap part A is m_pair
       } else {
-        ev.m_added[m] = 0.5 * f_.mf[m] * (1 + 3 * W);
-        if (f_.has_target) ev.f[m].added_mass = 0.75 * f_.mf[m] * ev.u[m] * (ev.u_rel / f_.a_star) * dW;  // velocity part (6.8)
+        ev.f[m].mass[slot()] = 0.5 * f_.mf[m] * (1 + 3 * W);
+        if (f_.has_target) ev.f[m].term[slot()] = 0.75 * f_.mf[m] * ev.u[m] * (ev.u_rel / f_.a_star) * dW;  // velocity part (6.8)
       }
     }
     if (f_.lagrangian_pair) {
@@ -53,8 +55,8 @@ class AddedMassTerm : public ForceTerm {
       ev.m_pair = A;
       ev.m_couple = -A;
       const double force = 0.5 * dA * ev.u_rel * ev.u_rel / f_.a_star;
-      ev.f[0].added_mass = force;
-      ev.f[1].added_mass = -force;
+      ev.f[0].term[slot()] = force;
+      ev.f[1].term[slot()] = -force;
     }
   }
 

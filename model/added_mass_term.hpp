@@ -2,7 +2,7 @@
 #pragma once
 // Added mass f_AM (MODEL.md §2.2, seed (6.8)). Its acceleration part is moved to the left-hand side, a mass matrix
 // on the velocities (kg); its velocity part is a force (N):
-//   `seed`        per sphere: m_added,m = ½ m_f,m (1 + 3W) on its own dU_m/dt, force (3/4) m_f,m U_m (U_rel/a*) dW/dδ**;
+//   `seed`        per sphere: its mass m_AM,m = ½ m_f,m (1 + 3W) on its own dU_m/dt, force (3/4) m_f,m U_m (U_rel/a*) dW/dδ**;
 //   `lagrangian`  (choice, pair only) kinetic energy T = Σ ½ (m_p,m + ½ m_f,m) U_m² + ½ A(δ) U_rel²,
 //                 A = (3/2) m_f* W(δ**), m_f* = (1/m_f,1 + 1/m_f,2)⁻¹: mass matrix [[M1+A, −A], [−A, M2+A]],
 //                 forces ±½ A' U_rel²/a*. The same as (6.8) for a wall; for a pair it conserves momentum and, in

@@ -38,6 +38,23 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc), pair_(sc), added_m
   arm_gap_ = initial_gap();
   delta_sl_m_ = sc.contact.delta_sl * D_;
   const bool start_inside = pair_.start_inside;
+  set_step_cap(sc);
+  stop_time_ = sc.solver.t_end;
+  build_terms(sc);
+  if (coupled_) flow_.emplace(sc, pair_, terms_);
+  if (start_inside) {
+    // The contact begins at t = 0 with the law's state frozen at the initial speed.
+    if (auto why = law_->start_inside_refusal(u_rel0_)) throw InputError(sc.path, "sphere[0].position", *why);
+    std::vector<double> y0(size());
+    initial_state(y0);
+    freeze_contact(0.0, u_rel0_);
+    phase_ = Phase::loading;
+    record(0.0, tag(ModelRoot::start_in_contact), "start inside the contact zone", y0);
+  }
+  arm();
+}
+
+void CollisionModel::set_step_cap(const Scene& sc) {
   // Cap the step so that the contact zone cannot be crossed (in and out) inside one step.
   // With the roughness limit the zone (the roughness height) is far thinner than the Hertz indentation the contact
   // reaches: that indentation is the contact's length scale then.
@@ -55,27 +72,30 @@ CollisionModel::CollisionModel(const Scene& sc) : scene_(sc), pair_(sc), added_m
        << ": lower solver.t_end, or raise solver.step_budget to run anyway";
     throw InputError(sc.path, "solver.t_end", os.str());
   }
-  stop_time_ = sc.solver.t_end;
+}
+
+void CollisionModel::build_terms(const Scene& sc) {
   terms_ = make_force_terms(sc, pair_);
+  slots_ = model::kind_slots(terms_);
+  fluid_ = FluidSlots(terms_);
+  for (const auto& t : terms_) {
+    const TermMass mass = t->properties().mass;
+    if (mass == TermMass::implicit) implicit_slot_ = t->slot();
+    if (mass != TermMass::none) mass_slots_.push_back(t->slot());
+  }
   history_ = find_term<HistoryTerm>(terms_);
-  if (history_) max_step_ = std::min(max_step_, history_->step_cap());
+  for (const auto& t : terms_) {
+    if (t->states() > 0) stateful_.push_back(t.get());
+    states_ += t->states();
+    term_step_cap_ = std::min(term_step_cap_, t->step_cap());
+  }
+  max_step_ = std::min(max_step_, term_step_cap_);
   if (auto* contact = find_term<ContactTerm>(terms_)) law_ = &contact->law();
   if (auto* gap = find_term<GapResistanceTerm>(terms_)) {
     lub_model_ = gap->model();
     h_min_ = gap->cutoff_m();
     h_c_ = gap->h_c_m();
   }
-  if (coupled_) flow_.emplace(sc, pair_);
-  if (start_inside) {
-    // The contact begins at t = 0 with the law's state frozen at the initial speed.
-    if (auto why = law_->start_inside_refusal(u_rel0_)) throw InputError(sc.path, "sphere[0].position", *why);
-    std::vector<double> y0(size());
-    initial_state(y0);
-    freeze_contact(0.0, u_rel0_);
-    phase_ = Phase::loading;
-    record(0.0, EventKind::start_in_contact, "start inside the contact zone", y0);
-  }
-  arm();
 }
 
 double CollisionModel::initial_gap() const {
@@ -91,17 +111,21 @@ const HistoryOptions& CollisionModel::history_options() const {
 }
 
 double CollisionModel::next_breakpoint(double) const {
-  return history_ ? history_->next_breakpoint() : std::numeric_limits<double>::infinity();
+  double t = std::numeric_limits<double>::infinity();
+  for (const auto& term : terms_) t = std::min(t, term->next_breakpoint());
+  return t;
 }
 
 void CollisionModel::at_breakpoint(double t, std::span<const double> y) {
-  if (history_) history_->at_breakpoint(t, kinematic_state(y));
+  const Evaluation ev = kinematic_state(y);
+  for (const auto& term : terms_) term->at_breakpoint(t, ev);
 }
 
 bool CollisionModel::modal_structure(double, std::span<const double> y, ModalStructure& s) const {
-  if (!history_ || history_->states() == 0) return false;
-  history_->modal_structure(kinematic_state(y), core_size(), s);
-  return true;
+  // The structure of the first term with states (one term has them today: the history force's memory).
+  for (const auto& term : terms_)
+    if (term->states() > 0) return term->modal_structure(kinematic_state(y), core_size(), s);
+  return false;
 }
 
 std::vector<std::string> CollisionModel::component_names() const {
@@ -109,7 +133,7 @@ std::vector<std::string> CollisionModel::component_names() const {
   if (target_ == Target::none) names = {"z1", "u1"};
   else if (target_ == Target::wall) names = {"gap", "u1"};
   else names = {"gap", "u1", "z2", "u2"};
-  if (history_) history_->append_names(names);
+  for (const auto& term : terms_) term->append_names(names);
   return names;
 }
 
@@ -119,8 +143,8 @@ std::vector<double> CollisionModel::absolute_tolerances(double atol) const {
     t.push_back(atol * (m == 0 && has_target() ? pair_.gap_scale : D_));
     t.push_back(atol * u_ref_);
   }
-  // Memory states: a force error below rtol times the drag at u_ref is noise (MODEL.md §2.3).
-  if (history_) history_->append_tolerances(std::max(atol, scene_.solver.rtol) * u_ref_, t);
+  // The terms' states (the history memory): a force error below rtol times the drag at u_ref is noise (MODEL.md §2.3).
+  for (const auto& term : terms_) term->append_tolerances(std::max(atol, scene_.solver.rtol) * u_ref_, t);
   return t;
 }
 
@@ -134,11 +158,12 @@ void CollisionModel::initial_state(std::span<double> y) const {
     y[2] = s[1].position;
     y[3] = s[1].velocity;
   }
-  if (history_) history_->initial_states(y, [&] { return evaluate(0.0, y); });
+  for (const auto& term : terms_) term->initial_states(y, [&] { return evaluate(0.0, y); });
 }
 
 void CollisionModel::at_step(double t, std::span<const double> y, bool restart) {
-  if (history_) history_->at_step(t, kinematic_state(y), restart);
+  const Evaluation ev = kinematic_state(y);
+  for (const auto& term : terms_) term->at_step(t, ev, restart);
 }
 
 void CollisionModel::kinematics(std::span<const double> y, Evaluation& ev) const {
@@ -167,7 +192,7 @@ double CollisionModel::max_step(double, std::span<const double> y) const {
   if (phase_ != Phase::loading && phase_ != Phase::unloading) {
     // Approaching: a quarter of the time to reach the contact zone at the current speed, never below max_step_
     // (unless the cap is the user's solver.max_step or the direct evaluator's grid step).
-    const bool automatic = !(scene_.solver.max_step > 0) && history_options().evaluator != HistoryEvaluator::direct;
+    const bool automatic = !(scene_.solver.max_step > 0) && !(term_step_cap_ < std::numeric_limits<double>::infinity());
     if (!automatic || !(ev.u_rel > 0)) return max_step_;
     return std::max(max_step_, 0.25 * (ev.gap - delta_ss_m_) / ev.u_rel);
   }
@@ -175,15 +200,16 @@ double CollisionModel::max_step(double, std::span<const double> y) const {
 }
 
 void CollisionModel::forces(double t, std::span<const double> y, Evaluation& ev) const {
-  for (std::size_t m = 0; m < n_spheres_; ++m) ev.f[m] = SphereForces{};
-  ev.m_added = {};
-  ev.m_pair = 0;
-  ev.m_hist = {};
-  ev.m_couple = 0;
+  // ev is fresh (its forces and masses zero): each term writes only its own slot.
   const TermInput in{t, y, phase_ != Phase::approach, phase_ == Phase::loading || phase_ == Phase::unloading};
   for (const auto& term : terms_) term->add(in, ev);
-  // The mass matrix's diagonal in a fixed order: m_p, the added mass, the history mass, the pair added mass A.
-  for (std::size_t m = 0; m < n_spheres_; ++m) ev.m_eff[m] = pair_.mp[m] + ev.m_added[m] + ev.m_hist[m] + ev.m_pair;
+  // The mass matrix's diagonal: m_p, the terms' masses in registration order, the pair added mass A.
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    const auto& f = ev.f[m];
+    double d = pair_.mp[m];
+    for (std::size_t s : mass_slots_) d += f.mass[s];
+    ev.m_eff[m] = d + ev.m_pair;
+  }
   if (flow_) flow_->apply(t, sim_, implicit_added_mass(ev.gap), ev);
 }
 
@@ -198,9 +224,9 @@ AddedMassMatrix CollisionModel::implicit_added_mass(double gap) const {
 }
 
 double CollisionModel::analytic_fluid_force(const Evaluation& ev, const std::array<double, 2>& a, std::size_t m) const {
-  const auto& f = ev.f[m];
-  const double base = coupled_ ? ev.thr_base[m] : f.drag + f.lubrication + f.added_mass + f.history;
-  const double m_hist = coupled_ ? ev.m_hist_full[m] : ev.m_hist[m];
+  // Uncoupled, f_THR is the fluid terms' sum and no mass is blended: the blend's sums, unweighted.
+  const double base = coupled_ ? ev.thr_base[m] : fluid_.force(ev.f[m]);
+  const double m_hist = coupled_ ? ev.m_blended_full[m] : fluid_.mass(ev.f[m]);
   double am = 0;
   if (has(Effect::added_mass)) {
     const AddedMassMatrix M = implicit_added_mass(ev.gap);
@@ -221,7 +247,8 @@ std::array<double, 2> CollisionModel::accelerations_without_contact(double t, st
   kinematics(y, ev);
   forces(t, y, ev);
   auto g = total_forces(ev);
-  for (std::size_t m = 0; m < n_spheres_; ++m) g[m] -= ev.f[m].contact;
+  for (std::size_t s : slots_[static_cast<std::size_t>(ForceKind::contact)])
+    for (std::size_t m = 0; m < n_spheres_; ++m) g[m] -= ev.f[m].term[s];
   return ev.accelerations(g, n_spheres_);
 }
 
@@ -233,10 +260,14 @@ void CollisionModel::sphere_states(std::span<const double> y, std::array<double,
 }
 
 std::array<double, 2> CollisionModel::total_forces(const Evaluation& ev) const {
+  // The slots in registration order (model/force_terms.cpp), then the simulated force.
   std::array<double, 2> g{};
+  const std::size_t n = terms_.size();
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     const auto& f = ev.f[m];
-    g[m] = f.drag + f.lubrication + f.added_mass + f.contact + f.gravity + f.history + f.simulated;
+    double sum = f.term[0];
+    for (std::size_t s = 1; s < n; ++s) sum += f.term[s];
+    g[m] = sum + f.simulated;
   }
   return g;
 }
@@ -247,11 +278,19 @@ Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
   forces(t, y, ev);
   const auto acc = ev.accelerations(total_forces(ev), n_spheres_);
   for (std::size_t m = 0; m < n_spheres_; ++m) ev.f[m].accel = acc[m];
-  // Report the full added-mass and history forces, including their acceleration parts (the mass matrix beyond m_p).
+  add_acceleration_parts(acc, ev);
+  return ev;
+}
+
+void CollisionModel::add_acceleration_parts(const std::array<double, 2>& acc, Evaluation& ev) const {
+  // The implicit added mass is the mass matrix beyond m_p and the blended masses; those are their terms' own.
   const bool pair = n_spheres_ == 2;
   for (std::size_t m = 0; m < n_spheres_; ++m) {
+    auto& f = ev.f[m];
     const double other = pair ? ev.m_couple * acc[1 - m] : 0.0;
-    double am_accel = (ev.m_eff[m] - pair_.mp[m] - ev.m_hist[m]) * acc[m] + other;  // the implicit added-mass force
+    double implicit = ev.m_eff[m] - pair_.mp[m];
+    for (std::size_t s : fluid_.masses) implicit -= f.mass[s];
+    double am_accel = implicit * acc[m] + other;  // the implicit added-mass force
     if (coupled_) {
       // Split the implicit added mass: its H share is f_THR's, the rest stands for f_SIM's (MODEL.md §5).
       const AddedMassMatrix M = implicit_added_mass(ev.gap);
@@ -262,10 +301,9 @@ Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
       am_accel -= (1 - H) * MA_a;
       ev.f[m].f_thr = analytic_fluid_force(ev, acc, m);
     }
-    ev.f[m].added_mass -= am_accel;
-    ev.f[m].history -= ev.m_hist[m] * acc[m];
+    (implicit_slot_ ? f.term[*implicit_slot_] : f.implicit_added_mass) -= am_accel;
+    for (std::size_t s : fluid_.masses) f.term[s] -= f.mass[s] * acc[m];
   }
-  return ev;
 }
 
 void CollisionModel::rhs(double t, std::span<const double> y, std::span<double> ydot) {
@@ -279,7 +317,7 @@ void CollisionModel::rhs(double t, std::span<const double> y, std::span<double> 
     ydot[2] = ev.u[1];
     ydot[3] = acc[1];
   }
-  if (history_) history_->state_rhs(acc, y, ydot);
+  for (const ForceTerm* term : stateful_) term->state_rhs(acc, y, ydot);
 }
 
 void CollisionModel::residual(double t, std::span<const double> y, std::span<const double> yp, std::span<double> r) {
@@ -295,13 +333,13 @@ void CollisionModel::residual(double t, std::span<const double> y, std::span<con
     r[2] = yp[2] - ev.u[1];
     r[3] = ev.m_couple * yp[1] + ev.m_eff[1] * yp[3] - g[1];
   }
-  if (history_) history_->residual(y, yp, r);
+  for (const ForceTerm* term : stateful_) term->residual(y, yp, r);
 }
 
 std::size_t CollisionModel::quadrature_size() const { return scene_.measure.energy_budget ? kForceKinds : 0; }
 
 void CollisionModel::quadrature_rhs(double t, std::span<const double> y, std::span<double> qdot) {
-  const auto p = force_powers(evaluate(t, y), n_spheres_);
+  const auto p = force_powers(evaluate(t, y), n_spheres_, slots_);
   std::copy(p.begin(), p.end(), qdot.begin());
 }
 
@@ -316,24 +354,24 @@ void CollisionModel::arm() {
   armed_kind_.clear();
   armed_watched_.clear();
   if (!has_target()) return;
-  auto add = [&](RootKind k, const char* name, int dir) {
+  auto add = [&](ModelRoot k, const char* name, int dir) {
     armed_.push_back({name, dir});
-    armed_kind_.push_back(k);
+    armed_kind_.push_back(tag(k));
     armed_watched_.emplace_back();
   };
   const bool elastic = has(Effect::elastic);
   switch (phase_) {
     case Phase::approach:
     case Phase::separated:
-      if (elastic) add(RootKind::contact_in, "gap=delta_ss (in)", -1);
+      if (elastic) add(ModelRoot::contact_in, "gap=delta_ss (in)", -1);
       break;
     case Phase::loading:
-      add(RootKind::unload, "u_rel=0 (loading->unloading)", -1);
-      add(RootKind::touch, "gap=0", -1);
-      add(RootKind::contact_out, "gap=delta_ss (out)", +1);
+      add(ModelRoot::unload, "u_rel=0 (loading->unloading)", -1);
+      add(ModelRoot::touch, "gap=0", -1);
+      add(ModelRoot::contact_out, "gap=delta_ss (out)", +1);
       break;
     case Phase::unloading:
-      add(RootKind::contact_out, "gap=delta_ss (out)", +1);
+      add(ModelRoot::contact_out, "gap=delta_ss (out)", +1);
       break;
   }
   // The watchers' roots (measurements and stop rules), in their order.
@@ -344,13 +382,13 @@ void CollisionModel::arm() {
     armed_kind_.push_back(r.kind);
     armed_watched_.push_back(std::move(r));
   }
-  if (has(Effect::lubrication) && lub_model_ == LubricationModel::asymptotic) add(RootKind::lub_edge, "gap=h_c (lubrication edge)", 0);
+  if (has(Effect::lubrication) && lub_model_ == LubricationModel::asymptotic) add(ModelRoot::lub_edge, "gap=h_c (lubrication edge)", 0);
   if (coupled_) {
     // The ends of the blend H (MODEL.md §2.5): diagnostic, the right-hand side stays continuous there. Not armed
     // while the gap sits on one of them (a start at 2δ_SL: CVODE refuses a root at the initial time).
     const double tiny = 1e-9 * D_;
-    if (std::abs(arm_gap_ - 2 * delta_sl_m_) > tiny) add(RootKind::blend_edge, "gap=2*delta_sl (blend edge)", 0);
-    if (phase_ != Phase::loading && std::abs(arm_gap_) > tiny) add(RootKind::blend_end, "gap=0 (blend end)", 0);
+    if (std::abs(arm_gap_ - 2 * delta_sl_m_) > tiny) add(ModelRoot::blend_edge, "gap=2*delta_sl (blend edge)", 0);
+    if (phase_ != Phase::loading && std::abs(arm_gap_) > tiny) add(ModelRoot::blend_end, "gap=0 (blend end)", 0);
   }
 }
 
@@ -363,20 +401,20 @@ void CollisionModel::root_values(double, std::span<const double> y, std::span<do
       g[i] = (w->of == WatchedRoot::Of::gap ? gap : u_rel) - w->level;
       continue;
     }
-    switch (armed_kind_[i]) {
-      case RootKind::contact_in:
-      case RootKind::contact_out: g[i] = gap - delta_ss_m_; break;
-      case RootKind::touch:
-      case RootKind::blend_end: g[i] = gap; break;
-      case RootKind::blend_edge: g[i] = gap - 2 * delta_sl_m_; break;
-      case RootKind::unload: g[i] = u_rel; break;
-      case RootKind::lub_edge: g[i] = regularised_gap(gap, h_min_) - h_c_; break;
-      default: g[i] = 1; break;  // the watchers' kinds (above) and declared states: never the model's own roots
+    switch (static_cast<ModelRoot>(armed_kind_[i])) {
+      case ModelRoot::contact_in:
+      case ModelRoot::contact_out: g[i] = gap - delta_ss_m_; break;
+      case ModelRoot::touch:
+      case ModelRoot::blend_end: g[i] = gap; break;
+      case ModelRoot::blend_edge: g[i] = gap - 2 * delta_sl_m_; break;
+      case ModelRoot::unload: g[i] = u_rel; break;
+      case ModelRoot::lub_edge: g[i] = regularised_gap(gap, h_min_) - h_c_; break;
+      default: g[i] = 1; break;  // a declared state: never armed
     }
   }
 }
 
-void CollisionModel::record(double t, EventKind kind, const std::string& name, std::span<const double> y) {
+void CollisionModel::record(double t, EventTag kind, const std::string& name, std::span<const double> y) {
   Evaluation ev;
   kinematics(y, ev);
   arm_gap_ = ev.gap;
@@ -392,20 +430,20 @@ void CollisionModel::freeze_contact(double t, double u_rel) {
   ++contacts_;
 }
 
-void CollisionModel::handle(RootKind kind, const std::string& name, double t, std::span<const double> y) {
+void CollisionModel::handle(EventTag kind, const std::string& name, double t, std::span<const double> y) {
   record(t, kind, name, y);
   Evaluation ev;
   kinematics(y, ev);
-  switch (kind) {
-    case RootKind::contact_in:
+  switch (static_cast<ModelRoot>(kind)) {  // a watcher's tag is none of these
+    case ModelRoot::contact_in:
       freeze_contact(t, ev.u_rel);
       phase_ = Phase::loading;
       break;
-    case RootKind::unload:
+    case ModelRoot::unload:
       law_->unload();
       phase_ = Phase::unloading;
       break;
-    case RootKind::contact_out:
+    case ModelRoot::contact_out:
       law_->end_contact();
       phase_ = Phase::separated;
       if (!t_separation_) t_separation_ = t;
@@ -450,7 +488,7 @@ EventAction CollisionModel::on_roots(std::span<const std::size_t> found, double 
   for (std::size_t i : found) {
     handle(kinds.at(i), specs.at(i).name, t, y);
     const bool diagnostic = watched[i] ? !watched[i]->restarts
-                                       : kinds[i] == RootKind::touch || kinds[i] == RootKind::blend_edge || kinds[i] == RootKind::blend_end;
+                                       : kinds[i] == tag(ModelRoot::touch) || kinds[i] == tag(ModelRoot::blend_edge) || kinds[i] == tag(ModelRoot::blend_end);
     changed = changed || !diagnostic;
   }
   if (t >= stop_time_) return EventAction::stop;

@@ -2,14 +2,15 @@
 #pragma once
 // Reduced-order model of one head-on collision (MODEL.md §2, §3):
 //   m_p,m dU_m/dt = f_D,m + f_lub,m + f_AM,m + f_SS,m + (m_p,m − m_f,m) g + f_H,m        (seed 6.4, 6.10)
-// Each force is a part (model/force_term.hpp), built by make_force_terms only for the effects the scene lists:
-// drag (model/drag_term.hpp), gravity (gravity_term), gap resistance (gap_resistance_term), added mass
-// (added_mass_term), contact (contact_term), history (history_term). The acceleration parts of the added mass
-// and the history force are moved to the left-hand side, a mass matrix on the velocities. With the `flow`
-// effect the analytic fluid terms are blended with the simulated force (model/flow_blend.hpp).
+// Each force is a term (model/force_term.hpp), built by make_force_terms only for the effects the scene lists:
+// drag (model/drag_term.hpp), gap resistance (gap_resistance_term), added mass (added_mass_term), contact
+// (contact_term), gravity (gravity_term), history (history_term). The model sums their slots, and their masses,
+// in that registration order. The acceleration parts of the added mass and the history force are moved to the
+// left-hand side, a mass matrix on the velocities. With the `flow` effect the analytic fluid terms are blended
+// with the simulated force (model/flow_blend.hpp).
 //
-// State (SI): wall   [gap, u1]; pair [gap, u1, z2, u2]; free sphere [z1, u1]; then the history
-// memory states of sphere 1, then of sphere 2 (sum of exponentials only).
+// State (SI): wall   [gap, u1]; pair [gap, u1, z2, u2]; free sphere [z1, u1]; then the terms' own states in
+// registration order (the history memory of sphere 1, then of sphere 2: sum of exponentials only).
 // The gap, not z1, is a state so that the error control acts on it relative to its own size:
 // a contact happens over micrometres while z1 is centimetres.
 #include <array>
@@ -24,6 +25,7 @@
 #include "contact/history_force.hpp"
 #include "core/scene.hpp"
 #include "core/system.hpp"
+#include "model/event.hpp"
 #include "model/watcher.hpp"
 #include "model/added_mass_term.hpp"
 #include "model/evaluation.hpp"
@@ -39,20 +41,6 @@ using contact::HistoryOptions;
 using contact::SphereHistory;
 using contact::GapGeometry;
 
-/// What an event is: the root that fired (the model's own or a watcher's, model/watcher.hpp), or a declared state
-/// (a start inside the contact zone by the model, at rest by a watcher).
-enum class EventKind { contact_in, contact_out, unload, touch, instant_in, instant_out, closest, lub_edge, blend_edge, blend_end,
-                       apex, rebound_stalled, measure_out, start_in_contact, at_rest };
-
-/// A discrete event in the run, for the summary.
-struct EventRecord {
-  double t;
-  std::string name;
-  double gap;
-  double u_rel;
-  EventKind kind;
-};
-
 enum class Phase { approach, loading, unloading, separated };
 const char* to_string(Phase p);
 
@@ -61,7 +49,7 @@ class CollisionModel : public DynamicalSystem {
   explicit CollisionModel(const Scene& scene);
 
   // ---- DynamicalSystem ----
-  std::size_t size() const override { return core_size() + (history_ ? history_->states() : 0); }
+  std::size_t size() const override { return core_size() + states_; }
   std::vector<std::string> component_names() const override;
   std::vector<double> absolute_tolerances(double atol) const override;
   void initial_state(std::span<double> y) const override;
@@ -81,21 +69,18 @@ class CollisionModel : public DynamicalSystem {
   double max_step_outside_contact() const { return max_step_; }
   double next_breakpoint(double t) const override;
   void at_breakpoint(double t, std::span<const double> y) override;
-  void at_step(double t, std::span<const double> y, bool restart) override;  // history evaluator soe-step
+  void at_step(double t, std::span<const double> y, bool restart) override;  // the terms' step hooks (soe-step memory)
   bool modal_structure(double t, std::span<const double> y, ModalStructure& s) const override;
 
   // ---- Coupling seam (flow effect, MODEL.md (6.10), §5) ----
-  bool coupled() const { return coupled_; }
   /// The simulated force for the coming flow step; the right-hand side uses it from now on.
   void set_simulated_force(const SimulatedForce& f) { sim_ = f; }
-  const SimulatedForce& simulated_force() const { return sim_; }
   /// H(δ/δ_SL): smoothstep on [0, 2], 1 at contact, ½ at δ_SL, 0 beyond 2δ_SL (and for a free sphere).
   double blend(double gap) const;
   /// The added mass kept implicit at this gap, including the estimate that stands for f_SIM's (§5).
   AddedMassMatrix implicit_added_mass(double gap) const;
   /// Positions (z1, z2) and velocities (u1, u2) of the spheres in the state y, m and m/s.
   void sphere_states(std::span<const double> y, std::array<double, 2>& z, std::array<double, 2>& u) const;
-  double delta_sl_m() const { return delta_sl_m_; }
   /// The analytic fluid force f_THR on each sphere, unblended (MODEL.md (6.10): drag, lubrication, added mass and
   /// history as the scene lists them) at (t, y) with the accelerations a (m/s²), N. The Fig. 6.4 comparison uses it.
   std::array<double, 2> analytic_fluid_force(double t, std::span<const double> y, const std::array<double, 2>& a) const;
@@ -119,6 +104,9 @@ class CollisionModel : public DynamicalSystem {
   bool has_wall() const { return target_ == Target::wall; }
 
   std::size_t core_size() const { return n_spheres_ * 2; }
+  /// The force terms in registration order (their slots), and the slot of each kind of force.
+  const ForceTerms& terms() const { return terms_; }
+  const KindSlots& kind_slots() const { return slots_; }
   /// History of sphere m (null without the history effect).
   const SphereHistory* history(std::size_t m) const { return history_ ? history_->sphere(m) : nullptr; }
   const HistoryOptions& history_options() const;
@@ -126,7 +114,6 @@ class CollisionModel : public DynamicalSystem {
   // Pair properties
   double a_star() const { return pair_.a_star; }
   double m_star() const { return pair_.m_star; }
-  double E_star() const { return pair_.E_star; }
   double e_dry() const { return pair_.e_dry; }
   double delta_ss_m() const { return delta_ss_m_; }
   double radius(int m) const { return a_[m]; }
@@ -145,24 +132,30 @@ class CollisionModel : public DynamicalSystem {
   bool started_in_contact() const { return t_contact_ && *t_contact_ == 0.0; }
   /// The solid contact law (null without the elastic effect or a target).
   const ContactLaw* contact_law() const { return law_; }
-  double max_contact_force() const { return max_contact_force_; }
   /// Model choices that ran, name → value.
   std::vector<std::pair<std::string, std::string>> choices() const;
 
  private:
-  using RootKind = EventKind;
 
+  /// max_step_ from the contact zone (or solver.max_step), refusing a run beyond solver.step_budget.
+  void set_step_cap(const Scene& sc);
+  /// Builds the terms and reads what the model needs of them: slots, states, step caps, the contact law, the lubrication edge.
+  void build_terms(const Scene& sc);
   void arm();
   void kinematics(std::span<const double> y, Evaluation& ev) const;
+  /// The slots in registration order, then the simulated force: each sphere's force beside the mass matrix.
   std::array<double, 2> total_forces(const Evaluation& ev) const;
-  /// Forces without the added-mass acceleration terms: each term's slots, then m_eff in a fixed order, then the
-  /// flow blend (MODEL.md (6.10), §5); fills ev.f, ev.m_eff and ev.m_couple.
+  /// Reports the full added-mass and blended-mass forces of an evaluated state, with their acceleration parts.
+  void add_acceleration_parts(const std::array<double, 2>& acc, Evaluation& ev) const;
+  /// Forces without the added-mass acceleration terms: each term's slots, then m_eff in registration order, then the
+  /// flow blend (MODEL.md (6.10), §5); fills ev.f, ev.m_eff and ev.m_couple of a fresh ev (kinematics() done).
   void forces(double t, std::span<const double> y, Evaluation& ev) const;
   /// f_THR of sphere m from an evaluated state (forces() done) and the accelerations.
   double analytic_fluid_force(const Evaluation& ev, const std::array<double, 2>& a, std::size_t m) const;
   void freeze_contact(double t, double u_rel);
-  void handle(RootKind kind, const std::string& name, double t, std::span<const double> y);
-  void record(double t, EventKind kind, const std::string& name, std::span<const double> y);
+  /// An armed root fired: its tag (a ModelRoot, or a watcher's kind).
+  void handle(EventTag kind, const std::string& name, double t, std::span<const double> y);
+  void record(double t, EventTag kind, const std::string& name, std::span<const double> y);
   /// Tells the watchers of the event just recorded, records what they declare and takes their stop times.
   void tell_watchers(double t, const Evaluation& ev);
   void declare(double t, const Evaluation& ev, const std::optional<Declared>& d);
@@ -171,8 +164,15 @@ class CollisionModel : public DynamicalSystem {
 
   const Scene scene_;
   const PairGeometry pair_;  // radii, masses, a*, m*, E*, e_dry, δ_SS, scales
-  ForceTerms terms_;         // the effects the scene lists (make_force_terms)
-  HistoryTerm* history_ = nullptr;  // among terms_, or null
+  ForceTerms terms_;         // the effects the scene lists (make_force_terms), in registration order
+  KindSlots slots_;          // the slot of each kind of force (the energy budget's, the contact's)
+  FluidSlots fluid_;         // the fluid terms' slots and the blended masses (f_THR, the flow blend)
+  std::optional<std::size_t> implicit_slot_;  // the term whose mass is kept implicit (the added mass), if any
+  std::vector<std::size_t> mass_slots_;       // the slots of the terms with a mass, in registration order
+  std::size_t states_ = 0;   // the terms' states, after the core states
+  std::vector<const ForceTerm*> stateful_;  // the terms with states, in registration order (their rhs and residual rows)
+  double term_step_cap_ = std::numeric_limits<double>::infinity();  // the terms' cap on the step (direct history grid), s
+  const HistoryTerm* history_ = nullptr;  // among terms_, or null: its options and memories, for reporting
   AddedMassForm added_mass_;        // the model's own added mass, also the flow blend's estimate
   std::optional<FlowBlend> flow_;   // with the flow effect
   bool coupled_ = false;     // the flow effect: f_SL = H f_THR + (1 − H) f_SIM
@@ -191,11 +191,10 @@ class CollisionModel : public DynamicalSystem {
   Phase phase_ = Phase::approach;
   ContactLaw* law_ = nullptr;  // f_SS (MODEL.md §2.4), from contact.law: the contact term's, among terms_
   double U_c_ = 0;
-  double max_contact_force_ = 0;
   int contacts_ = 0;
   std::optional<double> t_contact_, t_separation_;
   std::vector<RootSpec> armed_;
-  std::vector<RootKind> armed_kind_;
+  std::vector<EventTag> armed_kind_;
   std::vector<std::optional<WatchedRoot>> armed_watched_;  // per armed root: the watcher's, or none for the model's own
   std::vector<EventWatcher*> watchers_;
   std::vector<EventRecord> events_;

@@ -15,8 +15,8 @@ ContactTerm::ContactTerm(const Scene& sc, const PairGeometry& p)
 
 void ContactTerm::add(const TermInput& in, Evaluation& ev) const {
   const double f = in.contact_begun ? law_->force(ev.gap, ev.u_rel) : 0.0;  // magnitude, pushes the pair apart
-  ev.f[0].contact = -f;
-  if (pair_) ev.f[1].contact = f;
+  ev.f[0].term[slot()] = -f;
+  if (pair_) ev.f[1].term[slot()] = f;
 }
 
 std::unique_ptr<ForceTerm> make_contact_term(const Scene& sc, const PairGeometry& p) { return std::make_unique<ContactTerm>(sc, p); }

@@ -18,6 +18,7 @@ class ContactTerm : public ForceTerm {
   /// The law, for the model's events.
   contact::ContactLaw& law() { return *law_; }
 
+  TermSlot properties() const override { return {ForceKind::contact, "f_contact"}; }
   void add(const TermInput& in, Evaluation& ev) const override;
 
  private:

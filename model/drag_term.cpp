@@ -15,10 +15,12 @@ class DragTerm : public ForceTerm {
     choices_ = {{"drag.law", to_string(law_)}};
   }
 
+  TermSlot properties() const override { return {ForceKind::drag, "f_drag", true}; }
+
   void add(const TermInput&, Evaluation& ev) const override {
     for (std::size_t m = 0; m < n_spheres_; ++m) {
       const double Re = rho_f_ * 2 * a_[m] * std::abs(ev.u[m]) / mu_;
-      ev.f[m].drag = -six_pi_mu_ * a_[m] * ev.u[m] * contact::drag_factor(law_, Re);
+      ev.f[m].term[slot()] = -six_pi_mu_ * a_[m] * ev.u[m] * contact::drag_factor(law_, Re);
     }
   }
 

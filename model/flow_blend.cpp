@@ -10,10 +10,30 @@ double blend_weight(double gap, double delta_sl_m) {
   return 1.0 - x * x * (3 - 2 * x);
 }
 
-FlowBlend::FlowBlend(const Scene& sc, const PairGeometry& p)
+FlowBlend::FlowBlend(const Scene& sc, const PairGeometry& p, const ForceTerms& terms)
     : delta_sl_m_(sc.contact.delta_sl * p.D), n_spheres_(p.n_spheres), has_target_(p.has_target()),
       added_mass_listed_(sc.has(Effect::added_mass)), estimate_(sc.flow.added_mass_estimate),
-      lagrangian_pair_(sc.added_mass.model == AddedMassModel::lagrangian && p.pair()) {}
+      lagrangian_pair_(sc.added_mass.model == AddedMassModel::lagrangian && p.pair()), slots_(terms) {}
+
+FluidSlots::FluidSlots(const ForceTerms& terms) {
+  for (const auto& t : terms) {
+    const TermSlot s = t->properties();
+    if (s.fluid) forces.push_back(t->slot());
+    if (s.mass == TermMass::blended) masses.push_back(t->slot());
+  }
+}
+
+namespace {
+double sum_of(const std::array<double, kMaxTerms>& v, const std::vector<std::size_t>& slots) {
+  if (slots.empty()) return 0.0;
+  double sum = v[slots[0]];
+  for (std::size_t i = 1; i < slots.size(); ++i) sum += v[slots[i]];
+  return sum;
+}
+}  // namespace
+
+double FluidSlots::force(const SphereForces& f) const { return sum_of(f.term, forces); }
+double FluidSlots::mass(const SphereForces& f) const { return sum_of(f.mass, masses); }
 
 void FlowBlend::apply(double t, const SimulatedForce& sim, const AddedMassMatrix& M, Evaluation& ev) const {
   // f_SL = H f_THR + (1 − H) f_SIM (6.10). The acceleration parts: f_SIM's added mass is removed from it
@@ -23,14 +43,13 @@ void FlowBlend::apply(double t, const SimulatedForce& sim, const AddedMassMatrix
   const double H = ev.H;
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     auto& f = ev.f[m];
-    ev.thr_base[m] = f.drag + f.lubrication + f.added_mass + f.history;
-    ev.m_hist_full[m] = ev.m_hist[m];
-    f.drag *= H;
-    f.lubrication *= H;
-    f.added_mass *= H;  // velocity (dW/dδ) part
-    f.history *= H;
-    ev.m_eff[m] -= (1 - H) * ev.m_hist[m];
-    ev.m_hist[m] *= H;
+    ev.thr_base[m] = slots_.force(f);
+    ev.m_blended_full[m] = slots_.mass(f);
+    for (std::size_t s : slots_.forces) f.term[s] *= H;  // the added mass's: its velocity (dW/dδ) part
+    for (std::size_t s : slots_.masses) {
+      ev.m_eff[m] -= (1 - H) * f.mass[s];
+      f.mass[s] *= H;
+    }
     ev.f_rest[m] = sim.at(t, m);
     f.simulated = (1 - H) * ev.f_rest[m];
   }

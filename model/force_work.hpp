@@ -6,6 +6,7 @@
 // Newton's law for each sphere then gives Δ(Σ ½ m_p U²) = Σ_k W_k exactly; the integrator carries W_k as quadratures.
 #include <array>
 #include <cstddef>
+#include <vector>
 
 #include "model/evaluation.hpp"
 
@@ -20,10 +21,15 @@ inline constexpr std::array<ForceKind, kForceKinds> kAllForceKinds = {ForceKind:
 /// "drag", "lubrication", "added_mass", "history", "contact", "gravity", "simulated" (summary.json's names).
 const char* to_string(ForceKind k);
 
-/// The force of kind k on one sphere, N.
-double force_of(const SphereForces& f, ForceKind k);
+/// Where each kind's force is: the slots (SphereForces::term) of the terms of that kind, in registration order
+/// (model/force_term.hpp kind_slots). `simulated` is the flow blend's (SphereForces::simulated).
+using KindSlots = std::array<std::vector<std::size_t>, kForceKinds>;
+
+/// The force of kind k on one sphere, N: its terms' slots summed; without one, 0 (the added mass: the implicit
+/// added-mass force the flow blend leaves when no term holds it).
+double force_of(const SphereForces& f, ForceKind k, const KindSlots& slots);
 
 /// The power of each kind of force on the n spheres of an evaluated state (CollisionModel::evaluate), W.
-std::array<double, kForceKinds> force_powers(const Evaluation& ev, std::size_t n);
+std::array<double, kForceKinds> force_powers(const Evaluation& ev, std::size_t n, const KindSlots& slots);
 
 }  // namespace imcol::model

@@ -36,8 +36,8 @@ void GapResistanceTerm::add(const TermInput& in, Evaluation& ev) const {
   if (rough_ && in.in_contact) return;  // the load goes through the touching asperities, not a film
   // Per sphere: equal and opposite for brenner and asymptotic, in the ratio a2/a1 for the seed's law.
   const GapResistance R = gap_resistance(model_, geo_, regularised_gap(ev.gap, h_min_));
-  ev.f[0].lubrication = -six_pi_mu_ * R.on1 * ev.u_rel;
-  if (pair_) ev.f[1].lubrication = six_pi_mu_ * R.on2 * ev.u_rel;
+  ev.f[0].term[slot()] = -six_pi_mu_ * R.on1 * ev.u_rel;
+  if (pair_) ev.f[1].term[slot()] = six_pi_mu_ * R.on2 * ev.u_rel;
 }
 
 std::unique_ptr<ForceTerm> make_gap_resistance_term(const Scene& sc, const PairGeometry& p) {

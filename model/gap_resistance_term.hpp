@@ -18,6 +18,7 @@ class GapResistanceTerm : public ForceTerm {
   double cutoff_m() const { return h_min_; }  // lubrication.cutoff × D, m
   double h_c_m() const { return h_c_; }       // lubrication.h_c × a*, m
 
+  TermSlot properties() const override { return {ForceKind::lubrication, "f_lub", true}; }
   void add(const TermInput& in, Evaluation& ev) const override;
 
  private:

@@ -10,8 +10,9 @@ class GravityTerm : public ForceTerm {
   GravityTerm(const Scene& sc, const PairGeometry& p) : n_spheres_(p.n_spheres) {
     for (std::size_t m = 0; m < n_spheres_; ++m) weight_[m] = (p.mp[m] - p.mf[m]) * sc.gravity;
   }
+  TermSlot properties() const override { return {ForceKind::gravity, "f_grav"}; }
   void add(const TermInput&, Evaluation& ev) const override {
-    for (std::size_t m = 0; m < n_spheres_; ++m) ev.f[m].gravity = weight_[m];
+    for (std::size_t m = 0; m < n_spheres_; ++m) ev.f[m].term[slot()] = weight_[m];
   }
 
  private:

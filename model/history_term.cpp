@@ -12,7 +12,6 @@ namespace imcol::model {
 
 using namespace contact;
 
-// One constructor (64 lines): each history setting read once, in the order the term uses them; a split would pass them all along.
 HistoryTerm::HistoryTerm(const Scene& sc, const PairGeometry& p) : wall_(sc, p), n_spheres_(p.n_spheres) {
   const auto& h = sc.history;
   auto& o = opt_;
@@ -23,11 +22,25 @@ HistoryTerm::HistoryTerm(const Scene& sc, const PairGeometry& p) : wall_(sc, p),
   o.impulsive = h.start == HistoryStart::impulsive;
   o.initial_re = h.reynolds == HistoryReynolds::initial;
   kh_added_mass_ = h.wall_correction == WallCorrection::added_mass && p.has_target();
-  // Fastest time scale the memory must resolve: the viscous and particle relaxation times of each
-  // sphere and, with a target, the time to cross the contact zone and the Hertz contact time.
+  const double t_fast = fastest_time(sc, p);
+  o.horizon = h.horizon > 0 ? h.horizon : sc.solver.t_end;
+  o.min_lag = h.min_lag > 0 ? h.min_lag : 1e-3 * t_fast;
+  if (o.horizon < 10 * o.min_lag)
+    throw InputError(sc.path, h.horizon > 0 ? "history.horizon" : "history.min_lag",
+                     "the memory horizon " + fmt_number(o.horizon) + " s must be at least 10 × min_lag (" +
+                         fmt_number(o.min_lag) + " s)");
+  // Direct evaluator: 10 steps per fastest time scale, but at most 50000 steps up to t_end.
+  o.direct_step = h.direct_step > 0 ? h.direct_step : std::max(0.1 * t_fast, sc.solver.t_end / 50000);
+  make_spheres(sc, p);
+  set_choices(h);
+}
+
+// The viscous and particle relaxation times of each sphere and, with a target, the time to cross the contact zone
+// and the Hertz contact time.
+double HistoryTerm::fastest_time(const Scene& sc, const PairGeometry& p) {
   double t_fast = std::numeric_limits<double>::infinity();
   const double nu = p.mu / p.rho_f;
-  for (std::size_t m = 0; m < n_spheres_; ++m) {
+  for (std::size_t m = 0; m < p.n_spheres; ++m) {
     t_fast = std::min(t_fast, p.a[m] * p.a[m] / nu);
     t_fast = std::min(t_fast, (p.mp[m] + 0.5 * p.mf[m]) / (6 * pi * p.mu * p.a[m]));
   }
@@ -42,39 +55,42 @@ HistoryTerm::HistoryTerm(const Scene& sc, const PairGeometry& p) : wall_(sc, p),
                            fmt_number(t_c) + " s)");
     t_fast = std::min(t_fast, t_c);
   }
-  o.horizon = h.horizon > 0 ? h.horizon : sc.solver.t_end;
-  o.min_lag = h.min_lag > 0 ? h.min_lag : 1e-3 * t_fast;
-  if (o.horizon < 10 * o.min_lag)
-    throw InputError(sc.path, h.horizon > 0 ? "history.horizon" : "history.min_lag",
-                     "the memory horizon " + fmt_number(o.horizon) + " s must be at least 10 × min_lag (" +
-                         fmt_number(o.min_lag) + " s)");
-  // Direct evaluator: 10 steps per fastest time scale, but at most 50000 steps up to t_end.
-  o.direct_step = h.direct_step > 0 ? h.direct_step : std::max(0.1 * t_fast, sc.solver.t_end / 50000);
-  const std::size_t core = 2 * n_spheres_;
-  std::size_t offset = core;
+  return t_fast;
+}
+
+void HistoryTerm::make_spheres(const Scene& sc, const PairGeometry& p) {
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     try {
-      h_[m] = std::make_unique<SphereHistory>(o, p.a[m], p.mu, p.rho_f, sc.spheres[m].velocity);
+      h_[m] = std::make_unique<SphereHistory>(opt_, p.a[m], p.mu, p.rho_f, sc.spheres[m].velocity);
     } catch (const std::invalid_argument& e) {
       throw InputError(sc.path, "history", e.what());
     }
-    offset_[m] = offset;
-    offset += h_[m]->states();
+    states_ += h_[m]->states();
   }
-  states_ = offset - core;
   if (n_spheres_ == 2) h_[1]->share_steps_with(h_[0].get());  // soe-step, equal exponentials
+  place_states(2 * n_spheres_);
+}
+
+void HistoryTerm::place_states(std::size_t first) {
+  for (std::size_t m = 0; m < n_spheres_; ++m) {
+    offset_[m] = first;
+    first += h_[m]->states();
+  }
+}
+
+void HistoryTerm::set_choices(const Scene::History& h) {
   auto& c = choices_;
   c.push_back({"history.kernel", to_string(h.kernel)});
   c.push_back({"history.evaluator", to_string(h.evaluator)});
   c.push_back({"history.start", to_string(h.start)});
   c.push_back({"history.wall_correction", to_string(h.wall_correction)});
   if (h.kernel != KernelKind::basset) c.push_back({"history.reynolds", to_string(h.reynolds)});
-  if (o.evaluator == HistoryEvaluator::direct) {
-    c.push_back({"history.direct_step_s", choice_number(o.direct_step)});
+  if (opt_.evaluator == HistoryEvaluator::direct) {
+    c.push_back({"history.direct_step_s", choice_number(opt_.direct_step)});
   } else {
     c.push_back({"history.modes", std::to_string(h_[0]->modes())});
-    c.push_back({"history.min_lag_s", choice_number(o.min_lag)});
-    c.push_back({"history.horizon_s", choice_number(o.horizon)});
+    c.push_back({"history.min_lag_s", choice_number(opt_.min_lag)});
+    c.push_back({"history.horizon_s", choice_number(opt_.horizon)});
     c.push_back({"history.fit_error_basset", choice_number(h_[0]->soe()->base().max_rel_error)});
   }
 }
@@ -92,8 +108,8 @@ std::span<const double> HistoryTerm::memory(std::span<const double> y, std::size
 void HistoryTerm::add(const TermInput& in, Evaluation& ev) const {
   for (std::size_t m = 0; m < n_spheres_; ++m) {
     const auto term = h_[m]->evaluate(in.t, ev.u[m], K_H(ev.gap), memory(in.y, m));
-    ev.f[m].history = term.force;
-    ev.m_hist[m] = term.mass;
+    ev.f[m].term[slot()] = term.force;
+    ev.f[m].mass[slot()] = term.mass;
   }
 }
 
@@ -158,7 +174,8 @@ void HistoryTerm::at_step(double t, const Evaluation& ev, bool restart) {
   for (std::size_t m = 0; m < n_spheres_; ++m) h_[m]->advance_memory(t, ev.u[m], restart);
 }
 
-void HistoryTerm::modal_structure(const Evaluation& ev, std::size_t core, ModalStructure& s) const {
+bool HistoryTerm::modal_structure(const Evaluation& ev, std::size_t core, ModalStructure& s) const {
+  if (states_ == 0) return false;
   const double K_H = this->K_H(ev.gap);
   s = ModalStructure{};
   s.core = core;
@@ -174,6 +191,7 @@ void HistoryTerm::modal_structure(const Evaluation& ev, std::size_t core, ModalS
       s.gain.push_back(g[i]);
     }
   }
+  return true;
 }
 
 std::unique_ptr<ForceTerm> make_history_term(const Scene& sc, const PairGeometry& p) { return std::make_unique<HistoryTerm>(sc, p); }

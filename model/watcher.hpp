@@ -9,16 +9,16 @@
 #include <string>
 #include <vector>
 
+#include "model/event.hpp"
+
 namespace imcol::model {
 
-enum class EventKind;
-struct EventRecord;
 struct Evaluation;
 
 /// A root a watcher wants armed: g = (gap or U_rel) − level crossing zero in `direction` (+1 rising, −1 falling, 0 both).
 struct WatchedRoot {
   enum class Of { gap, u_rel };
-  EventKind kind;
+  EventTag kind;      // the watcher's kind (run/event_kind.hpp)
   std::string name;   // the event's name in events() (summary.json's `events`)
   Of of;
   double level;       // m for the gap, m/s for U_rel
@@ -28,7 +28,7 @@ struct WatchedRoot {
 
 /// A state a watcher declares (e.g. at rest), recorded by the model as an event at the present gap and U_rel.
 struct Declared {
-  EventKind kind;
+  EventTag kind;
   std::string name;
 };
 

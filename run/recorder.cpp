@@ -17,17 +17,12 @@ using model::SphereForces;
 
 namespace {
 
-/// The per-sphere force columns in their order: the effect that adds each, its name and its field.
-struct ForceColumn {
-  Effect effect;
+/// The flow effect's per-sphere columns, after the terms' (model/force_term.hpp TermSlot::column).
+struct FlowColumn {
   const char* name;
   double SphereForces::*field;
 };
-constexpr ForceColumn kForceColumns[] = {
-    {Effect::drag, "f_drag", &SphereForces::drag},         {Effect::lubrication, "f_lub", &SphereForces::lubrication},
-    {Effect::added_mass, "f_am", &SphereForces::added_mass}, {Effect::elastic, "f_contact", &SphereForces::contact},
-    {Effect::gravity, "f_grav", &SphereForces::gravity},    {Effect::history, "f_hist", &SphereForces::history},
-    {Effect::flow, "f_sim", &SphereForces::f_sim},          {Effect::flow, "f_thr", &SphereForces::f_thr}};
+constexpr FlowColumn kFlowColumns[] = {{"f_sim", &SphereForces::f_sim}, {"f_thr", &SphereForces::f_thr}};
 
 /// Terminal speed (m/s) of sphere m under gravity alone with the scene's steady drag law (MODEL.md §2.1).
 double terminal_speed(const Scene& sc, std::size_t m) {
@@ -98,15 +93,21 @@ Recorder::Recorder(model::CollisionModel& model, const Scene& sc, bool progress,
     columns_.push_back("u2");
   }
   if (model.has_target()) columns_.push_back("u_rel");
-  if (forces_)
-    for (const auto& c : kForceColumns)
-      if (sc.has(c.effect)) fields_.push_back(c.field);
+  const bool flow = sc.has(Effect::flow);
   for (int m = 1; forces_ && m <= static_cast<int>(model.n_spheres()); ++m) {
     const std::string k = std::to_string(m);
-    for (const auto& c : kForceColumns)
-      if (sc.has(c.effect)) columns_.push_back(c.name + k);
+    for (const auto& term : model.terms()) columns_.push_back(term->properties().column + k);
+    for (const auto& c : kFlowColumns)
+      if (flow) columns_.push_back(c.name + k);
     columns_.push_back("a" + k);
   }
+  const auto& slots = model.kind_slots();
+  const auto first = [&](model::ForceKind k) -> std::optional<std::size_t> {
+    const auto& s = slots[static_cast<std::size_t>(k)];
+    return s.empty() ? std::nullopt : std::optional<std::size_t>(s.front());
+  };
+  contact_slot_ = first(model::ForceKind::contact);  // the contact law's term
+  history_slot_ = first(model::ForceKind::history);
   if (forces_ && sc.has(Effect::flow)) columns_.push_back("H");
   columns_.push_back("event");
 }
@@ -142,13 +143,14 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
   if (progress_) show_progress(t);
   if (model_.has_target()) {
     min_gap_ = std::min(min_gap_, ev.gap);
-    if (forces_) max_force_ = std::max(max_force_, std::abs(ev.f[0].contact));
+    if (forces_) max_force_ = std::max(max_force_, std::abs(contact_slot_ ? ev.f[0].term[*contact_slot_] : 0.0));
   }
 }
 
 std::vector<double> Recorder::make_row(double t, const Evaluation& ev, bool at_event) {
   std::vector<double> r;
   r.reserve(columns_.size());
+  const bool flow = sc_.has(Effect::flow);
   r.insert(r.end(), {t, ev.z[0], ev.u[0]});
   const bool pair = model_.n_spheres() == 2;
   if (model_.has_target()) r.push_back(ev.gap);
@@ -159,9 +161,11 @@ std::vector<double> Recorder::make_row(double t, const Evaluation& ev, bool at_e
   if (model_.has_target()) r.push_back(ev.u_rel);
   for (std::size_t m = 0; forces_ && m < model_.n_spheres(); ++m) {
     const auto& f = ev.f[m];
-    for (auto field : fields_) r.push_back(f.*field);
+    r.insert(r.end(), f.term.begin(), f.term.begin() + static_cast<std::ptrdiff_t>(model_.terms().size()));
+    for (const auto& c : kFlowColumns)
+      if (flow) r.push_back(f.*c.field);
     r.push_back(f.accel);
-    max_history_ = std::max(max_history_, std::abs(f.history));
+    max_history_ = std::max(max_history_, std::abs(history_slot_ ? f.term[*history_slot_] : 0.0));
   }
   if (forces_ && sc_.has(Effect::flow)) r.push_back(ev.H);
   r.push_back(at_event ? 1.0 : 0.0);

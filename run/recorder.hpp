@@ -85,7 +85,7 @@ class Recorder : public Observer {
   model::CollisionModel& model_;
   const Scene& sc_;
   std::vector<std::string> columns_;
-  std::vector<double model::SphereForces::*> fields_;  // the force columns of each sphere, in column order
+  std::optional<std::size_t> contact_slot_, history_slot_;  // the slots of the peaks kept (contact, history force)
   std::vector<std::vector<double>> rows_, contact_rows_;
   Track track_;
   std::array<double, model::kForceKinds> work_{};  // the quadratures of the sample being taken, J

@@ -1,21 +1,22 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "run/watch_contacts.hpp"
 
+#include "run/event_kind.hpp"
+
 namespace imcol::run {
 
-using model::EventKind;
 
 ContactLog::ContactLog(const model::CollisionModel& model) {
   if (model.started_in_contact()) contacts_.push_back({0.0, model.initial_u_rel(), std::nullopt, std::nullopt});
 }
 
 std::optional<model::Declared> ContactLog::on_event(const model::EventRecord& e) {
-  if (e.kind == EventKind::contact_in) {
+  if (kind_of(e) == EventKind::contact_in) {
     contacts_.push_back({e.t, e.u_rel, std::nullopt, std::nullopt});
-  } else if (e.kind == EventKind::contact_out && !contacts_.empty() && !contacts_.back().t_out) {
+  } else if (kind_of(e) == EventKind::contact_out && !contacts_.empty() && !contacts_.back().t_out) {
     contacts_.back().t_out = e.t;
     contacts_.back().u_out = e.u_rel;
-  } else if ((e.kind == EventKind::unload || e.kind == EventKind::apex) && !t_together_) {
+  } else if ((kind_of(e) == EventKind::unload || kind_of(e) == EventKind::apex) && !t_together_) {
     t_together_ = e.t;
   }
   return std::nullopt;

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "run/watch_first_bounce.hpp"
 
+#include "run/event_kind.hpp"
+
 #include <algorithm>
 #include <cmath>
 
 namespace imcol::run {
 
-using model::EventKind;
 using model::WatchedRoot;
 
 FirstBounceStop::FirstBounceStop(const model::CollisionModel& model, const Scene& sc, const InstantSpeeds& instant)
@@ -17,14 +18,14 @@ FirstBounceStop::FirstBounceStop(const model::CollisionModel& model, const Scene
 
 void FirstBounceStop::roots(std::vector<WatchedRoot>& out) const {
   if (model_.phase() != model::Phase::separated) return;
-  if (!gap_passed_) out.push_back({EventKind::measure_out, "gap=max(at_gap, delta_ss+fit_distance) (out)", WatchedRoot::Of::gap, gap_, +1, false});
+  if (!gap_passed_) out.push_back({tag(EventKind::measure_out), "gap=max(at_gap, delta_ss+fit_distance) (out)", WatchedRoot::Of::gap, gap_, +1, false});
   if (!stalled_)
-    out.push_back({EventKind::rebound_stalled, "u_rel=-stall_fraction*U_c (rebound stalled)", WatchedRoot::Of::u_rel,
+    out.push_back({tag(EventKind::rebound_stalled), "u_rel=-stall_fraction*U_c (rebound stalled)", WatchedRoot::Of::u_rel,
                    -(stall_fraction_ * std::abs(model_.impact_speed())), +1, false});
 }
 
 std::optional<model::Declared> FirstBounceStop::on_event(const model::EventRecord& e) {
-  switch (e.kind) {
+  switch (kind_of(e)) {
     case EventKind::contact_out:
       if (separated_) return std::nullopt;
       separated_ = true;

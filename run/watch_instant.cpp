@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "run/watch_instant.hpp"
 
+#include "run/event_kind.hpp"
+
 namespace imcol::run {
 
-using model::EventKind;
 using model::WatchedRoot;
 
 InstantSpeeds::InstantSpeeds(const model::CollisionModel& model, const Scene& sc) {
@@ -15,19 +16,19 @@ InstantSpeeds::InstantSpeeds(const model::CollisionModel& model, const Scene& sc
 }
 
 void InstantSpeeds::roots(std::vector<WatchedRoot>& out) const {
-  const WatchedRoot in{EventKind::instant_in, "gap=instant_gap (in)", WatchedRoot::Of::gap, gap_, -1, true};
-  const WatchedRoot outward{EventKind::instant_out, "gap=instant_gap (out)", WatchedRoot::Of::gap, gap_, +1, true};
+  const WatchedRoot in{tag(EventKind::instant_in), "gap=instant_gap (in)", WatchedRoot::Of::gap, gap_, -1, true};
+  const WatchedRoot outward{tag(EventKind::instant_out), "gap=instant_gap (out)", WatchedRoot::Of::gap, gap_, +1, true};
   if (all_) out.push_back(inside_ ? outward : in);
   else if (!u_in_) out.push_back(in);
   else if (!u_out_) out.push_back(outward);
 }
 
 std::optional<model::Declared> InstantSpeeds::on_event(const model::EventRecord& e) {
-  if (e.kind == EventKind::instant_in) {
+  if (kind_of(e) == EventKind::instant_in) {
     if (!u_in_) u_in_ = e.u_rel;
     inside_ = true;
     crossings_.push_back({e.t, e.u_rel, true});
-  } else if (e.kind == EventKind::instant_out) {
+  } else if (kind_of(e) == EventKind::instant_out) {
     if (!u_out_ && u_in_) u_out_ = e.u_rel;
     inside_ = false;
     crossings_.push_back({e.t, e.u_rel, false});

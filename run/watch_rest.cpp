@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "run/watch_rest.hpp"
 
+#include "run/event_kind.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -32,7 +34,7 @@ std::optional<model::Declared> RestDetection::on_sample(double t, const model::E
   if (t - *quiet_since_ < window_ * (1 - 1e-9)) return std::nullopt;
   at_rest_ = true;
   stop_ = std::min(stop_, t);
-  return model::Declared{model::EventKind::at_rest,
+  return model::Declared{tag(EventKind::at_rest),
                          "at rest (|U_rel| and |dU_rel/dt| window below stall_fraction x impact speed for one window)"};
 }
 

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "run/event_kind.hpp"
 #include "run/simulate.hpp"
 #include "run/watch.hpp"
 #include "model/collision_model.hpp"
@@ -304,28 +305,28 @@ TEST(Coupling, TheSpeedJumpCheckKnowsSolidContactByTheEventKind) {
   integrate(model, IntegratorSettings{}, quiet);
   int in = 0, out = 0, measure = 0;
   for (const auto& ev : model.events()) {
-    if (ev.kind == model::EventKind::contact_in) {
+    if (run::kind_of(ev) == run::EventKind::contact_in) {
       ++in;
       EXPECT_EQ(ev.name, "gap=delta_ss (in)");
     }
-    if (ev.kind == model::EventKind::contact_out) {
+    if (run::kind_of(ev) == run::EventKind::contact_out) {
       ++out;
       EXPECT_EQ(ev.name, "gap=delta_ss (out)");
     }
-    if (ev.kind == model::EventKind::measure_out) {
+    if (run::kind_of(ev) == run::EventKind::measure_out) {
       ++measure;
       EXPECT_NE(ev.name.find("delta_ss"), std::string::npos) << ev.name;
       EXPECT_FALSE(coupling::is_solid_contact(ev.kind));
     }
-    if (ev.kind == model::EventKind::contact_in || ev.kind == model::EventKind::contact_out) {
+    if (run::kind_of(ev) == run::EventKind::contact_in || run::kind_of(ev) == run::EventKind::contact_out) {
       EXPECT_TRUE(coupling::is_solid_contact(ev.kind));
     }
   }
   EXPECT_EQ(in, 1);
   EXPECT_EQ(out, 1);
   EXPECT_EQ(measure, 1);
-  EXPECT_TRUE(coupling::is_solid_contact(model::EventKind::touch));
-  EXPECT_FALSE(coupling::is_solid_contact(model::EventKind::blend_edge));
+  EXPECT_TRUE(coupling::is_solid_contact(run::tag(run::EventKind::touch)));
+  EXPECT_FALSE(coupling::is_solid_contact(run::tag(run::EventKind::blend_edge)));
 }
 
 TEST(Coupling, TheStepRuleScalesAStartFromRestByTheSpeedItCanReach) {

@@ -9,6 +9,7 @@
 #include "core/scene.hpp"
 #include "integrators/integrator.hpp"
 #include "model/collision_model.hpp"
+#include "run/event_kind.hpp"
 #include "run/recorder.hpp"
 #include "run/watch.hpp"
 
@@ -46,10 +47,10 @@ class HalfGap : public model::EventWatcher {
  public:
   explicit HalfGap(double gap) : gap_(gap) {}
   void roots(std::vector<model::WatchedRoot>& out) const override {
-    if (!t_) out.push_back({model::EventKind::measure_out, "gap=half the initial gap (in)", model::WatchedRoot::Of::gap, gap_, -1, true});
+    if (!t_) out.push_back({run::tag(run::EventKind::measure_out), "gap=half the initial gap (in)", model::WatchedRoot::Of::gap, gap_, -1, true});
   }
   std::optional<model::Declared> on_event(const model::EventRecord& e) override {
-    if (e.kind == model::EventKind::measure_out) t_ = e.t;
+    if (run::kind_of(e) == run::EventKind::measure_out) t_ = e.t;
     return std::nullopt;
   }
   double stop_time() const override { return t_.value_or(std::numeric_limits<double>::infinity()); }
@@ -72,7 +73,7 @@ TEST(Watchers, AWatchersRootFiresUnderItsKindAndNameAndItsStopTimeEndsTheRun) {
   ASSERT_TRUE(half.t_);
   ASSERT_FALSE(model.events().empty());
   const auto& e = model.events().back();
-  EXPECT_EQ(e.kind, model::EventKind::measure_out);
+  EXPECT_EQ(run::kind_of(e), run::EventKind::measure_out);
   EXPECT_EQ(e.name, "gap=half the initial gap (in)");
   EXPECT_NEAR(e.gap, 0.5 * model.initial_gap(), 1e-6 * model.initial_gap());
   EXPECT_EQ(model.stop_time(), *half.t_);
