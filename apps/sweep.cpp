@@ -240,8 +240,8 @@ Outcome report_points(const std::vector<SweepPoint>& pts, const SweepOptions& op
   std::cout << ok << " of " << opt.points << " points ran in " << std::fixed << std::setprecision(2) << wall << " s on " << jobs
             << (jobs == 1 ? " job: " : " jobs: ") << std::setprecision(1) << ok / wall << " collisions per second (" << std::setprecision(3)
             << (ok ? 1e3 * cpu / ok : NAN) << " ms integration per point)\n";
-  for (const auto& f : out.failures)
-    std::cout << "failed: point " << f["point"] << " (" << opt.vary << " = " << f["value"] << "): " << f["reason"].get<std::string>() << "\n";
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (!pts[i].ok) std::cout << "failed: point " << i << " (" << opt.vary << " = " << run::Json(pts[i].value) << "): " << pts[i].message << "\n";
   out.counts = report_e_status(pts, base, ok);
   return out;
 }
@@ -320,7 +320,10 @@ int finish_sweep(const SweepInputs& in, const SweepOptions& opt, OutputUnit& uni
   fs::remove(dir / "sweep.partial");
   std::string dem_line;
   if (opt.export_format == "dem") {
-    const std::optional<double> e_dry = j.contains("e_dry") ? std::optional<double>(j["e_dry"].get<double>()) : std::nullopt;
+    // The scene's e_dry: the first point that ran says it (the swept quantities leave it unchanged).
+    const auto ran = std::find_if(pts.begin(), pts.end(), [](const SweepPoint& p) { return p.ok; });
+    const std::optional<double> e_dry =
+        ran != pts.end() && ran->summary.contact ? std::optional<double>(ran->summary.contact->e_dry) : std::nullopt;
     dem_line = export_dem(dir, in.base, {in.scene_path, opt.vary, in.column, e_dry}, study::dem_points(result));
   }
   if (opt.plot) run_plot_script("plot_sweep.py", unit, "sweep.png");

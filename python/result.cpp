@@ -78,16 +78,40 @@ std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::obje
 
 py::object opt(const std::optional<double>& v) { return v ? py::object(py::float_(*v)) : py::object(py::none()); }
 
+/// The summary's view (imcol.Summary) on a result: to_dict, its names as the result's attributes, dir and repr.
+void add_summary_view(py::class_<PyResult, std::shared_ptr<PyResult>>& c) {
+  c.def("to_dict", [](PyResult& r) { return py::module_::import("copy").attr("deepcopy")(r.summary()); },
+           "The summary as summary.json writes it, as a dict.")
+      .def("__getattr__",
+           [](PyResult& r, const std::string& name) -> py::object {
+             // The summary's names: result.solver.steps, result.contact.law, result.flow (None without the flow kernel).
+             if (py::hasattr(r.view(), name.c_str())) return r.view().attr(name.c_str());
+             throw py::attribute_error("imcol.Result has no attribute '" + name + "'");
+           })
+      .def("__dir__",
+           [](py::object self) {
+             py::set names(py::module_::import("builtins").attr("object").attr("__dir__")(self));
+             for (const auto& n : py::module_::import("builtins").attr("dir")(self.cast<PyResult&>().view())) names.add(n);
+             py::list out(names);
+             out.attr("sort")();
+             return out;
+           })
+      .def("__repr__", [](const PyResult& r) {
+        const auto& s = r.run.summary;
+        auto num = [](const std::optional<double>& v) { return v ? fmt_number(*v) : std::string("None"); };
+        return "imcol.Result(scene='" + s.scene + "', e=" + num(s.e) + ", St=" + num(s.St) + ")";
+      });
+}
+
 }  // namespace result_impl
 
-// One pybind11 chain (68 lines): the Result class's attributes and imcol.run, kept together as Python sees them.
 void bind_run(py::module_& m) {
   using namespace result_impl;
-  py::class_<PyResult, std::shared_ptr<PyResult>>(m, "Result",
+  py::class_<PyResult, std::shared_ptr<PyResult>> result(m, "Result",
                                                   "What a run measured. The summary's names are attributes with their "
                                                   "types: result.Re, result.solver.steps, result.contact.law, result.flow "
-                                                  "(None where the run has no such block).")
-      .def_property_readonly("e", [](const PyResult& r) { return opt(r.run.summary.e); },
+                                                  "(None where the run has no such block).");
+  result.def_property_readonly("e", [](const PyResult& r) { return opt(r.run.summary.e); },
                              "Restitution coefficient by the measure `e_is` names; None without one (see e_missing).")
       .def_property_readonly("St", [](const PyResult& r) { return opt(r.run.summary.St); }, "Stokes number at impact.")
       // Read from the typed summary: timing a loop of runs does not build the summary's Python view.
@@ -121,28 +145,8 @@ void bind_run(py::module_& m) {
       .def_property_readonly("trajectory", [](PyResult& r) { return r.trajectory(); },
                              "The trajectory samples: column name -> NumPy array (result.trajectory[\"u1\"]).")
       .def_property_readonly("summary", [](PyResult& r) { return r.view(); },
-                             "The summary as typed attributes (imcol.Summary); its blocks are also the result's.")
-      .def("to_dict", [](PyResult& r) { return py::module_::import("copy").attr("deepcopy")(r.summary()); },
-           "The summary as summary.json writes it, as a dict.")
-      .def("__getattr__",
-           [](PyResult& r, const std::string& name) -> py::object {
-             // The summary's names: result.solver.steps, result.contact.law, result.flow (None without the flow kernel).
-             if (py::hasattr(r.view(), name.c_str())) return r.view().attr(name.c_str());
-             throw py::attribute_error("imcol.Result has no attribute '" + name + "'");
-           })
-      .def("__dir__",
-           [](py::object self) {
-             py::set names(py::module_::import("builtins").attr("object").attr("__dir__")(self));
-             for (const auto& n : py::module_::import("builtins").attr("dir")(self.cast<PyResult&>().view())) names.add(n);
-             py::list out(names);
-             out.attr("sort")();
-             return out;
-           })
-      .def("__repr__", [](const PyResult& r) {
-        const auto& s = r.run.summary;
-        auto num = [](const std::optional<double>& v) { return v ? fmt_number(*v) : std::string("None"); };
-        return "imcol.Result(scene='" + s.scene + "', e=" + num(s.e) + ", St=" + num(s.St) + ")";
-      });
+                             "The summary as typed attributes (imcol.Summary); its blocks are also the result's.");
+  add_summary_view(result);
 
   m.def("run", &run, py::arg("scene"), py::arg("rtol") = py::none(), py::arg("atol") = py::none(),
         py::arg("integrator") = py::none(), py::arg("record") = "full",

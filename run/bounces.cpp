@@ -133,25 +133,11 @@ FittedStretch fitted_window(const Track& tr, double t0, double t1, double t_ref,
   return s;
 }
 
-/// contact_ends (the model's own e; over 60 lines: the window's bounds and its report are one procedure): parabolas
-/// z = z0 + U t + ½ a t² fitted by least squares to the gap over a window before the contact and after the separation, the velocities being their slopes at the contact's ends (the inward
-/// δ_SS crossing, the separation). The window is the time to travel `distance` (m) at the impact speed (U_rel at the
-/// inward δ_SS crossing), shortened alike to the flights and to where U_rel has changed by `speed_change` of its value
-/// at either end. A steady force (gravity, drag nearly) is a constant acceleration: the parabola takes it up instead of
-/// tilting the velocity. A dry collision gives e = e_d exactly. The end slopes are compared with U_rel at the δ_SS
-/// crossings (`end_mismatch`, in units of the impact speed); above `tolerance` the entry carries a `warning`.
-MeasureResult contact_ends_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double distance,
-                                   double speed_change, double tolerance, bool pair) {
-  MeasureResult ce;
-  if (!(f.c.u_in > 0)) {
-    put_e(ce, std::nullopt, std::nullopt, "");
-    ce.missing = "no approach at the contact (U_rel <= 0 at the inward delta_ss crossing)";
-    return ce;
-  }
-  const double W = distance / f.c.u_in;
-  // The window: W, or the shortest of the bounds below (both windows alike). A parabola describes the flight only while
-  // U_rel changes little: each window ends before U_rel has changed by more than speed_change of its value at the
-  // contact's end (under a constant deceleration, that fraction of the time to the apex or from the start of the fall).
+/// contact_ends' window: W, or the shortest of the bounds below (both windows alike), and what bounded it (empty: W).
+/// A parabola describes the flight only while U_rel changes little: each window ends before U_rel has changed by more
+/// than speed_change of its value at the contact's end (under a constant deceleration, that fraction of the time to
+/// the apex or from the start of the fall).
+std::pair<double, std::string> ends_window(const Track& tr, const Flights& f, double W, double speed_change) {
   double Wk = W;
   std::string by;
   auto bound = [&](double w, const char* why) {
@@ -168,6 +154,26 @@ MeasureResult contact_ends_measure(const Track& tr, const std::vector<double>& r
     bound(f.t_next - f.t_sep, f.last ? "end of run" : "rebound flight");
     if (f.c.u_out) bound(speed_change_time(tr, f.t_sep, *f.c.u_out, speed_change, +1, f.t_next), "rebound speed change");
   }
+  return {Wk, by};
+}
+
+/// contact_ends (the model's own e): parabolas
+/// z = z0 + U t + ½ a t² fitted by least squares to the gap over a window before the contact and after the separation, the velocities being their slopes at the contact's ends (the inward
+/// δ_SS crossing, the separation). The window is the time to travel `distance` (m) at the impact speed (U_rel at the
+/// inward δ_SS crossing), shortened alike to the flights and to where U_rel has changed by `speed_change` of its value
+/// at either end. A steady force (gravity, drag nearly) is a constant acceleration: the parabola takes it up instead of
+/// tilting the velocity. A dry collision gives e = e_d exactly. The end slopes are compared with U_rel at the δ_SS
+/// crossings (`end_mismatch`, in units of the impact speed); above `tolerance` the entry carries a `warning`.
+MeasureResult contact_ends_measure(const Track& tr, const std::vector<double>& rate, const Flights& f, double distance,
+                                   double speed_change, double tolerance, bool pair) {
+  MeasureResult ce;
+  if (!(f.c.u_in > 0)) {
+    put_e(ce, std::nullopt, std::nullopt, "");
+    ce.missing = "no approach at the contact (U_rel <= 0 at the inward delta_ss crossing)";
+    return ce;
+  }
+  const double W = distance / f.c.u_in;
+  const auto [Wk, by] = ends_window(tr, f, W, speed_change);
   const double a0 = f.c.t_in - Wk, r1 = f.t_sep + Wk;
   std::optional<double> ui = f.started ? std::optional<double>(f.c.u_in) : fitted_u(tr, rate, a0, f.c.t_in, 2, f.c.t_in);
   std::optional<double> ur = f.sep ? fitted_u(tr, rate, f.t_sep, r1, 2, f.t_sep) : std::optional<double>(0.0);

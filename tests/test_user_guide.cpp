@@ -71,3 +71,28 @@ TEST(UserGuide, SceneReferenceTemplateRuns) {
   ASSERT_TRUE(s.contains("e") && s["e"].is_number()) << s.dump();
   EXPECT_GT(s["e"].get<double>(), 0.0);
 }
+
+TEST(UserGuide, ReadmeStatesTheProgramsVersion) {
+  // README's first paragraph: "Version X.Y.Z (`imcol --version`; …)": the version the program prints.
+  const std::string readme = slurp(fs::path(imcol::data_dir()).parent_path() / "README.md");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(readme, m, std::regex("\\nVersion ([0-9]+\\.[0-9]+\\.[0-9]+) ")));
+  const auto v = imcol::test::run_imcol("--version", fs::temp_directory_path() / "imcol_readme_version");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_EQ(v.out, "imcol " + m[1].str() + "\n");
+}
+
+TEST(UserGuide, ReadmeLayoutNamesEveryModuleAndLinksTheArchitecture) {
+  const fs::path root = fs::path(imcol::data_dir()).parent_path();
+  const std::string readme = slurp(root / "README.md");
+  const auto layout = readme.find("## Layout");
+  ASSERT_NE(layout, std::string::npos);
+  const std::string section = readme.substr(layout, readme.find("\n## ", layout + 1) - layout);
+  EXPECT_NE(section.find("docs/architecture.md"), std::string::npos);
+  // Every folder with a CMakeLists.txt of its own (a module) is named there.
+  for (const auto& d : fs::directory_iterator(root)) {
+    const std::string name = d.path().filename().string();
+    if (!d.is_directory() || !fs::exists(d.path() / "CMakeLists.txt") || name.rfind("build", 0) == 0) continue;
+    EXPECT_NE(section.find(name + "/"), std::string::npos) << name;
+  }
+}
