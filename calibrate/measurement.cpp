@@ -51,6 +51,7 @@ bool key_like(const std::string& k) {
 
 /// The measurement CSV read line by line: the header decides the kind, each data row joins it.
 struct MeasurementParser {
+  explicit MeasurementParser(const std::string& file) : path(file) {}
   const std::string& path;
   std::vector<std::string> header;
   int header_line = 0;
@@ -161,7 +162,7 @@ Measurement parse_measurement(const std::string& path, const std::string& text) 
   // A UTF-8 byte order mark (spreadsheets write one) is not part of the first column's name.
   constexpr char kBom[] = "\xEF\xBB\xBF";
   std::istringstream in(text.rfind(kBom, 0) == 0 ? text.substr(3) : text);
-  MeasurementParser parser{path};
+  MeasurementParser parser(path);
   std::string line;
   int lineno = 0;
   while (std::getline(in, line)) {

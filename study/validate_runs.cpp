@@ -135,7 +135,8 @@ RowPair validate_run(const ValidateResult& res, std::size_t seed, std::size_t mo
     const std::string path = data_dir() + "/scenes/seed_run" + sr.run + ".toml";
     ov.push_back({"lubrication.model", std::string("\"") + to_string(res.models[model].lubrication) + "\""});  // the model's law
     const Scene sc = load_scene(path, without_flow_keys(ov));
-    p.at_V = {seed, model, SpeedSet::V_Io, approach_speed(sc)};
+    p.at_V = ValidateRow{};
+    p.at_V.seed = seed, p.at_V.model = model, p.at_V.set = SpeedSet::V_Io, p.at_V.V = approach_speed(sc);
     std::tie(p.at_V.run, p.at_V.reduced) = run_scene(path, ov, flow);
     p.at_St = p.at_V;
     p.at_St.set = SpeedSet::St_B;
@@ -164,7 +165,8 @@ void add_agreement(ValidateResult& res) {
 ValidateResult validate_seed(const ValidateOptions& opt, const std::vector<Override>& overrides, const Executor& ex, const Hooks& hooks) {
   using namespace validate_runs_impl;
   check_validate_options(opt, overrides);
-  ValidateResult res{opt.flow, opt.tolerance, read_table_6_1(), validate_models(opt.models)};
+  ValidateResult res;
+  res.flow = opt.flow, res.tolerance = opt.tolerance, res.seeds = read_table_6_1(), res.models = validate_models(opt.models);
   const std::size_t m = res.models.size(), n = res.seeds.size() * m;
   std::vector<RowPair> pairs(n);
   std::vector<char> arrived(n, 0);

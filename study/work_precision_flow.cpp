@@ -69,7 +69,8 @@ std::vector<FlowLadderRow> ladder_rows(const std::vector<FlowRung>& rungs, const
     for (std::size_t i = 0; i < rungs.size(); ++i) {
       if (rungs[i].ladder != ladder) continue;
       const FlowRungOutcome& r = out[i];
-      FlowLadderRow row{rungs[i].ladder, rungs[i].cells, rungs[i].cfl, i == ref};
+      FlowLadderRow row;
+      row.ladder = rungs[i].ladder, row.cells = rungs[i].cells, row.cfl = rungs[i].cfl, row.reference = i == ref;
       row.dt = r.dt, row.e = r.e, row.err = std::abs(r.e - out[ref].e), row.e_instant = r.e_instant;
       row.wall_time_s = r.wall_time_s, row.ms_per_step = r.ms_per_step, row.krylov = r.krylov, row.steps = r.steps;
       row.flow = r.flow;
