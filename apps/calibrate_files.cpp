@@ -72,7 +72,8 @@ json measurement_json(const calib::Measurement& m, const std::optional<calib::Tr
     j["rows"] = t->t.size();
     j["columns"] = t->columns;
     j["window"] = window_json(*t, *w);
-    j["residuals"] = j["window"]["samples"].get<std::size_t>() * t->columns.size();  // the window's samples x columns
+    const auto [k0, k1] = calib::window_rows(*t, *w);
+    j["residuals"] = (k1 - k0) * t->columns.size();  // the window's samples x columns
     j["tau_max_s"] = w->tau_max;
     return j;
   }

@@ -31,17 +31,8 @@ namespace {
 
 using study::LawRun;
 using study::law_e;
-
-std::optional<double> minus(const std::optional<double>& a, const std::optional<double>& b) {
-  return a && b ? std::optional<double>(*a - *b) : std::nullopt;
-}
-
-template <class K>
-std::optional<double> lookup(const std::vector<std::pair<K, std::optional<double>>>& list, const K& name) {
-  for (const auto& [k, v] : list)
-    if (k == name) return v;
-  return std::nullopt;
-}
+using study::lookup;
+using study::minus;
 
 /// A short number for the table: 4 significant digits; "-" when missing.
 std::string short_number(const std::optional<double>& v) {

@@ -7,13 +7,6 @@ namespace imcol::run {
 
 namespace {
 
-template <class E>
-E choice_or_throw(const Json& j) {
-  const auto s = j.get<std::string>();
-  if (const auto v = choice_from_string<E>(s)) return *v;
-  throw std::invalid_argument("unknown name in a run's summary: " + s);
-}
-
 BudgetPhase budget_phase(const std::string& s) {
   for (BudgetPhase p : {BudgetPhase::approach, BudgetPhase::contact, BudgetPhase::rebound, BudgetPhase::collision})
     if (s == to_string(p)) return p;
@@ -193,7 +186,7 @@ void from_json(const Json& j, Bounce& b) {
   b.t_separation_s = get_opt<double>(j, "t_separation_s");
   b.impact_speed_at_delta_ss_m_s = j.at("impact_speed_at_delta_ss_m_s").get<double>();
   b.e = get_opt<double>(j, "e");
-  b.e_is = choice_or_throw<EMeasure>(j.at("e_is"));
+  b.e_is = choice_of<EMeasure>(j.at("e_is"));
   b.impact_velocity_m_s = get_opt<double>(j, "impact_velocity_m_s");
   b.rebound_velocity_m_s = get_opt<double>(j, "rebound_velocity_m_s");
   b.e_instant = get_opt<double>(j, "e_instant");
@@ -204,7 +197,7 @@ void from_json(const Json& j, Bounce& b) {
   for (const auto& [label, e] : j.at("measures_disagree").items()) b.measures_disagree.push_back({label, e.get<double>()});
   b.e_measures.clear();
   for (const auto& [name, r] : j.at("e_measures").items())
-    b.e_measures.push_back({choice_or_throw<EMeasure>(Json(name)), r.get<MeasureResult>()});
+    b.e_measures.push_back({choice_of<EMeasure>(Json(name)), r.get<MeasureResult>()});
 }
 
 }  // namespace imcol::run

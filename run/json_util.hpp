@@ -5,7 +5,10 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <string>
+
+#include "core/choices.hpp"
 
 namespace imcol::run {
 
@@ -17,6 +20,14 @@ inline Json or_null(const std::optional<std::string>& v) { return v ? Json(*v) :
 inline Json finite_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 inline Json finite_or_null(const std::optional<double>& v) { return v ? finite_or_null(*v) : Json(nullptr); }
+
+/// A choice (core/choices.hpp) from its name in JSON; an unknown name is std::invalid_argument.
+template <class E>
+E choice_of(const Json& j) {
+  const auto s = j.get<std::string>();
+  if (const auto v = choice_from_string<E>(s)) return *v;
+  throw std::invalid_argument("unknown name in a run's summary: " + s);
+}
 
 /// j[key] = *v when v holds a value; nothing otherwise.
 template <class T>

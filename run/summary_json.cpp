@@ -6,19 +6,13 @@
 
 namespace imcol {
 
+using run::choice_of;
 using run::get_opt;
 using run::Json;
 using run::or_null;
 using run::put_if;
 
 namespace {
-
-template <class E>
-E choice_of(const Json& j) {
-  const auto s = j.get<std::string>();
-  if (const auto v = choice_from_string<E>(s)) return *v;
-  throw std::invalid_argument("unknown name in a run's summary: " + s);
-}
 
 Configuration configuration_of(const std::string& s) {
   for (Configuration c : {Configuration::free_sphere, Configuration::sphere_wall, Configuration::sphere_sphere})

@@ -600,6 +600,7 @@ def run_timed(cmd, prefix, wall_limit, closed_stdout=False):
         return (None if killed else rc), fe.read(), fo.read(), usage.ru_utime + usage.ru_stime
 
 
+# One function (91 lines): a case's mutation, run and every check on its outcome read as one story of that case.
 def run_case(a, n, bases, mats, work, templates):
     base, scene, muts, reuse = make_case(a.seed, n, bases, mats)
     cdir = os.path.join(work, f"case_{n}")

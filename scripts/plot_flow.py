@@ -288,6 +288,7 @@ def plot_snapshot(path: Path, spheres, wall=None, title=None, sphere_label="sphe
         save_png(fig, path.with_suffix(".png") if key == "omega" else path.with_name(path.stem + "_pressure.png"), dpi=130)
 
 
+# One function (66 lines): the figure's panels share one layout and its axes; split, each would pass them all.
 def main() -> int:
     out = out_dir(__doc__)
     if out is None:

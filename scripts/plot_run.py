@@ -72,6 +72,7 @@ def draw_energy_budget(ax, summary) -> None:
                  f"closes to {worst:.1g} of it", fontsize=9)
 
 
+# One function (85 lines): the panels of trajectory.png share the figure, its time axis and the summary read once.
 def main() -> int:
     out = out_dir(__doc__)
     if out is None:

@@ -41,17 +41,6 @@ LawRun run_law(const SceneLoader& load, const std::vector<Override>& overrides, 
   return row;
 }
 
-std::optional<double> minus(const std::optional<double>& a, const std::optional<double>& b) {
-  return a && b ? std::optional<double>(*a - *b) : std::nullopt;
-}
-
-template <class K>
-std::optional<double> lookup(const std::vector<std::pair<K, std::optional<double>>>& list, const K& name) {
-  for (const auto& [k, v] : list)
-    if (k == name) return v;
-  return std::nullopt;
-}
-
 /// Names in first-seen order over every row: the named measures of e, or the laws' numbers.
 template <class Get>
 auto union_of_names(const std::vector<LawRun>& rows, Get get) {

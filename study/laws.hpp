@@ -59,6 +59,19 @@ std::optional<double> max_overlap(const LawRun& r);   // δ_SS − min gap, m
 std::optional<double> peak_force(const LawRun& r);    // N
 /// e of the ramp (the default law) at the same point, if it ran there.
 std::optional<double> ramp_e(const std::vector<LawRun>& rows, int point);
+
+/// a − b; none when either is missing.
+inline std::optional<double> minus(const std::optional<double>& a, const std::optional<double>& b) {
+  return a && b ? std::optional<double>(*a - *b) : std::nullopt;
+}
+
+/// The value under `name` in a list of named values (the named measures of e, a law's numbers); none if absent.
+template <class K>
+std::optional<double> lookup(const std::vector<std::pair<K, std::optional<double>>>& list, const K& name) {
+  for (const auto& [k, v] : list)
+    if (k == name) return v;
+  return std::nullopt;
+}
 /// The law's own summary numbers (ContactLaw::summary), name → value; the named measures of e.
 const std::vector<std::pair<std::string, std::optional<double>>>& law_numbers(const LawRun& r);
 const std::vector<std::pair<EMeasure, std::optional<double>>>& law_measures(const LawRun& r);
