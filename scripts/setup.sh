@@ -8,7 +8,8 @@
 # libsundials-dev. Non-root: no apt; a SUNDIALS already built in third_party_build/ is used if present.
 # IMCOL_WERROR=ON in the environment builds imcol's own code with -Werror (CI does: a new compiler warning fails it);
 # off by default, so that a newer compiler's new warning does not stop a user's build.
-# pybind11-dev (with python3-dev) builds the Python module imcol into build/python/ (CMake option IMCOL_PYTHON).
+# pybind11-dev (with python3-dev) builds the Python module imcol into build/python/ (CMake option IMCOL_PYTHON);
+# python3-nbclient and python3-ipykernel run the example notebook in the tests.
 # libopenmpi-dev and openmpi-bin: `mpirun -np N imcol sweep` over N ranks (CMake option IMCOL_MPI; docs/cluster.md);
 # libnlopt-cxx-dev: NLopt, the bounded derivative-free local search of the calibration (required).
 set -euo pipefail
@@ -95,7 +96,7 @@ if [[ $(id -u) -eq 0 ]] && command -v apt-get >/dev/null; then
   apt-get install -y -qq --no-install-recommends \
     cmake ninja-build g++ dpkg-dev libeigen3-dev libfftw3-dev libcli11-dev libtomlplusplus-dev \
     nlohmann-json3-dev libgtest-dev libbenchmark-dev libcerf-dev python3-matplotlib python3-meshio \
-    pybind11-dev python3-dev python3-numpy python3-pytest \
+    pybind11-dev python3-dev python3-numpy python3-pytest python3-nbclient python3-ipykernel python3-nbformat \
     libopenmpi-dev openmpi-bin libnlopt-cxx-dev >/dev/null
   t0=$SECONDS
   mkdir -p "$DEPS"
