@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "core/materials.hpp"
 
-#include <cstdlib>
 #include <sstream>
 #include <vector>
 
@@ -41,11 +40,6 @@ MaterialTable MaterialTable::load(const std::string& path) {
     table.by_name_[m.name] = m;
   });
   return table;
-}
-
-std::string data_dir() {
-  if (const char* d = std::getenv("IMCOL_DATA_DIR"); d && *d) return d;
-  return IMCOL_DATA_DIR;
 }
 
 const MaterialTable& MaterialTable::builtin() {

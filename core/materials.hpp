@@ -4,12 +4,10 @@
 #include <optional>
 #include <string>
 
+#include "core/data_dir.hpp"
 #include "core/named_table.hpp"
 
 namespace imcol {
-
-/// Directory of the shipped data (materials, scenes, references): $IMCOL_DATA_DIR, else the source tree's data/.
-std::string data_dir();
 
 struct Material {
   std::string name;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Build of imcol and its tests with AddressSanitizer and UndefinedBehaviorSanitizer (CMake option IMCOL_SANITIZE)
-# in build-asan/, and the test suite run there, without the `fuzz` label and the tests in SKIP below (the Release
+# in build-asan/, and the test suite run there, without the `fuzz` and `install` labels (`install`: pip builds the
+# package's own Release build) and the tests in SKIP below (the Release
 # suite runs them all); the `mpi` label's tests run apart, without leak detection (see below). Run scripts/setup.sh first: the SUNDIALS is the one build/ uses. A sanitizer report ends
 # its process with exit code 86, so one in an imcol process that a test starts fails that test's status check too.
 # ASan's reports are also kept in build-asan/sanitizer-logs/ (any there fails the script); UBSan's go to stderr only
@@ -44,7 +45,7 @@ rm -rf "$logs" && mkdir -p "$logs"
 export ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1:strict_init_order=1:exitcode=86:log_path=$logs/asan"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86"
 rc=0
-ctest --test-dir "$B" -j"$JOBS" --output-on-failure -LE '^(fuzz|mpi)$' -E "$SKIP" || rc=$?
+ctest --test-dir "$B" -j"$JOBS" --output-on-failure -LE '^(fuzz|mpi|install)$' -E "$SKIP" || rc=$?
 # The MPI tests (label mpi) without leak detection: Open MPI 4.1 leaves its own allocations (ompi_op_base_op_select,
 # opal_argv_append_nosize, its plugins) unfreed at exit, in every rank. Address and undefined-behaviour errors
 # still fail them; imcol's own code on those paths is leak-checked by the threaded tests that run it.

@@ -4,11 +4,14 @@
 # SUNDIALS: Debian's libsundials is built without optimisation (its packaging's -DCMAKE_C_FLAGS=-fcommon
 # replaces -O2), so the same Debian source package is fetched (apt-get source, from a deb-src entry for the
 # archive this machine uses, kept in a sources file of its own) and built at -O3 with only CVODE and IDA into
-# third_party_build/sundials-<version>/ (skipped when that exists). Any failure there falls back to
-# libsundials-dev. Non-root: no apt; a SUNDIALS already built in third_party_build/ is used if present.
+# third_party_build/sundials-<version>/, shared libraries and static position-independent ones (the Python package
+# links the static ones into its extension: setup.py); skipped when that exists with both, rebuilt when an older
+# install lacks the static ones. Any failure there falls back to libsundials-dev. Non-root: no apt; a SUNDIALS
+# already built in third_party_build/ is used if present.
 # IMCOL_WERROR=ON in the environment builds imcol's own code with -Werror (CI does: a new compiler warning fails it);
 # off by default, so that a newer compiler's new warning does not stop a user's build.
 # pybind11-dev (with python3-dev) builds the Python module imcol into build/python/ (CMake option IMCOL_PYTHON);
+# python3-pip, -setuptools, -wheel and -venv: `pip install --no-build-isolation .` in a venv (ctest python_install);
 # python3-nbclient and python3-ipykernel run the example notebook in the tests.
 # libopenmpi-dev and openmpi-bin: `mpirun -np N imcol sweep` over N ranks (CMake option IMCOL_MPI; docs/cluster.md);
 # libnlopt-cxx-dev: NLopt, the bounded derivative-free local search of the calibration (required).
@@ -61,7 +64,9 @@ build_sundials() {
   ver=$(apt-cache show --no-all-versions libsundials-dev 2>/dev/null | awk '/^Version:/ { print $2; exit }')
   [[ $ver == 6.* ]] || { echo "no libsundials-dev 6.x candidate (got '${ver}')" >&2; return 1; }
   prefix=$DEPS/sundials-$ver/install
-  if [[ -f $prefix/lib/cmake/sundials/SUNDIALSConfig.cmake ]]; then echo "$prefix"; return 0; fi
+  if [[ -f $prefix/lib/cmake/sundials/SUNDIALSConfig.cmake && -f $prefix/lib/libsundials_cvode.a ]]; then
+    echo "$prefix"; return 0
+  fi
   work=$DEPS/sundials-$ver/work
   rm -rf "$work" "$prefix.tmp" && mkdir -p "$work/lists/partial"
   write_deb_src "$work/deb-src.sources"
@@ -76,7 +81,7 @@ build_sundials() {
   cmake -S "$src" -B "$work/build" -G Ninja -Wno-dev \
     -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS_RELEASE="-O3 -DNDEBUG" -DCMAKE_C_FLAGS=-fcommon \
     -DCMAKE_INSTALL_PREFIX="$prefix.tmp" -DCMAKE_INSTALL_LIBDIR=lib \
-    -DBUILD_SHARED_LIBS=ON -DBUILD_STATIC_LIBS=OFF \
+    -DBUILD_SHARED_LIBS=ON -DBUILD_STATIC_LIBS=ON -DCMAKE_POSITION_INDEPENDENT_CODE=ON \
     -DBUILD_CVODE=ON -DBUILD_IDA=ON -DBUILD_ARKODE=OFF -DBUILD_CVODES=OFF -DBUILD_IDAS=OFF -DBUILD_KINSOL=OFF \
     -DBUILD_NVECTOR_MANYVECTOR=OFF -DBUILD_FORTRAN_MODULE_INTERFACE=OFF -DBUILD_BENCHMARKS=OFF \
     -DEXAMPLES_ENABLE_C=OFF -DEXAMPLES_ENABLE_CXX=OFF -DEXAMPLES_INSTALL=OFF \
@@ -84,6 +89,7 @@ build_sundials() {
   cmake --build "$work/build" -j"$(nproc)" >&2
   cmake --install "$work/build" >/dev/null
   # the install dir is moved into place last: a half-built prefix is never taken for a finished one
+  rm -rf "$prefix"  # an older install without the static libraries
   mv "$prefix.tmp" "$prefix"
   rm -rf "$work"
   echo "$prefix"
@@ -96,7 +102,8 @@ if [[ $(id -u) -eq 0 ]] && command -v apt-get >/dev/null; then
   apt-get install -y -qq --no-install-recommends \
     cmake ninja-build g++ dpkg-dev libeigen3-dev libfftw3-dev libcli11-dev libtomlplusplus-dev \
     nlohmann-json3-dev libgtest-dev libbenchmark-dev libcerf-dev python3-matplotlib python3-meshio \
-    pybind11-dev python3-dev python3-numpy python3-pytest python3-nbclient python3-ipykernel python3-nbformat \
+    pybind11-dev python3-dev python3-numpy python3-pytest python3-pip python3-setuptools python3-wheel python3-venv \
+    python3-nbclient python3-ipykernel python3-nbformat \
     libopenmpi-dev openmpi-bin libnlopt-cxx-dev >/dev/null
   t0=$SECONDS
   mkdir -p "$DEPS"

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The module's first use of NumPy from several threads at once, each case in a fresh interpreter (NumPy not yet
-imported by the script), with a timeout: a deadlock fails the test instead of hanging it. And the module without
-NumPy: it imports and runs, and only what returns arrays raises ImportError saying so."""
+imported by the script), with a timeout: a deadlock fails the test instead of hanging it. And without NumPy: the
+package's import fails saying which interpreter lacks it and how to get it; the extension alone imports and runs, and
+only what returns arrays raises ImportError saying so."""
 import json
 import os
 import pathlib
@@ -88,14 +89,33 @@ def test_first_trajectory_beside_a_first_sweep():
         assert run_fresh(TRAJECTORY_AND_SWEEP) == [0.3, 0.3]
 
 
-def test_without_numpy_the_module_runs_and_arrays_say_what_they_need():
+def test_without_numpy_the_package_names_the_interpreter_and_the_fix():
     out = run_fresh("""
         import json, sys
         sys.modules["numpy"] = None  # `import numpy` raises ImportError
-        import imcol
-        r = imcol.run(imcol.Scene.load("default"))
-        found = {"e": r.e, "columns": r.columns[:2]}
-        for name, call in [("trajectory", lambda: r.trajectory), ("sweep", lambda: imcol.sweep("default", values=[0.3]))]:
+        try:
+            import imcol
+            print(json.dumps({"imported": True}))
+        except ImportError as e:
+            print(json.dumps({"error": str(e), "python": sys.executable}))
+    """)
+    assert "error" in out, out
+    assert out["error"].startswith(f"imcol needs NumPy, which {out['python']} cannot import (")
+    assert "apt-get install python3-numpy" in out["error"]
+    assert "--system-site-packages" in out["error"]
+
+
+def test_without_numpy_the_extension_runs_and_arrays_say_what_they_need():
+    extension = next(pathlib.Path(imcol.__file__).parent.glob("_imcol*.so"))
+    out = run_fresh(f"""
+        import importlib.machinery, importlib.util, json, sys
+        sys.modules["numpy"] = None  # `import numpy` raises ImportError
+        spec = importlib.util.spec_from_file_location("_imcol", {str(extension)!r})
+        ext = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(ext)
+        r = ext.run(ext.Scene.load("default"))
+        found = {{"e": r.e, "columns": r.columns[:2]}}
+        for name, call in [("trajectory", lambda: r.trajectory), ("sweep", lambda: ext.sweep("default", values=[0.3]))]:
             try:
                 call()
                 found[name] = "returned"
