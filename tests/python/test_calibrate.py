@@ -1,10 +1,13 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """imcol.calibrate against `imcol calibrate` with the same inputs: the fitted values and intervals, and calibration.csv
-cell for cell (timings excluded); progress after every evaluation; a progress callback that raises stops the search."""
+cell for cell (timings excluded); progress after every evaluation; Ctrl-C, or a progress callback that raises, stops the
+search."""
 import csv
 import json
 import math
+import os
 import pathlib
+import signal
 
 import numpy as np
 import pytest
@@ -95,6 +98,19 @@ def test_a_raising_progress_callback_stops_the_search():
     with pytest.raises(RuntimeError, match="enough"):
         imcol.calibrate("gg3462", DATA, FIT, scan=6, starts=1, max_evals=10, profile_points=0, jobs=1, progress=progress)
     assert seen == [1, 2]
+
+
+def test_ctrl_c_stops_the_search_and_raises_keyboard_interrupt():
+    seen = []
+
+    def progress(done, total, eta):
+        seen.append(done)
+        if done == 2:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        imcol.calibrate("gg3462", DATA, FIT, scan=200, starts=1, max_evals=10, profile_points=0, jobs=1, progress=progress)
+    assert 2 <= seen[-1] < 201  # stopped inside the scan
 
 
 def test_bad_input_is_refused_before_anything_runs():
