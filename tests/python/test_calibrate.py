@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""imcol.calibrate against `imcol calibrate` with the same inputs: the fitted values and intervals, and calibration.csv
-cell for cell (timings excluded); progress after every evaluation; Ctrl-C, or a progress callback that raises, stops the
+"""imcol.calibrate against `imcol calibrate` with the same inputs (a trajectory, and an e table with its hold-out): the
+fitted values, intervals and validation, and calibration.csv cell for cell (timings excluded); progress after every evaluation; Ctrl-C, or a progress callback that raises, stops the
 search."""
 import csv
 import json
@@ -22,10 +22,10 @@ TIMINGS = {"wall_ms"}
 EXACT = {"contact.delta_ss"}  # parameter values: 17 digits, the same double
 
 
-def cli_calibrate(out, *extra):
-    args = ["calibrate", "gg3462", "--data", str(DATA), "--fit", FIT, "--jobs", "2", "--out", str(out), "--no-plot",
+def cli_calibrate(out, data, search, *extra):
+    args = ["calibrate", "gg3462", "--data", str(data), "--fit", FIT, "--jobs", "2", "--out", str(out), "--no-plot",
             "--no-progress"]
-    for name, value in SEARCH.items():
+    for name, value in search.items():
         args += ["--" + name.replace("_", "-"), str(value)]
     status, stdout, err = imcol_cli(*args, *extra)
     assert status == 0, err
@@ -43,11 +43,9 @@ def cell(value):
     return str(value)
 
 
-def test_calibrate_equals_the_command_line(tmp_path):
-    j, header, rows, stdout = cli_calibrate(tmp_path / "cli")
-    r = imcol.calibrate("gg3462", DATA, FIT, jobs=2, **SEARCH)
+def assert_same_as_csv(r, header, rows):
     assert list(r.evaluations) == header
-    assert r.count == len(rows) == j["evaluations"]["count"]
+    assert r.count == len(rows)
     for name in header:
         if name in TIMINGS:
             continue
@@ -56,6 +54,13 @@ def test_calibrate_equals_the_command_line(tmp_path):
             assert [float(c) for c in column] == list(r.evaluations[name]), name
         else:
             assert [cell(v) for v in r.evaluations[name]] == column, name
+
+
+def test_trajectory_fit_equals_the_command_line(tmp_path):
+    j, header, rows, stdout = cli_calibrate(tmp_path / "cli", DATA, SEARCH)
+    r = imcol.calibrate("gg3462", DATA, FIT, jobs=2, **SEARCH)
+    assert_same_as_csv(r, header, rows)
+    assert r.count == j["evaluations"]["count"]
     assert r.values == j["best"]["values"]
     assert r.objective == j["best"]["objective"] and r.rms == j["best"]["rms"] and r.tau_s == j["best"]["tau_s"]
     interval = j["profiles"][0]["interval"]
@@ -65,6 +70,18 @@ def test_calibrate_equals_the_command_line(tmp_path):
     assert r.start == {"contact.delta_ss": j["parameters"][0]["start"]}
     assert not r.cancelled and r.ok and r.kind == "trajectory" and r.failed == j["evaluations"]["failed"]
     assert "contact.delta_ss = %.6g" % r.values["contact.delta_ss"] in stdout
+
+
+def test_table_fit_and_its_validation_equal_the_command_line(tmp_path):
+    table = ROOT / "data" / "measurements" / "gg3462_e_table.csv"
+    held = ROOT / "data" / "measurements" / "gg3462_e_table_holdout.csv"
+    search = {"scan": 2, "starts": 1, "max_evals": 4, "profile_points": 0}
+    j, header, rows, _ = cli_calibrate(tmp_path / "cli", table, search, "--validate", str(held))
+    r = imcol.calibrate("gg3462", table, FIT, validate=held, jobs=2, **search)
+    assert_same_as_csv(r, header, rows)
+    assert r.kind == "table" and r.values == j["best"]["values"] and r.tau_s is None and r.intervals == {}
+    assert r.validation["rms"] == j["validation"]["rms"]
+    assert r.validation["e_sim"] == [row["e_sim"] for row in j["validation"]["by_row"]]
 
 
 def test_result_is_typed_and_printable():
