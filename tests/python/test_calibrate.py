@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """imcol.calibrate against `imcol calibrate` with the same inputs (a trajectory, and an e table with its hold-out): the
-fitted values, intervals and validation, and calibration.csv cell for cell (timings excluded); progress after every evaluation; Ctrl-C, or a progress callback that raises, stops the
-search."""
+fitted values, intervals and validation, and calibration.csv cell for cell (timings excluded); progress after every
+evaluation; Ctrl-C, or a progress callback that raises, stops the search."""
 import csv
 import json
 import math
