@@ -99,20 +99,20 @@ json evaluation_json(const calib::Evaluation& e) {
 }
 
 json validation_json(const CalibrationRecord& rec) {
-  json j = measurement_json(*rec.held_out, rec.held_window);
-  j.update(evaluation_json(rec.validation->eval));
-  if (std::holds_alternative<MeasuredTrajectory>(*rec.held_out)) {
+  json j = measurement_json(*rec.in.held_out, rec.in.held_window);
+  j.update(evaluation_json(*rec.result.validation));
+  if (std::holds_alternative<MeasuredTrajectory>(*rec.in.held_out)) {
     j["tau_refitted"] = true;  // the offset belongs to the measurement, not to the parameters
     return j;
   }
-  const auto& t = std::get<MeasuredTable>(*rec.held_out);
+  const auto& t = std::get<MeasuredTable>(*rec.in.held_out);
   json rows = json::array();
   for (std::size_t r = 0; r < t.e.size(); ++r) {
     json row;
     row["line"] = t.lines[r];
     for (std::size_t k = 0; k < t.keys.size(); ++k) row[t.keys[k]] = t.values[r][k];
     row["e_meas"] = t.e[r];
-    const auto& sim = rec.validation->eval.e_sim;
+    const auto& sim = rec.result.validation->e_sim;
     row["e_sim"] = r < sim.size() ? run::finite_or_null(sim[r]) : json(nullptr);
     rows.push_back(row);
   }
@@ -124,9 +124,9 @@ constexpr calib::Stage kStages[] = {calib::Stage::start, calib::Stage::scan, cal
 
 std::string calibration_csv(const CalibrationRecord& rec) {
   std::string out = "index,stage,item";
-  for (const auto& p : rec.params) add_cells(out, p.key);
+  for (const auto& p : rec.in.params) add_cells(out, p.key);
   out += ",objective,rms,tau_s,status,message,wall_ms,rank\n";
-  const auto& ev = rec.result.evaluations;
+  const auto& ev = rec.result.search.evaluations;
   for (std::size_t i = 0; i < ev.size(); ++i) {
     const auto& e = ev[i];
     out += std::to_string(i);
@@ -143,9 +143,9 @@ std::string calibration_csv(const CalibrationRecord& rec) {
 /// measured and the fitted e.
 std::string best_csv(const CalibrationRecord& rec) {
   std::string out;
-  const auto& best = rec.result.best_eval;
-  if (std::holds_alternative<MeasuredTrajectory>(rec.data)) {
-    const RunResult* run = rec.best_run;
+  const auto& best = rec.result.search.best_eval;
+  if (rec.in.trajectory()) {
+    const RunResult* run = rec.result.best_run ? &*rec.result.best_run : nullptr;
     std::vector<std::size_t> cols;
     out = "t";
     if (run)
@@ -164,7 +164,7 @@ std::string best_csv(const CalibrationRecord& rec) {
     }
     return out;
   }
-  const auto& t = std::get<MeasuredTable>(rec.data);
+  const auto& t = std::get<MeasuredTable>(rec.in.data);
   out = "line";
   for (const auto& k : t.keys) add_cells(out, k);
   out += ",e_meas,e_sim\n";
@@ -187,9 +187,9 @@ json objective_json(bool trajectory) {
 
 json parameters_json(const CalibrationRecord& rec) {
   json params = json::array();
-  for (std::size_t k = 0; k < rec.params.size(); ++k) {
-    const auto& p = rec.params[k];
-    const auto& s = rec.start[k];
+  for (std::size_t k = 0; k < rec.in.params.size(); ++k) {
+    const auto& p = rec.in.params[k];
+    const auto& s = rec.in.start[k];
     params.push_back({{"key", p.key}, {"lo", p.lo}, {"hi", p.hi}, {"scale", p.scale == calib::Scale::log ? "log" : "linear"},
                       {"start", s.value}, {"scene_value", run::finite_or_null(s.scene)}, {"start_from", s.from}});
   }
@@ -197,8 +197,8 @@ json parameters_json(const CalibrationRecord& rec) {
 }
 
 json search_json(const CalibrationRecord& rec) {
-  const auto& so = rec.search;
-  const int d = static_cast<int>(rec.params.size());
+  const auto& so = rec.in.search;
+  const int d = static_cast<int>(rec.in.params.size());
   return {{"scan", so.scan < 0 ? 8 * d + 1 : so.scan}, {"starts", so.starts}, {"max_evals", so.max_evals}, {"xtol", so.xtol},
           {"profile_points", so.profile_points}, {"factor", run::finite_or_null(so.factor)},
           {"confidence", so.factor ? json(nullptr) : json(so.confidence)}, {"refine", so.refine}, {"refine_to", so.refine_to}};
@@ -206,25 +206,25 @@ json search_json(const CalibrationRecord& rec) {
 
 /// The best evaluation with its values by key.
 json best_json(const CalibrationRecord& rec) {
-  const auto& res = rec.result;
+  const auto& res = rec.result.search;
   json best = evaluation_json(res.best_eval);
   json values = json::object();
-  for (std::size_t k = 0; k < rec.params.size() && k < res.best.size(); ++k) values[rec.params[k].key] = res.best[k];
+  for (std::size_t k = 0; k < rec.in.params.size() && k < res.best.size(); ++k) values[rec.in.params[k].key] = res.best[k];
   best["values"] = values;
   return best;
 }
 
 /// The evaluations counted by stage and by rank, with each stage's wall time.
 json evaluations_json(const CalibrationRecord& rec) {
-  const auto& res = rec.result;
+  const auto& res = rec.result.search;
   json by_stage = json::object(), stage_wall = json::object();
   for (auto s : kStages) {
     const auto n = std::count_if(res.evaluations.begin(), res.evaluations.end(), [s](const auto& e) { return e.stage == s; });
     if (!n) continue;
     by_stage[calib::stage_name(s)] = n;
-    stage_wall[calib::stage_name(s)] = run::finite_or_null(rec.stage_times.wall(s));
+    stage_wall[calib::stage_name(s)] = run::finite_or_null(rec.result.stage_times.wall(s));
   }
-  std::vector<int> by_rank(static_cast<std::size_t>(std::max(1, rec.ranks)), 0);
+  std::vector<int> by_rank(static_cast<std::size_t>(std::max(1, rec.result.ranks)), 0);
   for (const auto& e : res.evaluations)
     if (e.rank >= 0 && static_cast<std::size_t>(e.rank) < by_rank.size()) ++by_rank[static_cast<std::size_t>(e.rank)];
   return {{"count", res.evaluations.size()}, {"failed", res.failed}, {"by_stage", by_stage}, {"by_rank", by_rank},
@@ -238,16 +238,16 @@ json cache_json(const CalibrationRecord& rec) {
 
 /// Each parameter's profile with its interval (an end null: the objective stays within the factor up to the bound).
 json profiles_json(const CalibrationRecord& rec) {
-  const auto& res = rec.result;
+  const auto& res = rec.result.search;
   json profiles = json::array();
   const auto& rule = res.rule;
   const json factor_rule = rule.given ? json{{"kind", "given"}}
                                       : json{{"kind", "confidence"}, {"confidence", rule.confidence}, {"q", rule.q}, {"n", rule.n}, {"p", rule.p}};
-  for (std::size_t k = 0; k < res.profiles.size() && k < rec.params.size(); ++k) {
+  for (std::size_t k = 0; k < res.profiles.size() && k < rec.in.params.size(); ++k) {
     const auto& p = res.profiles[k];
     json obj = json::array();
     for (double v : p.objective) obj.push_back(run::finite_or_null(v));
-    profiles.push_back({{"key", rec.params[k].key},
+    profiles.push_back({{"key", rec.in.params[k].key},
                         {"values", p.values},
                         {"objective", obj},
                         {"factor", run::finite_or_null(rule.factor)},
@@ -260,35 +260,28 @@ json profiles_json(const CalibrationRecord& rec) {
 
 /// best_run: the fitted run's blocks; a table's shared effects; or null (with best_run_error when it failed).
 void add_best_run(json& j, const CalibrationRecord& rec, bool trajectory) {
-  if (rec.best_run) {
-    const auto& s = rec.best_run->summary_json;
+  if (rec.result.best_run) {
+    const auto& s = rec.result.best_run->summary_json;
     json br;
     for (const char* key : {"effects", "model", "solver", "e", "wall_time_s"})
       if (s.contains(key)) br[key] = s[key];
     j["best_run"] = br;
   } else if (!trajectory) {  // one run a row: the effects they share; their solver statistics are in no one run
     json effects = json::array();
-    for (Effect e : rec.base.effects) effects.push_back(to_string(e));
+    for (Effect e : rec.in.base.effects) effects.push_back(to_string(e));
     j["best_run"] = {{"effects", effects}, {"solver", nullptr}};
   } else {
     j["best_run"] = nullptr;
-    if (!rec.best_run_error.empty()) j["best_run_error"] = rec.best_run_error;
+    if (!rec.result.best_run_error.empty()) j["best_run_error"] = rec.result.best_run_error;
   }
 }
 
 }  // namespace
 
-void sort_evaluations(calib::SearchResult& r) {
-  std::stable_sort(r.evaluations.begin(), r.evaluations.end(), [](const calib::EvaluationRecord& a, const calib::EvaluationRecord& b) {
-    if (a.stage != b.stage) return a.stage < b.stage;
-    return a.item < b.item;
-  });
-}
-
 json calibration_json(const CalibrationRecord& rec) {
-  const bool trajectory = std::holds_alternative<MeasuredTrajectory>(rec.data);
-  json j = scene_json(rec.scene_path, rec.overrides, rec.base);
-  j["measurement"] = measurement_json(rec.data, rec.window);
+  const bool trajectory = rec.in.trajectory();
+  json j = scene_json(rec.in.scene_path, rec.in.overrides, rec.in.base);
+  j["measurement"] = measurement_json(rec.in.data, rec.in.window);
   j["objective"] = objective_json(trajectory);
   j["parameters"] = parameters_json(rec);
   j["search"] = search_json(rec);
@@ -296,16 +289,16 @@ json calibration_json(const CalibrationRecord& rec) {
   j["evaluations"] = evaluations_json(rec);
   j["cache"] = cache_json(rec);
   j["profiles"] = profiles_json(rec);
-  if (rec.validation) j["validation"] = validation_json(rec);
-  j["wall_time_s"] = rec.wall_s;
-  j["jobs"] = rec.jobs;  // threads a rank
-  j["ranks"] = rec.ranks;
+  if (rec.result.validation) j["validation"] = validation_json(rec);
+  j["wall_time_s"] = rec.result.wall_s;
+  j["jobs"] = rec.result.jobs;  // threads a rank
+  j["ranks"] = rec.result.ranks;
   add_best_run(j, rec, trajectory);
   return j;
 }
 
 void write_calibration_files(const fs::path& dir, const CalibrationRecord& rec, const json& run) {
-  write_file_atomic(dir / "measured.csv", rec.data_text);
+  write_file_atomic(dir / "measured.csv", rec.in.data_text);
   write_file_atomic(dir / "calibration.csv", calibration_csv(rec));
   write_file_atomic(dir / "best.csv", best_csv(rec));
   json j = calibration_json(rec);

@@ -11,19 +11,8 @@
 
 namespace imcol {
 
-double StageTimes::wall(calib::Stage s) const {
-  const auto i = static_cast<std::size_t>(s);
-  if (!std::isfinite(end[i])) return NAN;
-  double from = 0;
-  for (std::size_t k = 0; k < i; ++k)
-    if (std::isfinite(end[k])) from = std::max(from, end[k]);
-  return end[i] - from;
-}
-
 ProgressLine::ProgressLine(bool show, std::size_t d, const calib::SearchOptions& opt, int workers, std::string unit)
-    : show_(show), d_(d), opt_(opt), workers_(std::max(1, workers)), unit_(std::move(unit)), start_(WallClock::now()) {
-  times_.end.fill(NAN);
-}
+    : show_(show), d_(d), opt_(opt), workers_(std::max(1, workers)), unit_(std::move(unit)), start_(WallClock::now()) {}
 
 void ProgressLine::add_evaluation(double wall_s) {
   std::lock_guard lock(mu_);
@@ -52,7 +41,7 @@ double ProgressLine::time_left(calib::Stage s, std::size_t done, std::size_t ite
   const double edge_items = opt_.profile_points > 0 ? 2.0 * static_cast<double>(d_) : 0;  // at most, each round
   double left = 0;
   // This stage, from the end of the one before it.
-  StageTimes before = times_;
+  study::StageTimes before = times_;
   before.end[static_cast<std::size_t>(s)] = NAN;
   double from = 0;
   for (double e : before.end)
@@ -83,11 +72,6 @@ void ProgressLine::finish() {
   std::lock_guard lock(mu_);
   if (drawn_) std::cerr << "\n";
   drawn_ = false;
-}
-
-StageTimes ProgressLine::stage_times() const {
-  std::lock_guard lock(mu_);
-  return times_;
 }
 
 }  // namespace imcol

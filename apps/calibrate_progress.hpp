@@ -1,23 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // imcol calibrate's progress line on a terminal (stderr): the stage, its work items done, the evaluations, the best
-// rms so far, the time taken and an estimate of the time left; and when each stage ended, for the closing table.
-#include <array>
+// rms so far, the time taken and an estimate of the time left.
 #include <cstddef>
 #include <mutex>
 #include <string>
 
 #include "calibrate/search.hpp"
 #include "core/timing.hpp"
+#include "study/calibrate.hpp"
 
 namespace imcol {
-
-/// When each stage ended (s after the search began; NaN: the stage did not run).
-struct StageTimes {
-  std::array<double, 5> end;  // by calib::Stage
-  /// The stage's wall time: from the end of the stage before it (or the start) to its own end; NaN if it did not run.
-  double wall(calib::Stage s) const;
-};
 
 class ProgressLine {
  public:
@@ -30,7 +23,6 @@ class ProgressLine {
   calib::Progress callback();
   /// Ends the line.
   void finish();
-  StageTimes stage_times() const;
 
  private:
   void update(calib::Stage s, std::size_t done, std::size_t items, std::size_t evaluations, double best);
@@ -45,7 +37,7 @@ class ProgressLine {
   mutable std::mutex mu_;
   double eval_wall_ = 0;  // sum of this process's evaluation times
   long eval_count_ = 0;
-  StageTimes times_;
+  study::StageTimes times_;  // when each stage's last item ended, for the estimate
   bool drawn_ = false;
 };
 

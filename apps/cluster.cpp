@@ -313,6 +313,7 @@ study::Executor cluster_executor(int jobs, ResultTaken taken) {
   const cluster::World w = cluster::world();
   ex.rank = w.rank;
   ex.ranks = w.size;
+  ex.share = [](std::string& bytes) { cluster::share(bytes); };
   ex.distribute = [taken](std::size_t n, int threads, const std::function<std::string(std::size_t)>& work,
                           const std::function<bool(std::size_t, std::string, int)>& done) {
     if (!taken) return cluster::run_distributed(n, threads, work, done);

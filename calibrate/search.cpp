@@ -48,6 +48,7 @@ struct Stages {
   const std::function<Evaluation(const std::vector<double>&)>& evaluate;
   const Runner& runner;
   const Progress& progress;
+  const Stopped& stopped;
   SearchResult& result;
   std::size_t evaluations = 0;
   double best = std::numeric_limits<double>::infinity();
@@ -75,16 +76,17 @@ struct Stages {
         [&](std::size_t i) {
           std::vector<ValuedEvaluation> evals;
           work(i, [&](const std::vector<double>& u) {
+            if (stopped && stopped()) return std::numeric_limits<double>::infinity();  // not run, not recorded
             std::vector<double> v = values_of(u);
             Evaluation ev = evaluate(v);
             const double f = ev.ok ? ev.objective : std::numeric_limits<double>::infinity();
             evals.emplace_back(std::move(v), std::move(ev));
             return f;
           });
-          return evaluations_to_bytes(evals);
+          return evals.empty() ? std::string() : evaluations_to_bytes(evals);  // empty: stopped before its first
         },
         [&](std::size_t i, std::string bytes, int rank) {
-          for (auto& [v, ev] : evaluations_from_bytes(bytes)) {
+          for (auto& [v, ev] : bytes.empty() ? std::vector<ValuedEvaluation>{} : evaluations_from_bytes(bytes)) {
             EvaluationRecord rec;
             rec.stage = stage_of(i);
             rec.item = item_of(i);
@@ -115,6 +117,14 @@ struct Stages {
     for (const auto& r : result.evaluations)
       if (r.eval.ok && (!b || r.eval.objective < b->eval.objective)) b = &r;
     return b;
+  }
+
+  /// Whether to end the search here: rank 0's answer, every rank's.
+  bool halt() const {
+    if (!stopped) return false;
+    std::string flag = stopped() ? "1" : "0";
+    if (runner.share) runner.share(flag);
+    return flag == "1";
   }
 
   /// Counts the failed evaluations and sets the best; false without any success.
@@ -361,20 +371,30 @@ struct StagedSearch {
 
 SearchResult search(const std::vector<FitParameter>& params, const std::vector<double>& start,
                     const std::function<Evaluation(const std::vector<double>&)>& evaluate, const SearchOptions& opt,
-                    const Runner& runner, const Progress& progress) {
+                    const Runner& runner, const Progress& progress, const Stopped& stopped) {
   SearchResult result;
   if (params.empty()) return result;
-  Stages st{params, evaluate, runner, progress, result};
+  Stages st{params, evaluate, runner, progress, stopped, result};
   StagedSearch s(st, opt, start);
+  auto stop_here = [&] {
+    if (!st.halt()) return false;
+    st.set_best();
+    result.stopped = true;
+    return true;
+  };
   s.scan();
+  if (stop_here()) return result;
   s.local();
+  if (stop_here()) return result;
   s.profiles();
   if (s.P == 0) {
     st.set_best();
     return result;
   }
+  if (stop_here()) return result;
   s.init_rule();
   s.edges();
+  if (stop_here()) return result;
   if (st.set_best()) s.intervals();
   return result;
 }

@@ -70,6 +70,7 @@ struct SearchResult {
   std::vector<Profile> profiles;          // per parameter (empty without profiles)
   FactorRule rule;                        // with profiles
   int failed = 0;                         // evaluations that failed
+  bool stopped = false;                   // ended early by `stopped`: the stages that finished and what ran of the next
 };
 
 /// Where the work items run: run(n, work, done) runs work(i) for every i < n anywhere and calls done(i, bytes, rank)
@@ -84,10 +85,14 @@ struct Runner {
 /// Progress after each finished work item: the stage, items done and in the stage, evaluations so far, best so far.
 using Progress = std::function<void(Stage, std::size_t done, std::size_t items, std::size_t evaluations, double best)>;
 
+/// Asked (from any thread) before each evaluation, and (rank 0's answer shared) after each stage: true ends the search.
+using Stopped = std::function<bool()>;
+
 /// Runs the stages. `evaluate(values)` scores one set of parameter values; it must be thread-safe and must
-/// not throw. Every rank calls search with the same arguments; the result is complete on rank 0 only.
+/// not throw. Every rank calls search with the same arguments; the result is complete on rank 0 only. Once `stopped`
+/// says so, no evaluation starts and the search returns what finished, its best among them, without intervals.
 SearchResult search(const std::vector<FitParameter>& params, const std::vector<double>& start,
                     const std::function<Evaluation(const std::vector<double>&)>& evaluate, const SearchOptions& opt,
-                    const Runner& runner, const Progress& progress = {});
+                    const Runner& runner, const Progress& progress = {}, const Stopped& stopped = {});
 
 }  // namespace imcol::calib

@@ -18,6 +18,7 @@ void bind_laws(pybind11::module_& m);    // imcol.laws
 void bind_history(pybind11::module_& m); // imcol.history
 void bind_dem_fit(pybind11::module_& m); // imcol.dem_fit
 void bind_data_dir(pybind11::module_& m); // imcol.data_dir, and the package's data folder setter
+void bind_calibrate(pybind11::module_& m);  // imcol.calibrate and imcol.CalibrationResult
 
 /// NumPy's C API table, made at the module's import under its GIL (python/numpy_api.cpp); without NumPy the module
 /// still imports.

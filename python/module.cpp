@@ -17,4 +17,5 @@ PYBIND11_MODULE(_imcol, m) {
   imcol::python::bind_history(m);
   imcol::python::bind_dem_fit(m);
   imcol::python::bind_data_dir(m);
+  imcol::python::bind_calibrate(m);
 }

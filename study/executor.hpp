@@ -27,6 +27,7 @@ using Distribute = std::function<void(std::size_t n, int jobs, const std::functi
 struct Executor {
   int jobs = 0;           // threads of this process (0 = all cores), at most one per run
   Distribute distribute;  // empty: this process's threads alone (no bytes)
+  std::function<void(std::string&)> share;  // makes the deciding process's bytes every process's; empty: one process
   int rank = 0, ranks = 1;
   /// This process decides and holds the results (rank 0). Other ranks run their share and get empty results.
   bool deciding() const { return rank == 0; }

@@ -20,6 +20,7 @@ from ._imcol import (Result, Scene, SolverError, StudyTable, SweepResult, __vers
                      drag_laws, e_measures, effects, history, history_kernels, integrators, laws, lubrication_models, run,
                      scenes, sweep, sweep_quantities)
 from ._imcol import ValidateResult, WorkPrecisionResult, validate_seed, work_precision
+from ._imcol import CalibrationResult, calibrate
 from ._summary import Bounce, Contact, Event, Flow, Fluid, Solver, Summary, Velocities
 from ._imcol import _set_data_dir, data_dir
 
@@ -30,5 +31,6 @@ if (_pathlib.Path(__file__).parent / "data" / "scenes").is_dir():
 __all__ = ["Result", "Scene", "SolverError", "StudyTable", "SweepResult", "run", "sweep", "laws", "history", "dem_fit",
            "__version__", "choices", "contact_laws",
            "drag_laws", "e_measures", "effects", "history_kernels", "integrators", "lubrication_models", "scenes",
-           "sweep_quantities", "WorkPrecisionResult", "work_precision", "ValidateResult", "validate_seed", "Summary", "Bounce",
+           "sweep_quantities", "WorkPrecisionResult", "work_precision", "ValidateResult", "validate_seed", "CalibrationResult",
+           "calibrate", "Summary", "Bounce",
            "Contact", "Event", "Flow", "Fluid", "Solver", "Velocities", "data_dir"]

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Types of the extension module imcol._imcol, for editors and type checkers (the package re-exports these names).
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
 import numpy as np
 
@@ -190,6 +190,36 @@ def history(scene: Union[Scene, str], kernels: Optional[Sequence[str]] = None, e
             atol: Optional[float] = None, integrator: Optional[str] = None) -> StudyTable: ...
 
 def dem_fit(sweep: SweepResult) -> StudyTable: ...
+
+class CalibrationResult:
+    """A calibration's outcome, as calibration.json and calibration.csv of `imcol calibrate` hold it."""
+    kind: str
+    keys: List[str]
+    values: Dict[str, float]
+    start: Dict[str, float]
+    intervals: Dict[str, Any]
+    ok: bool
+    objective: Optional[float]
+    rms: Optional[float]
+    tau_s: Optional[float]
+    evaluations: Dict[str, np.ndarray]
+    count: int
+    failed: int
+    profiles: Dict[str, Dict[str, Any]]
+    factor_rule: Dict[str, Any]
+    validation: Optional[Dict[str, Any]]
+    stage_wall_s: Dict[str, float]
+    wall_time_s: float
+    jobs: int
+    cancelled: bool
+    def to_dict(self) -> Dict[str, Any]: ...
+
+def calibrate(scene: Union[Scene, str], data: Any, fit: Union[str, Sequence[str], Dict[str, Sequence[Any]]], *,
+              window: Union[None, str, Sequence[float]] = None, offset_max: Optional[float] = None,
+              scan: Optional[int] = None, starts: int = 2, max_evals: int = 40, profile_points: int = 15,
+              factor: Optional[float] = None, confidence: Optional[float] = None, refine: int = 16,
+              refine_to: float = 1 / 64, validate: Any = None, jobs: int = 0,
+              progress: Optional[Callable[[int, int, float], Any]] = None) -> CalibrationResult: ...
 
 def history_kernels() -> List[str]: ...
 def integrators() -> List[str]: ...

@@ -7,7 +7,7 @@
 
 #include "core/scene.hpp"
 
-namespace imcol {
+namespace imcol::study {
 
 /// The value of `key` (as --set takes it) in `base`, the scene read from `scene_path` with `overrides`: the value
 /// the reader resolved for the keys a Scene holds as they are (sphere[i] and wall properties with their materials
@@ -16,4 +16,4 @@ namespace imcol {
 std::optional<double> scene_value(const std::string& scene_path, const std::vector<Override>& overrides, const Scene& base,
                                   const std::string& key);
 
-}  // namespace imcol
+}  // namespace imcol::study

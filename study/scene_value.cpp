@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "apps/scene_value.hpp"
+#include "study/scene_value.hpp"
 
 #include <toml++/toml.h>
 
@@ -7,7 +7,7 @@
 
 #include "core/toml_reader.hpp"
 
-namespace imcol {
+namespace imcol::study {
 
 namespace {
 
@@ -72,4 +72,4 @@ std::optional<double> scene_value(const std::string& scene_path, const std::vect
   }
 }
 
-}  // namespace imcol
+}  // namespace imcol::study
