@@ -15,7 +15,7 @@ void bind_studies_precision(pybind11::module_& m);  // imcol.work_precision, imc
 void bind_choices(pybind11::module_& m); // imcol.history_kernels(), …, imcol.scenes(), imcol.choices()
 void bind_table(pybind11::module_& m);   // imcol.StudyTable
 void bind_laws(pybind11::module_& m);    // imcol.laws
-void bind_history(pybind11::module_& m); // imcol.history
+void bind_history(pybind11::module_& m); // imcol.history_compare
 void bind_dem_fit(pybind11::module_& m); // imcol.dem_fit
 
 /// NumPy's C API table, made at the module's import under its GIL (python/numpy_api.cpp); without NumPy the module
