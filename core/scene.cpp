@@ -57,7 +57,9 @@ constexpr double kMaxViscosity = 1e12;  // Pa s
 void read_solid(Reader& r, Solid& s, bool need_density) {
   if (auto name = r.string("material")) {
     const Material* m = MaterialTable::builtin().find(*name);
-    if (!m) r.fail("material", "unknown material '" + *name + "' (known: " + MaterialTable::builtin().names() + ")");
+    if (!m)
+      r.fail("material", "unknown material '" + *name + "' (known: " + MaterialTable::builtin().names() + ")" +
+                             did_you_mean(*name, MaterialTable::builtin().name_list()));
     s.material = *name;
     s.density = m->density;
     s.youngs_modulus = m->youngs_modulus;
@@ -171,7 +173,9 @@ void read_fluid(Reader& top, Scene& sc) {
   const FluidEntry* e = nullptr;
   if (auto name = r.string("fluid")) {
     e = FluidTable::builtin().find(*name);
-    if (!e) r.fail("fluid", "unknown fluid '" + *name + "' (known: " + FluidTable::builtin().names() + ")");
+    if (!e)
+      r.fail("fluid", "unknown fluid '" + *name + "' (known: " + FluidTable::builtin().names() + ")" +
+                          did_you_mean(*name, FluidTable::builtin().name_list()));
     fl.name = *name;
   }
   if (w && !(e && e->takes_mass_fraction()))
@@ -268,7 +272,7 @@ void read_effects(Reader& top, Scene& sc) {
       if (!e) {
         std::string list;
         for (const auto& n : effect_names()) list += (list.empty() ? "" : ", ") + n;
-        top.fail("effects", "unknown effect '" + *name + "' (expected " + list + ")");
+        top.fail("effects", "unknown effect '" + *name + "' (expected " + list + ")" + did_you_mean(*name, effect_names()));
       }
       sc.effects.insert(*e);
     }

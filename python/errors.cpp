@@ -21,6 +21,17 @@ namespace errors_impl {  // this file's helpers: named, as the module is one uni
 /// name (the command line's names for them).
 bool given_to_call(const std::string& where) { return where == kOverridePlace || where == "--set" || where == "command line"; }
 
+/// Whether `name` is a command's option ("--rtols").
+bool is_option(const std::string& name) { return name.rfind("--", 0) == 0 && name.size() > 2; }
+
+/// The argument a command's option stands for: "--ref-rtol" -> "ref_rtol".
+std::string argument_of(const std::string& option) {
+  std::string arg = option.substr(2);
+  for (char& c : arg)
+    if (c == '-') c = '_';
+  return arg;
+}
+
 /// The key as a call names it: "Scene.set('fluid.viscosity')" names its key.
 bool call_names_key(const std::string& call, const std::string& key) { return call.find("('" + key + "')") != std::string::npos; }
 
@@ -46,9 +57,15 @@ void set_facts(py::object& exc, const SolverFailure* f) {
 std::string call_message(const std::string& call, const InputError& e) {
   using namespace errors_impl;
   if (e.where() == call) return e.what();  // a check of the call's own argument names the call already
+  // A command's option is the call's argument of that name (--ref-rtol: ref_rtol); its key, when another, the value.
+  if (is_option(e.where()) && e.where() != "--set") {
+    const std::string arg = argument_of(e.where());
+    return call + ": key '" + arg + "': " + (e.key() == arg || e.key().empty() ? "" : "'" + e.key() + "': ") + e.problem();
+  }
   if (!given_to_call(e.where())) return call + ": " + e.what();
-  if (e.key().empty() || call_names_key(call, e.key())) return call + ": " + e.problem();
-  return call + ": key '" + e.key() + "': " + e.problem();
+  const std::string key = is_option(e.key()) ? argument_of(e.key()) : e.key();
+  if (key.empty() || call_names_key(call, key)) return call + ": " + e.problem();
+  return call + ": key '" + key + "': " + e.problem();
 }
 
 void bind_errors(py::module_& m) {

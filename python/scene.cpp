@@ -32,7 +32,7 @@ bool inside(const std::vector<std::string>& inner, const std::vector<std::string
 
 /// "; did you mean 'a', 'b' or 'c'?" for the shipped scenes close to `name`, "" when none is.
 std::string close_scenes_hint(const std::string& name) {
-  std::string stem = name.ends_with(".toml") ? name.substr(0, name.size() - 5) : name;
+  const std::string stem = name.ends_with(".toml") ? name.substr(0, name.size() - 5) : name;
   const auto close = close_scene_names(stem);
   std::string s;
   for (std::size_t i = 0; i < close.size() && i < 3; ++i)

@@ -81,6 +81,15 @@ TEST(CloseNames, OverridesGetTheSameSuggestionsAndArraysTheirIndex) {
   const std::string choice = close_names_error_of(test::basic_wall_scene(), {"solver.integrator=cvod"});
   EXPECT_NE(choice.find("unknown choice 'cvod' (expected "), std::string::npos) << choice;
   EXPECT_NE(choice.find("; did you mean 'cvode'?"), std::string::npos) << choice;
+  // So do an unknown effect, material and fluid.
+  const std::string effect = close_names_error_of(test::basic_wall_scene(), {"effects=[\"dragg\", \"elastic\"]"});
+  EXPECT_NE(effect.find("unknown effect 'dragg' (expected "), std::string::npos) << effect;
+  EXPECT_NE(effect.find("); did you mean 'drag'?"), std::string::npos) << effect;
+  const std::string material = close_names_error_of(test::basic_wall_scene(), {"sphere[0].material=steal"});
+  EXPECT_NE(material.find("unknown material 'steal' (known: "), std::string::npos) << material;
+  EXPECT_NE(material.find("); did you mean 'steel'?"), std::string::npos) << material;
+  const std::string fluid = close_names_error_of(test::basic_wall_scene(), {"fluid.fluid=watr"});
+  EXPECT_NE(fluid.find("); did you mean 'water'?"), std::string::npos) << fluid;
 }
 
 TEST(CloseNames, TheCommandLineReportsTheMisspeltLineAndKeepsItsOwnWords) {
