@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/errors.hpp"
 
@@ -20,6 +21,12 @@ class NamedTable {
   const Entry* find(const std::string& name) const {
     auto it = by_name_.find(name);
     return it == by_name_.end() ? nullptr : &it->second;
+  }
+  /// The names, sorted.
+  std::vector<std::string> name_list() const {
+    std::vector<std::string> out;
+    for (const auto& [k, v] : by_name_) out.push_back(k);
+    return out;
   }
   /// Comma-separated, for error messages.
   std::string names() const {

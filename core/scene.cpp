@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/scene_keys.hpp"
 #include "core/scene_kind.hpp"
 #include "core/toml_reader.hpp"
 #include "core/fluids.hpp"
@@ -56,7 +57,9 @@ constexpr double kMaxViscosity = 1e12;  // Pa s
 void read_solid(Reader& r, Solid& s, bool need_density) {
   if (auto name = r.string("material")) {
     const Material* m = MaterialTable::builtin().find(*name);
-    if (!m) r.fail("material", "unknown material '" + *name + "' (known: " + MaterialTable::builtin().names() + ")");
+    if (!m)
+      r.fail("material", "unknown material '" + *name + "' (known: " + MaterialTable::builtin().names() + ")" +
+                             did_you_mean(*name, MaterialTable::builtin().name_list()));
     s.material = *name;
     s.density = m->density;
     s.youngs_modulus = m->youngs_modulus;
@@ -81,6 +84,23 @@ void read_solid(Reader& r, Solid& s, bool need_density) {
 
 toml::array* array_at(toml::node* n) { return n ? n->as_array() : nullptr; }
 
+/// An override that names an array where a table belongs ('sphere.velocity'): the error names its elements and the
+/// key with an index ('sphere[0].velocity'). `at`: the index of the segment after the array's name.
+[[noreturn]] void array_needs_index(const Override& ov, const std::vector<std::string>& seg, std::size_t at, const toml::array& arr) {
+  std::string head;  // the key up to the array, as written with indices
+  for (std::size_t j = 0; j < at; ++j) {
+    const bool index = !seg[j].empty() && seg[j].find_first_not_of("0123456789") == std::string::npos;
+    head += index ? "[" + seg[j] + "]" : (head.empty() ? "" : ".") + seg[j];
+  }
+  std::string tail;
+  for (std::size_t j = at; j < seg.size(); ++j) tail += "." + seg[j];
+  std::string elements = head + "[0]";
+  if (arr.size() == 2) elements += " and " + head + "[1]";
+  if (arr.size() > 2) elements += " to " + head + "[" + std::to_string(arr.size() - 1) + "]";
+  const std::string lead = seg[at - 1] == "sphere" ? "a scene's spheres are " : "'" + head + "' is an array: its elements are ";
+  throw InputError("--set", ov.key, lead + elements + ": use '" + head + "[0]" + tail + "'");
+}
+
 void apply_override(toml::table& root, const Override& ov) {
   const std::vector<std::string> seg = key_path(ov.key);
   if (seg.empty()) throw InputError("--set", ov.key, "empty key");
@@ -98,6 +118,7 @@ void apply_override(toml::table& root, const Override& ov) {
     if (auto* arr = array_at(here)) {
       char* end = nullptr;
       long idx = std::strtol(s.c_str(), &end, 10);
+      if (*end != '\0' && !arr->empty() && arr->is_array_of_tables()) array_needs_index(ov, seg, i, *arr);
       if (*end != '\0' || idx < 0 || static_cast<std::size_t>(idx) >= arr->size())
         throw InputError("--set", ov.key, "no element '" + s + "' in this array");
       here = arr->get(static_cast<std::size_t>(idx));
@@ -109,6 +130,7 @@ void apply_override(toml::table& root, const Override& ov) {
     }
   }
   auto* tbl = here->as_table();
+  if (const auto* arr = here->as_array(); arr && !arr->empty() && arr->is_array_of_tables()) array_needs_index(ov, seg, seg.size() - 1, *arr);
   if (!tbl) throw InputError("--set", ov.key, "cannot set a value inside a non-table");
   parsed["v"].node()->visit([&](auto&& value) { tbl->insert_or_assign(seg.back(), value); });
 }
@@ -144,14 +166,16 @@ double table_value(Reader& r, const FluidEntry& e, const FluidProperty& p, const
 void read_fluid(Reader& top, Scene& sc) {
   const auto* f = top.table("fluid");
   if (!f) return;
-  Reader r(*f, "fluid", sc.path);
+  Reader r(*f, "fluid", sc.path, scene_keys::fluid);
   FluidSpec fl;
   const auto density = r.number("density"), viscosity = r.number("viscosity");
   const auto w = r.number("mass_fraction"), t = r.number("temperature");
   const FluidEntry* e = nullptr;
   if (auto name = r.string("fluid")) {
     e = FluidTable::builtin().find(*name);
-    if (!e) r.fail("fluid", "unknown fluid '" + *name + "' (known: " + FluidTable::builtin().names() + ")");
+    if (!e)
+      r.fail("fluid", "unknown fluid '" + *name + "' (known: " + FluidTable::builtin().names() + ")" +
+                          did_you_mean(*name, FluidTable::builtin().name_list()));
     fl.name = *name;
   }
   if (w && !(e && e->takes_mass_fraction()))
@@ -209,7 +233,7 @@ void read_spheres(Reader& top, Scene& sc) {
   if (!arr || !arr->is_array_of_tables()) top.fail("sphere", "must be an array of tables ([[sphere]])");
   if (arr->empty() || arr->size() > 2) top.fail("sphere", "give one or two spheres (got " + std::to_string(arr->size()) + ")");
   for (std::size_t i = 0; i < arr->size(); ++i) {
-    Reader r(*arr->get(i)->as_table(), "sphere[" + std::to_string(i) + "]", sc.path);
+    Reader r(*arr->get(i)->as_table(), "sphere[" + std::to_string(i) + "]", sc.path, scene_keys::sphere);
     SphereSpec s;
     read_solid(r, s, true);
     s.diameter = r.required_positive("diameter");
@@ -227,7 +251,7 @@ void read_wall(Reader& top, Scene& sc) {
   const auto* w = top.table("wall");
   if (!w) return;
   if (sc.two_spheres()) top.fail("wall", "a scene has either a target sphere or a wall, not both");
-  Reader r(*w, "wall", sc.path);
+  Reader r(*w, "wall", sc.path, scene_keys::wall);
   WallSpec wall;
   read_solid(r, wall, false);
   wall.position = r.required_number("position");
@@ -248,7 +272,7 @@ void read_effects(Reader& top, Scene& sc) {
       if (!e) {
         std::string list;
         for (const auto& n : effect_names()) list += (list.empty() ? "" : ", ") + n;
-        top.fail("effects", "unknown effect '" + *name + "' (expected " + list + ")");
+        top.fail("effects", "unknown effect '" + *name + "' (expected " + list + ")" + did_you_mean(*name, effect_names()));
       }
       sc.effects.insert(*e);
     }
@@ -279,7 +303,7 @@ void check_effects(Reader& top, const Scene& sc) {
 void read_drag(Reader& top, Scene& sc) {
   const auto* t = top.table("drag");
   if (!t) return;
-  Reader r(*t, "drag", sc.path);
+  Reader r(*t, "drag", sc.path, scene_keys::drag);
   r.choice("law", sc.drag.law);
   r.finish();
 }
@@ -300,7 +324,7 @@ void read_lubrication(Reader& top, Scene& sc) {
   l.model = sc.wall ? LubricationModel::brenner : LubricationModel::asymptotic;
   const auto* t = top.table("lubrication");
   if (!t) return;
-  Reader r(*t, "lubrication", sc.path);
+  Reader r(*t, "lubrication", sc.path, scene_keys::lubrication);
   r.choice("model", l.model);
   if (l.model == LubricationModel::brenner && sc.two_spheres())
     r.fail("model", "'brenner' is the sphere-wall series; use 'asymptotic' or 'seed' for two spheres");
@@ -324,7 +348,7 @@ void read_lubrication(Reader& top, Scene& sc) {
 void read_added_mass(Reader& top, Scene& sc) {
   const auto* t = top.table("added_mass");
   if (!t) return;
-  Reader r(*t, "added_mass", sc.path);
+  Reader r(*t, "added_mass", sc.path, scene_keys::added_mass);
   r.choice("model", sc.added_mass.model);
   sc.added_mass.dw_floor = r.number("dw_floor", sc.added_mass.dw_floor);
   if (r.has("dw_floor")) r.positive("dw_floor", sc.added_mass.dw_floor);
@@ -336,7 +360,7 @@ void read_contact_table(const toml::table* t, Scene& sc) {
   auto& c = sc.contact;
   const bool rough = sc.lubrication.limit == LubricationLimit::roughness;
   if (!t) return;
-  Reader r(*t, "contact", sc.path);
+  Reader r(*t, "contact", sc.path, scene_keys::contact);
   c.delta_ss = r.number("delta_ss", c.delta_ss);
   r.in_range("delta_ss", c.delta_ss, 0.0, 1.0, true, true);  // units of D
   if (rough && r.has("delta_ss"))
@@ -366,7 +390,7 @@ void read_contact(Reader& top, Scene& sc) {
 void read_history(Reader& top, Scene& sc) {
   const auto* t = top.table("history");
   if (!t) return;
-  Reader r(*t, "history", sc.path);
+  Reader r(*t, "history", sc.path, scene_keys::history);
   if (!sc.has(Effect::history)) r.fail("kernel", "a [history] table needs the 'history' effect in `effects`");
   auto& h = sc.history;
   r.choice("kernel", h.kernel);
@@ -393,7 +417,7 @@ void read_history(Reader& top, Scene& sc) {
 void read_solver(Reader& top, Scene& sc) {
   const auto* t = top.table("solver");
   if (!t) return;
-  Reader r(*t, "solver", sc.path);
+  Reader r(*t, "solver", sc.path, scene_keys::solver);
   auto& s = sc.solver;
   r.choice("integrator", s.integrator);
   r.choice("linear_solver", s.linear_solver);
@@ -428,7 +452,7 @@ void read_measure(Reader& top, Scene& sc) {
   auto& m = sc.measure;
   m.e = sc.spheres.size() == 2 ? EMeasure::yang_hunt_2006 : EMeasure::joseph_2001;
   if (const auto* t = top.table("measure")) {
-    Reader r(*t, "measure", sc.path);
+    Reader r(*t, "measure", sc.path, scene_keys::measure);
     m.window = r.number("window", m.window);
     r.positive("window", m.window);
     m.instant_gap = r.number("instant_gap", -1.0);
@@ -464,7 +488,7 @@ void read_measure(Reader& top, Scene& sc) {
 void read_flow(Reader& top, Scene& sc) {
   const auto* t = top.table("flow");
   if (!t) return;
-  Reader r(*t, "flow", sc.path);
+  Reader r(*t, "flow", sc.path, scene_keys::flow);
   if (!sc.has(Effect::flow)) top.fail("flow", "a [flow] table needs the 'flow' effect in `effects`");
   read_flow_spec(r, sc.flow);
   if (sc.flow.dt > sc.solver.t_end)
@@ -477,7 +501,7 @@ void read_flow(Reader& top, Scene& sc) {
 /// Default dt: measure.window / 100.
 void read_output(Reader& top, Scene& sc) {
   if (const auto* t = top.table("output")) {
-    Reader r(*t, "output", sc.path);
+    Reader r(*t, "output", sc.path, scene_keys::output);
     sc.output.dt = r.number("dt", 0.0);
     if (r.has("dt")) r.positive("dt", sc.output.dt);
     r.finish();
@@ -564,7 +588,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::v
   Scene sc;
   sc.path = path;
   sc.name = std::filesystem::path(path).stem().string();
-  Reader top(root, "", path);
+  Reader top(root, "", path, scene_keys::top);
   read_name(top, sc);
   read_fluid(top, sc);
   read_spheres(top, sc);

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "core/close_names.hpp"
 #include "core/errors.hpp"
 #include "core/materials.hpp"
 
@@ -14,29 +15,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Edit distance (insertions, deletions, substitutions).
-std::size_t distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
+/// The file name a shipped scene's name stands for: ".toml" added if missing, a leading "data/scenes/" dropped.
+std::string shipped_file(const std::string& arg) {
+  constexpr std::string_view kReadmePrefix = "data/scenes/";
+  const std::string name = arg.starts_with(kReadmePrefix) ? arg.substr(kReadmePrefix.size()) : arg;
+  return name.ends_with(".toml") ? name : name + ".toml";
 }
 
-/// Shipped scenes whose name (or its last part) is within a few edits of `name`, or contains it; closest first.
-std::vector<std::string> close_names(const std::string& name) {
+}  // namespace
+
+std::vector<std::string> close_scene_names(const std::string& name) {
   std::vector<std::pair<std::size_t, std::string>> scored;
   const std::size_t allowed = std::max<std::size_t>(2, name.size() / 3);
   for (const auto& s : shipped_scene_names()) {
     const std::string last = s.substr(s.rfind('/') + 1);
-    std::size_t d = std::min(distance(name, s), distance(name, last));
+    std::size_t d = std::min(edit_distance(name, s), edit_distance(name, last));
     if (name.size() >= 3 && s.find(name) != std::string::npos) d = std::min<std::size_t>(d, 1);
     if (d <= allowed) scored.push_back({d, s});
   }
@@ -46,25 +39,27 @@ std::vector<std::string> close_names(const std::string& name) {
   return out;
 }
 
-}  // namespace
-
 std::string scenes_dir() { return (fs::path(data_dir()) / "scenes").string(); }
 
-std::string find_scene(const std::string& arg) {
-  if (arg.empty()) throw InputError("command line", "scene", "empty scene argument (give a scene file or a shipped scene's name: imcol scenes lists them)");
+std::optional<std::string> locate_scene(const std::string& arg) {
   std::error_code ec;
-  constexpr std::string_view kReadmePrefix = "data/scenes/";
-  const std::string name = arg.starts_with(kReadmePrefix) ? arg.substr(kReadmePrefix.size()) : arg;
-  const std::string file = name.ends_with(".toml") ? name : name + ".toml";
+  const std::string file = shipped_file(arg);
   const fs::path shipped = fs::path(scenes_dir()) / file;
   const bool is_shipped = !fs::path(file).is_absolute() && fs::is_regular_file(shipped, ec);
   // A folder is never a scene: `default` beside an output folder of that name is the shipped scene.
-  if (fs::exists(arg, ec) && !(is_shipped && fs::is_directory(arg, ec))) return arg;
+  if (!arg.empty() && fs::exists(arg, ec) && !(is_shipped && fs::is_directory(arg, ec))) return arg;
   if (is_shipped) return shipped.string();
-  const std::string stem = file.substr(0, file.size() - 5);
+  return std::nullopt;
+}
+
+std::string find_scene(const std::string& arg) {
+  if (arg.empty()) throw InputError("command line", "scene", "empty scene argument (give a scene file or a shipped scene's name: imcol scenes lists them)");
+  if (auto path = locate_scene(arg)) return *path;
+  std::error_code ec;
+  const std::string file = shipped_file(arg);
   std::string msg = "no scene '" + arg + "': no file " + (fs::absolute(arg, ec)).string() + " (relative to the current folder), and no " +
                     file + " in " + scenes_dir() + " (imcol scenes lists the shipped scenes)";
-  const auto close = close_names(stem);
+  const auto close = close_scene_names(file.substr(0, file.size() - 5));
   if (!close.empty()) {
     msg += "; close names:";
     for (std::size_t i = 0; i < close.size(); ++i) msg += (i ? ", " : " ") + close[i];

@@ -10,11 +10,15 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <algorithm>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/choices.hpp"
+#include "core/close_names.hpp"
 #include "core/errors.hpp"
 #include "core/text_file.hpp"
 
@@ -33,6 +37,14 @@ class TableReader {
   /// `unsourced`: the place named for a value that has no line in the file (a command-line override).
   TableReader(const toml::table& t, std::string prefix, const std::string& file, std::string unsourced = kOverridePlace)
       : t_(t), prefix_(std::move(prefix)), file_(file), unsourced_(std::move(unsourced)) {}
+  /// A table whose keys are `known`: a key not among them is reported at once, before any other key is read (so a
+  /// misspelt key is named, not the key it was meant to be as missing); reading a key not declared is a logic error.
+  TableReader(const toml::table& t, std::string prefix, const std::string& file, const std::vector<std::string>& known)
+      : TableReader(t, std::move(prefix), file) {
+    known_ = &known;
+    for (auto&& [k, v] : t_)
+      if (!declared(std::string(k.str()))) unknown(std::string(k.str()), v);
+  }
 
   std::string full(const std::string& key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
 
@@ -48,10 +60,14 @@ class TableReader {
   }
 
   const toml::node* node(const std::string& key) {
+    check_declared(key);
     used_.insert(key);
     return t_.get(key);
   }
-  bool has(const std::string& key) const { return t_.contains(key); }
+  bool has(const std::string& key) const {
+    check_declared(key);
+    return t_.contains(key);
+  }
 
   std::optional<double> number(const std::string& key) {
     const toml::node* n = node(key);
@@ -105,7 +121,7 @@ class TableReader {
   void finish() const {
     for (auto&& [k, v] : t_) {
       std::string key(k.str());
-      if (!used_.count(key)) throw InputError(where(&v), full(key), "unknown key");
+      if (!used_.count(key)) unknown(key, v);
     }
   }
 
@@ -136,7 +152,7 @@ class TableReader {
     }
     std::string list;
     for (const auto& [e, name] : ChoiceNames<E>::list) list += (list.empty() ? "" : " | ") + std::string(name);
-    fail(key, "unknown choice '" + *v + "' (expected " + list + ")");
+    fail(key, "unknown choice '" + *v + "' (expected " + list + ")" + did_you_mean(*v, choice_names<E>()));
   }
 
 
@@ -146,6 +162,17 @@ class TableReader {
   const std::string& file_;
   std::string unsourced_;
   std::set<std::string> used_;
+  const std::vector<std::string>* known_ = nullptr;  // the table's keys, when declared
+
+  bool declared(const std::string& key) const { return !known_ || std::find(known_->begin(), known_->end(), key) != known_->end(); }
+  void check_declared(const std::string& key) const {
+    if (!declared(key)) throw std::logic_error("the reader of table '" + prefix_ + "' reads the undeclared key '" + key + "'");
+  }
+  /// An unknown key, at its line, with the close keys of the table (the declared ones, else those read so far).
+  [[noreturn]] void unknown(const std::string& key, const toml::node& at) const {
+    const std::vector<std::string> keys = known_ ? *known_ : std::vector<std::string>(used_.begin(), used_.end());
+    throw InputError(where(&at), full(key), "unknown key" + did_you_mean(key, keys));
+  }
 };
 
 }  // namespace imcol

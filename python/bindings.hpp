@@ -15,7 +15,7 @@ void bind_studies_precision(pybind11::module_& m);  // imcol.work_precision, imc
 void bind_choices(pybind11::module_& m); // imcol.history_kernels(), …, imcol.scenes(), imcol.choices()
 void bind_table(pybind11::module_& m);   // imcol.StudyTable
 void bind_laws(pybind11::module_& m);    // imcol.laws
-void bind_history(pybind11::module_& m); // imcol.history
+void bind_history(pybind11::module_& m); // imcol.history_compare
 void bind_dem_fit(pybind11::module_& m); // imcol.dem_fit
 void bind_data_dir(pybind11::module_& m); // imcol.data_dir, and the package's data folder setter
 void bind_calibrate(pybind11::module_& m);  // imcol.calibrate and imcol.CalibrationResult

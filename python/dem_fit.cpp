@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "python/bindings.hpp"
+#include "python/call.hpp"
 #include "python/convert.hpp"
 #include "python/sweep.hpp"
 #include "python/table.hpp"
@@ -53,7 +54,7 @@ PyTable dem_fit(const PySweepResult& sweep) {
 }  // namespace dem_impl
 
 void bind_dem_fit(py::module_& m) {
-  m.def("dem_fit", &dem_impl::dem_fit, py::arg("sweep"),
+  m.def("dem_fit", in_call("imcol.dem_fit", &dem_impl::dem_fit), py::arg("sweep"),
         "A sweep's points (an imcol.SweepResult) as `imcol sweep … --export dem` writes them: an imcol.StudyTable of "
         "dem.csv's columns (St in the DEM convention, m* U / (6 pi mu a*^2)), and in `info` dem.json's fits of "
         "e = e_dry f(St_c/St), exp and linear, e_dry fixed to the scene's and free (`fits`, `best`, `exp`, `fit_error`, "

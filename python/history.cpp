@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// imcol.history: the history-force kernels and evaluators compared on one scene (study/history.hpp), or e against
+// imcol.history_compare: the history-force kernels and evaluators compared on one scene (study/history.hpp), or e against
 // St per kernel over a sweep (study/history_sweep.hpp), as `imcol history` runs them, the GIL released while they
 // run; history.csv's or history_sweep.csv's columns as an imcol.StudyTable.
 #include <pybind11/stl.h>
@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
+#include "python/call.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "python/table.hpp"
@@ -60,16 +61,16 @@ PyTable history_of_sweep(const study::SceneLoader& load, const std::vector<Overr
 PyTable history(const py::object& scene_arg, const Names& kernels, const Names& evaluators, const std::optional<std::string>& vary,
                 const std::optional<std::vector<double>>& values, int jobs, const std::optional<py::object>& rtol,
                 const std::optional<py::object>& atol, const std::optional<std::string>& integrator) {
-  require_numpy("imcol.history");
-  const PyScene scene = scene_argument(scene_arg);
+  require_numpy("imcol.history_compare");
+  const PyScene scene = scene_argument(scene_arg, "imcol.history_compare").cast<PyScene>();
   if (vary) {
-    study::check_sweep_quantity(*vary, "imcol.history", "vary");
-    if (!values) throw InputError("imcol.history", "values", "missing: give the values of " + *vary + " (SI units)");
-    study::check_sweep_values(*vary, *values, "imcol.history", "values");
+    study::check_sweep_quantity(*vary, "imcol.history_compare", "vary");
+    if (!values) throw InputError("imcol.history_compare", "values", "missing: give the values of " + *vary + " (SI units)");
+    study::check_sweep_values(*vary, *values, "imcol.history_compare", "values");
   } else if (values) {
-    throw InputError("imcol.history", "values", "needs vary: the quantity the values are of");
+    throw InputError("imcol.history_compare", "values", "needs vary: the quantity the values are of");
   }
-  if (jobs < 0) throw InputError("imcol.history", "jobs", "must be >= 0 (0 = all cores)");
+  if (jobs < 0) throw InputError("imcol.history_compare", "jobs", "must be >= 0 (0 = all cores)");
   std::vector<Override> overrides = scene.overrides();
   for (auto& o : solver_overrides(rtol, atol, integrator)) overrides.push_back(o);
   const auto load = [&](const std::vector<Override>& ov) { return parse_scene(scene.text(), scene.path(), ov); };
@@ -82,10 +83,10 @@ PyTable history(const py::object& scene_arg, const Names& kernels, const Names& 
 }  // namespace history_impl
 
 void bind_history(py::module_& m) {
-  m.def("history", &history_impl::history, py::arg("scene"), py::arg("kernels") = py::none(), py::arg("evaluators") = py::none(),
+  m.def("history_compare", in_call("imcol.history_compare", &history_impl::history), py::arg("scene"), py::arg("kernels") = py::none(), py::arg("evaluators") = py::none(),
         py::arg("vary") = py::none(), py::arg("values") = py::none(), py::arg("jobs") = 0, py::arg("rtol") = py::none(),
         py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
-        "Runs a scene (an imcol.Scene or a scene's name) without the history force and with each kernel (default all: "
+        "Runs a scene (an imcol.Scene, a shipped scene's name or a scene file's path) without the history force and with each kernel (default all: "
         "imcol.history_kernels()) and evaluator (default soe-step, soe, direct) as `imcol history` does, one after the "
         "other; with `vary` and `values`, at each value of that quantity on `jobs` threads (0: all cores), the evaluator "
         "the scene's unless given. The GIL is released while they run. Returns an imcol.StudyTable: history.csv's "

@@ -7,6 +7,7 @@
 
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
+#include "python/call.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "python/table.hpp"
@@ -35,7 +36,7 @@ PyTable laws(const py::object& scene_arg, const std::optional<std::vector<std::s
              const std::optional<std::vector<double>>& values, const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
              const std::optional<std::string>& integrator) {
   require_numpy("imcol.laws");
-  const PyScene scene = scene_argument(scene_arg);
+  const PyScene scene = scene_argument(scene_arg, "imcol.laws").cast<PyScene>();
   const std::vector<std::string> chosen = study::laws_to_compare(names.value_or(std::vector<std::string>{}), "imcol.laws", "laws");
   if (vary) {
     study::check_sweep_quantity(*vary, "imcol.laws", "vary");
@@ -58,9 +59,9 @@ PyTable laws(const py::object& scene_arg, const std::optional<std::vector<std::s
 }  // namespace laws_impl
 
 void bind_laws(py::module_& m) {
-  m.def("laws", &laws_impl::laws, py::arg("scene"), py::arg("laws") = py::none(), py::arg("vary") = py::none(),
+  m.def("laws", in_call("imcol.laws", &laws_impl::laws), py::arg("scene"), py::arg("laws") = py::none(), py::arg("vary") = py::none(),
         py::arg("values") = py::none(), py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
-        "Runs a scene (an imcol.Scene or a scene's name) once per contact law (`laws`, default every shipped law: "
+        "Runs a scene (an imcol.Scene, a shipped scene's name or a scene file's path) once per contact law (`laws`, default every shipped law: "
         "imcol.contact_laws()) as `imcol laws` does; with `vary` and `values`, at each value of that quantity "
         "(imcol.sweep_quantities()). The runs go one after the other, the GIL released. A law that refuses the scene "
         "or fails gets a row saying why. Returns an imcol.StudyTable: laws.csv's columns (info: e_is, e_dry, "

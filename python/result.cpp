@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
+#include "python/call.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "run/simulate.hpp"
@@ -62,11 +63,12 @@ Recording recording_from(const std::string& record) {
   throw InputError("imcol.run", "record", "must be full or kinematics (got '" + record + "')");
 }
 
-std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::object>& rtol,
+std::shared_ptr<PyResult> run(const py::object& scene_arg, const std::optional<py::object>& rtol,
                               const std::optional<py::object>& atol, const std::optional<std::string>& integrator,
                               const std::string& record) {
   const Recording rec = recording_from(record);
-  const auto sc = scene.snapshot(solver_overrides(rtol, atol, integrator));  // no copy without run() options
+  const py::object scene = scene_argument(scene_arg, "imcol.run");  // a given Scene itself: its snapshot kept
+  const auto sc = scene.cast<const PyScene&>().snapshot(solver_overrides(rtol, atol, integrator));  // no copy without options
   auto out = std::make_shared<PyResult>();
   {
     py::gil_scoped_release free;
@@ -148,9 +150,9 @@ void bind_run(py::module_& m) {
                              "The summary as typed attributes (imcol.Summary); its blocks are also the result's.");
   add_summary_view(result);
 
-  m.def("run", &run, py::arg("scene"), py::arg("rtol") = py::none(), py::arg("atol") = py::none(),
+  m.def("run", in_call("imcol.run", &run), py::arg("scene"), py::arg("rtol") = py::none(), py::arg("atol") = py::none(),
         py::arg("integrator") = py::none(), py::arg("record") = "full",
-        "Runs a scene as `imcol run` does (rtol, atol, integrator: as --rtol, --atol, --integrator). record: \"full\" "
+        "Runs a scene (an imcol.Scene, a shipped scene's name or a scene file's path) as `imcol run` does (rtol, atol, integrator: as --rtol, --atol, --integrator). record: \"full\" "
         "(forces in the trajectory) or \"kinematics\" (positions, velocities and events only, faster). The GIL is "
         "released while it runs. Raises ValueError (bad input) or imcol.SolverError.");
 }

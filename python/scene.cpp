@@ -6,6 +6,7 @@
 #include "core/scene_files.hpp"
 #include "core/toml_reader.hpp"
 #include "python/bindings.hpp"
+#include "python/call.hpp"
 #include "python/convert.hpp"
 
 namespace py = pybind11;
@@ -29,7 +30,39 @@ bool inside(const std::vector<std::string>& inner, const std::vector<std::string
   return !outer.empty() && inner.size() >= outer.size() && std::equal(outer.begin(), outer.end(), inner.begin());
 }
 
+/// "; did you mean 'a', 'b' or 'c'?" for the shipped scenes close to `name`, "" when none is.
+std::string close_scenes_hint(const std::string& name) {
+  const std::string stem = name.ends_with(".toml") ? name.substr(0, name.size() - 5) : name;
+  const auto close = close_scene_names(stem);
+  std::string s;
+  for (std::size_t i = 0; i < close.size() && i < 3; ++i)
+    s += (i == 0 ? "; did you mean '" : i + 1 == std::min<std::size_t>(close.size(), 3) ? " or '" : ", '") + close[i] + "'";
+  return s.empty() ? s : s + "?";
+}
+
+/// The scene a name or path stands for, read; errors name `call`.
+PyScene scene_from_name(const std::string& name, const std::string& call) {
+  const auto path = locate_scene(name);
+  if (!path)
+    throw py::value_error(call + ": scene '" + name + "': no shipped scene or file of that name (imcol.scenes() lists the shipped scenes)" +
+                          close_scenes_hint(name));
+  try {
+    return PyScene::load(*path);
+  } catch (const InputError& e) {
+    throw py::value_error(call_message(call, e));
+  }
+}
+
 }  // namespace scene_impl
+
+py::object scene_argument(const py::handle& scene, const std::string& call) {
+  if (py::isinstance<PyScene>(scene)) return py::reinterpret_borrow<py::object>(scene);
+  const py::object os = py::module_::import("os");
+  if (py::isinstance<py::str>(scene) || py::isinstance(scene, os.attr("PathLike")))
+    return py::cast(scene_impl::scene_from_name(os.attr("fspath")(scene).cast<std::string>(), call));
+  throw py::type_error(call + ": scene must be an imcol.Scene, a shipped scene's name or the path of a scene file (got " +
+                       py::str(py::type::of(scene).attr("__name__")).cast<std::string>() + ")");
+}
 
 void PyScene::set(const std::string& key, const std::string& value_text) {
   // Overrides apply in order, each replacing the node its key names, so an earlier override of this key, or of a
@@ -61,13 +94,20 @@ std::shared_ptr<const Scene> PyScene::snapshot(const std::vector<Override>& extr
 
 void bind_scene(py::module_& m) {
   py::class_<PyScene>(m, "Scene", "A scene: a TOML file or text, with keys set on it as the command line's --set does.")
-      .def_static("load", &PyScene::load, py::arg("name_or_path"),
-                  "A scene file, or a shipped scene's name (\"default\", \"coupled/gg3462\"), as `imcol run` takes it.")
-      .def_static("from_toml", &PyScene::from_toml, py::arg("text"), "A scene given as TOML text.")
+      .def_static(
+          "load", [](const py::object& name_or_path) { return scene_argument(name_or_path, "Scene.load"); }, py::arg("name_or_path"),
+          "A scene file (str or os.PathLike), or a shipped scene's name (\"default\", \"coupled/gg3462\"), as `imcol run` "
+          "takes it; an imcol.Scene is returned as it is.")
+      .def_static("from_toml", in_call("Scene.from_toml", &PyScene::from_toml), py::arg("text"), "A scene given as TOML text.")
       .def(
           "set",
           [](PyScene& s, const std::string& key, const py::handle& value) -> PyScene& {
-            s.set(key, toml_value_text(value));
+            const std::string text = toml_value_text(value);
+            try {
+              s.set(key, text);
+            } catch (const InputError& e) {
+              throw py::value_error(call_message("Scene.set('" + key + "')", e));
+            }
             return s;
           },
           py::arg("key"), py::arg("value"), py::return_value_policy::reference_internal,

@@ -2,6 +2,8 @@
 #pragma once
 // imcol.Scene: a scene's TOML text and the overrides set on it, read and checked as the command line reads a scene
 // file and its --set options (core/scene.hpp load_scene / parse_scene).
+#include <pybind11/pybind11.h>
+
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,5 +41,11 @@ class PyScene {
   mutable std::vector<Override> last_extra_;  // snapshot()'s last extra overrides and their scene (null: none yet)
   mutable std::shared_ptr<const Scene> last_;
 };
+
+/// The argument `scene` of every call that takes one (`call`: "imcol.run", "Scene.load"): an imcol.Scene (the
+/// object itself), or a shipped scene's name ("default", "coupled/gg3462") or the path of a scene file (str or
+/// os.PathLike), read as Scene.load reads it. Raises ValueError naming the call: no such scene (with the close names
+/// of shipped scenes), or the file's first bad line; TypeError for any other type.
+pybind11::object scene_argument(const pybind11::handle& scene, const std::string& call);
 
 }  // namespace imcol::python

@@ -9,8 +9,10 @@
 
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
+#include "python/call.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
+#include "python/table.hpp"
 #include "run/summary_json.hpp"
 #include "study//validate.hpp"
 #include "study/work_precision.hpp"
@@ -99,7 +101,7 @@ PyWorkPrecision work_precision(const py::object& scene_arg, const std::optional<
                                int repeat, const std::optional<std::vector<double>>& direct_steps, double direct_rtol, double ref_rtol,
                                double ref_history_tolerance, bool add_history, int jobs) {
   require_numpy("imcol.work_precision");
-  const PyScene scene = py::isinstance<py::str>(scene_arg) ? PyScene::load(scene_arg.cast<std::string>()) : scene_arg.cast<PyScene>();
+  const PyScene scene = scene_argument(scene_arg, "imcol.work_precision").cast<PyScene>();
   if (scene.scene().has(Effect::flow))
     throw InputError("imcol.work_precision", "scene", "a coupled scene: its ladders are the grid and the flow step (imcol work-precision)");
   if (jobs < 0) throw InputError("imcol.work_precision", "jobs", "must be >= 0 (0 = all cores)");
@@ -152,7 +154,7 @@ PyValidate validate_seed(const std::optional<std::vector<std::string>>& models, 
   return r;
 }
 
-/// The table's members of a result class: columns, table, to_dict, len, and each column as an attribute.
+/// The table's members of a result class: columns, table, to_dict, len, and each column as an attribute (and in dir()).
 template <class T>
 void bind_table(py::class_<T>& c, const char* name) {
   c.def_property_readonly("columns", [](const T& r) { return r.columns.attr("copy")(); }, "The columns, in the CSV file's order.")
@@ -163,7 +165,8 @@ void bind_table(py::class_<T>& c, const char* name) {
       .def("__getattr__", [name](const T& r, const std::string& key) -> py::object {
         if (r.table.contains(key)) return r.table[py::str(key)];
         throw py::attribute_error(std::string(name) + " has no attribute '" + key + "'");
-      });
+      })
+      .def("__dir__", [](const py::object& self) { return dir_with_columns(self, self.cast<const T&>().columns); });
 }
 
 }  // namespace studies_precision_impl
@@ -183,10 +186,10 @@ void bind_studies_precision(py::module_& m) {
       .def("__repr__", [](const PyWorkPrecision& r) {
         return "imcol.WorkPrecisionResult(scene='" + r.result.scene + "', rungs=" + std::to_string(r.result.rows.size()) + ")";
       });
-  m.def("work_precision", &work_precision, py::arg("scene"), py::arg("rtols") = py::none(), py::arg("integrators") = py::none(),
+  m.def("work_precision", in_call("imcol.work_precision", &work_precision), py::arg("scene"), py::arg("rtols") = py::none(), py::arg("integrators") = py::none(),
         py::arg("evaluators") = py::none(), py::arg("repeat") = 3, py::arg("direct_steps") = py::none(), py::arg("direct_rtol") = 1e-10,
         py::arg("ref_rtol") = 1e-13, py::arg("ref_history_tolerance") = 1e-11, py::arg("add_history") = false, py::arg("jobs") = 1,
-        "What accuracy costs, as `imcol work-precision` measures it on a collision scene (an imcol.Scene or a name): an rtol "
+        "What accuracy costs, as `imcol work-precision` measures it on a collision scene (an imcol.Scene, a shipped scene's name or a scene file's path): an rtol "
         "ladder per integrator and history evaluator (the direct evaluator: a ladder of its step) against a reference at the "
         "tightest settings, `repeat` runs per rung (median wall time), on `jobs` threads (1: wall times not shared), the GIL "
         "released. Returns an imcol.WorkPrecisionResult.");
@@ -201,7 +204,7 @@ void bind_studies_precision(py::module_& m) {
       .def("__repr__", [](const PyValidate& r) {
         return "imcol.ValidateResult(rows=" + std::to_string(r.result.rows.size()) + ", flow=" + (r.result.flow ? "True" : "False") + ")";
       });
-  m.def("validate_seed", &validate_seed, py::arg("models") = py::none(), py::arg("flow") = false, py::arg("tolerance") = 0.05,
+  m.def("validate_seed", in_call("imcol.validate_seed", &validate_seed), py::arg("models") = py::none(), py::arg("flow") = false, py::arg("tolerance") = 0.05,
         py::arg("jobs") = 0, py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
         "The seed's Table 6.1 run as `imcol validate seed` runs it: each run with each model (\"seed\", \"asymptotic\"; None: "
         "both), reduced-order and with flow=True also coupled, at V_Io and at the speed that gives the printed St_B; on `jobs` "

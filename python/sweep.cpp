@@ -12,9 +12,11 @@
 #include "study/sweep_columns.hpp"
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
+#include "python/call.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "python/sweep.hpp"
+#include "python/table.hpp"
 
 namespace py = pybind11;
 
@@ -64,9 +66,9 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
                     const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
                     const std::optional<std::string>& integrator) {
   require_numpy("imcol.sweep");  // before anything runs: its values and its result are arrays
-  const PyScene scene = py::isinstance<py::str>(scene_arg) ? PyScene::load(scene_arg.cast<std::string>()) : scene_arg.cast<PyScene>();
+  const PyScene scene = scene_argument(scene_arg, "imcol.sweep").cast<PyScene>();
   study::check_sweep_quantity(vary, "imcol.sweep", "vary");
-  if (values_arg.is_none()) throw InputError("imcol.sweep", "values", "missing: give the values of " + vary + " (SI units)");
+  if (values_arg.is_none()) throw InputError("imcol.sweep", "values", "None: give the values of " + vary + " (SI units)");
   const std::vector<double> values = values_from(values_arg);
   study::check_sweep_values(vary, values, "imcol.sweep", "values");
   if (jobs < 0) throw InputError("imcol.sweep", "jobs", "must be >= 0 (0 = all cores)");
@@ -121,6 +123,7 @@ void bind_sweep(py::module_& m) {
              if (r.table.contains(name)) return r.table[py::str(name)];
              throw py::attribute_error("imcol.SweepResult has no attribute '" + name + "'");
            })
+      .def("__dir__", [](const py::object& self) { return dir_with_columns(self, self.cast<const PySweepResult&>().columns); })
       .def("__repr__", [](const PySweepResult& r) {
         const auto n = py::len(column(r, "point"));
         py::ssize_t failed = 0;
@@ -129,9 +132,9 @@ void bind_sweep(py::module_& m) {
         return "imcol.SweepResult(vary='" + r.vary + "', points=" + std::to_string(n) + ", failed=" + std::to_string(failed) + ")";
       });
 
-  m.def("sweep", &sweep, py::arg("scene"), py::arg("vary") = "velocity", py::arg("values") = py::none(), py::arg("jobs") = 0,
+  m.def("sweep", in_call("imcol.sweep", &sweep), py::arg("scene"), py::arg("vary") = "velocity", py::kw_only(), py::arg("values"), py::arg("jobs") = 0,
         py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
-        "Runs a scene (an imcol.Scene or a scene's name) at each of `values` of `vary` (imcol.sweep_quantities()) as "
+        "Runs a scene (an imcol.Scene, a shipped scene's name or a scene file's path) at each of `values` (required, by keyword) of `vary` (imcol.sweep_quantities()) as "
         "`imcol sweep` does, on `jobs` threads (0: all cores), the GIL released. rtol, atol, integrator: as --rtol, "
         "--atol, --integrator. Bad input raises ValueError naming the point before anything runs; a point that fails "
         "is reported in `status` and `messages`, never raised. Returns an imcol.SweepResult.");

@@ -39,8 +39,13 @@ PyTable make_table(const std::string& kind, const study::Table& t, py::dict info
   return r;
 }
 
-PyScene scene_argument(const py::object& scene) {
-  return py::isinstance<py::str>(scene) ? PyScene::load(scene.cast<std::string>()) : scene.cast<PyScene>();
+py::list dir_with_columns(const py::handle& self, const py::list& columns) {
+  py::set names(py::module_::import("builtins").attr("object").attr("__dir__")(self));
+  for (const auto& c : columns)
+    if (c.attr("isidentifier")().cast<bool>()) names.add(c);
+  py::list out(names);
+  out.attr("sort")();
+  return out;
 }
 
 void bind_table(py::module_& m) {
@@ -59,6 +64,7 @@ void bind_table(py::module_& m) {
              if (r.table.contains(name)) return r.table[py::str(name)];
              throw py::attribute_error("imcol.StudyTable has no attribute '" + name + "'");
            })
+      .def("__dir__", [](const py::object& self) { return dir_with_columns(self, self.cast<const PyTable&>().columns); })
       .def("__repr__", [](const PyTable& r) {
         const std::size_t n = r.columns.empty() ? 0 : py::len(r.table[r.columns[0]]);
         return "imcol.StudyTable(kind='" + r.kind + "', rows=" + std::to_string(n) + ")";

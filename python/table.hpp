@@ -18,10 +18,10 @@ struct PyTable {
   pybind11::dict info;     // the study's other results (e_is, fits, ...)
 };
 
+/// dir() of a result whose columns are attributes: the object's own names and the columns that are identifiers.
+pybind11::list dir_with_columns(const pybind11::handle& self, const pybind11::list& columns);
+
 /// The table's columns as arrays (call with the GIL held).
 PyTable make_table(const std::string& kind, const study::Table& t, pybind11::dict info);
-
-/// The shared argument `scene`: an imcol.Scene or a scene's name.
-PyScene scene_argument(const pybind11::object& scene);
 
 }  // namespace imcol::python

@@ -7,6 +7,7 @@
 """
 import pathlib as _pathlib
 import sys as _sys
+import warnings as _warnings
 
 try:
     import numpy as _numpy  # noqa: F401  (the trajectories and study tables are NumPy arrays)
@@ -17,8 +18,8 @@ except ImportError as _e:
         "sees Debian's NumPy (python3 -m venv --system-site-packages DIR), or pip install numpy there.") from _e
 
 from ._imcol import (Result, Scene, SolverError, StudyTable, SweepResult, __version__, choices, contact_laws, dem_fit,
-                     drag_laws, e_measures, effects, history, history_kernels, integrators, laws, lubrication_models, run,
-                     scenes, sweep, sweep_quantities)
+                     drag_laws, e_measures, effects, history_compare, history_kernels, integrators, laws,
+                     lubrication_models, run, scenes, sweep, sweep_quantities)
 from ._imcol import ValidateResult, WorkPrecisionResult, validate_seed, work_precision
 from ._imcol import CalibrationResult, calibrate
 from ._summary import Bounce, Contact, Event, Flow, Fluid, Solver, Summary, Velocities
@@ -28,9 +29,15 @@ from ._imcol import _set_data_dir, data_dir
 if (_pathlib.Path(__file__).parent / "data" / "scenes").is_dir():
     _set_data_dir(str(_pathlib.Path(__file__).parent / "data"))
 
-__all__ = ["Result", "Scene", "SolverError", "StudyTable", "SweepResult", "run", "sweep", "laws", "history", "dem_fit",
+__all__ = ["Result", "Scene", "SolverError", "StudyTable", "SweepResult", "run", "sweep", "laws", "history_compare", "dem_fit",
            "__version__", "choices", "contact_laws",
            "drag_laws", "e_measures", "effects", "history_kernels", "integrators", "lubrication_models", "scenes",
            "sweep_quantities", "WorkPrecisionResult", "work_precision", "ValidateResult", "validate_seed", "CalibrationResult",
            "calibrate", "Summary", "Bounce",
            "Contact", "Event", "Flow", "Fluid", "Solver", "Velocities", "data_dir"]
+
+
+def history(*args, **kwargs):
+    """Deprecated name of imcol.history_compare (the command is `imcol history`); emits a DeprecationWarning."""
+    _warnings.warn("imcol.history is deprecated: use imcol.history_compare", DeprecationWarning, stacklevel=2)
+    return history_compare(*args, **kwargs)

@@ -43,7 +43,7 @@ class BadFloat:
 # call -> (the exception it must raise, the call)
 CALLS = {
     # wrong types and None
-    "run(str)": (TypeError, lambda: imcol.run("default")),
+    "run(bytes)": (TypeError, lambda: imcol.run(b"default")),
     "run(None)": (TypeError, lambda: imcol.run(None)),
     "run(42)": (TypeError, lambda: imcol.run(42)),
     "Scene.load(None)": (TypeError, lambda: imcol.Scene.load(None)),

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""Shared helpers of the study functions' tests (imcol.laws, imcol.history, imcol.dem_fit): a command's CSV against
+"""Shared helpers of the study functions' tests (imcol.laws, imcol.history_compare, imcol.dem_fit): a command's CSV against
 an imcol.StudyTable, cell for cell."""
 import csv
 import math

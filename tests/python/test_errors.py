@@ -86,3 +86,35 @@ def test_solver_error_made_in_python_has_empty_facts():
     e = imcol.SolverError("by hand")
     assert str(e) == "by hand" and e.flag is None and e.state is None
     assert isinstance(e, RuntimeError)
+
+
+# Bad input names the Python call and the key, never the command line's options (--set, --rtols, command line).
+BAD_INPUT = [
+    ("Scene.set('fluid.viscosity'): must be > 0", lambda: imcol.Scene.load("default").set("fluid.viscosity", -1.0)),
+    ("Scene.set('effects'): a target sphere or wall needs 'elastic'", lambda: imcol.Scene.load("default").set("effects", ["drag"])),
+    ("Scene.set('fluid.viscocity'): unknown key; did you mean 'viscosity'?",
+     lambda: imcol.Scene.load("default").set("fluid.viscocity", 0.05)),
+    ("Scene.set('sphere.velocity'): a scene's spheres are sphere[0]: use 'sphere[0].velocity'",
+     lambda: imcol.Scene.load("default").set("sphere.velocity", 0.05)),
+    ("Scene.from_toml: <string>:1: key 'x': unknown key", lambda: imcol.Scene.from_toml("x = 1")),
+    ("imcol.run: key 'solver.atol': must be in (0, 1)", lambda: imcol.run("default", atol=-1.0)),
+    ("imcol.sweep: key 'solver.rtol': must be in [1e-14, 1)", lambda: imcol.sweep("default", values=[0.3], rtol=5.0)),
+    ("imcol.laws: key 'solver.integrator': unknown choice 'euler' (expected cvode | ida)",
+     lambda: imcol.laws("default", integrator="euler")),
+    ("imcol.laws: key 'vary': unknown value 'speed'", lambda: imcol.laws("default", vary="speed", values=[1.0])),
+    ("imcol.history_compare: key 'solver.rtol': must be in", lambda: imcol.history_compare("default", rtol=5.0)),
+    ("imcol.work_precision: key 'integrators': 'lsoda': unknown integrator",
+     lambda: imcol.work_precision("default", integrators=["lsoda"])),
+    ("imcol.work_precision: key 'rtols': each tolerance must lie in", lambda: imcol.work_precision("default", rtols=[2.0])),
+    ("imcol.validate_seed: key 'models': unknown model 'wall'", lambda: imcol.validate_seed(models=["wall"])),
+    ("imcol.validate_seed: key 'solver.rtol': must be in", lambda: imcol.validate_seed(rtol=5.0)),
+]
+
+
+@pytest.mark.parametrize("start,call", BAD_INPUT, ids=[s.split(":")[0] for s, _ in BAD_INPUT])
+def test_bad_input_names_the_call_and_the_key_in_pythons_words(start, call):
+    with pytest.raises(ValueError) as e:
+        call()
+    message = str(e.value)
+    assert message.startswith(start), message
+    assert "command line" not in message and "--" not in message, message

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: BSD-3-Clause
-"""imcol.history against `imcol history` on the same scene, alone and over a sweep (--vary): history.csv and
+"""imcol.history_compare against `imcol history` on the same scene, alone and over a sweep (--vary): history.csv and
 history_sweep.csv cell for cell (timings excluded)."""
 import numpy as np
 import pytest
@@ -21,7 +21,7 @@ def cli_history(tmp_path, scene, *args):
 def test_history_of_one_scene_equals_the_command_line_cell_for_cell(tmp_path):
     out = cli_history(tmp_path, "default", "--kernels", "basset,mei-adrian", "--evaluators", "soe,direct")
     header, rows = read_csv(out / "history.csv")
-    r = imcol.history("default", kernels=["basset", "mei-adrian"], evaluators=["soe", "direct"])
+    r = imcol.history_compare("default", kernels=["basset", "mei-adrian"], evaluators=["soe", "direct"])
     assert r.kind == "history" and r.info["collision"]
     assert_table_equals_csv(r, header, rows, TIMINGS)
     assert list(r.kernel) == ["none", "basset", "basset", "mei-adrian", "mei-adrian"]
@@ -33,7 +33,7 @@ def test_history_over_a_sweep_equals_the_command_line_cell_for_cell(tmp_path):
                       "--points", "3", "--jobs", "2", "--no-progress")
     header, rows = read_csv(out / "history_sweep.csv")
     values = [0.1 * 10 ** (i / 2) for i in range(3)]
-    r = imcol.history(imcol.Scene.load("default"), kernels=["basset"], vary="velocity", values=values, jobs=2)
+    r = imcol.history_compare(imcol.Scene.load("default"), kernels=["basset"], vary="velocity", values=values, jobs=2)
     assert r.kind == "history_sweep"
     assert_table_equals_csv(r, header, rows, {"wall_time_s"})
     assert list(r.kernel) == ["none", "basset"] * 3
@@ -42,8 +42,8 @@ def test_history_over_a_sweep_equals_the_command_line_cell_for_cell(tmp_path):
 
 def test_bad_history_input_raises_value_error():
     with pytest.raises(ValueError, match="unknown kernel"):
-        imcol.history("default", kernels=["nope"])
+        imcol.history_compare("default", kernels=["nope"])
     with pytest.raises(ValueError, match="needs vary"):
-        imcol.history("default", values=[0.1])
+        imcol.history_compare("default", values=[0.1])
     with pytest.raises(ValueError, match=r"\[fluid\]"):
-        imcol.history("dry_steel_steel")
+        imcol.history_compare("dry_steel_steel")

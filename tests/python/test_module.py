@@ -99,7 +99,6 @@ def test_kinematics_recording():
 
 
 CLI_PLACE = "command line (--set/--rtol/--atol/--integrator)"
-PYTHON_PLACE = "imcol (Scene.set, or rtol/atol/integrator of run or sweep)"
 
 
 @pytest.mark.parametrize("key,value,cli", [
@@ -114,32 +113,36 @@ def test_bad_set_has_the_clis_message(key, value, cli):
     scene = imcol.Scene.load("default")
     with pytest.raises(ValueError) as e:
         scene.set(key, value)
-    # The same message, but for its place: the module's calls instead of the command line's options.
-    assert "command line" not in str(e.value)
-    assert err.strip() == "imcol: error: " + str(e.value).replace(PYTHON_PLACE, CLI_PLACE)
+    # The same problem, in Python's words: the call and its key instead of the command line's options.
+    assert "command line" not in str(e.value) and "--set" not in str(e.value)
+    cli_prefix = f"imcol: error: {CLI_PLACE}: key '{key}': "
+    assert err.strip().startswith(cli_prefix), err
+    assert str(e.value) == f"Scene.set('{key}'): " + err.strip()[len(cli_prefix):]
     assert scene.overrides == []  # unchanged by a refused key
 
 
-def test_unknown_scene_has_the_clis_message():
+def test_unknown_scene_names_the_call_and_the_command_line_keeps_its_words():
     status, _, err = imcol_cli("run", "no_such_scene", "--quiet", "--no-plot")
     assert status == 2
+    assert err.startswith("imcol: error: command line: key 'scene': no scene 'no_such_scene': no file "), err
     with pytest.raises(ValueError) as e:
         imcol.Scene.load("no_such_scene")
-    assert err.strip() == "imcol: error: " + str(e.value)
+    assert str(e.value) == ("Scene.load: scene 'no_such_scene': no shipped scene or file of that name "
+                            "(imcol.scenes() lists the shipped scenes)")
 
 
 def test_toml_syntax_error_names_the_line():
-    with pytest.raises(ValueError, match=r"^<string>:2: TOML syntax error"):
+    with pytest.raises(ValueError, match=r"^Scene.from_toml: <string>:2: TOML syntax error"):
         imcol.Scene.from_toml('name = "x"\n[fluid\n')
 
 
 def test_bad_run_options():
     scene = imcol.Scene.load("default")
-    with pytest.raises(ValueError, match=r"^imcol \(Scene.set, or rtol/atol/integrator of run or sweep\): key 'solver.rtol'"):
+    with pytest.raises(ValueError, match=r"^imcol.run: key 'solver.rtol'"):
         imcol.run(scene, rtol=2.0)
-    with pytest.raises(ValueError, match="key 'solver.integrator'"):
+    with pytest.raises(ValueError, match="^imcol.run: key 'solver.integrator'"):
         imcol.run(scene, integrator="euler")
-    with pytest.raises(ValueError, match="key 'record'"):
+    with pytest.raises(ValueError, match="^imcol.run: key 'record'"):
         imcol.run(scene, record="some")
     with pytest.raises(TypeError):
         scene.set("fluid.viscosity", object())

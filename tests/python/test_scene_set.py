@@ -89,7 +89,7 @@ def test_numpy_bools_are_bools():
         with pytest.raises(ValueError) as e:
             imcol.Scene.load("default").set("fluid.viscosity", v)
         messages.append(str(e.value))
-    assert messages[0].startswith("imcol (Scene.set, or rtol/atol/integrator of run or sweep): key 'fluid.viscosity': ")
+    assert messages[0].startswith("Scene.set('fluid.viscosity'): must be a number")
     assert messages[1] == messages[2] == messages[0]
 
 

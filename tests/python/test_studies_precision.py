@@ -107,7 +107,7 @@ def test_bad_input_raises_value_error_before_anything_runs():
         imcol.work_precision("coupled/gg3462")
     with pytest.raises(ValueError, match="unknown model 'wall'"):
         imcol.validate_seed(models=["wall"])
-    with pytest.raises(ValueError, match="--tolerance"):
+    with pytest.raises(ValueError, match=r"^imcol.validate_seed: key 'tolerance': must be a positive number"):
         imcol.validate_seed(tolerance=-1)
 
 

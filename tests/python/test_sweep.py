@@ -121,7 +121,7 @@ def test_bad_vary_and_bad_values_raise_value_error_with_the_command_lines_messag
     assert status == 2
     with pytest.raises(ValueError) as bad:
         imcol.sweep(dry, vary="viscosity", values=[0.1, 1.0])
-    assert "imcol: error: " + str(bad.value) == err.strip()
+    assert str(bad.value) == "imcol.sweep: " + err.strip().removeprefix("imcol: error: ")
 
 
 def ticks_while(work):
