@@ -19,6 +19,7 @@
 #include "core/timing.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/call.hpp"
 #include "python/scene.hpp"
 #include "study/calibrate.hpp"
 
@@ -45,7 +46,7 @@ py::object number(const std::optional<double>& v) { return v ? number(*v) : py::
 
 /// The scene's file: the calibration reads it again for every evaluation.
 std::string scene_file(const py::object& scene_arg, std::vector<Override>& overrides) {
-  const PyScene scene = py::isinstance<py::str>(scene_arg) ? PyScene::load(scene_arg.cast<std::string>()) : scene_arg.cast<PyScene>();
+  const PyScene scene = scene_argument(scene_arg, "imcol.calibrate").cast<PyScene>();
   if (scene.path() == "<string>")
     throw InputError("imcol.calibrate", "scene", "needs a scene file or a shipped scene's name (a scene from TOML text has no file)");
   overrides = scene.overrides();
@@ -345,12 +346,12 @@ void bind_calibrate(py::module_& m) {
       .def("to_dict", &as_dict, "The attributes as a dict (copies).")
       .def("__repr__", &repr);
 
-  m.def("calibrate", &calibrate, py::arg("scene"), py::arg("data"), py::arg("fit"), py::kw_only(), py::arg("window") = py::none(),
+  m.def("calibrate", in_call("imcol.calibrate", &calibrate), py::arg("scene"), py::arg("data"), py::arg("fit"), py::kw_only(), py::arg("window") = py::none(),
         py::arg("offset_max") = py::none(), py::arg("scan") = py::none(), py::arg("starts") = 2, py::arg("max_evals") = 40,
         py::arg("profile_points") = 15, py::arg("factor") = py::none(), py::arg("confidence") = py::none(), py::arg("refine") = 16,
         py::arg("refine_to") = 1.0 / 64, py::arg("validate") = py::none(), py::arg("jobs") = 0, py::arg("progress") = py::none(),
         "Fits numeric scene keys to a measurement as `imcol calibrate` does (docs/calibration.md), on `jobs` threads "
-        "(0: all cores), the GIL released. scene: an imcol.Scene from a file or a shipped scene's name; data: the "
+        "(0: all cores), the GIL released. scene: an imcol.Scene from a file, a shipped scene's name or a scene file's path; data: the "
         "measurement's CSV (a trajectory or an e table); fit: \"KEY=LO:HI[:log]\", a list of them, or {key: (lo, hi[, "
         "\"log\"])}. The other options are the command's (--window as \"A:B\" or (A, B), --offset-max, --scan, ...). "
         "progress(done, total, eta_s) after each evaluation; Ctrl-C stops the search and raises KeyboardInterrupt. "

@@ -224,11 +224,11 @@ class CalibrationResult:
     cancelled: bool
     def to_dict(self) -> Dict[str, Any]: ...
 
-def calibrate(scene: Union[Scene, str], data: Any, fit: Union[str, Sequence[str], Dict[str, Sequence[Any]]], *,
+def calibrate(scene: _SceneArg, data: Any, fit: Union[str, Sequence[str], Dict[str, Sequence[Any]]], *,
               window: Union[None, str, Sequence[float]] = None, offset_max: Optional[float] = None,
               scan: Optional[int] = None, starts: int = 2, max_evals: int = 40, profile_points: int = 15,
               factor: Optional[float] = None, confidence: Optional[float] = None, refine: int = 16,
-              refine_to: float = 1 / 64, validate: Any = None, jobs: int = 0,
+              refine_to: float = 0.015625, validate: Any = None, jobs: int = 0,
               progress: Optional[Callable[[int, int, float], Any]] = None) -> CalibrationResult: ...
 
 def history_kernels() -> List[str]: ...
