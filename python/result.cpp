@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
+#include "python/interrupt.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "run/simulate.hpp"
@@ -64,15 +65,13 @@ Recording recording_from(const std::string& record) {
 
 std::shared_ptr<PyResult> run(const PyScene& scene, const std::optional<py::object>& rtol,
                               const std::optional<py::object>& atol, const std::optional<std::string>& integrator,
-                              const std::string& record) {
+                              const std::string& record, const py::object& progress) {
   const Recording rec = recording_from(record);
+  check_progress_callable(progress, "imcol.run");
   const auto sc = scene.snapshot(solver_overrides(rtol, atol, integrator));  // no copy without run() options
   auto out = std::make_shared<PyResult>();
-  {
-    py::gil_scoped_release free;
-    // No sink: a coupled run computes no flow fields (nothing would keep them).
-    out->run = simulate(*sc, false, rec);
-  }
+  // No sink: a coupled run computes no flow fields (nothing would keep them).
+  call_interruptibly([&] { out->run = simulate(*sc, false, rec); }, progress);
   return out;
 }
 
@@ -149,10 +148,11 @@ void bind_run(py::module_& m) {
   add_summary_view(result);
 
   m.def("run", &run, py::arg("scene"), py::arg("rtol") = py::none(), py::arg("atol") = py::none(),
-        py::arg("integrator") = py::none(), py::arg("record") = "full",
+        py::arg("integrator") = py::none(), py::arg("record") = "full", py::arg("progress") = py::none(),
         "Runs a scene as `imcol run` does (rtol, atol, integrator: as --rtol, --atol, --integrator). record: \"full\" "
         "(forces in the trajectory) or \"kinematics\" (positions, velocities and events only, faster). The GIL is "
-        "released while it runs. Raises ValueError (bad input) or imcol.SolverError.");
+        "released while it runs; Ctrl-C stops it within a step (KeyboardInterrupt). progress: None or "
+        "progress(done, total, eta_s), simulated s of t_end. Raises ValueError (bad input) or imcol.SolverError.");
 }
 
 }  // namespace imcol::python

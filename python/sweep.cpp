@@ -12,6 +12,7 @@
 #include "study/sweep_columns.hpp"
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
+#include "python/interrupt.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "python/sweep.hpp"
@@ -62,8 +63,9 @@ std::vector<double> values_from(const py::handle& values) {
 
 PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const py::object& values_arg, int jobs,
                     const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
-                    const std::optional<std::string>& integrator) {
-  require_numpy("imcol.sweep");  // before anything runs: its values and its result are arrays
+                    const std::optional<std::string>& integrator, const py::object& progress) {
+  require_numpy("imcol.sweep");
+  check_progress_callable(progress, "imcol.sweep");  // before anything runs: its values and its result are arrays
   const PyScene scene = py::isinstance<py::str>(scene_arg) ? PyScene::load(scene_arg.cast<std::string>()) : scene_arg.cast<PyScene>();
   study::check_sweep_quantity(vary, "imcol.sweep", "vary");
   if (values_arg.is_none()) throw InputError("imcol.sweep", "values", "missing: give the values of " + vary + " (SI units)");
@@ -78,15 +80,16 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
 
   study::SweepResult run;
   bool liquid = false, pair = false;
-  {
-    // Reading the points' scenes and running them touch no Python object.
-    py::gil_scoped_release free;
-    const Scene base = load(overrides);
-    liquid = base.fluid.has_value();
-    pair = base.spheres.size() == 2;
-    const std::vector<Scene> scenes = study::sweep_scenes(load, overrides, base, vary, values);
-    run = study::run_sweep(scenes, vary, values, study::threads(jobs));
-  }
+  // Reading the points' scenes and running them touch no Python object.
+  call_interruptibly(
+      [&] {
+        const Scene base = load(overrides);
+        liquid = base.fluid.has_value();
+        pair = base.spheres.size() == 2;
+        const std::vector<Scene> scenes = study::sweep_scenes(load, overrides, base, vary, values);
+        run = study::run_sweep(scenes, vary, values, study::threads(jobs), interruptible_hooks());
+      },
+      progress);
   PySweepResult r = make_result(vary, run.points);
   r.result = std::move(run);
   r.liquid = liquid;
@@ -130,11 +133,12 @@ void bind_sweep(py::module_& m) {
       });
 
   m.def("sweep", &sweep, py::arg("scene"), py::arg("vary") = "velocity", py::arg("values") = py::none(), py::arg("jobs") = 0,
-        py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
+        py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(), py::arg("progress") = py::none(),
         "Runs a scene (an imcol.Scene or a scene's name) at each of `values` of `vary` (imcol.sweep_quantities()) as "
         "`imcol sweep` does, on `jobs` threads (0: all cores), the GIL released. rtol, atol, integrator: as --rtol, "
         "--atol, --integrator. Bad input raises ValueError naming the point before anything runs; a point that fails "
-        "is reported in `status` and `messages`, never raised. Returns an imcol.SweepResult.");
+        "is reported in `status` and `messages`, never raised. Ctrl-C stops the points in flight within a step "
+        "(KeyboardInterrupt). progress: None or progress(done, total, eta_s), points finished of all. Returns an imcol.SweepResult.");
 }
 
 }  // namespace imcol::python
