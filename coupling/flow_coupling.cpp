@@ -278,6 +278,7 @@ std::array<double, 2> FlowCoupling::develop_flow(const StartUp& su, const flow::
     f = step_kernel(prescribed(-su.t_pre + static_cast<double>(k) * su.dt), su.dt);
   }
   kernel_->set_block_progress(nullptr);
+  if (stop_.stop_possible()) kernel_->set_block_progress([this](long, long) { stop_.throw_if_requested(); });  // later solves
   return f;
 }
 

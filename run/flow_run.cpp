@@ -290,6 +290,8 @@ FlowRunResult FlowRun::run() {
   announce();
   write_csv_header();
   const StopToken stop = this_thread_work().stop;
+  // A step's direct solve builds the force system column by column (long on a fine grid): checked between columns too.
+  if (stop.stop_possible()) solver_.set_block_progress([stop](long, long) { stop.throw_if_requested(); });
   for (long n = 1; n <= nsteps_; ++n) {
     stop.throw_if_requested();
     if (meter_) meter_->set(static_cast<double>(n - 1), static_cast<double>(nsteps_));
