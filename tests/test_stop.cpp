@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // core/stop.hpp through the layers: a stop requested from another thread ends simulate() with Interrupted within a
 // bounded time, a sweep stopped mid-run returns cancelled with its finished points only, `imcol sweep` stopped by
-// SIGINT leaves no output folder and exits 130, and a stop never requested leaves a run's results bit-identical.
+// SIGINT leaves no output folder and exits 130, and a stop never requested leaves a run's results bit-identical;
+// run/progress_estimate.hpp's readings of a progress meter.
 #include <gtest/gtest.h>
 
 #include <signal.h>
 #include <sys/wait.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <thread>
@@ -16,6 +18,7 @@
 #include "core/timing.hpp"
 #include "core/work_scope.hpp"
 #include "imcol_process.hpp"
+#include "run/progress_estimate.hpp"
 #include "run/simulate.hpp"
 #include "study/sweep.hpp"
 
@@ -128,6 +131,31 @@ TEST(StopRequest, SigintToASweepLeavesNoFolderAndExits130) {
   EXPECT_EQ(WEXITSTATUS(status), 130);
   EXPECT_TRUE(fs::is_empty(dir)) << "a folder or a staging folder was left";
   fs::remove_all(dir);
+}
+
+TEST(ProgressReading, TheSecondsLeftFallBackOnTheMeanRateAndAreZeroAtTheEnd) {
+  const run::ProgressEstimate none;
+  EXPECT_EQ(run::eta_seconds(none, 2.0, 1.0, 4.0), 6.0);  // 2 s for 1 of 4: 6 s for the other 3
+  EXPECT_EQ(run::eta_seconds(none, 2.0, 4.0, 4.0), 0.0);
+  EXPECT_FALSE(run::eta_seconds(none, 2.0, 0.0, 4.0).has_value());
+}
+
+TEST(ProgressReading, TheFollowerReportsOnlyWhenTheWorkAdvanced) {
+  ProgressMeter meter;
+  run::ProgressFollower follower(meter);
+  EXPECT_FALSE(follower.poll().has_value());  // nothing reported yet
+  meter.set(1, 4);
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const auto p = follower.poll();
+  ASSERT_TRUE(p.has_value());
+  EXPECT_EQ(p->done, 1.0);
+  EXPECT_EQ(p->total, 4.0);
+  EXPECT_TRUE(std::isfinite(p->eta_s) && p->eta_s > 0);
+  EXPECT_FALSE(follower.poll().has_value());  // no advance since
+  meter.set(4, 4);
+  const auto last = follower.poll();
+  ASSERT_TRUE(last.has_value());
+  EXPECT_EQ(last->eta_s, 0.0);
 }
 
 }  // namespace
