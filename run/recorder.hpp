@@ -4,7 +4,8 @@
 // effects that ran (or, for sweeps, the kinematics alone), lets the model observe each row (it may end the
 // run: at rest), and shows progress. The measures of e read their own track: the integrator samples at the
 // measures' interval (measure_interval, a divisor of output.dt) and every sample is kept, so that no named
-// measure depends on output.dt.
+// measure depends on output.dt. Between steps it ends the run when this thread's work was asked to stop, and at each
+// sample it sets the work's progress meter (core/work_scope.hpp).
 #include <optional>
 #include <span>
 #include <string>
