@@ -24,6 +24,7 @@
 #include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
 #include "apps/scenes_command.hpp"
+#include "apps/sigint.hpp"
 #include "core/toml_reader.hpp"
 #include "apps/flow_command.hpp"
 #include "run/simulate.hpp"
@@ -33,6 +34,7 @@
 #include "core/errors.hpp"
 #include "core/number_text.hpp"
 #include "core/timing.hpp"
+#include "core/work_scope.hpp"
 #include "core/materials.hpp"
 #include "core/report.hpp"
 
@@ -466,10 +468,21 @@ bool known_subcommand(CLI::App& app, int argc, char** argv, bool& found) {
   return found;
 }
 
-/// The parsed command's action, with the exit status of each kind of failure.
+/// The line and exit status of a command stopped by Ctrl-C.
+int interrupted() {
+  std::cerr << "imcol: interrupted\n";
+  return kInterruptedExit;
+}
+
+/// The parsed command's action, with the exit status of each kind of failure (Ctrl-C: 130, nothing committed).
 int run_action(const std::function<int()>& action) {
+  SigintStop sigint;
+  WorkScope scope({sigint.token(), nullptr});  // Ctrl-C stops the work at its next step
   try {
-    return action();
+    const int status = action();
+    return sigint.requested() ? interrupted() : status;
+  } catch (const Interrupted&) {
+    return interrupted();
   } catch (const InputError& e) {
     std::cerr << "imcol: error: " << e.what() << "\n";
     return 2;
@@ -480,6 +493,7 @@ int run_action(const std::function<int()>& action) {
     std::cerr << "imcol: error: out of memory\n";
     return 1;
   } catch (const std::exception& e) {
+    if (sigint.requested()) return interrupted();  // a stop that a library reported as its own failure (NLopt)
     std::cerr << "imcol: error: " << e.what() << "\n";
     return 1;
   }

@@ -14,6 +14,7 @@
 #include "apps/table_csv.hpp"
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
+#include "core/work_scope.hpp"
 #include "core/report.hpp"
 
 namespace imcol {
@@ -75,6 +76,7 @@ int compare_history(const std::string& scene_path, const std::vector<Override>& 
     for (const auto& e : opt.evaluators) names.push_back(k + " / " + e);
   hooks.progress = [&](std::size_t done, std::size_t) { std::cerr << "  ran " << names[done - 1] << "\n"; };
   const study::HistoryResult res = study::compare_history(base, opt.kernels, opt.evaluators, hooks);
+  this_thread_work().stop.throw_if_requested();  // Ctrl-C: nothing printed or kept of a stopped study
 
   const HistoryFiles files = report_rows(res, base.name);
   write_file_atomic(unit.dir() / "history.csv", files.table);

@@ -16,6 +16,7 @@
 #include "apps/plot.hpp"
 #include "apps/table_csv.hpp"
 #include "core/errors.hpp"
+#include "core/work_scope.hpp"
 #include "core/report.hpp"
 #include "run/summary_json.hpp"
 #include "run/simulate.hpp"
@@ -235,6 +236,7 @@ int compare_laws(const std::string& scene_path, const std::vector<Override>& ove
   const auto load = [&](const std::vector<Override>& ov) { return load_scene(scene_path, ov); };
   const std::vector<double> values = sweeping ? sweep_values(sw) : std::vector<double>{};
   const study::LawsResult res = study::compare_laws(load, overrides, laws, sw.vary, values, true);
+  this_thread_work().stop.throw_if_requested();  // Ctrl-C: nothing printed or kept of a stopped study
   print_heading(base, sw, res);
   if (sweeping) print_sweep_table(res.rows, laws, res.values, column);
   else print_scene_table(res.rows, res.e_is);

@@ -19,9 +19,11 @@
 #include "apps/plot.hpp"
 #include "apps/table_csv.hpp"
 #include "core/errors.hpp"
+#include "core/work_scope.hpp"
 #include "core/report.hpp"
 #include "core/timing.hpp"
 #include "run/summary_json.hpp"
+#include "run/progress_estimate.hpp"
 #include "run/simulate.hpp"
 #include "run/json_util.hpp"
 
@@ -44,14 +46,18 @@ double run_cells(const std::vector<Scene>& scenes, const std::vector<double>& va
   std::size_t finished = 0, failed = 0;
   const std::size_t total = values.size() * series.size();
   const auto start = WallClock::now();
+  run::ProgressTimer timer;
   auto taken = [&](std::size_t, const HistoryCell& c) {
     ++finished;
     if (!c.ok()) ++failed;
+    const auto p = timer.at(static_cast<double>(finished), static_cast<double>(total));
     if (tty)
       std::cerr << "\r  history sweep: " << finished << "/" << total << " runs, " << failed << " failed, " << std::fixed
-                << std::setprecision(1) << seconds_since(start) << " s   " << std::defaultfloat << std::flush;
+                << std::setprecision(1) << seconds_since(start) << " s, ~" << (p ? p->eta_s : 0.0) << " s left   "
+                << std::defaultfloat << std::flush;
   };
   result = study::history_sweep(scenes, sw.vary, values, series, study::threads(jobs), {}, taken);
+  this_thread_work().stop.throw_if_requested();  // Ctrl-C: nothing printed or kept of a stopped study
   if (tty) std::cerr << "\n";
   return seconds_since(start);
 }

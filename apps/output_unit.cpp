@@ -20,6 +20,7 @@
 
 #include "core/errors.hpp"
 #include "core/report.hpp"
+#include "core/work_scope.hpp"
 
 namespace imcol {
 
@@ -283,6 +284,7 @@ fs::path OutputUnit::move_beside(const std::string& kind) {
 }
 
 void OutputUnit::commit() {
+  this_thread_work().stop.throw_if_requested();  // stopped work leaves nothing: the destructor removes the staged files
   std::error_code ec;
   write_marker(true);
 

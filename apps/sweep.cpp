@@ -19,6 +19,7 @@
 #include "apps/dem_export.hpp"
 #include "apps/format.hpp"
 #include "core/number_text.hpp"
+#include "core/work_scope.hpp"
 #include "apps/output_unit.hpp"
 #include "study/dem_fit.hpp"
 #include "study/parallel_runs.hpp"
@@ -26,6 +27,7 @@
 #include "apps/rank_inputs.hpp"
 #include "run/summary_json.hpp"
 #include "run/measured_run.hpp"
+#include "run/progress_estimate.hpp"
 #include "run/simulate.hpp"
 #include "core/errors.hpp"
 #include "core/report.hpp"
@@ -105,10 +107,9 @@ void rewrite_csv(const fs::path& file, const std::string& text, Tally& tally) {
   ++tally.csv_writes;
 }
 
-void print_progress(const SweepOptions& opt, const Tally& tally, double t) {
+void print_progress(const SweepOptions& opt, const Tally& tally, double t, const std::optional<run::Progress>& p) {
   std::cerr << "\r  sweep " << opt.vary << ": " << tally.finished << "/" << opt.points << " done, " << tally.failed << " failed, "
-            << std::fixed << std::setprecision(1) << t << " s, ~" << t / tally.finished * (opt.points - tally.finished) << " s left   "
-            << std::flush;
+            << std::fixed << std::setprecision(1) << t << " s, ~" << (p ? p->eta_s : 0.0) << " s left   " << std::flush;
 }
 
 /// This process's threads, or the MPI job's ranks (every point, rank 0's own too, then travels as bytes): the ranks
@@ -132,6 +133,7 @@ Tally run_points(const std::vector<Scene>& scenes, const std::vector<double>& va
   double last_write = -1;
   const auto start = WallClock::now();
   auto elapsed = [&] { return seconds_since(start); };
+  run::ProgressTimer timer;
   auto taken = [&](std::size_t i, const study::SweepResult& r) {
     rows[i] = csv_row(i, r.points[i]);
     ++tally.finished;
@@ -141,10 +143,11 @@ Tally run_points(const std::vector<Scene>& scenes, const std::vector<double>& va
       rewrite_csv(dir / "sweep.csv", sweep_csv(rows, column), tally);
       last_write = elapsed();
     }
-    if (tty) print_progress(opt, tally, elapsed());
+    if (tty) print_progress(opt, tally, elapsed(), timer.at(tally.finished, opt.points));
     return tally.write_error.empty();  // a failed write stops the sweep taking points
   };
   result = study::run_sweep(scenes, opt.vary, values, sweep_executor(jobs, tally), {}, taken);
+  this_thread_work().stop.throw_if_requested();  // Ctrl-C: nothing printed or kept of a stopped study
   tally.wall = elapsed();
   if (tty) std::cerr << "\n";
   return tally;

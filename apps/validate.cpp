@@ -11,6 +11,7 @@
 #include "apps/output_unit.hpp"
 #include "apps/plot.hpp"
 #include "core/errors.hpp"
+#include "core/work_scope.hpp"
 #include "core/report.hpp"
 
 namespace imcol {
@@ -118,6 +119,7 @@ int cmd_validate(const std::string& what, const ValidateOptions& opt, const std:
   OutputUnit unit(opt.out, fs::path("out") / (opt.flow ? "validate_seed_flow" : "validate_seed"));
   print_validate_legend(opt.flow);
   const ValidateResult res = study::validate_seed(opt, overrides, study::threads(1));  // one run at a time: wall times not shared
+  this_thread_work().stop.throw_if_requested();  // Ctrl-C: nothing printed or kept of a stopped study
   print_warnings(res);
   for (const auto set : {study::SpeedSet::V_Io, study::SpeedSet::St_B}) print_validate_block(res, set);
   write_file_atomic(unit.dir() / "validate_seed.csv", validate_csv(res));

@@ -17,6 +17,7 @@
 #include "apps/cluster.hpp"
 #include "run/summary_json.hpp"
 #include "core/errors.hpp"
+#include "core/work_scope.hpp"
 #include "core/report.hpp"
 
 namespace imcol {
@@ -185,6 +186,7 @@ int work_precision(const std::string& scene_path, const std::vector<Override>& o
   const study::Executor ex = cluster_executor(1);  // one run at a time per rank: wall times not shared with another run
   auto notice = [&](std::size_t i, int rank) { progress_line(plan, i, rank, i > 0 && opt.repeat > 1); };
   const WorkPrecisionResult res = study::work_precision(plan, ex, {}, notice);
+  this_thread_work().stop.throw_if_requested();  // Ctrl-C: nothing printed or kept of a stopped study
   if (!ex.deciding()) return 0;
   write_result(res, opt, *unit);
   return 0;

@@ -81,6 +81,7 @@ std::vector<flow::SphereState> FlowCoupling::frame_spheres(const Predicted& p, d
 }
 
 std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
+  stop_.throw_if_requested();
   // The frame follows the spheres' midpoint (one sphere: its centre), so the grid never loses them; with a wall
   // it is the lab (the wall is fixed in the grid, which spans the sphere's path).
   const double mid = sc_.wall ? frame_z_ : (n_ == 2 ? 0.5 * (p.z[0] + p.z[1]) : p.z[0]);
@@ -266,9 +267,10 @@ std::array<double, 2> FlowCoupling::develop_flow(const StartUp& su, const flow::
   for (std::size_t m = 0; m < n_; ++m) kernel_u_[m] = 0.0;
   std::array<double, 2> f{};
   long step_now = 0;
-  if (progress_)
+  if (progress_ || stop_.stop_possible())
     kernel_->set_block_progress([&](long col, long n) {
-      report_start_up(step_now, su.n_pre, "force system block " + std::to_string(col) + "/" + std::to_string(n));
+      stop_.throw_if_requested();
+      if (progress_) report_start_up(step_now, su.n_pre, "force system block " + std::to_string(col) + "/" + std::to_string(n));
     });
   for (long k = 1; k <= su.n_pre; ++k) {
     step_now = k;
@@ -276,6 +278,7 @@ std::array<double, 2> FlowCoupling::develop_flow(const StartUp& su, const flow::
     f = step_kernel(prescribed(-su.t_pre + static_cast<double>(k) * su.dt), su.dt);
   }
   kernel_->set_block_progress(nullptr);
+  if (stop_.stop_possible()) kernel_->set_block_progress([this](long, long) { stop_.throw_if_requested(); });  // later solves
   return f;
 }
 

@@ -29,6 +29,7 @@
 
 #include "model/collision_model.hpp"
 #include "core/timing.hpp"
+#include "core/work_scope.hpp"
 #include "core/scene.hpp"
 #include "coupling/flow_run_stats.hpp"
 #include "coupling/step_rule.hpp"
@@ -113,6 +114,7 @@ class FlowCoupling {
   std::optional<flow::FieldSeries> series_;  // with flow.fields and a sink
   double next_every_ = 0;                    // next regular snapshot (flow.fields_every), s
   std::function<void(const std::string&)> progress_;
+  StopToken stop_ = this_thread_work().stop;  // checked before every flow step and force-system column
   WallClock::time_point start_up_began_{};
   double est_before_t0_s_ = 0;  // estimated start-up and its blocks, s
   bool snap_gap_ = false, snap_contact_ = false, snap_after_ = false;

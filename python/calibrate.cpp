@@ -1,25 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // imcol.calibrate and imcol.CalibrationResult: a calibration (study/calibrate.hpp) as `imcol calibrate` runs it, on
 // this process's threads with the GIL released; calibration.csv's columns as NumPy arrays, the fitted values, their
-// intervals and profiles, the validation. progress(done, total, eta_s) after each evaluation; Ctrl-C cancels the
-// search and raises KeyboardInterrupt once its running evaluations have ended.
+// intervals and profiles, the validation. progress(done, total, eta_s) after each evaluation; Ctrl-C ends the
+// running evaluations at their next step and raises KeyboardInterrupt (python/interrupt.hpp).
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <condition_variable>
-#include <exception>
-#include <mutex>
 #include <optional>
-#include <thread>
 
 #include "core/errors.hpp"
-#include "core/timing.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "python/call.hpp"
+#include "python/interrupt.hpp"
 #include "python/scene.hpp"
 #include "study/calibrate.hpp"
 
@@ -180,63 +174,6 @@ PyCalibration make_result(const study::CalibrationInputs& in, const study::Calib
   return p;
 }
 
-/// progress(done, total, eta_s) under the GIL, eta_s from the pace so far; an exception it raises cancels the
-/// calibration and is raised again when it has returned.
-struct ProgressRelay {
-  py::object callback;
-  WallClock::time_point t0 = WallClock::now();
-  std::optional<py::error_already_set> error;  // with the GIL
-  std::atomic<bool> failed{false};             // error is set: read without the GIL
-  void operator()(std::size_t done, std::size_t total) {
-    py::gil_scoped_acquire gil;
-    if (failed) return;
-    const double t = seconds_since(t0);
-    const double eta = done ? t / static_cast<double>(done) * static_cast<double>(total - std::min(done, total)) : NAN;
-    try {
-      callback(done, total, eta);
-    } catch (py::error_already_set& e) {
-      error = e;
-      failed = true;
-    }
-  }
-};
-
-/// Runs work(hooks) on a thread of its own, the GIL released; this thread checks for signals every 0.1 s (with the
-/// GIL) and cancels the work on one. Called with the GIL held, from the main thread.
-study::CalibrationResult run_interruptibly(const std::function<study::CalibrationResult(const study::Hooks&)>& work,
-                                           study::Hooks hooks, bool& interrupted) {
-  std::atomic<bool> stop{false};
-  const auto cancelled = hooks.cancelled;
-  hooks.cancelled = [&stop, cancelled] { return stop.load() || (cancelled && cancelled()); };
-  std::mutex mu;
-  std::condition_variable cv;
-  bool finished = false;
-  study::CalibrationResult result;
-  std::exception_ptr failure;
-  py::gil_scoped_release free;
-  std::thread worker([&] {
-    try {
-      result = work(hooks);
-    } catch (...) {
-      failure = std::current_exception();
-    }
-    std::lock_guard lock(mu);
-    finished = true;
-    cv.notify_all();
-  });
-  for (std::unique_lock lock(mu); !cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return finished; });) {
-    lock.unlock();
-    {
-      py::gil_scoped_acquire gil;
-      if (!interrupted && PyErr_CheckSignals() != 0) interrupted = true, stop = true;  // the error stays set: raised below
-    }
-    lock.lock();
-  }
-  worker.join();
-  if (failure) std::rethrow_exception(failure);
-  return result;
-}
-
 /// The options as `imcol calibrate` takes them (its checks and messages), --factor and --confidence exclusive.
 study::CalibrationOptions options(const py::object& data, const py::object& fit, const py::object& window, std::optional<double> offset_max,
                                   std::optional<int> scan, int starts, int max_evals, int profile_points, std::optional<double> factor,
@@ -275,16 +212,9 @@ PyCalibration calibrate(const py::object& scene_arg, const py::object& data, con
     py::gil_scoped_release free;
     in = study::read_calibration_inputs(path, overrides, opt);
   }
-  ProgressRelay relay;
-  relay.callback = progress;
-  study::Hooks hooks;
-  if (!progress.is_none()) hooks.progress = [&relay](std::size_t done, std::size_t total) { relay(done, total); };
-  hooks.cancelled = [&relay] { return relay.failed.load(); };
-  bool interrupted = false;
-  const study::CalibrationResult r = run_interruptibly(
-      [&](const study::Hooks& h) { return study::run_calibration(in, study::threads(jobs), h); }, hooks, interrupted);
-  if (interrupted) throw py::error_already_set();
-  if (relay.error) throw *relay.error;
+  check_progress_callable(progress, "imcol.calibrate");
+  study::CalibrationResult r;
+  call_interruptibly([&] { r = study::run_calibration(in, study::threads(jobs), interruptible_hooks()); }, progress);
   return make_result(in, r);
 }
 

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include "core/errors.hpp"
+#include "core/stop.hpp"
 #include "core/toml_reader.hpp"
 #include "python/bindings.hpp"
 #include "python/call.hpp"
@@ -94,6 +95,8 @@ void bind_errors(py::module_& m) {
       py::object exc = solver_error(e.what());  // an instance, its attributes set before raising
       set_facts(exc, e.failure());
       PyErr_SetObject(solver_error.ptr(), exc.ptr());
+    } catch (const Interrupted&) {  // work stopped at a request (python/interrupt.hpp re-raises the request's own exception)
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
   });
 }

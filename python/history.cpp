@@ -9,6 +9,7 @@
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/call.hpp"
+#include "python/interrupt.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "python/table.hpp"
@@ -24,13 +25,14 @@ namespace history_impl {  // this file's helpers: named, as the module is one un
 using Names = std::optional<std::vector<std::string>>;
 
 /// The scene alone: every kernel × evaluator and none.
-PyTable history_of_scene(const Scene& base, const Names& kernels, const Names& evaluators) {
+PyTable history_of_scene(const Scene& base, const Names& kernels, const Names& evaluators, const py::object& progress) {
   study::HistoryResult r;
-  {
-    py::gil_scoped_release free;
-    r = study::compare_history(base, kernels.value_or(choice_names<KernelKind>()),
-                               evaluators.value_or(std::vector<std::string>{"soe-step", "soe", "direct"}));
-  }
+  call_interruptibly(
+      [&] {
+        r = study::compare_history(base, kernels.value_or(choice_names<KernelKind>()),
+                                   evaluators.value_or(std::vector<std::string>{"soe-step", "soe", "direct"}), interruptible_hooks());
+      },
+      progress);
   py::dict info;
   info["collision"] = r.collision;
   info["cancelled"] = r.cancelled;
@@ -39,18 +41,20 @@ PyTable history_of_scene(const Scene& base, const Names& kernels, const Names& e
 
 /// A sweep: each point with none and every kernel × evaluator (the scene's evaluator unless given).
 PyTable history_of_sweep(const study::SceneLoader& load, const std::vector<Override>& overrides, const Scene& base, const Names& kernels,
-                         const Names& evaluators, const std::string& vary, const std::vector<double>& values, int jobs) {
+                         const Names& evaluators, const std::string& vary, const std::vector<double>& values, int jobs,
+                         const py::object& progress) {
   const std::vector<std::string> ks = kernels.value_or(choice_names<KernelKind>());
   const std::vector<std::string> es = evaluators.value_or(std::vector<std::string>{});
   study::check_history_choices(ks, es);
   if (!base.has_target())
     throw InputError(base.path, "wall", "a free sphere has no collision, so no e to compare (add a [wall] or a second [[sphere]])");
   study::HistorySweepResult r;
-  {
-    py::gil_scoped_release free;
-    const std::vector<Scene> scenes = study::sweep_scenes(load, overrides, base, vary, values);
-    r = study::history_sweep(scenes, vary, values, study::history_series(ks, es, base), study::threads(jobs));
-  }
+  call_interruptibly(
+      [&] {
+        const std::vector<Scene> scenes = study::sweep_scenes(load, overrides, base, vary, values);
+        r = study::history_sweep(scenes, vary, values, study::history_series(ks, es, base), study::threads(jobs), interruptible_hooks());
+      },
+      progress);
   py::dict info;
   info["vary"] = r.vary;
   info["column"] = r.column;
@@ -60,8 +64,9 @@ PyTable history_of_sweep(const study::SceneLoader& load, const std::vector<Overr
 
 PyTable history(const py::object& scene_arg, const Names& kernels, const Names& evaluators, const std::optional<std::string>& vary,
                 const std::optional<std::vector<double>>& values, int jobs, const std::optional<py::object>& rtol,
-                const std::optional<py::object>& atol, const std::optional<std::string>& integrator) {
+                const std::optional<py::object>& atol, const std::optional<std::string>& integrator, const py::object& progress) {
   require_numpy("imcol.history_compare");
+  check_progress_callable(progress, "imcol.history_compare");
   const PyScene scene = scene_argument(scene_arg, "imcol.history_compare").cast<PyScene>();
   if (vary) {
     study::check_sweep_quantity(*vary, "imcol.history_compare", "vary");
@@ -76,8 +81,8 @@ PyTable history(const py::object& scene_arg, const Names& kernels, const Names& 
   const auto load = [&](const std::vector<Override>& ov) { return parse_scene(scene.text(), scene.path(), ov); };
   const Scene base = load(overrides);
   if (!base.fluid) throw InputError(base.path, "fluid", "the history force needs a [fluid] table");
-  if (!vary) return history_of_scene(base, kernels, evaluators);
-  return history_of_sweep(load, overrides, base, kernels, evaluators, *vary, *values, jobs);
+  if (!vary) return history_of_scene(base, kernels, evaluators, progress);
+  return history_of_sweep(load, overrides, base, kernels, evaluators, *vary, *values, jobs, progress);
 }
 
 }  // namespace history_impl
@@ -85,11 +90,12 @@ PyTable history(const py::object& scene_arg, const Names& kernels, const Names& 
 void bind_history(py::module_& m) {
   m.def("history_compare", in_call("imcol.history_compare", &history_impl::history), py::arg("scene"), py::arg("kernels") = py::none(), py::arg("evaluators") = py::none(),
         py::arg("vary") = py::none(), py::arg("values") = py::none(), py::arg("jobs") = 0, py::arg("rtol") = py::none(),
-        py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
+        py::arg("atol") = py::none(), py::arg("integrator") = py::none(), py::arg("progress") = py::none(),
         "Runs a scene (an imcol.Scene, a shipped scene's name or a scene file's path) without the history force and with each kernel (default all: "
         "imcol.history_kernels()) and evaluator (default soe-step, soe, direct) as `imcol history` does, one after the "
         "other; with `vary` and `values`, at each value of that quantity on `jobs` threads (0: all cores), the evaluator "
-        "the scene's unless given. The GIL is released while they run. Returns an imcol.StudyTable: history.csv's "
+        "the scene's unless given. The GIL is released while they run; Ctrl-C stops the runs in flight within a step (KeyboardInterrupt). "
+        "progress: None or progress(done, total, eta_s), runs finished of all. Returns an imcol.StudyTable: history.csv's "
         "columns, or history_sweep.csv's with `vary`.");
 }
 

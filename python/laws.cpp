@@ -8,6 +8,7 @@
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/call.hpp"
+#include "python/interrupt.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "python/table.hpp"
@@ -34,8 +35,9 @@ py::dict laws_info(const study::LawsResult& r) {
 
 PyTable laws(const py::object& scene_arg, const std::optional<std::vector<std::string>>& names, const std::optional<std::string>& vary,
              const std::optional<std::vector<double>>& values, const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
-             const std::optional<std::string>& integrator) {
+             const std::optional<std::string>& integrator, const py::object& progress) {
   require_numpy("imcol.laws");
+  check_progress_callable(progress, "imcol.laws");
   const PyScene scene = scene_argument(scene_arg, "imcol.laws").cast<PyScene>();
   const std::vector<std::string> chosen = study::laws_to_compare(names.value_or(std::vector<std::string>{}), "imcol.laws", "laws");
   if (vary) {
@@ -49,10 +51,9 @@ PyTable laws(const py::object& scene_arg, const std::optional<std::vector<std::s
   for (auto& o : solver_overrides(rtol, atol, integrator)) overrides.push_back(o);
   const auto load = [&](const std::vector<Override>& ov) { return parse_scene(scene.text(), scene.path(), ov); };
   study::LawsResult r;
-  {
-    py::gil_scoped_release free;  // the runs touch no Python object
-    r = study::compare_laws(load, overrides, chosen, vary.value_or(""), values.value_or(std::vector<double>{}));
-  }
+  call_interruptibly(  // the runs touch no Python object
+      [&] { r = study::compare_laws(load, overrides, chosen, vary.value_or(""), values.value_or(std::vector<double>{}), false, interruptible_hooks()); },
+      progress);
   return make_table("laws", study::laws_table(r), laws_info(r));
 }
 
@@ -61,9 +62,11 @@ PyTable laws(const py::object& scene_arg, const std::optional<std::vector<std::s
 void bind_laws(py::module_& m) {
   m.def("laws", in_call("imcol.laws", &laws_impl::laws), py::arg("scene"), py::arg("laws") = py::none(), py::arg("vary") = py::none(),
         py::arg("values") = py::none(), py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
+        py::arg("progress") = py::none(),
         "Runs a scene (an imcol.Scene, a shipped scene's name or a scene file's path) once per contact law (`laws`, default every shipped law: "
         "imcol.contact_laws()) as `imcol laws` does; with `vary` and `values`, at each value of that quantity "
-        "(imcol.sweep_quantities()). The runs go one after the other, the GIL released. A law that refuses the scene "
+        "(imcol.sweep_quantities()). The runs go one after the other, the GIL released; Ctrl-C stops the run in flight within a step "
+        "(KeyboardInterrupt). progress: None or progress(done, total, eta_s), runs finished of all. A law that refuses the scene "
         "or fails gets a row saying why. Returns an imcol.StudyTable: laws.csv's columns (info: e_is, e_dry, "
         "delta_ss_m, laws, vary, column).");
 }

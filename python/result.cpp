@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/call.hpp"
+#include "python/interrupt.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "run/simulate.hpp"
@@ -65,16 +66,14 @@ Recording recording_from(const std::string& record) {
 
 std::shared_ptr<PyResult> run(const py::object& scene_arg, const std::optional<py::object>& rtol,
                               const std::optional<py::object>& atol, const std::optional<std::string>& integrator,
-                              const std::string& record) {
+                              const std::string& record, const py::object& progress) {
   const Recording rec = recording_from(record);
+  check_progress_callable(progress, "imcol.run");
   const py::object scene = scene_argument(scene_arg, "imcol.run");  // a given Scene itself: its snapshot kept
   const auto sc = scene.cast<const PyScene&>().snapshot(solver_overrides(rtol, atol, integrator));  // no copy without options
   auto out = std::make_shared<PyResult>();
-  {
-    py::gil_scoped_release free;
-    // No sink: a coupled run computes no flow fields (nothing would keep them).
-    out->run = simulate(*sc, false, rec);
-  }
+  // No sink: a coupled run computes no flow fields (nothing would keep them).
+  call_interruptibly([&] { out->run = simulate(*sc, false, rec); }, progress);
   return out;
 }
 
@@ -151,10 +150,11 @@ void bind_run(py::module_& m) {
   add_summary_view(result);
 
   m.def("run", in_call("imcol.run", &run), py::arg("scene"), py::arg("rtol") = py::none(), py::arg("atol") = py::none(),
-        py::arg("integrator") = py::none(), py::arg("record") = "full",
+        py::arg("integrator") = py::none(), py::arg("record") = "full", py::arg("progress") = py::none(),
         "Runs a scene (an imcol.Scene, a shipped scene's name or a scene file's path) as `imcol run` does (rtol, atol, integrator: as --rtol, --atol, --integrator). record: \"full\" "
         "(forces in the trajectory) or \"kinematics\" (positions, velocities and events only, faster). The GIL is "
-        "released while it runs. Raises ValueError (bad input) or imcol.SolverError.");
+        "released while it runs; Ctrl-C stops it within a step (KeyboardInterrupt). progress: None or "
+        "progress(done, total, eta_s), simulated s of t_end. Raises ValueError (bad input) or imcol.SolverError.");
 }
 
 }  // namespace imcol::python

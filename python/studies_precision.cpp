@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/call.hpp"
+#include "python/interrupt.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "python/table.hpp"
@@ -99,8 +100,9 @@ std::vector<double> doubles_or(const std::optional<std::vector<double>>& v, cons
 PyWorkPrecision work_precision(const py::object& scene_arg, const std::optional<std::vector<double>>& rtols,
                                const std::optional<std::vector<std::string>>& integrators, const std::optional<std::vector<std::string>>& evaluators,
                                int repeat, const std::optional<std::vector<double>>& direct_steps, double direct_rtol, double ref_rtol,
-                               double ref_history_tolerance, bool add_history, int jobs) {
+                               double ref_history_tolerance, bool add_history, int jobs, const py::object& progress) {
   require_numpy("imcol.work_precision");
+  check_progress_callable(progress, "imcol.work_precision");
   const PyScene scene = scene_argument(scene_arg, "imcol.work_precision").cast<PyScene>();
   if (scene.scene().has(Effect::flow))
     throw InputError("imcol.work_precision", "scene", "a coupled scene: its ladders are the grid and the flow step (imcol work-precision)");
@@ -113,11 +115,12 @@ PyWorkPrecision work_precision(const py::object& scene_arg, const std::optional<
   opt.direct_rtol = direct_rtol, opt.ref_rtol = ref_rtol, opt.ref_history_tol = ref_history_tolerance;
   opt.repeat = repeat, opt.add_history = add_history;
   PyWorkPrecision r;
-  {
-    py::gil_scoped_release free;  // the runs touch no Python object
-    const study::WorkPrecisionPlan plan = study::plan_work_precision(scene.scene(), opt);
-    r.result = study::work_precision(plan, study::threads(jobs));
-  }
+  call_interruptibly(  // the runs touch no Python object
+      [&] {
+        const study::WorkPrecisionPlan plan = study::plan_work_precision(scene.scene(), opt);
+        r.result = study::work_precision(plan, study::threads(jobs), interruptible_hooks());
+      },
+      progress);
   static_cast<PyTable&>(r) = make_table<study::WorkPrecisionRow, study::WorkPrecisionRow>(
       study::work_precision_columns(r.result.metric), r.result.rows, [](const study::WorkPrecisionRow& row) { return row; });
   add_work_precision_blocks(r);
@@ -126,18 +129,17 @@ PyWorkPrecision work_precision(const py::object& scene_arg, const std::optional<
 
 PyValidate validate_seed(const std::optional<std::vector<std::string>>& models, bool flow, double tolerance, int jobs,
                          const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
-                         const std::optional<std::string>& integrator) {
+                         const std::optional<std::string>& integrator, const py::object& progress) {
   require_numpy("imcol.validate_seed");
+  check_progress_callable(progress, "imcol.validate_seed");
   if (jobs < 0) throw InputError("imcol.validate_seed", "jobs", "must be >= 0 (0 = all cores)");
   study::ValidateOptions opt;
   opt.flow = flow, opt.tolerance = tolerance;
   if (models) opt.models = *models;
   const std::vector<Override> overrides = solver_overrides(rtol, atol, integrator);
   PyValidate r;
-  {
-    py::gil_scoped_release free;  // the runs touch no Python object
-    r.result = study::validate_seed(opt, overrides, study::threads(jobs));
-  }
+  call_interruptibly([&] { r.result = study::validate_seed(opt, overrides, study::threads(jobs), interruptible_hooks()); },
+                     progress);  // the runs touch no Python object
   const study::ValidateResult& res = r.result;
   static_cast<PyTable&>(r) = make_table<study::ValidateRow, study::ValidateCell>(
       study::validate_columns(res.flow), res.rows, [&res](const study::ValidateRow& row) { return study::ValidateCell{res, row}; });
@@ -189,10 +191,12 @@ void bind_studies_precision(py::module_& m) {
   m.def("work_precision", in_call("imcol.work_precision", &work_precision), py::arg("scene"), py::arg("rtols") = py::none(), py::arg("integrators") = py::none(),
         py::arg("evaluators") = py::none(), py::arg("repeat") = 3, py::arg("direct_steps") = py::none(), py::arg("direct_rtol") = 1e-10,
         py::arg("ref_rtol") = 1e-13, py::arg("ref_history_tolerance") = 1e-11, py::arg("add_history") = false, py::arg("jobs") = 1,
+        py::arg("progress") = py::none(),
         "What accuracy costs, as `imcol work-precision` measures it on a collision scene (an imcol.Scene, a shipped scene's name or a scene file's path): an rtol "
         "ladder per integrator and history evaluator (the direct evaluator: a ladder of its step) against a reference at the "
         "tightest settings, `repeat` runs per rung (median wall time), on `jobs` threads (1: wall times not shared), the GIL "
-        "released. Returns an imcol.WorkPrecisionResult.");
+        "released; Ctrl-C stops the runs in flight within a step (KeyboardInterrupt). progress: None or progress(done, total, "
+        "eta_s), runs finished of all. Returns an imcol.WorkPrecisionResult.");
 
   py::class_<PyValidate> val(m, "ValidateResult",
                              "The seed's Table 6.1 against imcol: one row per run, model and speed set, as NumPy arrays, one per "
@@ -206,10 +210,12 @@ void bind_studies_precision(py::module_& m) {
       });
   m.def("validate_seed", in_call("imcol.validate_seed", &validate_seed), py::arg("models") = py::none(), py::arg("flow") = false, py::arg("tolerance") = 0.05,
         py::arg("jobs") = 0, py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
+        py::arg("progress") = py::none(),
         "The seed's Table 6.1 run as `imcol validate seed` runs it: each run with each model (\"seed\", \"asymptotic\"; None: "
         "both), reduced-order and with flow=True also coupled, at V_Io and at the speed that gives the printed St_B; on `jobs` "
-        "threads (0: all cores), the GIL released. rtol, atol, integrator: as --rtol, --atol, --integrator. Returns an "
-        "imcol.ValidateResult.");
+        "threads (0: all cores), the GIL released; Ctrl-C stops the runs in flight within a step (KeyboardInterrupt). rtol, "
+        "atol, integrator: as --rtol, --atol, --integrator. progress: None or progress(done, total, eta_s), runs finished "
+        "of all. Returns an imcol.ValidateResult.");
 }
 
 }  // namespace imcol::python

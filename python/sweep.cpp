@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "python/bindings.hpp"
 #include "python/call.hpp"
+#include "python/interrupt.hpp"
 #include "python/convert.hpp"
 #include "python/scene.hpp"
 #include "python/sweep.hpp"
@@ -64,8 +65,9 @@ std::vector<double> values_from(const py::handle& values) {
 
 PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const py::object& values_arg, int jobs,
                     const std::optional<py::object>& rtol, const std::optional<py::object>& atol,
-                    const std::optional<std::string>& integrator) {
+                    const std::optional<std::string>& integrator, const py::object& progress) {
   require_numpy("imcol.sweep");  // before anything runs: its values and its result are arrays
+  check_progress_callable(progress, "imcol.sweep");
   const PyScene scene = scene_argument(scene_arg, "imcol.sweep").cast<PyScene>();
   study::check_sweep_quantity(vary, "imcol.sweep", "vary");
   if (values_arg.is_none()) throw InputError("imcol.sweep", "values", "None: give the values of " + vary + " (SI units)");
@@ -80,15 +82,16 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
 
   study::SweepResult run;
   bool liquid = false, pair = false;
-  {
-    // Reading the points' scenes and running them touch no Python object.
-    py::gil_scoped_release free;
-    const Scene base = load(overrides);
-    liquid = base.fluid.has_value();
-    pair = base.spheres.size() == 2;
-    const std::vector<Scene> scenes = study::sweep_scenes(load, overrides, base, vary, values);
-    run = study::run_sweep(scenes, vary, values, study::threads(jobs));
-  }
+  // Reading the points' scenes and running them touch no Python object.
+  call_interruptibly(
+      [&] {
+        const Scene base = load(overrides);
+        liquid = base.fluid.has_value();
+        pair = base.spheres.size() == 2;
+        const std::vector<Scene> scenes = study::sweep_scenes(load, overrides, base, vary, values);
+        run = study::run_sweep(scenes, vary, values, study::threads(jobs), interruptible_hooks());
+      },
+      progress);
   PySweepResult r = make_result(vary, run.points);
   r.result = std::move(run);
   r.liquid = liquid;
@@ -133,11 +136,12 @@ void bind_sweep(py::module_& m) {
       });
 
   m.def("sweep", in_call("imcol.sweep", &sweep), py::arg("scene"), py::arg("vary") = "velocity", py::kw_only(), py::arg("values"), py::arg("jobs") = 0,
-        py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(),
+        py::arg("rtol") = py::none(), py::arg("atol") = py::none(), py::arg("integrator") = py::none(), py::arg("progress") = py::none(),
         "Runs a scene (an imcol.Scene, a shipped scene's name or a scene file's path) at each of `values` (required, by keyword) of `vary` (imcol.sweep_quantities()) as "
         "`imcol sweep` does, on `jobs` threads (0: all cores), the GIL released. rtol, atol, integrator: as --rtol, "
         "--atol, --integrator. Bad input raises ValueError naming the point before anything runs; a point that fails "
-        "is reported in `status` and `messages`, never raised. Returns an imcol.SweepResult.");
+        "is reported in `status` and `messages`, never raised. Ctrl-C stops the points in flight within a step "
+        "(KeyboardInterrupt). progress: None or progress(done, total, eta_s), points finished of all. Returns an imcol.SweepResult.");
 }
 
 }  // namespace imcol::python

@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "core/timing.hpp"
+#include "core/work_scope.hpp"
 #include "flow/cost.hpp"
 #include "flow/solver.hpp"
 #include "run/flow_references.hpp"
@@ -126,6 +127,7 @@ class FlowRun {
   long steps_done_ = 0;
   double basset_err_ = 0, osc_err_ = 0, osc_amp_ = 0;
   bool basset_any_ = false;
+  ProgressMeter* const meter_ = this_thread_work().meter;  // flow steps of all
 };
 
 FlowRun::FlowRun(const flow::FlowScene& sc, const FlowRunOptions& opt, const flow::FileSink& files)
@@ -287,8 +289,14 @@ bool FlowRun::advance(long n) {
 FlowRunResult FlowRun::run() {
   announce();
   write_csv_header();
-  for (long n = 1; n <= nsteps_; ++n)
+  const StopToken stop = this_thread_work().stop;
+  // A step's direct solve builds the force system column by column (long on a fine grid): checked between columns too.
+  if (stop.stop_possible()) solver_.set_block_progress([stop](long, long) { stop.throw_if_requested(); });
+  for (long n = 1; n <= nsteps_; ++n) {
+    stop.throw_if_requested();
+    if (meter_) meter_->set(static_cast<double>(n - 1), static_cast<double>(nsteps_));
     if (!advance(n)) break;
+  }
   const double wall_total = seconds_since(t0_);
   if (sc_.snapshots > 0 && snap_ < sc_.snapshots) take_snapshot();  // stopped early: one last snapshot
   if (series_) series_->finish();

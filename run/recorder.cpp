@@ -131,6 +131,7 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
       min_gap_ = std::min(min_gap_, kin.gap);
       add_to_track(t, kin);
     }
+    if (meter_) meter_->set(t, sc_.solver.t_end);
     if (progress_) show_progress(t);
     return;
   }
@@ -140,6 +141,7 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
   if (model_.has_target()) add_to_track(t, ev);
   rows_.push_back(make_row(t, ev, at_event));
   model_.observe(t, ev);  // its watchers may end the run: at rest on the wall, or moving with its partner
+  if (meter_) meter_->set(t, sc_.solver.t_end);
   if (progress_) show_progress(t);
   if (model_.has_target()) {
     min_gap_ = std::min(min_gap_, ev.gap);
@@ -225,24 +227,6 @@ void Recorder::show_progress(double t) {
   last_ = WallClock::now();
   shown_ = true;
   std::cerr << "\r  " << progress_text(t, sc_.solver.t_end, steps_, run, estimate_.seconds_left(sc_.solver.t_end)) << "   " << std::flush;
-}
-
-void ProgressEstimate::add(double wall, double t) {
-  // Keep the newest point and, as the anchor of the rate, the newest one at least kWindow older than it.
-  if (!points_.empty() && wall - points_.back().first < 0.05) {
-    points_.back() = {wall, t};  // closer than 50 ms: replace, so that the deque stays short
-  } else {
-    points_.emplace_back(wall, t);
-  }
-  while (points_.size() > 2 && wall - points_[1].first >= kWindow) points_.pop_front();
-}
-
-std::optional<double> ProgressEstimate::seconds_left(double t_end) const {
-  if (points_.size() < 2) return std::nullopt;
-  const auto& [w0, t0] = points_.front();
-  const auto& [w1, t1] = points_.back();
-  if (!(t1 > t0) || !(w1 > w0)) return std::nullopt;
-  return std::max(0.0, t_end - t1) * (w1 - w0) / (t1 - t0);
 }
 
 std::string progress_text(double t, double t_end, long steps, double elapsed, std::optional<double> left) {

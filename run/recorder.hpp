@@ -4,8 +4,8 @@
 // effects that ran (or, for sweeps, the kinematics alone), lets the model observe each row (it may end the
 // run: at rest), and shows progress. The measures of e read their own track: the integrator samples at the
 // measures' interval (measure_interval, a divisor of output.dt) and every sample is kept, so that no named
-// measure depends on output.dt.
-#include <deque>
+// measure depends on output.dt. Between steps it ends the run when this thread's work was asked to stop, and at each
+// sample it sets the work's progress meter (core/work_scope.hpp).
 #include <optional>
 #include <span>
 #include <string>
@@ -17,28 +17,14 @@
 #include "core/scene.hpp"
 #include "core/system.hpp"
 #include "core/timing.hpp"
+#include "core/work_scope.hpp"
+#include "run/progress_estimate.hpp"
 
 namespace imcol::run {
 
 /// The interval (s) at which the integrator samples a run: output.dt divided by the smallest whole number that brings it
 /// to at most the contact_ends window at an upper bound of the impact speed over measure.samples_per_window.
 double measure_interval(const model::CollisionModel& model, const Scene& sc);
-
-/// The wall time left to t_end, projected from the rate (simulated s per wall s) over the last kWindow s of wall time:
-/// remaining = (t_end − t) · Δwall / Δt over that window. An estimate, not a bound: the step size can shrink later
-/// (a contact, a stiff resting contact, the direct history evaluator's cost growing with the run), and the run can
-/// stop before t_end (e measured, at rest).
-class ProgressEstimate {
- public:
-  static constexpr double kWindow = 3.0;  // s of wall time
-  /// Simulated time t reached `wall` s after t = 0 (both non-decreasing).
-  void add(double wall, double t);
-  /// Wall seconds to t_end at the recent rate; none before the simulated time has advanced.
-  std::optional<double> seconds_left(double t_end) const;
-
- private:
-  std::deque<std::pair<double, double>> points_;  // (wall s, t s): the newest, and the last one at least kWindow older
-};
 
 /// The progress line's text: "t = … s of t_end … s (… %), N steps, … s elapsed, about … s left to t_end" (no "left" part
 /// without an estimate).
@@ -53,7 +39,11 @@ class Recorder : public Observer {
 
   void sample(double t, std::span<const double> y, bool at_event) override;
   void quadratures(std::span<const double> q) override;
-  void stepped(long steps) override { steps_ = steps; }
+  /// After each accepted step: ends the run (throws Interrupted) when this thread's work was asked to stop.
+  void stepped(long steps) override {
+    steps_ = steps;
+    stop_.throw_if_requested();
+  }
   /// With forces and the history force: a row at the end of every accepted step while the gap is below 3 δ_SS
   /// (contact_rows), where the history force peaks faster than output.dt resolves. Otherwise nothing.
   void step_end(double t, std::span<const double> y) override;
@@ -97,6 +87,8 @@ class Recorder : public Observer {
   WallClock::time_point start_ = WallClock::now(), last_ = start_;
   WallClock::time_point t0_ = start_;  // when t = 0 was sampled: the projection counts from there
   ProgressEstimate estimate_;
+  const StopToken stop_ = this_thread_work().stop;
+  ProgressMeter* const meter_ = this_thread_work().meter;  // simulated s of t_end, at every sample
   bool sampled_ = false;
   const bool contact_rows_on_;  // step_end keeps rows (forces, a contact and the history force)
   const double contact_zone_;   // m: 3 δ_SS, the gap below which step_end keeps rows

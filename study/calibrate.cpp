@@ -161,7 +161,9 @@ CalibrationResult run_calibration(const CalibrationInputs& in, const Executor& e
     r.stage_times.end[static_cast<std::size_t>(s)] = seconds_since(t0);
     if (watch.items) watch.items(s, done, n, evaluations, best);
   };
-  const calib::Stopped stopped = hooks.cancelled ? calib::Stopped([&hooks] { return hooks.cancel_requested(); }) : calib::Stopped();
+  // The caller's cancel, or the stop request its runs see (core/work_scope.hpp): the search hands out no more.
+  const StopToken stop = run_control(hooks).stop;
+  const calib::Stopped stopped = [&hooks, stop] { return hooks.cancel_requested() || stop.stop_requested(); };
   r.search = calib::search(in.params, start, evaluate, in.search, executor_runner(ex, hooks, store), items, stopped);
   r.wall_s = seconds_since(t0);
   r.cancelled = r.search.stopped;

@@ -7,16 +7,27 @@
 #include <functional>
 #include <string>
 
+#include "core/work_scope.hpp"
+
 namespace imcol::study {
 
 /// What the caller of a study sees while it runs: progress(done, total) after each finished run, in one thread at a
 /// time; cancelled() before each run is handed out: true hands out no further runs (those started finish) and the
-/// study returns what finished, with its `cancelled` flag set.
+/// study returns what finished, with its `cancelled` flag set. `stop` reaches the runs in flight too: each ends at its
+/// next step (core/stop.hpp) and is dropped, and the study returns what finished, cancelled. Without `stop`, the stop
+/// request of the calling thread's work (core/work_scope.hpp) does the same.
 struct Hooks {
   std::function<void(std::size_t done, std::size_t total)> progress;
   std::function<bool()> cancelled;
-  bool cancel_requested() const { return cancelled && cancelled(); }
+  StopToken stop;
+  bool cancel_requested() const { return stop.stop_requested() || (cancelled && cancelled()); }
 };
+
+/// The work control of a study's runs: the hooks' stop (else the calling thread's), no progress meter (a study
+/// reports finished runs through Hooks::progress, not a run's simulated time).
+inline WorkControl run_control(const Hooks& hooks) {
+  return {hooks.stop.stop_possible() ? hooks.stop : this_thread_work().stop, nullptr};
+}
 
 /// The contract of apps/cluster.hpp's run_distributed: work(i) for every i < n on every process, each on `jobs`
 /// threads; done(i, bytes, rank) on the deciding process (rank 0) alone, one call at a time; done returns false to

@@ -112,9 +112,15 @@ HistoryResult compare_history(const Scene& base, const std::vector<std::string>&
   std::vector<std::pair<std::string, std::string>> runs = {{"none", "-"}};
   for (const auto& k : kernels)
     for (const auto& e : evaluators) runs.emplace_back(k, e);
+  WorkScope scope(run_control(hooks));  // a stop request ends the run in flight; its row is dropped
   for (const auto& [k, e] : runs) {
     if ((r.cancelled = hooks.cancel_requested())) break;
-    r.rows.push_back(run_history(base, r.collision, k, e));
+    try {
+      r.rows.push_back(run_history(base, r.collision, k, e));
+    } catch (const Interrupted&) {
+      r.cancelled = true;
+      break;
+    }
     if (hooks.progress) hooks.progress(r.rows.size(), runs.size());
   }
   compare_with_direct(r.rows);  // reference of each kernel: its direct evaluation

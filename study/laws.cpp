@@ -118,13 +118,19 @@ LawsResult compare_laws(const SceneLoader& load, const std::vector<Override>& ov
   if (sweep) r.vary = vary, r.column = sweep_column(vary);
   r.values = sweep ? values : std::vector<double>{NAN};
   const std::size_t total = r.values.size() * laws.size();
+  WorkScope scope(run_control(hooks));  // a stop request ends the run in flight; its row is dropped
   for (std::size_t i = 0; i < r.values.size() && !r.cancelled; ++i) {
     auto ov = overrides;
     if (sweep)
       for (auto& o : sweep_overrides(base, vary, r.values[i])) ov.push_back(o);
     for (const auto& law : laws) {
       if ((r.cancelled = hooks.cancel_requested())) break;
-      r.rows.push_back(run_law(load, ov, law, progress));
+      try {
+        r.rows.push_back(run_law(load, ov, law, progress));
+      } catch (const Interrupted&) {
+        r.cancelled = true;
+        break;
+      }
       if (sweep) {  // its trajectory is not kept
         LawRun& row = r.rows.back();
         row.point = static_cast<int>(i);

@@ -7,6 +7,10 @@ import numpy as np
 
 from ._summary import Bounce, Contact, Event, Flow, Fluid, Solver, Summary, Velocities
 
+# progress(done, total, eta_s): called on the calling thread while a long call runs (a run: simulated s of t_end;
+# a study: runs finished of all); an exception raised in it stops the work and propagates.
+Progress = Callable[[float, float, float], object]
+
 __version__: str
 
 class SolverError(RuntimeError):
@@ -110,7 +114,7 @@ class Result:
     setup_time_s: float
 
 def run(scene: _SceneArg, rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None,
-        record: str = "full") -> Result: ...
+        record: str = "full", progress: Optional[Progress] = None) -> Result: ...
 
 class SweepResult:
     """A sweep's points: sweep.csv's columns as NumPy arrays (every column is also an attribute)."""
@@ -135,7 +139,8 @@ class SweepResult:
     def __dir__(self) -> List[str]: ...
 
 def sweep(scene: _SceneArg, vary: str = "velocity", *, values: Sequence[float], jobs: int = 0,
-          rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None) -> SweepResult: ...
+          rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None,
+          progress: Optional[Progress] = None) -> SweepResult: ...
 
 class WorkPrecisionResult:
     """A work-precision ladder: work_precision.csv's columns as NumPy arrays (every column is also an attribute)."""
@@ -171,7 +176,7 @@ class StudyTable:
 def work_precision(scene: _SceneArg, rtols: Optional[Sequence[float]] = None, integrators: Optional[Sequence[str]] = None,
                    evaluators: Optional[Sequence[str]] = None, repeat: int = 3, direct_steps: Optional[Sequence[float]] = None,
                    direct_rtol: float = 1e-10, ref_rtol: float = 1e-13, ref_history_tolerance: float = 1e-11,
-                   add_history: bool = False, jobs: int = 1) -> WorkPrecisionResult: ...
+                   add_history: bool = False, jobs: int = 1, progress: Optional[Progress] = None) -> WorkPrecisionResult: ...
 
 class ValidateResult:
     """The seed's Table 6.1 against imcol: validate_seed.csv's columns as NumPy arrays (every column is also an attribute)."""
@@ -189,15 +194,17 @@ class ValidateResult:
     def __dir__(self) -> List[str]: ...
 
 def validate_seed(models: Optional[Sequence[str]] = None, flow: bool = False, tolerance: float = 0.05, jobs: int = 0,
-                  rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None) -> ValidateResult: ...
+                  rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None,
+                  progress: Optional[Progress] = None) -> ValidateResult: ...
 
 def laws(scene: _SceneArg, laws: Optional[Sequence[str]] = None, vary: Optional[str] = None,
          values: Optional[Sequence[float]] = None, rtol: Optional[float] = None, atol: Optional[float] = None,
-         integrator: Optional[str] = None) -> StudyTable: ...
+         integrator: Optional[str] = None, progress: Optional[Progress] = None) -> StudyTable: ...
 
 def history_compare(scene: _SceneArg, kernels: Optional[Sequence[str]] = None, evaluators: Optional[Sequence[str]] = None,
                     vary: Optional[str] = None, values: Optional[Sequence[float]] = None, jobs: int = 0,
-                    rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None) -> StudyTable: ...
+                    rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None,
+                    progress: Optional[Progress] = None) -> StudyTable: ...
 
 def dem_fit(sweep: SweepResult) -> StudyTable: ...
 
