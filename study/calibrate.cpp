@@ -13,6 +13,7 @@
 
 #include "calibrate/fit_parameter.hpp"
 #include "core/timing.hpp"
+#include "core/work_scope.hpp"
 #include "study/parallel_runs.hpp"
 
 namespace imcol::study {
@@ -161,8 +162,10 @@ CalibrationResult run_calibration(const CalibrationInputs& in, const Executor& e
     r.stage_times.end[static_cast<std::size_t>(s)] = seconds_since(t0);
     if (watch.items) watch.items(s, done, n, evaluations, best);
   };
-  // The caller's cancel, or the stop request its runs see (core/work_scope.hpp): the search hands out no more.
-  const StopToken stop = run_control(hooks).stop;
+  // The runs on this thread (the local search's, the fitted run, the validation) see the caller's stop request and
+  // leave its progress meter to Hooks::progress. The caller's cancel, or that stop: the search hands out no more.
+  WorkScope scope(run_control(hooks));
+  const StopToken stop = this_thread_work().stop;
   const calib::Stopped stopped = [&hooks, stop] { return hooks.cancel_requested() || stop.stop_requested(); };
   r.search = calib::search(in.params, start, evaluate, in.search, executor_runner(ex, hooks, store), items, stopped);
   r.wall_s = seconds_since(t0);
