@@ -138,7 +138,8 @@ def main():
     failures += check_extension(found["extension"], [src, pathlib.Path(args.source).resolve()])
     print(f"pip install --no-build-isolation: {seconds:.0f} s; e = {found['e']!r}; {len(found['scenes'])} scenes")
     if failures:
-        sys.exit("python_install:\n  " + "\n  ".join(failures))
+        sys.exit("python_install:\n  " + "\n  ".join(failures))  # the scratch folder kept, to look into
+    shutil.rmtree(work)  # the venv holds a copy of pip and setuptools: not left in the build tree
     print("python_install: 0 failed")
 
 
