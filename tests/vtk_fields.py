@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Reads imcol's VTK flow fields with VTK itself (vtkXMLMultiBlockDataReader) and checks what a viewer shows.
 
-Coarse coupled runs (a sphere onto a wall, gondret_st27; a pair, gg3462), every snapshot of flow.pvd:
+Coarse coupled runs (a sphere onto a wall, gondret_st27; a pair, gg3462) and a coarse `imcol flow` scene with a wall
+(its sphere above it), every snapshot of flow.pvd:
 (a) no visible cell (vtkGhostType without HIDDENCELL) has its centre inside a solid (either sphere set, beyond the
     wall), and the ghost array is exactly "covered by a finer level, or centre inside a solid", computed here from the
     levels' extents and the bodies' blocks; VTK's vtkDataSetSurfaceFilter and RemoveGhostCells drop exactly the
@@ -206,10 +207,12 @@ def check_velocity(levels, what):
                 fail(f"{what} level {lv}: no point array {name}")
 
 
-def check_folder(out, data):
-    times = [float(e.get("timestep")) for e in ET.parse(out / "flow.pvd").getroot().iter("DataSet")]
-    files = [e.get("file") for e in ET.parse(out / "flow.pvd").getroot().iter("DataSet")]
-    traj = read_trajectory(out / "trajectory.csv")
+def check_folder(out, data, coupled=True):
+    """Every snapshot of out/flow.pvd; a coupled run's contact snapshot against trajectory.csv (`imcol flow` has no
+    trajectory: its two sphere blocks are the same)."""
+    root = ET.parse(out / "flow.pvd").getroot()
+    times, files = [float(e.get("timestep")) for e in root.iter("DataSet")], [e.get("file") for e in root.iter("DataSet")]
+    traj = read_trajectory(out / "trajectory.csv") if coupled else None
     contact = None
     for t, f in zip(times, files):
         levels, b = snapshot(out / f)
@@ -217,18 +220,19 @@ def check_folder(out, data):
         if b["time_s"] != t:
             fail(f"{what}: field data time_s {b['time_s']} != the .pvd's {t}")
         check_velocity(levels, what)
-        hidden = check_levels(levels, b, what)
-        if hidden == 0:
+        if check_levels(levels, b, what) == 0:
             fail(f"{what}: no hidden cell")
-        if Path(f).stem == "flow_contact":
+        if coupled and Path(f).stem == "flow_contact":
             contact = check_trajectory(b, traj, t, what)
-    if contact is None:
+        if not coupled and b["spheres"] != b["kernel_spheres"]:
+            fail(f"{what}: prescribed motion, yet the trajectory's spheres differ from the kernel's")
+    if coupled and contact is None:
         fail(f"{out.name}: no contact snapshot")
     state = out / "flow.py"
     if not state.is_file() or state.read_bytes() != (data / "paraview/flow.py").read_bytes():
         fail(f"{out.name}: flow.py missing or not data/paraview/flow.py")
     py_compile.compile(str(state), cfile=str(out / "flow.pyc"), doraise=True)
-    print(f"{out.name}: {len(times)} snapshots checked; gap at contact {contact:.4g} D")
+    print(f"{out.name}: {len(times)} snapshots checked" + (f"; gap at contact {contact:.4g} D" if coupled else ""))
 
 
 def run(cmd):
@@ -256,6 +260,10 @@ def main():
         run([a.imcol, "run", str(pair), "--out", str(out), "--no-plot", "--quiet", "--set", "flow.cells_per_diameter=8",
              "--set", 'flow.fields_format="vtk"', "--set", "flow.dt=6e-3", "--set", "output.dt=6e-3"])
         check_folder(out, data)
+        out = Path(tmp) / "flow"  # prescribed motion, the sphere above its wall
+        run([a.imcol, "flow", str(data / "scenes/flow/sphere_wall_approach_re0.1.toml"), "--out", str(out), "--no-plot",
+             "--cells", "8", "--levels", "3", "--t-end", "0.5", "--dt", "0.05"])
+        check_folder(out, data, coupled=False)
     print("vtk_fields: OK")
 
 
