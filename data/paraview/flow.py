@@ -14,7 +14,8 @@ import os
 import sys
 
 from paraview.simple import (ColorBy, ExtractBlock, GetActiveViewOrCreate, GetAnimationScene, GetColorTransferFunction,
-                             GetOpacityTransferFunction, PVDReader, Reflect, Render, SaveScreenshot, SetActiveSource, Show)
+                             GetOpacityTransferFunction, GroupDatasets, PVDReader, Reflect, Render, SaveScreenshot,
+                             SetActiveSource, Show, Transform)
 
 
 def folder():
@@ -37,13 +38,19 @@ def velocity_range(source, times):
 
 
 def pipeline(pvd):
-    """The series, its mirror image joined to it (the axis r = 0 is the plane x = 0), split into levels and bodies."""
+    """The series split into levels and bodies, each joined to its mirror image about the axis (r = 0: the plane
+    x = 0). The levels by Reflect; the bodies by a transform x → −x, since Reflect reorders a polyline's points (the
+    mirrored half circle would gain a chord along the axis)."""
     reader = PVDReader(registrationName="flow.pvd", FileName=pvd)
-    plane = Reflect(registrationName="full plane", Input=reader)
-    plane.Plane = "X"
-    plane.CopyInput = 1
-    levels = ExtractBlock(registrationName="levels", Input=plane, Selectors=["/Root/levels"])
-    bodies = ExtractBlock(registrationName="bodies", Input=plane, Selectors=["/Root/bodies"])
+    half = ExtractBlock(registrationName="levels half", Input=reader, Selectors=["/Root/levels"])
+    levels = Reflect(registrationName="levels", Input=half)
+    levels.Plane = "X"
+    levels.CopyInput = 1
+    outlines = ExtractBlock(registrationName="bodies half", Input=reader, Selectors=["/Root/bodies"])
+    mirror = Transform(registrationName="bodies mirrored", Input=outlines)
+    mirror.Transform = "Transform"
+    mirror.Transform.Scale = [-1.0, 1.0, 1.0]
+    bodies = GroupDatasets(registrationName="bodies", Input=[outlines, mirror])
     return reader, levels, bodies
 
 
