@@ -4,7 +4,7 @@ colours |velocity| (m/s) over a range fixed for the whole series, draws the sphe
 (x, z) plane (the axis is z).
 
     pvpython DIR/flow.py                      build the pipeline (and render when a display is available)
-    pvpython DIR/flow.py --screenshot F.png   also save a picture of the first snapshot
+    pvpython DIR/flow.py --screenshot F.png   also save a picture of the first snapshot (no display: xvfb-run -a)
     pvpython DIR/flow.py --no-render          the pipeline only, no view (IMCOL_PV_NO_RENDER=1 does the same)
     ParaView: File > Load State > DIR/flow.py (Python state)
 
