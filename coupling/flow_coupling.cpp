@@ -350,7 +350,13 @@ void FlowCoupling::report_start_up(long step, long n_pre, const std::string& doi
   progress_(os.str());
 }
 
-flow::SnapshotFrame FlowCoupling::lab_frame() const { return {frame_z_, frame_u_, -t_pre_}; }
+flow::SnapshotFrame FlowCoupling::lab_frame() const {
+  flow::SnapshotFrame f{frame_z_, frame_u_, -t_pre_, {}};
+  for (std::size_t m = 0; m < n_; ++m) f.trajectory.push_back({radius_[m], traj_z_[m], traj_u_[m]});
+  return f;
+}
+
+void FlowCoupling::note_trajectory(std::span<const double> y) { model_.sphere_states(y, traj_z_, traj_u_); }
 
 void FlowCoupling::take_snapshot(const std::string& name, const std::string& label) {
   series_->take(*kernel_, lab_frame(), name, label);
@@ -437,6 +443,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
   watch.check_kernel_force(0.0, dt, acting(start_force_, integ.state()), integ.state());
   double t = 0;
   long n = 0;
+  note_trajectory(integ.state());
   start_series();
   while (!integ.finished()) {
     const double t1 = static_cast<double>(n + 1) * dt;
@@ -460,9 +467,8 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
     stats_.steps = n;
     watch.check_step(t_start, t, u0, integ.state());
     stats_.max_energy_ratio = watch.max_energy_ratio();
-    std::array<double, 2> z{}, u{};
-    model_.sphere_states(integ.state(), z, u);
-    maybe_snapshot(t, gap_of(z));
+    note_trajectory(integ.state());
+    maybe_snapshot(t, gap_of(traj_z_));
     if (t < t1 - 1e-12 * std::max(1.0, t1) && !integ.finished())
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }

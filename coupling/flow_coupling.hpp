@@ -94,7 +94,10 @@ class FlowCoupling {
   /// integ.advance(t1) timed; a failure after the flow fed the spheres energy is named as the coupling's.
   double advance(Integrator& integ, const DivergenceWatch& watch, double t1);
   std::array<double, 2> acting(const std::array<double, 2>& f_rest, std::span<const double> y) const;  // (1 − H) f_rest
-  flow::SnapshotFrame lab_frame() const;  // the kernel's fields seen from the lab, times from the collision's t = 0
+  /// The kernel's fields seen from the lab, times from the collision's t = 0, with the spheres where the trajectory
+  /// has them (note_trajectory: the ODE state at the end of the flow step, the stop time at the run's end).
+  flow::SnapshotFrame lab_frame() const;
+  void note_trajectory(std::span<const double> y);  // the model's sphere positions and velocities for the snapshots
 
   model::CollisionModel& model_;
   const Scene& sc_;
@@ -112,6 +115,7 @@ class FlowCoupling {
   FlowRunStats stats_;
   flow::FileSink sink_;
   std::optional<flow::FieldSeries> series_;  // with flow.fields and a sink
+  std::array<double, 2> traj_z_{}, traj_u_{};  // the spheres as the model has them at the last step's end (lab)
   double next_every_ = 0;                    // next regular snapshot (flow.fields_every), s
   std::function<void(const std::string&)> progress_;
   StopToken stop_ = this_thread_work().stop;  // checked before every flow step and force-system column

@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "flow/field_series.hpp"
 
+#include <filesystem>
+
+#include "core/data_dir.hpp"
+#include "core/text_file.hpp"
 #include "core/timing.hpp"
 #include "flow/snapshot.hpp"
 
@@ -27,7 +31,11 @@ void FieldSeries::take(const Solver& s, const SnapshotFrame& frame, const std::s
 
 void FieldSeries::finish() {
   const auto t0 = WallClock::now();
-  if (vtk() && !entries_.empty()) sink_("flow.pvd", vtk_series(entries_));
+  if (vtk() && !entries_.empty()) {
+    sink_("flow.pvd", vtk_series(entries_));
+    const std::string state = data_dir() + "/paraview/flow.py";  // a ParaView state opening flow.pvd beside it
+    if (std::filesystem::is_regular_file(state)) sink_("flow.py", read_text_file(state, "ParaView state", 1 << 20, "Python"));
+  }
   seconds_ += seconds_since(t0);
 }
 

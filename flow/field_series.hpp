@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A run's flow-field snapshots as files: each snapshot as NAME.csv (flow/snapshot.hpp) and/or vtk/NAME.vtm with its
-// levels and bodies (flow/vtk.hpp), and at the end flow.pvd, the time series of the .vtm files. The files go to a
+// levels and bodies (flow/vtk.hpp), and at the end flow.pvd, the time series of the .vtm files, with flow.py beside it
+// (data/paraview/flow.py: a ParaView state that opens it). The files go to a
 // sink as they are made (a run with many snapshots holds none of them), names relative to the output folder.
 #include <functional>
 #include <string>
@@ -23,7 +24,7 @@ class FieldSeries {
   /// One snapshot of the solver's present fields seen from `frame`. The VTK files are written once per kernel step:
   /// a second snapshot at the same step writes its CSV only (the time series would repeat a time).
   void take(const Solver& s, const SnapshotFrame& frame, const std::string& name, const std::string& label);
-  /// Writes flow.pvd (with VTK output and at least one snapshot). Call once, after the last snapshot.
+  /// Writes flow.pvd and flow.py (with VTK output and at least one snapshot). Call once, after the last snapshot.
   void finish();
   bool csv() const { return format_ != FieldsFormat::vtk; }
   bool vtk() const { return format_ != FieldsFormat::csv; }

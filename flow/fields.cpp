@@ -31,11 +31,11 @@ LevelFields fields_of(const Solver& s, std::size_t l, const SnapshotFrame& f, st
       else ur[k] = 0.5 * (urf(i, j - 1) + urf(i, j));
     }
   // One line per field: the CSV gains a column, the VTK files an array.
-  out.fields.push_back({"psi", "stream_function", -1, std::move(psi)});
-  out.fields.push_back({"omega", "vorticity", -1, std::move(om)});
-  out.fields.push_back({"u_r", "velocity", 0, std::move(ur)});
-  out.fields.push_back({"u_z", "velocity", 1, std::move(uz)});
-  out.fields.push_back({"p", "pressure", -1, std::move(p)});
+  out.fields.push_back({"psi", "stream_function_m3_s", -1, std::move(psi)});
+  out.fields.push_back({"omega", "vorticity_1_s", -1, std::move(om)});
+  out.fields.push_back({"u_r", "velocity_m_s", 0, std::move(ur)});
+  out.fields.push_back({"u_z", "velocity_m_s", 1, std::move(uz)});
+  out.fields.push_back({"p", "pressure_Pa", -1, std::move(p)});
   return out;
 }
 

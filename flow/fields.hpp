@@ -14,9 +14,12 @@
 namespace imcol::flow {
 
 /// Where the fields are seen from: the kernel's frame is at z_shift (m) and moves at u_frame (m/s) in the lab; t_shift (s)
-/// is added to the kernel's time. The defaults write the kernel's own frame.
+/// is added to the kernel's time. The defaults write the kernel's own frame. `trajectory`: the spheres where the
+/// collision model has them at the snapshot (lab z, m; lab u, m/s), drawn and blanked beside the kernel's
+/// (flow/bodies.hpp); empty: where the kernel holds them.
 struct SnapshotFrame {
   double z_shift = 0, u_frame = 0, t_shift = 0;
+  std::vector<SphereState> trajectory;
 };
 
 /// One field at every vertex of a level.

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "flow/snapshot.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
 #include "core/number_text.hpp"
+#include "flow/bodies.hpp"
 
 namespace imcol::flow {
 
@@ -28,6 +30,13 @@ void write_level(std::string& os, int l, const LevelFields& L) {
     }
 }
 
+/// The comment line's tail: the spheres where the trajectory has them and the true surface gap (with a wall or a pair).
+void append_trajectory(std::ostream& os, const SnapshotBodies& b) {
+  os << "; trajectory spheres (z, d) =";
+  for (const auto& sp : b.spheres) os << " " << sp.z << " " << 2 * sp.radius;
+  if (std::isfinite(b.gap())) os << "; gap = " << b.gap() << " m = " << b.gap() / b.diameter() << " D";
+}
+
 }  // namespace
 
 std::string snapshot_csv(const Solver& s, const SnapshotFrame& f, const std::string& label) {
@@ -41,6 +50,7 @@ std::string snapshot_csv(const Solver& s, const std::vector<LevelFields>& levels
      << " s; level 0 is the finest; psi is the total Stokes streamfunction (m^3/s); z_shift = " << f.z_shift
      << " m; spheres (z, d) =";
   for (const auto& b : s.spheres()) os << " " << b.z + f.z_shift << " " << 2 * b.radius;
+  append_trajectory(os, snapshot_bodies(s, f));
   os << "\n";
   os << "level,r,z";
   if (!levels.empty())

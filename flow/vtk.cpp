@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/number_text.hpp"
+#include "flow/hidden_cells.hpp"
 
 namespace imcol::flow {
 
@@ -69,36 +70,58 @@ class Appended {
 /// 17 significant digits: a double read back is the same double.
 void append_exact(std::string& out, double v) { append_number(out, v, 17); }
 
-std::string spheres_vtp(const Solver& s, const SnapshotFrame& f, const std::string& label) {
+/// A point (r, 0, z) of the axisymmetric plane, ASCII.
+void append_rz(std::string& out, double r, double z) {
+  append_exact(out, r);
+  out += " 0 ";
+  append_exact(out, z);
+  out += '\n';
+}
+
+std::string field_number(const char* name, double v) {
+  std::string out = std::string("<DataArray type=\"Float64\" Name=\"") + name + "\" NumberOfTuples=\"1\" format=\"ascii\">";
+  append_exact(out, v);
+  return out + "</DataArray>\n";
+}
+
+/// Field data of every file of a snapshot: time_s, and the gaps where there is one (gap_m, gap_D the trajectory's;
+/// kernel_gap_m, kernel_gap_D where the kernel holds its spheres; D the first sphere's diameter). Numbers only:
+/// meshio refuses string arrays (the label is in each file's comment).
+std::string field_data(const SnapshotInfo& in) {
+  std::string out = "<FieldData>\n" + field_number("time_s", in.time);
+  const SnapshotBodies& b = *in.bodies;
+  if (std::isfinite(b.gap()))
+    out += field_number("gap_m", b.gap()) + field_number("gap_D", b.gap() / b.diameter()) + field_number("kernel_gap_m", b.kernel_gap()) +
+           field_number("kernel_gap_D", b.kernel_gap() / b.diameter());
+  return out + "</FieldData>\n";
+}
+
+std::string spheres_vtp(const std::vector<SphereState>& sph, const SnapshotInfo& in, const char* which) {
   constexpr int kSegments = 64;  // per semicircle
-  const auto& sph = s.spheres();
   const std::size_t n = sph.size();
   std::string pts, conn, offs, diam, vel;
   for (std::size_t b = 0; b < n; ++b) {
-    const double a = sph[b].radius, zc = sph[b].z + f.z_shift;
+    const double a = sph[b].radius, zc = sph[b].z;
     for (int k = 0; k <= kSegments; ++k) {
       const double th = M_PI * k / kSegments;  // from the south pole (r = 0, z = zc − a) round to the north pole
-      append_exact(pts, k == 0 || k == kSegments ? 0.0 : a * std::sin(th));
-      pts += ' ';
-      append_exact(pts, zc - a * std::cos(th));
-      pts += " 0\n";
+      append_rz(pts, k == 0 || k == kSegments ? 0.0 : a * std::sin(th), zc - a * std::cos(th));
       conn += std::to_string(b * (kSegments + 1) + k) + (k == kSegments ? "\n" : " ");
     }
     offs += std::to_string((b + 1) * (kSegments + 1)) + " ";
     append_exact(diam, 2 * a);
     diam += ' ';
-    vel += "0 ";
-    append_exact(vel, sph[b].u + f.u_frame);
-    vel += " 0\n";
+    vel += "0 0 ";
+    append_exact(vel, sph[b].u);
+    vel += '\n';
   }
   std::ostringstream os;
-  os << file_head("PolyData") << "<!-- imcol: the spheres at " << xml_text(label)
-     << "; (x, y) = (r, z) m; diameter m; velocity m/s seen from the same frame as the flow fields -->\n"
-     << "<PolyData>\n<Piece NumberOfPoints=\"" << n * (kSegments + 1) << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
-     << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
-     << "<CellData Scalars=\"diameter\" Vectors=\"velocity\">\n"
-     << "<DataArray type=\"Float64\" Name=\"diameter\" format=\"ascii\">\n" << diam << "\n</DataArray>\n"
-     << "<DataArray type=\"Float64\" Name=\"velocity\" NumberOfComponents=\"3\" format=\"ascii\">\n" << vel << "</DataArray>\n"
+  os << file_head("PolyData") << "<!-- imcol: the spheres " << which << " at " << xml_text(in.label)
+     << "; (x, y, z) = (r, 0, z) m; diameter_m; velocity_m_s (0, 0, u) seen from the same frame as the flow fields -->\n"
+     << "<PolyData>\n" << field_data(in) << "<Piece NumberOfPoints=\"" << n * (kSegments + 1)
+     << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+     << "<CellData Scalars=\"diameter_m\" Vectors=\"velocity_m_s\">\n"
+     << "<DataArray type=\"Float64\" Name=\"diameter_m\" format=\"ascii\">\n" << diam << "\n</DataArray>\n"
+     << "<DataArray type=\"Float64\" Name=\"velocity_m_s\" NumberOfComponents=\"3\" format=\"ascii\">\n" << vel << "</DataArray>\n"
      << "</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n" << pts << "</DataArray>\n</Points>\n"
      << "<Lines>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n" << conn << "</DataArray>\n"
      << "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n" << offs << "\n</DataArray>\n</Lines>\n"
@@ -106,20 +129,15 @@ std::string spheres_vtp(const Solver& s, const SnapshotFrame& f, const std::stri
   return os.str();
 }
 
-std::string wall_vtp(const Solver& s, const SnapshotFrame& f, const std::string& label) {
-  const auto& gc = s.levels().back().g;
+std::string wall_vtp(const std::vector<LevelFields>& levels, const SnapshotInfo& in) {
+  const auto& gc = levels.back().g;
   std::string pts;
-  const double zw = *s.settings().wall_z + f.z_shift;
-  for (double r : {0.0, gc.r(gc.nr)}) {
-    append_exact(pts, r);
-    pts += ' ';
-    append_exact(pts, zw);
-    pts += " 0\n";
-  }
+  for (double r : {0.0, gc.r(gc.nr)}) append_rz(pts, r, *in.bodies->wall_z);
   std::ostringstream os;
-  os << file_head("PolyData") << "<!-- imcol: the no-slip wall at " << xml_text(label)
-     << "; (x, y) = (r, z) m, from the axis to the coarsest level's radius -->\n"
-     << "<PolyData>\n<Piece NumberOfPoints=\"2\" NumberOfVerts=\"0\" NumberOfLines=\"1\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+  os << file_head("PolyData") << "<!-- imcol: the no-slip wall at " << xml_text(in.label)
+     << "; (x, y, z) = (r, 0, z) m, from the axis to the coarsest level's radius -->\n"
+     << "<PolyData>\n" << field_data(in)
+     << "<Piece NumberOfPoints=\"2\" NumberOfVerts=\"0\" NumberOfLines=\"1\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
      << "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n" << pts << "</DataArray>\n</Points>\n"
      << "<Lines>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n0 1\n</DataArray>\n"
      << "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n2\n</DataArray>\n</Lines>\n"
@@ -127,7 +145,7 @@ std::string wall_vtp(const Solver& s, const SnapshotFrame& f, const std::string&
   return os.str();
 }
 
-/// The point data's arrays: vectors first (their components gathered as (r, z, 0)), then the scalars, in the
+/// The point data's arrays: vectors first (their components gathered as (r, 0, z)), then the scalars, in the
 /// fields' order; the vectors' names and the first scalar's.
 struct PointArrays {
   std::string xml;
@@ -144,7 +162,7 @@ PointArrays point_arrays(const LevelFields& L, Appended& ap) {
     std::vector<double> v(3 * np, 0.0);
     for (const auto& f : L.fields)
       if (f.name == name)
-        for (std::size_t k = 0; k < np; ++k) v[3 * k + f.component] = f.values[k];
+        for (std::size_t k = 0; k < np; ++k) v[3 * k + 2 * f.component] = f.values[k];  // r → x, z → z
     out.xml += ap.array(name, 3, v);
   }
   for (const auto& f : L.fields)
@@ -155,7 +173,7 @@ PointArrays point_arrays(const LevelFields& L, Appended& ap) {
   return out;
 }
 
-/// The vertices as (r, z, 0).
+/// The vertices as (r, 0, z).
 std::vector<double> vertex_xyz(const LevelFields& L) {
   const auto& g = L.g;
   std::vector<double> xyz(3 * g.size(), 0.0);
@@ -163,24 +181,21 @@ std::vector<double> vertex_xyz(const LevelFields& L) {
     for (int j = 0; j <= g.nz; ++j) {
       const std::size_t k = g.at(i, j);
       xyz[3 * k] = L.r(i);
-      xyz[3 * k + 1] = L.z(j);
+      xyz[3 * k + 2] = L.z(j);
     }
   return xyz;
 }
 
-/// Quads counter-clockwise in (r, z); cell data: the level, and whether the next finer level covers the cell.
-/// Int32 indices: a level has far fewer than 2³¹ vertices (flow/cost.hpp refuses grids beyond half the memory).
+/// Quads counter-clockwise in (r, z) seen from −y. Int32 indices: a level has far fewer than 2³¹ vertices
+/// (flow/cost.hpp refuses grids beyond half the memory).
 struct QuadCells {
   std::vector<std::int32_t> conn, offsets;
-  std::vector<std::uint8_t> types, finer, lev;
+  std::vector<std::uint8_t> types;
 };
 
-QuadCells quad_cells(const std::vector<LevelFields>& levels, std::size_t level) {
-  const auto& g = levels[level].g;
+QuadCells quad_cells(const LevelGeometry& g) {
   const std::size_t nc = static_cast<std::size_t>(g.nr) * g.nz;
-  QuadCells q{std::vector<std::int32_t>(4 * nc), std::vector<std::int32_t>(nc), std::vector<std::uint8_t>(nc, 9),  // 9: VTK_QUAD
-              std::vector<std::uint8_t>(nc, 0), std::vector<std::uint8_t>(nc, static_cast<std::uint8_t>(level))};
-  const LevelGeometry* fg = level > 0 ? &levels[level - 1].g : nullptr;
+  QuadCells q{std::vector<std::int32_t>(4 * nc), std::vector<std::int32_t>(nc), std::vector<std::uint8_t>(nc, 9)};  // 9: VTK_QUAD
   std::size_t c = 0;
   for (int i = 0; i < g.nr; ++i)
     for (int j = 0; j < g.nz; ++j, ++c) {
@@ -190,37 +205,36 @@ QuadCells quad_cells(const std::vector<LevelFields>& levels, std::size_t level) 
       q.conn[4 * c + 2] = r + 1;
       q.conn[4 * c + 3] = p + 1;
       q.offsets[c] = static_cast<std::int32_t>(4 * (c + 1));
-      if (fg) {
-        const double rc = g.r(i + 0.5), zc = g.z(j + 0.5);
-        q.finer[c] = rc < fg->r(fg->nr) && zc > fg->z0 && zc < fg->z(fg->nz);
-      }
     }
   return q;
 }
 
 }  // namespace
 
-std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level, const std::string& label) {
+std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level, const SnapshotInfo& in) {
   const LevelFields& L = levels[level];
   const auto& g = L.g;
   const std::size_t np = g.size(), nc = static_cast<std::size_t>(g.nr) * g.nz;
   Appended ap;
   const PointArrays pd = point_arrays(L, ap);
-  const QuadCells q = quad_cells(levels, level);
-  const std::string cell_data = ap.array("level", 1, q.lev) + ap.array("finer", 1, q.finer);
+  const QuadCells q = quad_cells(g);
+  const CellFlags flags = cell_flags(levels, level, *in.bodies);
+  const std::string cell_data = ap.array("level", 1, std::vector<std::uint8_t>(nc, static_cast<std::uint8_t>(level))) +
+                                ap.array("finer", 1, flags.finer) + ap.array("vtkGhostType", 1, flags.ghost);
   const std::string points = ap.array("", 3, vertex_xyz(L));
   const std::string cells = ap.array("connectivity", 1, q.conn) + ap.array("offsets", 1, q.offsets) + ap.array("types", 1, q.types);
 
   std::ostringstream os;
   os << file_head("UnstructuredGrid") << "<!-- imcol: flow fields, level " << level << " (0 the finest, spacing " << std::setprecision(17)
-     << g.h << " m), " << xml_text(label)
-     << "; (x, y) = (r, z) m; velocity (u_r, u_z, 0) m/s, stream_function (total Stokes streamfunction) m^3/s, vorticity 1/s; "
-        "cell data: level, finer = 1 where a finer level covers the cell -->\n"
-     << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << np << "\" NumberOfCells=\"" << nc << "\">\n"
+     << g.h << " m), " << xml_text(in.label)
+     << "; (x, y, z) = (r, 0, z) m; velocity_m_s (u_r, 0, u_z), stream_function_m3_s (total Stokes streamfunction), vorticity_1_s, "
+        "pressure_Pa (p - p_inf); cell data: level, finer = 1 where a finer level covers the cell, vtkGhostType = 32 (hidden) "
+        "where a finer level covers the cell or its centre is inside a solid -->\n"
+     << "<UnstructuredGrid>\n" << field_data(in) << "<Piece NumberOfPoints=\"" << np << "\" NumberOfCells=\"" << nc << "\">\n"
      << "<PointData";
   if (!pd.vectors.empty()) os << " Vectors=\"" << pd.vectors.front() << "\"";
   if (!pd.first_scalar.empty()) os << " Scalars=\"" << pd.first_scalar << "\"";
-  os << ">\n" << pd.xml << "</PointData>\n<CellData Scalars=\"finer\">\n" << cell_data << "</CellData>\n<Points>\n" << points
+  os << ">\n" << pd.xml << "</PointData>\n<CellData Scalars=\"level\">\n" << cell_data << "</CellData>\n<Points>\n" << points
      << "</Points>\n<Cells>\n" << cells << "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
   std::string out = os.str();
   out += ap.blob();
@@ -230,21 +244,25 @@ std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level,
 
 std::vector<NamedText> snapshot_vtk(const Solver& s, const std::vector<LevelFields>& levels, const SnapshotFrame& f,
                                     const std::string& stem, const std::string& label) {
+  const SnapshotBodies bodies = snapshot_bodies(s, f);
+  const SnapshotInfo in{s.time() + f.t_shift, label, &bodies};
   std::vector<NamedText> out;
   std::ostringstream vtm;
   vtm << file_head("vtkMultiBlockDataSet") << "<!-- imcol: flow fields at " << xml_text(label) << ", t = " << std::setprecision(17)
-      << s.time() + f.t_shift << " s -->\n<vtkMultiBlockDataSet>\n<Block index=\"0\" name=\"levels\">\n";
+      << in.time << " s -->\n<vtkMultiBlockDataSet>\n<Block index=\"0\" name=\"levels\">\n";
   for (std::size_t l = 0; l < levels.size(); ++l) {
     const std::string name = stem + "_level" + std::to_string(l) + ".vtu";
-    out.push_back({name, level_vtu(levels, l, label)});
+    out.push_back({name, level_vtu(levels, l, in)});
     vtm << "<DataSet index=\"" << l << "\" name=\"level " << l << "\" file=\"" << xml_text(name) << "\"/>\n";
   }
   vtm << "</Block>\n<Block index=\"1\" name=\"bodies\">\n";
-  out.push_back({stem + "_spheres.vtp", spheres_vtp(s, f, label)});
+  out.push_back({stem + "_spheres.vtp", spheres_vtp(bodies.spheres, in, "where the trajectory has them")});
   vtm << "<DataSet index=\"0\" name=\"spheres\" file=\"" << xml_text(out.back().name) << "\"/>\n";
-  if (s.settings().wall_z) {
-    out.push_back({stem + "_wall.vtp", wall_vtp(s, f, label)});
-    vtm << "<DataSet index=\"1\" name=\"wall\" file=\"" << xml_text(out.back().name) << "\"/>\n";
+  out.push_back({stem + "_kernel_spheres.vtp", spheres_vtp(bodies.kernel_spheres, in, "where the flow kernel holds them")});
+  vtm << "<DataSet index=\"1\" name=\"kernel_spheres\" file=\"" << xml_text(out.back().name) << "\"/>\n";
+  if (bodies.wall_z) {
+    out.push_back({stem + "_wall.vtp", wall_vtp(levels, in)});
+    vtm << "<DataSet index=\"2\" name=\"wall\" file=\"" << xml_text(out.back().name) << "\"/>\n";
   }
   vtm << "</Block>\n</vtkMultiBlockDataSet>\n</VTKFile>\n";
   out.insert(out.begin(), {stem + ".vtm", vtm.str()});

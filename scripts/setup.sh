@@ -13,6 +13,8 @@
 # pybind11-dev (with python3-dev) builds the Python module imcol into build/python/ (CMake option IMCOL_PYTHON);
 # python3-pip, -setuptools, -wheel and -venv: `pip install --no-build-isolation .` in a venv (ctest python_install);
 # python3-nbclient and python3-ipykernel run the example notebook in the tests.
+# python3-vtk9: VTK's own reader checks the flow fields' files (ctest vtk_fields). Debian's paraview (pvpython, for the
+# flow.py state beside flow.pvd) is left out: its python3-paraview conflicts with python3-vtk9 (and provides `vtk`).
 # libopenmpi-dev and openmpi-bin: `mpirun -np N imcol sweep` over N ranks (CMake option IMCOL_MPI; docs/cluster.md);
 # libnlopt-cxx-dev: NLopt, the bounded derivative-free local search of the calibration (required).
 set -euo pipefail
@@ -101,7 +103,7 @@ if [[ $(id -u) -eq 0 ]] && command -v apt-get >/dev/null; then
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends \
     cmake ninja-build g++ dpkg-dev libeigen3-dev libfftw3-dev libcli11-dev libtomlplusplus-dev \
-    nlohmann-json3-dev libgtest-dev libbenchmark-dev libcerf-dev python3-matplotlib python3-meshio \
+    nlohmann-json3-dev libgtest-dev libbenchmark-dev libcerf-dev python3-matplotlib python3-meshio python3-vtk9 \
     pybind11-dev python3-dev python3-numpy python3-pytest python3-pip python3-setuptools python3-wheel python3-venv \
     python3-nbclient python3-ipykernel python3-nbformat \
     libopenmpi-dev openmpi-bin libnlopt-cxx-dev >/dev/null

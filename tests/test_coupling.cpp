@@ -430,6 +430,8 @@ TEST(Coupling, FlowFieldsAreComputedOnlyForASink) {
   EXPECT_GE(w["field_snapshots"].get<int>(), 2);  // at least the contact and the end
   EXPECT_NE(std::find(names.begin(), names.end(), "flow_end.csv"), names.end());
   EXPECT_NE(std::find(names.begin(), names.end(), "flow.pvd"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "flow.py"), names.end());  // the ParaView state beside it
+  EXPECT_NE(std::find(names.begin(), names.end(), "vtk/flow_contact_kernel_spheres.vtp"), names.end());
   EXPECT_EQ(s["field_snapshots"].get<int>(), 0);
   EXPECT_EQ(s["fields_time_s"].get<double>(), 0.0);
   EXPECT_EQ(silent.summary_json["e"].get<double>(), written.summary_json["e"].get<double>());

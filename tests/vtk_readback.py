@@ -4,12 +4,14 @@
 
 Runs imcol into a temporary folder (a coarse coupled run with regular snapshots, a coarse `imcol flow` scene with a
 wall), then for every snapshot written in both formats: meshio (Debian's python3-meshio) reads each level's .vtu;
-the point count, the coordinates (x, y, z) = (r, z, 0) and every field (velocity = (u_r, u_z, 0), stream_function =
-psi, vorticity = omega) must equal the CSV's rows of that level. The .vtu arrays are binary Float64, the CSV prints
-9 significant digits: each value must agree to 5e-9 of its size (half a unit in the 9th digit), zeros exactly.
+the point count, the coordinates (x, y, z) = (r, 0, z) and every field (velocity_m_s = (u_r, 0, u_z),
+stream_function_m3_s = psi, vorticity_1_s = omega, pressure_Pa = p) must equal the CSV's rows of that level. The
+.vtu arrays are binary Float64, the CSV prints 9 significant digits: each value must agree to 5e-9 of its size
+(half a unit in the 9th digit), zeros exactly.
 The .pvd and .vtm files are parsed as XML (stdlib): every file they name exists, the times increase and match the
-CSV's; the `finer` cell field marks exactly the cells a finer level covers; the spheres and the wall are where the
-CSV's comment line and summary.json put them. Needs /usr/bin/python3 with python3-meshio and python3-numpy.
+CSV's; the `finer` cell field marks exactly the cells a finer level covers; the kernel's spheres, the trajectory's
+spheres and the wall are where the CSV's comment line and summary.json put them.
+Needs /usr/bin/python3 with python3-meshio and python3-numpy.
 """
 import argparse
 import json
@@ -50,8 +52,9 @@ def read_csv(path):
     cols = lines[1].split(",")
     rows = np.array([[float(x) for x in ln.split(",")] for ln in lines[2:]])
     t = float(re.search(r"t = (\S+) s;", head).group(1))
-    z_d = [float(x) for x in head.split("spheres (z, d) =")[1].split()]
-    return head, cols, rows, t, list(zip(z_d[0::2], z_d[1::2]))
+    z_d = [float(x) for x in head.split("; spheres (z, d) =")[1].split(";")[0].split()]
+    tz_d = [float(x) for x in head.split("; trajectory spheres (z, d) =")[1].split(";")[0].split()]
+    return head, cols, rows, t, {"kernel_spheres": list(zip(z_d[0::2], z_d[1::2])), "spheres": list(zip(tz_d[0::2], tz_d[1::2]))}
 
 
 def xml_files(path):
@@ -64,9 +67,15 @@ def xml_files(path):
     return root, sets
 
 
-def check_bodies(out, vtm_sets, vtm, spheres, wall_z):
+def check_bodies(out, vtm_sets, vtm, sets, wall_z):
     files = {s.get("name"): vtm.parent / s.get("file") for s in vtm_sets}
-    root = ET.parse(files["spheres"]).getroot()
+    for block, spheres in sets.items():
+        check_spheres(files[block], vtm, spheres)
+    check_wall(files, vtm, wall_z)
+
+
+def check_spheres(path, vtm, spheres):
+    root = ET.parse(path).getroot()
     pts = np.array(root.find(".//Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
     offsets = np.array(root.find(".//Lines/DataArray[@Name='offsets']").text.split(), dtype=int)
     if len(offsets) != len(spheres):
@@ -75,8 +84,13 @@ def check_bodies(out, vtm_sets, vtm, spheres, wall_z):
     for (zc, d), end in zip(spheres, offsets):
         p = pts[start:end]
         start = end
-        if abs(p[:, 1].min() - (zc - d / 2)) > 1e-8 * d or abs(p[:, 1].max() - (zc + d / 2)) > 1e-8 * d or abs(p[:, 0].max() - d / 2) > 1e-8 * d:
-            fail(f"{vtm.name}: a sphere's polyline spans z {p[:, 1].min()}..{p[:, 1].max()}, r up to {p[:, 0].max()}; the CSV says z = {zc}, d = {d}")
+        if abs(p[:, 2].min() - (zc - d / 2)) > 1e-8 * d or abs(p[:, 2].max() - (zc + d / 2)) > 1e-8 * d or abs(p[:, 0].max() - d / 2) > 1e-8 * d:
+            fail(f"{path.name}: a sphere's polyline spans z {p[:, 2].min()}..{p[:, 2].max()}, r up to {p[:, 0].max()}; the CSV says z = {zc}, d = {d}")
+        if np.any(p[:, 1] != 0):
+            fail(f"{path.name}: a sphere's polyline leaves the plane y = 0")
+
+
+def check_wall(files, vtm, wall_z):
     if wall_z is None:
         if "wall" in files:
             fail(f"{vtm.name}: a wall dataset without a wall")
@@ -84,8 +98,8 @@ def check_bodies(out, vtm_sets, vtm, spheres, wall_z):
         if "wall" not in files:
             fail(f"{vtm.name}: no wall dataset")
         w = np.array(ET.parse(files["wall"]).getroot().find(".//Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
-        if not np.allclose(w[:, 1], wall_z, rtol=0, atol=1e-12 * max(1.0, abs(wall_z))):
-            fail(f"{vtm.name}: the wall is at z = {w[:, 1]}, expected {wall_z}")
+        if not np.allclose(w[:, 2], wall_z, rtol=0, atol=1e-12 * max(1.0, abs(wall_z))):
+            fail(f"{vtm.name}: the wall is at z = {w[:, 2]}, expected {wall_z}")
 
 
 def check_folder(out, wall_z):
@@ -106,7 +120,7 @@ def check_folder(out, wall_z):
         csv_path = out / (vtm.stem + ".csv")
         if not csv_path.is_file():
             continue
-        head, cols, rows, t_csv, spheres = read_csv(csv_path)
+        head, cols, rows, t_csv, sphere_sets = read_csv(csv_path)
         if cols[:3] != ["level", "r", "z"] or not {"psi", "omega", "u_r", "u_z"} <= set(cols):
             fail(f"{csv_path.name}: unexpected columns {cols}")
         if abs(t - t_csv) > REL * max(abs(t), 1e-300) and not (t == 0 and t_csv == 0):
@@ -123,16 +137,18 @@ def check_folder(out, wall_z):
             if len(mesh.points) != len(sel):
                 fail(f"{what}: {len(mesh.points)} points, the CSV has {len(sel)} rows for level {lv}")
             worst = max(worst, close(mesh.points[:, 0], c["r"], what + " x = r"))
-            worst = max(worst, close(mesh.points[:, 1], c["z"], what + " y = z"))
-            if np.any(mesh.points[:, 2] != 0):
-                fail(f"{what}: z coordinate not 0")
+            worst = max(worst, close(mesh.points[:, 2], c["z"], what + " z = z"))
+            if np.any(mesh.points[:, 1] != 0):
+                fail(f"{what}: y coordinate not 0")
             pd = mesh.point_data
-            worst = max(worst, close(pd["velocity"][:, 0], c["u_r"], what + " velocity[0] = u_r"))
-            worst = max(worst, close(pd["velocity"][:, 1], c["u_z"], what + " velocity[1] = u_z"))
-            if np.any(pd["velocity"][:, 2] != 0):
-                fail(f"{what}: velocity's third component not 0")
-            worst = max(worst, close(pd["stream_function"], c["psi"], what + " stream_function = psi"))
-            worst = max(worst, close(pd["vorticity"], c["omega"], what + " vorticity = omega"))
+            worst = max(worst, close(pd["velocity_m_s"][:, 0], c["u_r"], what + " velocity_m_s[0] = u_r"))
+            worst = max(worst, close(pd["velocity_m_s"][:, 2], c["u_z"], what + " velocity_m_s[2] = u_z"))
+            if np.any(pd["velocity_m_s"][:, 1] != 0):
+                fail(f"{what}: velocity's y component not 0")
+            worst = max(worst, close(pd["stream_function_m3_s"], c["psi"], what + " stream_function_m3_s = psi"))
+            worst = max(worst, close(pd["vorticity_1_s"], c["omega"], what + " vorticity_1_s = omega"))
+            if "p" in c:
+                worst = max(worst, close(pd["pressure_Pa"], c["p"], what + " pressure_Pa = p"))
             for col in cols[3:]:  # any further field: its VTK array has the same values
                 if col in ("psi", "omega", "u_r", "u_z"):
                     continue
@@ -140,7 +156,7 @@ def check_folder(out, wall_z):
                          and np.all(np.abs(v - c[col]) <= REL * np.abs(v))]
                 if not match:
                     fail(f"{what}: no point array matches the CSV column {col}")
-            if not np.any(pd["vorticity"] != 0) or not np.any(pd["velocity"] != 0):
+            if not np.any(pd["vorticity_1_s"] != 0) or not np.any(pd["velocity_m_s"] != 0):
                 fail(f"{what}: the flow is zero everywhere (nothing was compared)")
             # cells: quads; `finer` marks the (nr/2)·(nz/2) cells the next finer level covers
             quads = mesh.cells_dict.get("quad")
@@ -153,7 +169,7 @@ def check_folder(out, wall_z):
             if np.any(mesh.cell_data["level"][0] != lv):
                 fail(f"{what}: cell field level is not {lv}")
             compared += 1
-        check_bodies(out, bodies, vtm, spheres, wall_z)
+        check_bodies(out, bodies, vtm, sphere_sets, wall_z)
     if compared == 0:
         fail(f"{out}: no snapshot with both a .vtm and a .csv")
     print(f"{out.name}: {len(entries)} snapshots in flow.pvd, {compared} level files compared with the CSV; "
