@@ -157,7 +157,7 @@ TEST(DemLookup, InterpolatesLinearlyInLnStAndClampsAtTheEnds) {
 }
 
 TEST(DemLookup, ConstantRestitutionReplayReproducesTheTable) {
-  // docs/dem.md's table (glass_steel_glycerol50): St at first touch, e looked up, γ_n for that e.
+  // A restitution table as dem_table.csv writes it: St at first touch, e looked up, γ_n for that e.
   const std::vector<RestitutionRow> rows{{7.05861919494, 0},          {9.87627499744, 0},          {13.517575973, 0.229848282776},
                                          {18.2188536209, 0.41757035805}, {32.1182261898, 0.643567607842}, {92.3312362105, 0.843161975215}};
   const HookeContact c = dem_replay_glass_steel();
