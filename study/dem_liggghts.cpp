@@ -133,6 +133,7 @@ LiggghtsExport liggghts_export(const Scene& base, const std::vector<DemPoint>& p
   LiggghtsExport x;
   double U_max = 0;
   x.points = replay_points(pts, f.pair, U_max);
+  x.char_vel_from_points = U_max > 0;
   const std::optional<HookeContact> c = hooke_contact(base, U_max > 0 ? U_max : 1.0);
   x.error = missing_inputs(base, c, x.points);
   if (!x.error.empty()) return x;
@@ -161,7 +162,7 @@ J contact_json(const LiggghtsExport& x) {
   j["m_eff_kg"] = x.contact.m_eff;
   j["r_eff_m"] = x.contact.r_eff;
   j["characteristicVelocity_m_s"] = x.contact.char_vel;
-  j["characteristicVelocity_is"] = "the largest impact speed of the points";
+  j["characteristicVelocity_is"] = x.char_vel_from_points ? "the largest impact speed of the points" : "1 m/s (no impact speed measured)";
   j["k_n_N_per_m"] = x.k_n;
   j["contact_time_s"] = x.contact_time;
   j["steps_per_contact"] = x.step.steps_per_contact;

@@ -43,6 +43,7 @@ struct StiffnessCase {
 struct LiggghtsExport {
   std::string error;  // why there is no fit (no liquid, no target, too few points); empty with one
   HookeContact contact;
+  bool char_vel_from_points = true;  // V_c: the largest impact speed of the points (else 1 m/s: none measured)
   double mu = 0, k_n = 0, contact_time = 0;
   ReplayStep step;
   double E_i = 0, nu_i = 0, E_j = 0, nu_j = 0;

@@ -187,3 +187,15 @@ TEST(DemReplayFit, RecoversTheRulesParametersFromItsOwnReplay) {
   EXPECT_FALSE(fixed.e_max_free);
   EXPECT_THROW(fit_viscous_rule({{10, 0.5}, {20, 0.6}}, c, kDemReplayMu), std::invalid_argument);
 }
+
+TEST(DemReplay, LimitForceRemovesTheAttractionAtTheEndOfAContact) {
+  // Without limitForce, F_n = k δ − γ v_n < 0 late in the rebound slows the sphere; with it, F_n >= 0: e is higher.
+  const HookeContact c = dem_replay_glass_steel();
+  ReplayStep on;
+  on.limit = ForceLimit::on;
+  for (const double e : {0.8, 0.3}) {
+    const double off_e = replay_constant_e(c, e, 0.5).e, on_e = replay_constant_e(c, e, 0.5, on).e;
+    EXPECT_NEAR(off_e, e, 1e-3);
+    EXPECT_GT(on_e, off_e + 1e-3) << e;
+  }
+}
