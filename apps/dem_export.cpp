@@ -11,6 +11,7 @@
 #include "core/report.hpp"
 #include "apps/table_csv.hpp"
 #include "run/restitution_fit.hpp"
+#include "study/dem_liggghts.hpp"
 
 namespace imcol {
 
@@ -79,7 +80,7 @@ std::string fit_text(const RestitutionFit& f) {
 }
 
 /// dem.json: the scene, the points' counts, every fit and which is best.
-nlohmann::ordered_json dem_json(const Scene& base, const DemSweep& sw, const DemFit& f) {
+nlohmann::ordered_json dem_json(const Scene& base, const DemSweep& sw, const DemFit& f, const study::LiggghtsExport& lx) {
   nlohmann::ordered_json j;
   j["scene"] = base.name;
   j["scene_file"] = sw.scene_file;
@@ -105,11 +106,13 @@ nlohmann::ordered_json dem_json(const Scene& base, const DemSweep& sw, const Dem
   j["best"] = which(f.best);
   j["exp"] = which(f.exp);
   j["fit_error"] = f.fit_error.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(f.fit_error);
+  j["liggghts"] = study::liggghts_json(lx);
   return j;
 }
 
-/// The terminal's line: the best fit and the exponential one, or why there is none.
-std::string dem_line(const DemFit& f, const std::vector<DemPoint>& pts) {
+/// The terminal's line: the best fit, the exponential one and LIGGGHTS's rule fitted through the replay, or why
+/// there is none.
+std::string dem_line(const DemFit& f, const std::vector<DemPoint>& pts, const study::LiggghtsExport& lx) {
   if (f.best < 0) {
     std::string line = "dem: no fit: " + f.fit_error;
     if (f.without_St) {  // what the points found instead: e without St
@@ -125,6 +128,7 @@ std::string dem_line(const DemFit& f, const std::vector<DemPoint>& pts) {
   std::ostringstream os;
   os << "dem: " << fit_text(best) << ", St " << fixed(best.St_min, 1) << "-" << fixed(best.St_max, 1) << " (" << best.used << " points)";
   if (f.exp >= 0 && f.exp != f.best) os << "; " << fit_text(f.fits[static_cast<std::size_t>(f.exp)]);
+  os << "; " << study::liggghts_text(lx);
   return os.str();
 }
 
@@ -135,8 +139,9 @@ std::string export_dem(const fs::path& dir, const Scene& base, const DemSweep& s
   write_file_atomic(dir / "dem.csv", dem_csv(base, sw, pts, pair));
   write_file_atomic(dir / "dem_table.csv", lookup_csv(sw, pts, pair));
   const DemFit f = study::fit_dem(pts, sw.e_dry, base.fluid.has_value(), pair);
-  write_file_atomic(dir / "dem.json", dem_json(base, sw, f).dump(2) + "\n");
-  return dem_line(f, pts);
+  const study::LiggghtsExport lx = study::liggghts_export(base, pts, f, sw.e_dry);
+  write_file_atomic(dir / "dem.json", dem_json(base, sw, f, lx).dump(2) + "\n");
+  return dem_line(f, pts, lx);
 }
 
 }  // namespace imcol

@@ -9,6 +9,7 @@
 #include "python/sweep.hpp"
 #include "python/table.hpp"
 #include "study/dem_fit.hpp"
+#include "study/dem_liggghts.hpp"
 
 namespace py = pybind11;
 
@@ -24,7 +25,7 @@ std::optional<double> sweep_e_dry(const study::SweepResult& r) {
 }
 
 /// What dem.json says besides the table: the points' counts, every fit, the best and the exponential one.
-nlohmann::ordered_json dem_info(const study::DemFit& f, std::optional<double> e_dry) {
+nlohmann::ordered_json dem_info(const study::DemFit& f, std::optional<double> e_dry, const study::LiggghtsExport& lx) {
   using J = nlohmann::ordered_json;
   J j;
   j["St_convention"] = study::kDemStConvention;
@@ -37,6 +38,7 @@ nlohmann::ordered_json dem_info(const study::DemFit& f, std::optional<double> e_
   j["best"] = f.best < 0 ? J(nullptr) : j["fits"][static_cast<std::size_t>(f.best)];
   j["exp"] = f.exp < 0 ? J(nullptr) : j["fits"][static_cast<std::size_t>(f.exp)];
   j["fit_error"] = f.fit_error.empty() ? J(nullptr) : J(f.fit_error);
+  j["liggghts"] = study::liggghts_json(lx);
   return j;
 }
 
@@ -44,11 +46,13 @@ PyTable dem_fit(const PySweepResult& sweep) {
   const std::optional<double> e_dry = sweep_e_dry(sweep.result);
   const std::vector<study::DemPoint> pts = study::dem_points(sweep.result);
   study::DemFit f;
+  study::LiggghtsExport lx;
   {
     py::gil_scoped_release free;
     f = study::fit_dem(pts, e_dry, sweep.liquid, sweep.pair);
+    lx = study::liggghts_export(sweep.base, pts, f, e_dry);
   }
-  return make_table("dem", study::dem_table(pts, sweep.column, e_dry, sweep.pair), to_python(dem_info(f, e_dry)));
+  return make_table("dem", study::dem_table(pts, sweep.column, e_dry, sweep.pair), to_python(dem_info(f, e_dry, lx)));
 }
 
 }  // namespace dem_impl
@@ -58,7 +62,8 @@ void bind_dem_fit(py::module_& m) {
         "A sweep's points (an imcol.SweepResult) as `imcol sweep … --export dem` writes them: an imcol.StudyTable of "
         "dem.csv's columns (St in the DEM convention, m* U / (6 pi mu a*^2)), and in `info` dem.json's fits of "
         "e = e_dry f(St_c/St), exp and linear, e_dry fixed to the scene's and free (`fits`, `best`, `exp`, `fit_error`, "
-        "`points`).");
+        "`points`), and LIGGGHTS's hooke viscous rule fitted through a replay of its normal force (`liggghts`: "
+        "CriticalStokes, MaximumRestitution, the replay's residual).");
 }
 
 }  // namespace imcol::python

@@ -82,12 +82,14 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
 
   study::SweepResult run;
   bool liquid = false, pair = false;
+  Scene base_scene;
   // Reading the points' scenes and running them touch no Python object.
   call_interruptibly(
       [&] {
         const Scene base = load(overrides);
         liquid = base.fluid.has_value();
         pair = base.spheres.size() == 2;
+        base_scene = base;
         const std::vector<Scene> scenes = study::sweep_scenes(load, overrides, base, vary, values);
         run = study::run_sweep(scenes, vary, values, study::threads(jobs), interruptible_hooks());
       },
@@ -96,6 +98,7 @@ PySweepResult sweep(const py::object& scene_arg, const std::string& vary, const 
   r.result = std::move(run);
   r.liquid = liquid;
   r.pair = pair;
+  r.base = std::move(base_scene);
   return r;
 }
 

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "core/scene.hpp"
 #include "study/sweep.hpp"
 
 namespace imcol::python {
@@ -16,6 +17,7 @@ struct PySweepResult {
   pybind11::list columns;
   pybind11::dict table;
   study::SweepResult result;     // the points as run (imcol.dem_fit reads them)
+  Scene base;                    // the scene before the varied value (imcol.dem_fit replays its contact)
   bool liquid = false, pair = false;  // the scene has a liquid; two spheres
 };
 

@@ -41,7 +41,7 @@ struct DemFit {
   bool pair = false;
   std::vector<run::RestitutionFit> fits;  // exp (e_dry fixed, free), linear (fixed, free); those that failed left out
   int best = -1;                          // the smallest rms residual with e_dry free (fixed if none), e_dry <= 1
-  int exp = -1;                           // the exponential fit (e_dry free if <= 1): LIGGGHTS's viscous model's form
+  int exp = -1;                           // the exponential formula's fit (e_dry free if <= 1); LIGGGHTS's rule differs (dem_liggghts.hpp)
   std::string fit_error;                  // why a fit is missing (the first failure; a scene without a liquid)
   std::size_t total = 0, used = 0, no_rebound = 0, without_e = 0, without_St = 0;
   std::optional<double> St_no_rebound_max;

@@ -532,6 +532,39 @@ TEST(Cli, SweepExportDemWritesATableAndFitsConsistentWithSweepCsv) {
       EXPECT_EQ(e_dry, 0.97);
     }
   }
+  // LIGGGHTS's viscous rule fitted through the replay: its parameters, its residual against the same points, the
+  // materials and step it used.
+  const auto& lg = j["liggghts"];
+  ASSERT_TRUE(lg.is_object());
+  EXPECT_TRUE(lg["fit_error"].is_null()) << lg["fit_error"];
+  for (const char* key : {"CriticalStokes", "MaximumRestitution", "FluidViscosity", "rms_residual", "max_residual", "max_residual_at_St",
+                          "within_tolerance", "beyond_tolerance", "valid_St", "MaximumRestitution_fixed", "exp_formula_replayed", "points",
+                          "contact", "stiffness", "table_replay"})
+    EXPECT_TRUE(lg.contains(key)) << key;
+  EXPECT_EQ(lg["FluidViscosity"].get<double>(), 0.004);
+  EXPECT_GT(lg["MaximumRestitution"].get<double>(), 0);
+  EXPECT_LE(lg["MaximumRestitution"].get<double>(), 1);
+  EXPECT_EQ(lg["MaximumRestitution_fixed"]["MaximumRestitution"].get<double>(), 0.97);
+  EXPECT_EQ(lg["within_tolerance"].get<bool>(), lg["max_residual"].get<double>() <= 0.03);
+  double rss = 0, rmax = 0;
+  std::size_t n_used = 0;
+  for (const auto& p : lg["points"]) {
+    if (!p["used_in_fit"].get<bool>()) continue;
+    const double r = p["e_replay"].get<double>() - p["e"].get<double>();
+    rss += r * r, rmax = std::max(rmax, std::abs(r)), ++n_used;
+  }
+  EXPECT_EQ(n_used, used.size());
+  EXPECT_NEAR(lg["rms_residual"].get<double>(), std::sqrt(rss / n_used), 1e-12);
+  EXPECT_NEAR(lg["max_residual"].get<double>(), rmax, 1e-12);
+  EXPECT_GT(lg["contact"]["k_n_N_per_m"].get<double>(), 0);
+  EXPECT_EQ(lg["contact"]["steps_per_contact"].get<int>(), 1000);
+  EXPECT_EQ(lg["contact"]["youngsModulus_Pa"].size(), 2u);
+  EXPECT_LT(lg["table_replay"]["max_difference_in_e"].get<double>(), 2e-3);
+  for (const auto& k : lg["stiffness"]) {
+    if (k["step"] == "the same steps per contact") {
+      EXPECT_LT(k["max_change_in_e"].get<double>(), 1e-9) << k;
+    }
+  }
 
   // Failed points stay in the table with their status and no e; two points with e fit only with e_dry fixed.
   const Result f = sweep_gg3462(out, "--vary viscosity --from 0.01 --to 0.05 --points 4 --export dem --set solver.max_steps=70 "
@@ -553,6 +586,7 @@ TEST(Cli, SweepExportDemWritesATableAndFitsConsistentWithSweepCsv) {
   ASSERT_EQ(j2["fits"].size(), 2u);
   for (const auto& fit : j2["fits"]) EXPECT_EQ(fit["e_dry_is"], "fixed to the scene's");
   EXPECT_NE(j2["fit_error"].get<std::string>().find("at least 3 points with e > 0"), std::string::npos) << j2["fit_error"];
+  EXPECT_NE(j2["liggghts"]["fit_error"].get<std::string>().find("at least 3 points with e > 0"), std::string::npos) << j2["liggghts"];
 
   // --export takes dem only; a fit needs 3 points.
   const Result bad = run_imcol("sweep " + scene + " --vary velocity --from 0.05 --to 0.4 --points 4 --export vtk --out " + out.string());

@@ -91,5 +91,6 @@ TEST(MissingValues, DemExportOfADrySceneCountsNoPointWithoutE) {
   EXPECT_EQ(j["points"]["without_St"], 3);
   EXPECT_EQ(j["points"]["used_in_fits"], 0);
   EXPECT_TRUE(j["fits"].empty());
+  EXPECT_EQ(j["liggghts"]["fit_error"], "the scene has no liquid: the viscous rule has no St");
   fs::remove_all(out);
 }

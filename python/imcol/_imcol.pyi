@@ -206,6 +206,8 @@ def history_compare(scene: _SceneArg, kernels: Optional[Sequence[str]] = None, e
                     rtol: Optional[float] = None, atol: Optional[float] = None, integrator: Optional[str] = None,
                     progress: Optional[Progress] = None) -> StudyTable: ...
 
+# info: dem.json's keys: St_convention, St_column, e_dry_scene, points, St_no_rebound_max, fits, best, exp, fit_error,
+# liggghts (CriticalStokes, MaximumRestitution fitted through the replay of LIGGGHTS's hooke viscous rule; docs/dem.md).
 def dem_fit(sweep: SweepResult) -> StudyTable: ...
 
 class CalibrationResult:

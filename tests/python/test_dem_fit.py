@@ -12,7 +12,7 @@ from study_tables import assert_table_equals_csv, read_csv
 
 def test_dem_fit_equals_the_exported_files(tmp_path):
     out = tmp_path / "sweep"
-    status, _, err = imcol_cli("sweep", "default", "--vary", "velocity", "--from", "0.1", "--to", "1", "--points", "4",
+    status, out_text, err = imcol_cli("sweep", "default", "--vary", "velocity", "--from", "0.1", "--to", "1", "--points", "4",
                                "--jobs", "2", "--export", "dem", "--out", str(out), "--no-plot", "--no-progress")
     assert status == 0, err
     header, rows = read_csv(out / "dem.csv")
@@ -32,3 +32,9 @@ def test_dem_fit_equals_the_exported_files(tmp_path):
     best = dem["best"]
     assert (info["best"]["form"], info["best"]["e_dry_is"]) == (best["form"], best["e_dry_is"])
     assert len(info["fits"]) == 4 and info["best"]["rms_residual"] >= 0
+    # LIGGGHTS's viscous rule fitted through the replay: the same block, and the closing line says its parameters.
+    assert info["liggghts"] == dem["liggghts"]
+    lg = info["liggghts"]
+    assert lg["fit_error"] is None
+    assert 0 < lg["MaximumRestitution"] <= 1 and lg["CriticalStokes"] > 0
+    assert f"CriticalStokes = {lg['CriticalStokes']:.2f}, MaximumRestitution = {lg['MaximumRestitution']:.3f}" in out_text
