@@ -59,6 +59,30 @@ def read_rows(path: Path) -> list:
 KERNEL_COLOURS = {"none": "0.45", "basset": "C0", "mei-adrian": "C1", "kim": "C2", "dorgan-loth": "C3"}
 
 
+# Marker, line style and draw order (larger: on top) per kernel, so that curves lying on each other stay visible:
+# Basset last, hollow and larger, around the finite-Re kernels' markers.
+KERNEL_MARKS = {"none": ("o", "-", 1), "basset": ("s", "-", 5), "mei-adrian": ("^", "--", 3), "kim": ("v", ":", 4),
+                "dorgan-loth": ("D", "-.", 2)}
+# Each kernel's source (contact/history_kernel.hpp).
+KERNEL_SOURCES = {"none": "no history force", "basset": "Basset (1888), the Re → 0 kernel",
+                  "mei-adrian": "Mei & Adrian (1992)", "kim": "Kim, Elghobashi & Sirignano (1998)",
+                  "dorgan-loth": "Dorgan & Loth (2007)"}
+
+
+def kernel_style(kernel: str) -> dict:
+    """matplotlib keywords of a kernel's curve: colour, marker (Basset's hollow and larger), line style, z-order."""
+    mk, ls, z = KERNEL_MARKS.get(kernel, ("P", "-", 2))
+    style = dict(color=kernel_colour(kernel), marker=mk, ls=ls, zorder=2 + z, ms=5, lw=1.3)
+    if kernel == "basset":
+        style.update(mfc="none", ms=9, mew=1.6, lw=2.2)
+    return style
+
+
+def kernel_label(kernel: str) -> str:
+    """'kim (Kim, Elghobashi & Sirignano 1998)'."""
+    return f"{kernel}: {KERNEL_SOURCES[kernel]}" if kernel in KERNEL_SOURCES else kernel
+
+
 def kernel_colour(kernel: str) -> str:
     if kernel not in KERNEL_COLOURS:
         used = set(KERNEL_COLOURS.values())
@@ -102,3 +126,101 @@ def positions(rows, meta, key: str) -> list:
         (a0, b0), (a1, b1) = known[i - 1], known[i]
         xs.append(math.exp(b0 + (b1 - b0) * (v - a0) / (a1 - a0)) if a1 != a0 else math.exp(b0))
     return xs
+
+
+def scene_bodies(scene_file) -> Optional[dict]:
+    """The spheres (material, D in m) and the wall's material of a scene file (TOML), or None when it cannot be read."""
+    try:
+        import tomllib
+
+        with open(scene_file, "rb") as f:
+            scene = tomllib.load(f)
+    except (ImportError, OSError, TypeError, ValueError):
+        return None
+    spheres = [(s.get("material", "sphere"), float(s["diameter"])) for s in scene.get("sphere", []) if "diameter" in s]
+    wall = scene.get("wall")
+    return {"spheres": spheres, "wall": wall.get("material", "wall") if isinstance(wall, dict) else None}
+
+
+def bodies_text(bodies: Optional[dict]) -> str:
+    """'12.7 mm steel sphere onto a zerodur wall', 'two 12.7 mm glass spheres', or '' without the scene."""
+    if not bodies or not bodies["spheres"]:
+        return ""
+    names = [f"{1e3 * d:.3g} mm {m}" for m, d in bodies["spheres"]]
+    if len(names) == 1:
+        return names[0] + " sphere" + (f" onto a {bodies['wall']} wall" if bodies["wall"] else "")
+    return f"two {names[0]} spheres" if names[0] == names[1] else f"{names[0]} sphere onto a {names[1]} sphere"
+
+
+def liquid_text(fluid: Optional[dict]) -> str:
+    """'glycerol-water 50 wt% at 20 °C, μ = 6 mPa s, ρ = 1126 kg/m³' from summary.json's `fluid` (the name alone
+    without μ and ρ); 'no liquid' when μ = 0."""
+    if not fluid:
+        return ""
+    mu, rho = fluid.get("viscosity_Pa_s"), fluid.get("density_kg_m3")
+    if mu is not None and mu <= 0:
+        return "no liquid"
+    name = fluid.get("name") or "liquid"
+    if fluid.get("mass_fraction") is not None:
+        name += f" {100 * fluid['mass_fraction']:.3g} wt%"
+    if fluid.get("temperature_C") is not None:
+        name += f" at {fluid['temperature_C']:.3g} °C"
+    if mu is None or rho is None:
+        return name
+    return f"{name}, μ = {1e3 * mu:.3g} mPa s, ρ = {rho:.4g} kg/m³"
+
+
+def figure_legend(fig, axes, **kw):
+    """One legend for the figure: every labelled artist of `axes` once (the first of each label), right of the panels."""
+    seen = {}
+    for ax in axes:
+        for h, label in zip(*ax.get_legend_handles_labels()):
+            if label and not label.startswith("_"):
+                seen.setdefault(label, h)
+    opts = dict(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=8, frameon=False)
+    opts.update(kw)
+    return fig.legend(list(seen.values()), list(seen), **opts) if seen else None
+
+
+def deviation_at(xs, model, reference, at) -> list:
+    """model − reference (two lists over xs) at the x values `at`, interpolated linearly in log x between the nearest
+    finite points (NaN outside the points' range): [(x, deviation)]."""
+    pts = sorted((math.log(x), m - r) for x, m, r in zip(xs, model, reference)
+                 if x > 0 and math.isfinite(m) and math.isfinite(r))
+    out = []
+    for x in at:
+        v = math.log(x)
+        d = float("nan")
+        for (a0, d0), (a1, d1) in zip(pts, pts[1:]):
+            if a0 <= v <= a1:
+                d = d0 + (d1 - d0) * (v - a0) / (a1 - a0) if a1 > a0 else d0
+                break
+        if len(pts) == 1 and abs(pts[0][0] - v) < 1e-12:
+            d = pts[0][1]
+        out.append((x, d))
+    return out
+
+
+def deviation_text(name: str, xs, model, reference, xname: str = "St") -> str:
+    """'imcol − NAME: +0.21 at St 30, +0.02 at St 750': the deviation at the lowest and highest x with both values."""
+    both = [x for x, m, r in zip(xs, model, reference) if x > 0 and math.isfinite(m) and math.isfinite(r)]
+    if not both:
+        return ""
+    ends = sorted({min(both), max(both)})
+    parts = [f"{d:+.2f} at {xname} {x:.3g}" if x < 1000 else f"{d:+.2f} at {xname} {x:.0f}"
+             for x, d in deviation_at(xs, model, reference, ends)]
+    return f"imcol − {name}: " + ", ".join(parts)
+
+
+def scene_fluid(scene_file) -> Optional[dict]:
+    """A scene file's liquid in summary.json's `fluid` form (name, mass fraction, temperature, μ and ρ when given in the
+    scene; a named liquid's μ and ρ come from data/fluids.csv and are left out), or None."""
+    try:
+        import tomllib
+
+        with open(scene_file, "rb") as f:
+            fl = tomllib.load(f).get("fluid", {})
+    except (ImportError, OSError, TypeError, ValueError):
+        return None
+    return {"name": fl.get("fluid"), "mass_fraction": fl.get("mass_fraction"), "temperature_C": fl.get("temperature"),
+            "viscosity_Pa_s": fl.get("viscosity"), "density_kg_m3": fl.get("density")}
