@@ -70,27 +70,28 @@ NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 def parse_comment(comment: str) -> dict:
     """What a snapshot's comment line ('LABEL, t = T s; ...; spheres (z, d) = z1 d1 ...; ...') says, read defensively:
     `spheres` [(z, d)] where the flow kernel holds them, `true_spheres` [(z, d)] at the trajectory's position when a
-    part names them (true/trajectory/model), `gap_m` the true gap in m when a part names a gap; absent parts missing."""
+    part names them (true/trajectory/model; centres alone take the kernel's diameters), `gap_m` the true gap in m when
+    a part names a gap in m (or without unit); parts not found are absent."""
     out = {}
     for part in comment.split(";"):
         name, sep, value = part.partition("=")
-        if not sep:
-            continue
         name = name.strip().lower()
         nums = [float(x) for x in re.findall(NUMBER, value)]
-        if "sphere" in name and nums:
-            true = any(w in name for w in ("true", "trajector", "model"))
-            kernel = out.get("spheres")
-            if len(nums) % 2 == 0 and ("(z, d)" in name or not kernel or len(nums) == 2 * len(kernel)):
-                pairs = list(zip(nums[0::2], nums[1::2]))
-            elif kernel and len(nums) == len(kernel):  # centres only: the kernel's diameters
-                pairs = [(z, d) for z, (_, d) in zip(nums, kernel)]
-            else:
-                continue
-            out["true_spheres" if true else "spheres"] = pairs
-        elif "gap" in name and nums:
+        if not sep or not nums:
+            continue
+        if "gap" in name:
             metres = re.search(rf"({NUMBER})\s*m\b", value)
-            out["gap_m"] = float(metres.group(1)) if metres else nums[0]
+            if metres or not re.search(rf"{NUMBER}\s*D\b", value) and "/d" not in name:
+                out["gap_m"] = float(metres.group(1)) if metres else nums[0]
+            continue
+        true = any(w in name for w in ("true", "trajector", "model"))
+        if "sphere" not in name and not true:
+            continue
+        kernel = out.get("spheres")
+        if len(nums) % 2 == 0 and ("(z, d)" in name or not kernel or len(nums) == 2 * len(kernel)):
+            out["true_spheres" if true else "spheres"] = list(zip(nums[0::2], nums[1::2]))
+        elif kernel and len(nums) == len(kernel):  # centres only: the kernel's diameters
+            out["true_spheres" if true else "spheres"] = [(z, d) for z, (_, d) in zip(nums, kernel)]
     return out
 
 

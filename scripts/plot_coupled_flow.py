@@ -5,8 +5,10 @@
 Usage: /usr/bin/python3 scripts/plot_coupled_flow.py DIR
 Reads DIR/flow_*.csv (written at the first flow step with a gap of 1 D or less, at contact, one fit window
 after separation and at the end), and DIR/trajectory.csv and DIR/summary.json when present (the true gap at
-each snapshot's time; the wall's position); writes DIR/flow_*.png (vorticity and streamlines, lengths in mm below a
-5 cm sphere) and, when the snapshots have a pressure column `p` (Pa), DIR/flow_*_pressure.png.
+each snapshot's time unless the CSV's comment line gives it; the wall's position); writes DIR/flow_*.png (vorticity
+and streamlines near the spheres and over the whole domain, every grid level composed, lengths in mm below a 5 cm
+sphere) and, when the snapshots have a pressure column `p` (Pa), DIR/flow_*_pressure.png; one colour scale per
+quantity for all of them (scripts/flow_field.py).
 Needs Debian's python3-matplotlib.
 """
 import json

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""Plot an `imcol flow` run: vorticity and streamlines of each snapshot, and the force history.
+"""Plot an `imcol flow` run: vorticity and streamlines of each snapshot (every grid level composed, one colour scale
+per quantity for the run: scripts/flow_field.py), and the force history.
 
 Usage: /usr/bin/python3 scripts/plot_flow.py DIR
 Reads DIR/snapshot_NN.csv, DIR/forces.csv and DIR/summary.json (and the scene file it names, for ρ and the speed
@@ -88,15 +89,9 @@ def plot_wall_gap(out: Path, rows, summary, units) -> None:
     save_png(fig, out / "forces_vs_gap.png", dpi=130)
 
 
-# One function (66 lines): the figure's panels share one layout and its axes; split, each would pass them all.
-def main() -> int:
-    out = out_dir(__doc__)
-    if out is None:
-        return 2
-    rows = read_rows(out / "forces.csv")
+def plot_snapshots(out: Path, rows, summary, units) -> None:
+    """snapshot_NN.png (and _pressure.png) of every snapshot_NN.csv, one colour scale per quantity for the run."""
     nb = sum(1 for k in rows[0] if k.startswith("F") and k[1:].isdigit())
-    summary = json.loads((out / "summary.json").read_text())
-    units = scene_units(summary)
     d = summary["grid"]["h"] * summary["grid"]["cells_per_diameter"]
 
     def spheres_at(ts):  # the spheres at the forces.csv row nearest to the snapshot's time (moving spheres)
@@ -112,6 +107,39 @@ def main() -> int:
         title = f"{summary['name']}: " + (units.time_text(t) if t is not None else snap.stem) + f", Re = {summary['Re']:.3g}"
         plot_snapshot(snap, spheres_at, wall, title, units=units, limits=limits)
 
+
+def draw_references(ax, t, column, rows, summary, units) -> None:
+    """One sphere: the reference curves that apply (the summary says so) and lie on the axes (set from F1 here)."""
+    f1 = column("F1") / units.force
+    lo, hi = np.percentile(f1, [2, 98])
+    pad = 0.3 * (hi - lo) + 1e-12 * max(abs(lo), abs(hi), 1e-300)
+    ylo, yhi = lo - pad, hi + pad
+    ax.set_ylim(ylo, yhi)
+    sign = np.sign(np.mean(f1))
+
+    def on_axes(y):
+        y = np.atleast_1d(y)
+        return np.any((y > ylo) & (y < yhi))
+
+    if "impulsive_start" in summary:
+        fsb = sign * column("F_stokes_basset") / units.force
+        if on_axes(fsb):
+            ax.plot(t, fsb, "--", label="Stokes + Basset, impulsive start")
+    if "F_stokes_oscillating" in rows[0]:
+        fo = column("F_stokes_oscillating") / units.force
+        if on_axes(fo):
+            ax.plot(t, fo, "--", label="unsteady Stokes, oscillating sphere")
+    if summary.get("drag_coefficient_standard") is not None:
+        q = abs(f1[-1] / float(rows[-1]["C_D"]))
+        y = sign * summary["drag_coefficient_standard"] * q
+        if on_axes(y):
+            ax.axhline(y, color="k", ls=":", label="standard drag curve (steady)")
+
+
+def plot_forces(out: Path, rows, summary, units) -> None:
+    """forces.png: the force on each sphere against time, f_THR beside it and the references that apply."""
+    nb = sum(1 for k in rows[0] if k.startswith("F") and k[1:].isdigit())
+
     def column(key):
         return np.array([float(r[key]) for r in rows])
 
@@ -123,31 +151,7 @@ def main() -> int:
         for b in range(nb):
             ax.plot(t, column(f"F_THR{b + 1}") / units.force, "--", label=f"F{b + 1}: f_THR (reduced-order, no history)")
     if nb == 1:
-        # reference curves only where they apply (the summary says so) and where they lie on the axes
-        f1 = column("F1") / units.force
-        lo, hi = np.percentile(f1, [2, 98])
-        pad = 0.3 * (hi - lo) + 1e-12 * max(abs(lo), abs(hi), 1e-300)
-        ylo, yhi = lo - pad, hi + pad
-        ax.set_ylim(ylo, yhi)
-        sign = np.sign(np.mean(f1))
-
-        def on_axes(y):
-            y = np.atleast_1d(y)
-            return np.any((y > ylo) & (y < yhi))
-
-        if "impulsive_start" in summary:
-            fsb = sign * column("F_stokes_basset") / units.force
-            if on_axes(fsb):
-                ax.plot(t, fsb, "--", label="Stokes + Basset, impulsive start")
-        if "F_stokes_oscillating" in rows[0]:
-            fo = column("F_stokes_oscillating") / units.force
-            if on_axes(fo):
-                ax.plot(t, fo, "--", label="unsteady Stokes, oscillating sphere")
-        if summary.get("drag_coefficient_standard") is not None:
-            q = abs(f1[-1] / float(rows[-1]["C_D"]))
-            y = sign * summary["drag_coefficient_standard"] * q
-            if on_axes(y):
-                ax.axhline(y, color="k", ls=":", label="standard drag curve (steady)")
+        draw_references(ax, t, column, rows, summary, units)
     ax.set_xlabel(units.t)
     ax.set_ylabel(units.force_label)
     ax.set_title(f"{summary['name']}: Re = {summary['Re']:.3g}")
@@ -155,6 +159,17 @@ def main() -> int:
     ax.legend()
     fig.tight_layout()
     save_png(fig, out / "forces.png", dpi=130)
+
+
+def main() -> int:
+    out = out_dir(__doc__)
+    if out is None:
+        return 2
+    rows = read_rows(out / "forces.csv")
+    summary = json.loads((out / "summary.json").read_text())
+    units = scene_units(summary)
+    plot_snapshots(out, rows, summary, units)
+    plot_forces(out, rows, summary, units)
     if "wall_gap_D" in rows[0]:
         plot_wall_gap(out, rows, summary, units)
     return 0

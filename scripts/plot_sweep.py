@@ -217,7 +217,7 @@ def main() -> int:
     # sphere-wall: a second panel, e/e_dry against St_L beside Legendre et al.'s correlation of experiments;
     # the legend below the axes (it would cover the rise of e at St 10-30 or the high-St plateau)
     wall = meta["configuration"] == "sphere-wall" and meta.get("e_dry")
-    fig, axes = plt.subplots(1, 2 if wall else 1, figsize=(15, 8.2) if wall else (9.5, 8.2), squeeze=False)
+    fig, axes = plt.subplots(1, 2 if wall else 1, figsize=(15, 8.25) if wall else (9.5, 8.25), squeeze=False)
     ax, ax_l = axes[0][0], (axes[0][1] if wall else None)
     others = [(d, json.loads((d / "sweep.json").read_text())) for d in args.compare]
     plot_sweep(ax, out, meta, "-", sweep_label(meta) + ": " if others else "")
