@@ -293,7 +293,8 @@ def draw_panel(ax, levels, key, window, lim, bodies, units, n_lines):
     cmap = "RdBu_r" if key == "omega" else "PuOr_r"
     mesh = ax.pcolormesh(z / L, R / L, np.ma.masked_array(F, ~fluid), cmap=cmap, norm=colour_norm(key, lim), shading="auto",
                          rasterized=True)
-    lines = streamlines(z, R, P, streamline_levels(P[fluid] if fluid.any() else P.ravel(), n_lines), solids, wall)
+    grown = [(zc, d + 2 * margin) for zc, d in solids]  # with p: streamlines stop at the layer p is not drawn in
+    lines = streamlines(z, R, P, streamline_levels(P[fluid] if fluid.any() else P.ravel(), n_lines), grown, wall)
     solid = [seg / L for level, seg in lines if level >= 0]
     dashed = [seg / L for level, seg in lines if level < 0]
     ax.add_collection(LineCollection(solid, colors="k", linewidths=0.6, alpha=0.75, zorder=2))

@@ -137,24 +137,25 @@ def scene_bodies(scene_file) -> Optional[dict]:
             scene = tomllib.load(f)
     except (ImportError, OSError, TypeError, ValueError):
         return None
-    spheres = [(s.get("material", "sphere"), float(s["diameter"])) for s in scene.get("sphere", []) if "diameter" in s]
+    spheres = [(s.get("material", ""), float(s["diameter"])) for s in scene.get("sphere", []) if "diameter" in s]
     wall = scene.get("wall")
-    return {"spheres": spheres, "wall": wall.get("material", "wall") if isinstance(wall, dict) else None}
+    return {"spheres": spheres, "wall": wall.get("material", "") if isinstance(wall, dict) else None}
 
 
 def bodies_text(bodies: Optional[dict]) -> str:
     """'12.7 mm steel sphere onto a zerodur wall', 'two 12.7 mm glass spheres', or '' without the scene."""
     if not bodies or not bodies["spheres"]:
         return ""
-    names = [f"{1e3 * d:.3g} mm {m}" for m, d in bodies["spheres"]]
+    names = [f"{1e3 * d:.3g} mm {m}".strip() for m, d in bodies["spheres"]]
     if len(names) == 1:
-        return names[0] + " sphere" + (f" onto a {bodies['wall']} wall" if bodies["wall"] else "")
+        wall = bodies["wall"]
+        return names[0] + " sphere" + ("" if wall is None else f" onto a {wall} wall".replace("a  wall", "a wall"))
     return f"two {names[0]} spheres" if names[0] == names[1] else f"{names[0]} sphere onto a {names[1]} sphere"
 
 
 def liquid_text(fluid: Optional[dict]) -> str:
-    """'glycerol-water 50 wt% at 20 °C, μ = 6 mPa s, ρ = 1126 kg/m³' from summary.json's `fluid` (the name alone
-    without μ and ρ); 'no liquid' when μ = 0."""
+    """'glycerol-water 50 wt% at 20 °C, μ = 6 mPa s, ρ = 1126 kg/m³' from summary.json's `fluid` (μ and ρ left out
+    when None); 'no liquid' when μ = 0."""
     if not fluid:
         return ""
     mu, rho = fluid.get("viscosity_Pa_s"), fluid.get("density_kg_m3")
@@ -165,9 +166,8 @@ def liquid_text(fluid: Optional[dict]) -> str:
         name += f" {100 * fluid['mass_fraction']:.3g} wt%"
     if fluid.get("temperature_C") is not None:
         name += f" at {fluid['temperature_C']:.3g} °C"
-    if mu is None or rho is None:
-        return name
-    return f"{name}, μ = {1e3 * mu:.3g} mPa s, ρ = {rho:.4g} kg/m³"
+    parts = [name] + ([f"μ = {1e3 * mu:.3g} mPa s"] if mu is not None else []) + ([f"ρ = {rho:.4g} kg/m³"] if rho is not None else [])
+    return ", ".join(parts)
 
 
 def figure_legend(fig, axes, **kw):
@@ -202,14 +202,18 @@ def deviation_at(xs, model, reference, at) -> list:
 
 
 def deviation_text(name: str, xs, model, reference, xname: str = "St") -> str:
-    """'imcol − NAME: +0.21 at St 30, +0.02 at St 750': the deviation at the lowest and highest x with both values."""
-    both = [x for x, m, r in zip(xs, model, reference) if x > 0 and math.isfinite(m) and math.isfinite(r)]
-    if not both:
+    """'imcol − NAME: +0.21 at St 30, +0.17 at St 46 (largest), +0.02 at St 750': the deviation at the lowest and
+    highest x with both values, and the largest one when it lies between them."""
+    pts = sorted((x, m - r) for x, m, r in zip(xs, model, reference) if x > 0 and math.isfinite(m) and math.isfinite(r))
+    if not pts:
         return ""
-    ends = sorted({min(both), max(both)})
-    parts = [f"{d:+.2f} at {xname} {x:.3g}" if x < 1000 else f"{d:+.2f} at {xname} {x:.0f}"
-             for x, d in deviation_at(xs, model, reference, ends)]
-    return f"imcol − {name}: " + ", ".join(parts)
+    big = max(pts, key=lambda p: abs(p[1]))
+    shown = [(pts[0], "")] + ([(big, " (largest)")] if big not in (pts[0], pts[-1]) else []) + ([(pts[-1], "")] if len(pts) > 1 else [])
+
+    def at(x):
+        return f"{xname} {x:.3g}" if x < 1000 else f"{xname} {x:.0f}"
+
+    return f"imcol − {name}: " + ", ".join(f"{round(d, 2) + 0.0:+.2f} at {at(x)}{tag}" for (x, d), tag in shown)
 
 
 def scene_fluid(scene_file) -> Optional[dict]:

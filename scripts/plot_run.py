@@ -6,6 +6,7 @@ Usage: /usr/bin/python3 scripts/plot_run.py OUT_DIR   (writes OUT_DIR/trajectory
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
 """
 import json
+import math
 import sys
 
 from imcol_plot import (FORCE_NAMES, bodies_text, figure_legend, force_label, liquid_text, out_dir, plt, read_rows, save_png,
@@ -103,18 +104,19 @@ def draw_phase_row(fig, cells, t, series, phases, ylabel: str, right=None) -> li
         tt = [1e3 * x for x in t[sl]]
         for values, style in series:
             ax.plot(tt, values[sl], **style)
-        if right and name.startswith("contact"):
+        if right and any(abs(v) > 0.01 * max(map(abs, values)) for values, _ in right for v in values[sl]):  # its own axis
             tw = ax.twinx()
             for values, style in right:
                 tw.plot(tt, values[sl], **style)
             tw.set_ylabel("contact force (N), right axis", fontsize=8)
             tw.tick_params(labelsize=8)
-        elif right:  # outside the contact the contact force is 0: drawn with the others
+        elif right:  # no contact in the phase: the contact force is 0, drawn with the others
             for values, style in right:
                 ax.plot(tt, values[sl], **style)
         ax.axhline(0, color="k", lw=0.5)
         ax.set_xlim(tt[0], tt[-1])
-        ax.set_title(f"{name}: {1e3 * a:.3g}–{1e3 * b:.3g} ms", fontsize=9)
+        n = max(0, math.ceil(-math.log10(max(1e3 * (b - a), 1e-9))) + 1)  # decimals that tell the ends apart
+        ax.set_title(f"{name}: {1e3 * a:.{n}f}–{1e3 * b:.{n}f} ms", fontsize=9)
         ax.set_xlabel("t (ms)")
         ax.tick_params(labelsize=8)
         axes.append(ax)
@@ -157,7 +159,7 @@ def mark_events(axes, summary, col) -> None:
     apex = [b for b in bounces if b.get("t_separation_s") is not None and b.get("t_apex_s") is not None]
     ts = [1e3 * b["t_apex_s"] for b in apex]
     zs = [1e3 * tz.get(round(b["t_apex_s"], 12), float("nan")) for b in apex]
-    axes[0].plot(ts, zs, "v", color="k", ms=6, label="apexes (largest gap before the next contact)")
+    axes[0].plot(ts, zs, "v", color="k", ms=6, label="apexes (largest gap before next contact)")
     for b, t, z in zip(apex, ts, zs):
         axes[0].annotate("%.2f mm" % (1e3 * b["apex_gap_m"]), (t, z), fontsize=7, xytext=(3, 5), textcoords="offset points")
 
@@ -217,9 +219,9 @@ def main() -> int:
     for a in [ax_z, ax_u] + ax_f + ax_s + ([ax_e] if budget else []):
         a.grid(alpha=0.3)
     fig.suptitle(run_title(summary), fontsize=10)
-    fig.tight_layout(rect=(0, 0, 0.8, 0.97))
+    fig.tight_layout(rect=(0, 0, 0.78, 0.97))
     figure_legend(fig, [ax_z, ax_u] + ax_f + [a for a in fig.axes if a not in ax_f] + ([ax_e] if budget else []),
-                  bbox_to_anchor=(0.8, 0.93))
+                  bbox_to_anchor=(0.78, 0.93))
     save_png(fig, out / "trajectory.png", dpi=100)
     print(f"wrote {out / 'trajectory.png'}")
     return 0

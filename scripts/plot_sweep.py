@@ -192,8 +192,11 @@ def draw_seed_table(ax) -> None:
 
 def sweep_title(meta, others) -> str:
     """The scene, its bodies and liquid (from the scene file), what is swept over which range, and the failures."""
-    bodies = bodies_text(scene_bodies(meta.get("scene_file")))
-    liquid = liquid_text(scene_fluid(meta.get("scene_file")))
+    bodies = bodies_text(scene_bodies(meta.get("scene_file"))) if meta["vary"] != "diameter" else ""
+    fluid = scene_fluid(meta.get("scene_file"))
+    if fluid and meta["vary"] in ("viscosity", "density"):  # swept: the scene's value is not the sweep's
+        fluid[{"viscosity": "viscosity_Pa_s", "density": "density_kg_m3"}[meta["vary"]]] = None
+    liquid = liquid_text(fluid)
     unit = {"velocity": "m/s", "viscosity": "Pa s", "diameter": "m", "density": "kg/m³"}.get(meta["vary"], "")
     n_fail = len(meta["failures"]) + sum(len(m["failures"]) for _, m in others)
     what = "%d points" % meta["points"] if not others else "%d sweeps" % (1 + len(others))

@@ -112,6 +112,9 @@ class Helpers(unittest.TestCase):
         model, reference = [0.52, 0.80, 0.96], [0.31, 0.70, 0.94]
         self.assertEqual(deviation_text("Legendre (2006)", st, model, reference),
                          "imcol − Legendre (2006): +0.21 at St 30, +0.02 at St 750")
+        # the largest deviation named when it lies inside the range; no negative zero
+        self.assertEqual(deviation_text("L", [6.0, 46.0, 1066.0], [0.0, 0.62, 0.97], [0.003, 0.45, 0.968], "St_L"),
+                         "imcol − L: +0.00 at St_L 6, +0.17 at St_L 46 (largest), +0.00 at St_L 1066")
         # between points: linear in log St (halfway in log between 30 and 100: the mean of +0.21 and +0.10)
         (x, d), = deviation_at(st, model, reference, [math.sqrt(30.0 * 100.0)])
         self.assertAlmostEqual(d, 0.155)
