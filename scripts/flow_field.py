@@ -111,13 +111,12 @@ def compose_levels(levels, key: str, rq, zq):
     rq, zq = np.broadcast_arrays(np.asarray(rq, float), np.asarray(zq, float))
     F = np.full(rq.shape, np.nan)
     L = np.full(rq.shape, -1, int)
-    for level, r, z, fields in reversed(levels):  # coarsest first; finer levels overwrite
+    for level, r, z, fields in levels:  # finest first: each point taken by the first level holding it
         tol = 1e-9 * (r[-1] - r[0] + z[-1] - z[0])
-        inside = (rq >= r[0] - tol) & (rq <= r[-1] + tol) & (zq >= z[0] - tol) & (zq <= z[-1] + tol)
-        if inside.any():
-            F[inside] = bilinear(r, z, fields[key], rq[inside], zq[inside])
-            L[inside] = level
-        # no else: a level outside the window adds nothing
+        free = (L < 0) & (rq >= r[0] - tol) & (rq <= r[-1] + tol) & (zq >= z[0] - tol) & (zq <= z[-1] + tol)
+        if free.any():
+            F[free] = bilinear(r, z, fields[key], rq[free], zq[free])
+            L[free] = level
     return F, L
 
 
@@ -270,7 +269,7 @@ def label_colour_bar(cb, key: str, lim: float, text: str) -> None:
     """Signed tick labels (+100, 0, −100) at the limits, the linear range's ends and the powers of ten between."""
     if key == "omega":
         lin = lim / OMEGA_LINEAR
-        mags = [lin] + [10.0**k for k in range(int(np.ceil(np.log10(lin * 1.5))), int(np.floor(np.log10(lim / 1.5))) + 1)] + [lim]
+        mags = [lin] + [10.0**k for k in range(int(np.ceil(np.log10(lin * 1.5))), int(np.floor(np.log10(lim / 2))) + 1)] + [lim]
         cb.set_ticks(sorted([-m for m in mags] + [0.0] + mags))
         text += f"; signed log scale, linear within ±{lin:.3g}"
     cb.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: "0" if v == 0 else f"{v:+.3g}".replace("-", "−")))
@@ -291,8 +290,10 @@ def draw_panel(ax, levels, key, window, lim, bodies, units, n_lines):
         fluid &= ~outside_fluid(np.abs(RR), Z, solids, None, margin)
     L = units.length
     cmap = "RdBu_r" if key == "omega" else "PuOr_r"
-    mesh = ax.pcolormesh(z / L, R / L, np.ma.masked_array(F, ~fluid), cmap=cmap, norm=colour_norm(key, lim), shading="auto",
-                         rasterized=True)
+    hz, hr = z[1] - z[0], R[1] - R[0]  # a regular grid: an image, pixel centres at the points
+    mesh = ax.imshow(np.ma.masked_array(F, ~fluid), cmap=cmap, norm=colour_norm(key, lim), origin="lower", aspect="auto",
+                     interpolation="nearest", extent=((z[0] - hz / 2) / L, (z[-1] + hz / 2) / L, (R[0] - hr / 2) / L,
+                                                      (R[-1] + hr / 2) / L))
     grown = [(zc, d + 2 * margin) for zc, d in solids]  # with p: streamlines stop at the layer p is not drawn in
     lines = streamlines(z, R, P, streamline_levels(P[fluid] if fluid.any() else P.ravel(), n_lines), grown, wall)
     solid = [seg / L for level, seg in lines if level >= 0]
