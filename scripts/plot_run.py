@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""Plot one imcol run: positions, velocities and force terms against time, and the first collision's energy budget.
+"""Plot one imcol run: positions and velocities against time, the force terms on linear axes per phase (approach,
+contact, rebound), and the first collision's energy budget; one legend; the scene's parameters in the title.
 
 Usage: /usr/bin/python3 scripts/plot_run.py OUT_DIR   (writes OUT_DIR/trajectory.png)
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
@@ -115,7 +116,7 @@ def draw_phase_row(fig, cells, t, series, phases, ylabel: str, right=None) -> li
                 ax.plot(tt, values[sl], **style)
         ax.axhline(0, color="k", lw=0.5)
         ax.set_xlim(tt[0], tt[-1])
-        n = max(0, math.ceil(-math.log10(max(1e3 * (b - a), 1e-9))) + 1)  # decimals that tell the ends apart
+        n = max(1, math.ceil(-math.log10(max(1e3 * (b - a), 1e-9))) + 1)  # decimals that tell the ends apart
         ax.set_title(f"{name}: {1e3 * a:.{n}f}–{1e3 * b:.{n}f} ms", fontsize=9)
         ax.set_xlabel("t (ms)")
         ax.tick_params(labelsize=8)
@@ -220,8 +221,7 @@ def main() -> int:
         a.grid(alpha=0.3)
     fig.suptitle(run_title(summary), fontsize=10)
     fig.tight_layout(rect=(0, 0, 0.78, 0.97))
-    figure_legend(fig, [ax_z, ax_u] + ax_f + [a for a in fig.axes if a not in ax_f] + ([ax_e] if budget else []),
-                  bbox_to_anchor=(0.78, 0.93))
+    figure_legend(fig, fig.axes, bbox_to_anchor=(0.78, 0.93))  # every panel's labels once, in the panels' order
     save_png(fig, out / "trajectory.png", dpi=100)
     print(f"wrote {out / 'trajectory.png'}")
     return 0

@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""Plot e against St for `imcol sweep`, with the seed's Table 6.1 overlaid for a sphere pair.
+"""Plot e against St for `imcol sweep`: every named measure in plain words, the seed's Table 6.1 for a sphere pair,
+e/e_dry against St_L beside Legendre et al. (2006) with the deviation for a wall.
 
 Usage: /usr/bin/python3 scripts/plot_sweep.py DIR [--compare DIR2]... [--out PNG]
 (reads DIR/sweep.csv and DIR/sweep.json, writes DIR/sweep.png; --compare draws another sweep dashed beside it;
-points without e are red x marks on the bottom axis and gaps in the lines; DIR/dem.json's fits are drawn when present)
+points without e are red x marks on the bottom axis and gaps in the lines; DIR/dem.json's fits are drawn when present, with its `liggghts` block)
 """
 import argparse
 import json
