@@ -68,30 +68,27 @@ NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
 
 
 def parse_comment(comment: str) -> dict:
-    """What a snapshot's comment line ('LABEL, t = T s; ...; spheres (z, d) = z1 d1 ...; ...') says, read defensively:
-    `spheres` [(z, d)] where the flow kernel holds them, `true_spheres` [(z, d)] at the trajectory's position when a
-    part names them (true/trajectory/model; centres alone take the kernel's diameters), `gap_m` the true gap in m when
-    a part names a gap in m (or without unit); parts not found are absent."""
+    """What a snapshot's comment line says (flow/snapshot.hpp): 'LABEL, t = T s; level 0 is the finest; ...;
+    z_shift = S m; spheres (z, d) = z1 d1 ...; trajectory spheres (z, d) = z1 d1 ...; gap = G m = G/D D'.
+    Returns `spheres` [(z, d)] where the flow kernel holds them, `true_spheres` [(z, d)] where the trajectory has them,
+    `gap_m` and `gap_D` the true surface gap (with a wall or a pair), `z_shift_m`; parts absent from the line (older
+    files have no trajectory part) or not read as numbers are absent."""
     out = {}
     for part in comment.split(";"):
         name, sep, value = part.partition("=")
-        name = name.strip().lower()
-        nums = [float(x) for x in re.findall(NUMBER, value)]
+        name = name.strip()
+        try:
+            nums = [float(x) for x in value.replace("m =", " ").replace(" m", " ").replace(" D", " ").split()]
+        except ValueError:
+            continue
         if not sep or not nums:
             continue
-        if "gap" in name:
-            metres = re.search(rf"({NUMBER})\s*m\b", value)
-            if metres or not re.search(rf"{NUMBER}\s*D\b", value) and "/d" not in name:
-                out["gap_m"] = float(metres.group(1)) if metres else nums[0]
-            continue
-        true = any(w in name for w in ("true", "trajector", "model"))
-        if "sphere" not in name and not true:
-            continue
-        kernel = out.get("spheres")
-        if len(nums) % 2 == 0 and ("(z, d)" in name or not kernel or len(nums) == 2 * len(kernel)):
-            out["true_spheres" if true else "spheres"] = list(zip(nums[0::2], nums[1::2]))
-        elif kernel and len(nums) == len(kernel):  # centres only: the kernel's diameters
-            out["true_spheres" if true else "spheres"] = [(z, d) for z, (_, d) in zip(nums, kernel)]
+        if name in ("spheres (z, d)", "trajectory spheres (z, d)") and len(nums) % 2 == 0:
+            out["spheres" if name.startswith("spheres") else "true_spheres"] = list(zip(nums[0::2], nums[1::2]))
+        elif name == "gap" and re.fullmatch(rf"\s*{NUMBER} m = {NUMBER} D\s*", value):
+            out["gap_m"], out["gap_D"] = nums
+        elif name == "z_shift" and len(nums) == 1:
+            out["z_shift_m"] = nums[0]
     return out
 
 
@@ -193,9 +190,13 @@ def snapshot_time(comment: str):
         return None
 
 
+# The near panel's width over its height (r mirrored) at least: the window is widened along z to it.
+NEAR_ASPECT = 1.4
+
+
 def near_window(levels, spheres, wall):
     """(r_max, z_min, z_max) around the spheres: 1.5 D beyond them along z and 2 D out in r, a wall and 0.4 D beyond
-    it, within the coarsest level's rectangle."""
+    it, widened along z (away from a wall) to NEAR_ASPECT, within the coarsest level's rectangle."""
     _, r, z, _ = levels[-1]
     if not spheres:
         return r[-1], z[0], z[-1]
@@ -203,7 +204,15 @@ def near_window(levels, spheres, wall):
     lo, hi = min(zc - 0.5 * d for zc, d in spheres) - 1.5 * D, max(zc + 0.5 * d for zc, d in spheres) + 1.5 * D
     if wall is not None:
         lo, hi = (min(lo, wall - 0.4 * D), min(hi, wall + 0.4 * D)) if wall > spheres[0][0] else (max(lo, wall - 0.4 * D), max(hi, wall + 0.4 * D))
-    return min(2 * D, r[-1]), max(lo, z[0]), min(hi, z[-1])
+    r_max = min(2 * D, r[-1])
+    grow = max(0.0, NEAR_ASPECT * 2 * r_max - (hi - lo))  # wider along z, away from a wall (both ways without one)
+    if wall is None:
+        lo, hi = lo - grow / 2, hi + grow / 2
+    elif wall > spheres[0][0]:
+        lo -= grow
+    else:
+        hi += grow
+    return r_max, max(lo, z[0]), min(hi, z[-1])
 
 
 def window_grid(levels, window):
@@ -238,20 +247,29 @@ def field_limit(levels, key, spheres, wall, units) -> float:
     return float(np.percentile(np.abs(F[fluid]), CLIP_PERCENTILE)) if fluid.any() else 0.0
 
 
-def draw_bodies(ax, spheres, true_spheres, wall, z_far, L, margin=0.0) -> None:
-    """The spheres (grey discs; where the trajectory puts them when that differs from the kernel's, the kernel's
-    outline dotted; a margin: a grey ring that wide under the streamlines) and the wall (hatched beyond it)."""
+def pixel_size(ax) -> float:
+    """One pixel of the laid-out axes along z, in its data units."""
+    lo, hi = ax.get_xlim()
+    return abs(hi - lo) / max(ax.get_window_extent().width, 1.0)
+
+
+def draw_bodies(ax, spheres, true_spheres, wall, z_far, L, margin=0.0) -> bool:
+    """The spheres (grey discs where the trajectory has them, else where the kernel holds them; a margin: a grey ring
+    that wide under the streamlines), the kernel's outline dashed where it lies more than a pixel from the trajectory's,
+    and the wall (hatched beyond it). Returns whether a kernel outline was drawn."""
     shown = true_spheres or spheres
     for zc, d in (spheres + (true_spheres or [])) if margin else []:
         ax.add_patch(plt.Circle((zc / L, 0), (0.5 * d + margin) / L, facecolor="0.85", edgecolor="none", zorder=1.5))
     for zc, d in shown:
         ax.add_patch(plt.Circle((zc / L, 0), 0.5 * d / L, facecolor="0.85", edgecolor="g", lw=1.2, zorder=4))
-    if true_spheres and any(abs(a[0] - b[0]) > 1e-9 for a, b in zip(spheres, true_spheres)):
-        for zc, d in spheres:
-            ax.add_patch(plt.Circle((zc / L, 0), 0.5 * d / L, fill=False, edgecolor="g", lw=1.0, ls=":", zorder=5))
+    px = pixel_size(ax)
+    apart = [k for k, t in zip(spheres, true_spheres or []) if abs(k[0] - t[0]) / L > px or abs(k[1] - t[1]) / L > px]
+    for zc, d in apart:
+        ax.add_patch(plt.Circle((zc / L, 0), 0.5 * d / L, fill=False, edgecolor="k", lw=1.1, ls=(0, (4, 2)), zorder=5))
     if wall is not None:
         ax.axvspan(min(wall, z_far) / L, max(wall, z_far) / L, facecolor="0.85", edgecolor="0.55", hatch="///", lw=0, zorder=3)
         ax.axvline(wall / L, color="m", lw=1.5, zorder=4)
+    return bool(apart)
 
 
 # ω is drawn on a signed log scale, linear within ±limit / OMEGA_LINEAR (the boundary layers are 10-100 times the
@@ -279,7 +297,9 @@ def label_colour_bar(cb, key: str, lim: float, text: str) -> None:
 
 def draw_panel(ax, levels, key, window, lim, bodies, units, n_lines):
     """One window of the composed field `key` in colour within ±lim, masked outside the fluid, with n_lines
-    streamlines on the larger side of ψ; bodies: (spheres, true spheres, wall). Returns (mesh, any ψ < 0 line)."""
+    streamlines on the larger side of ψ; bodies: (spheres, true spheres, wall). The axes must be laid out (their size
+    decides whether the kernel's outline is a pixel from the trajectory's). Returns (mesh, any ψ < 0 line, kernel
+    outline drawn)."""
     spheres, true_spheres, wall = bodies
     solids = spheres + (true_spheres or [])
     z, R, F, P = window_field(levels, key, window, units)
@@ -302,14 +322,14 @@ def draw_panel(ax, levels, key, window, lim, bodies, units, n_lines):
     if dashed:
         ax.add_collection(LineCollection(dashed, colors="k", linewidths=0.7, alpha=0.75, linestyles=(0, (3, 2)), zorder=2))
     far = z[0] if wall is None or not spheres or spheres[0][0] >= wall else z[-1]
-    draw_bodies(ax, spheres, true_spheres, wall, far, L, margin)
     ax.set_xlim(z[0] / L, z[-1] / L)
     ax.set_ylim(R[0] / L, R[-1] / L)
     ax.set_aspect("equal")
+    outlined = draw_bodies(ax, spheres, true_spheres, wall, far, L, margin)
     ax.set_facecolor("0.85")
     ax.set_xlabel(units.z)
     ax.set_ylabel(units.r + " (mirrored)")
-    return mesh, bool(dashed)
+    return mesh, bool(dashed), outlined
 
 
 def outline_levels(ax, levels, units) -> None:
@@ -321,7 +341,8 @@ def outline_levels(ax, levels, units) -> None:
         ax.add_patch(Rectangle((z[0] / L, -r[-1] / L), (z[-1] - z[0]) / L, 2 * r[-1] / L, fill=False, ec="0.25", lw=0.7,
                                ls="--", zorder=5))
         if z[-1] - z[0] > 0.1 * span:
-            ax.annotate(f"level {level}", (z[-1] / L, r[-1] / L), fontsize=7, color="0.25", ha="right", va="bottom", zorder=5)
+            ax.annotate(f"level {level}", (z[-1] / L, r[-1] / L), fontsize=7, color="0.25", ha="right", va="bottom", zorder=6,
+                        bbox=dict(fc="white", ec="none", alpha=0.75, pad=0.4))
 
 
 QUANTITY = {"omega": ("vorticity ω", "omega_name"), "p": ("pressure p − p∞", "pressure_name")}
@@ -355,14 +376,14 @@ def run_limits(per_snapshot) -> dict:
     return out
 
 
-def legend_handles(any_dashed, sphere_label, wall, moved, key):
+def legend_handles(any_dashed, sphere_label, wall, outlined, key):
     """The legend below a snapshot's panels."""
     handles = [plt.Line2D([], [], color="k", lw=0.6, label="streamlines (ψ = const" + (" ≥ 0)" if any_dashed else ")"))]
     if any_dashed:
         handles.append(plt.Line2D([], [], color="k", lw=0.7, ls=(0, (3, 2)), label="ψ < 0 (circulating the other way)"))
-    handles.append(plt.Line2D([], [], color="g", lw=1.2, label=sphere_label + (" (at the trajectory's position)" if moved else "")))
-    if moved:
-        handles.append(plt.Line2D([], [], color="g", lw=1.0, ls=":", label="where the flow kernel holds the sphere"))
+    handles.append(plt.Line2D([], [], color="g", lw=1.2, label=sphere_label + (" where the trajectory has it" if outlined else "")))
+    if outlined:
+        handles.append(plt.Line2D([], [], color="k", lw=1.1, ls=(0, (4, 2)), label="where the flow solver holds it"))
     if wall is not None:
         handles.append(plt.Line2D([], [], color="m", lw=1.5, label="wall (hatched: beyond it)"))
     handles.append(plt.Line2D([], [], color="0.25", lw=0.7, ls="--", label="grid level boundaries (level 0 finest)"))
@@ -372,38 +393,68 @@ def legend_handles(any_dashed, sphere_label, wall, moved, key):
     return handles
 
 
+# A snapshot's figure, in inches: both panels PANEL_WIDTH wide (a panel whose height would pass PANEL_HEIGHT_MAX is
+# narrower, centred), the margins around them, the colour bar right of the panels over their full height.
+PANEL_WIDTH, PANEL_HEIGHT_MAX = 7.5, 5.6
+MARGIN = dict(left=0.85, right=1.45, top=0.85, between=0.85, bottom=1.1)
+BAR_GAP, BAR_WIDTH = 0.2, 0.22
+
+
+def panel_sizes(windows) -> list:
+    """(width, height) in inches of each window's panel at equal aspect (the mirrored r over z)."""
+    sizes = []
+    for r_max, z0, z1 in windows:
+        aspect = (z1 - z0) / (2 * r_max)
+        h = min(PANEL_WIDTH / aspect, PANEL_HEIGHT_MAX)
+        sizes.append((h * aspect, h))
+    return sizes
+
+
+def snapshot_figure(windows):
+    """The figure, its two panels (near the spheres above, the whole domain below) and the colour bar's axes."""
+    sizes = panel_sizes(windows)
+    width = MARGIN["left"] + PANEL_WIDTH + BAR_GAP + BAR_WIDTH + MARGIN["right"]
+    height = MARGIN["top"] + sizes[0][1] + MARGIN["between"] + sizes[1][1] + MARGIN["bottom"]
+    fig = plt.figure(figsize=(width, height))
+    axes, top = [], height - MARGIN["top"]
+    for w, h in sizes:
+        left = MARGIN["left"] + (PANEL_WIDTH - w) / 2
+        axes.append(fig.add_axes((left / width, (top - h) / height, w / width, h / height)))
+        top -= h + MARGIN["between"]
+    bottom = MARGIN["bottom"] / height
+    bar = fig.add_axes(((MARGIN["left"] + PANEL_WIDTH + BAR_GAP) / width, bottom + 0.02,
+                        BAR_WIDTH / width, (height - MARGIN["top"]) / height - bottom - 0.04))
+    return fig, axes, bar
+
+
 def plot_snapshot(path: Path, spheres=None, wall=None, title=None, sphere_label="sphere surface", units=None, limits=None) -> None:
     """spheres: a list of (z, D), a function of the snapshot's time giving it (moving spheres), or None (the comment
     line's); wall: the wall's z (or None); title: replaces the CSV's own label; units: Units (default SI); limits:
     {quantity: colour-scale limit} shared by a run's snapshots (default this snapshot's). Writes PATH.png (vorticity)
     and, when the CSV has a pressure column `p`, PATH_pressure.png: near the spheres above, the whole domain below,
-    every level composed."""
+    every level composed; the spheres where the trajectory has them, the kernel's outline dashed where it differs."""
     comment, levels = read_snapshot(path)
     spheres, true, wall = snapshot_bodies(comment, spheres, wall)
     units = units or si_units(spheres[0][1] if spheres else 1.0)
-    moved = bool(true) and any(abs(a[0] - b[0]) > 1e-9 for a, b in zip(spheres, true))
     scope = "every panel and snapshot of this run" if limits else "both panels"
     limits = limits or snapshot_limits(path, spheres, wall, units)
     windows = [near_window(levels, spheres + (true or []), wall), near_window(levels, [], None)]
-    aspects = [(z1 - z0) / (2 * r1) for r1, z0, z1 in windows]
-    heights = [min(max(8.4 / aspects[0], 2.4), 6.5), min(max(8.4 / aspects[1], 1.6), 3.4)]
     for key in (k for k in QUANTITY if k in levels[0][3]):
         name, unit_attr = QUANTITY[key]
         lim = limits.get(key) or 1.0
-        fig, axes = plt.subplots(2, 1, figsize=(11, sum(heights) + 2.0), gridspec_kw={"height_ratios": heights})
-        dashed = False
+        fig, axes, bar = snapshot_figure(windows)
+        dashed = outlined = False
         for ax, window, n in zip(axes, windows, (10, 8)):
-            mesh, d = draw_panel(ax, levels, key, window, lim, (spheres, true, wall), units, n)
-            dashed |= d
+            mesh, d, o = draw_panel(ax, levels, key, window, lim, (spheres, true, wall), units, n)
+            dashed, outlined = dashed or d, outlined or o
         outline_levels(axes[1], levels, units)
         axes[0].set_title(f"near the spheres: {name} (colour), streamlines", fontsize=9)
         axes[1].set_title(f"the whole domain: {len(levels)} grid levels composed, the finest wins", fontsize=9)
-        fig.subplots_adjust(left=0.08, right=0.84, top=0.93, bottom=0.1, hspace=0.3)
-        cb = fig.colorbar(mesh, cax=fig.add_axes((0.88, 0.18, 0.02, 0.68)), extend="both")
+        cb = fig.colorbar(mesh, cax=bar, extend="both")
         label_colour_bar(cb, key, lim, f"{getattr(units, unit_attr)}: one scale in {scope}")
-        fig.legend(handles=legend_handles(dashed, sphere_label, wall, moved, key), fontsize=8, loc="lower center", ncol=3,
-                   frameon=False)
-        fig.suptitle(title or comment.split(";")[0], fontsize=11)
+        fig.legend(handles=legend_handles(dashed, sphere_label, wall, outlined, key), fontsize=8, loc="lower center",
+                   ncol=2 if key == "p" else 3, frameon=False)
+        fig.suptitle(title or comment.split(";")[0], fontsize=11, y=1 - 0.3 / fig.get_figheight())
         for ax in axes:
             thin_ticks(ax)
         save_png(fig, path.with_suffix(".png") if key == "omega" else path.with_name(path.stem + "_pressure.png"), dpi=110)

@@ -128,14 +128,30 @@ def positions(rows, meta, key: str) -> list:
     return xs
 
 
-def scene_bodies(scene_file) -> Optional[dict]:
-    """The spheres (material, D in m) and the wall's material of a scene file (TOML), or None when it cannot be read."""
+REPO = Path(__file__).resolve().parent.parent
+
+
+def read_scene(scene_file) -> Optional[dict]:
+    """A scene file (TOML) as a dict, or None when it cannot be read; a relative path not found from the working
+    folder is taken from the repository's top (imcol writes the path it was given)."""
+    if not scene_file:
+        return None
+    path = Path(scene_file)
+    if not path.is_absolute() and not path.exists():
+        path = REPO / path
     try:
         import tomllib
 
-        with open(scene_file, "rb") as f:
-            scene = tomllib.load(f)
+        with open(path, "rb") as f:
+            return tomllib.load(f)
     except (ImportError, OSError, TypeError, ValueError):
+        return None
+
+
+def scene_bodies(scene_file) -> Optional[dict]:
+    """The spheres (material, D in m) and the wall's material of a scene file (TOML), or None when it cannot be read."""
+    scene = read_scene(scene_file)
+    if scene is None:
         return None
     spheres = [(s.get("material", ""), float(s["diameter"])) for s in scene.get("sphere", []) if "diameter" in s]
     wall = scene.get("wall")
@@ -155,19 +171,21 @@ def bodies_text(bodies: Optional[dict]) -> str:
 
 def liquid_text(fluid: Optional[dict]) -> str:
     """'glycerol-water 50 wt% at 20 °C, μ = 6 mPa s, ρ = 1126 kg/m³' from summary.json's `fluid` (μ and ρ left out
-    when None); 'no liquid' when μ = 0."""
+    when None), 'a liquid of μ = 20 mPa s, ρ = 1200 kg/m³' without a name; 'no liquid' when μ = 0."""
     if not fluid:
         return ""
     mu, rho = fluid.get("viscosity_Pa_s"), fluid.get("density_kg_m3")
     if mu is not None and mu <= 0:
         return "no liquid"
-    name = fluid.get("name") or "liquid"
+    name = fluid.get("name") or ""
     if fluid.get("mass_fraction") is not None:
         name += f" {100 * fluid['mass_fraction']:.3g} wt%"
     if fluid.get("temperature_C") is not None:
         name += f" at {fluid['temperature_C']:.3g} °C"
-    parts = [name] + ([f"μ = {1e3 * mu:.3g} mPa s"] if mu is not None else []) + ([f"ρ = {rho:.4g} kg/m³"] if rho is not None else [])
-    return ", ".join(parts)
+    values = ([f"μ = {1e3 * mu:.3g} mPa s"] if mu is not None else []) + ([f"ρ = {rho:.4g} kg/m³"] if rho is not None else [])
+    if not fluid.get("name"):  # a liquid given by its values alone
+        return "a liquid of " + ", ".join(values) if values else "a liquid"
+    return ", ".join([name.strip()] + values)
 
 
 def figure_legend(fig, axes, **kw):
@@ -219,12 +237,9 @@ def deviation_text(name: str, xs, model, reference, xname: str = "St") -> str:
 def scene_fluid(scene_file) -> Optional[dict]:
     """A scene file's liquid in summary.json's `fluid` form (name, mass fraction, temperature, μ and ρ when given in the
     scene; a named liquid's μ and ρ come from data/fluids.csv and are left out), or None."""
-    try:
-        import tomllib
-
-        with open(scene_file, "rb") as f:
-            fl = tomllib.load(f).get("fluid", {})
-    except (ImportError, OSError, TypeError, ValueError):
+    scene = read_scene(scene_file)
+    if scene is None:
         return None
+    fl = scene.get("fluid", {})
     return {"name": fl.get("fluid"), "mass_fraction": fl.get("mass_fraction"), "temperature_C": fl.get("temperature"),
             "viscosity_Pa_s": fl.get("viscosity"), "density_kg_m3": fl.get("density")}

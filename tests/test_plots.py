@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The plot scripts on small real outputs of imcol (run, sweep with --export dem, history sweep and single-scene
 comparison, a coupled run's flow snapshots): each exits 0 and writes its PNGs at the figure's size; and their
-helpers on hand-made inputs: the run's phases, the deviation from a correlation, coinciding measures drawn as one,
-the kernels' sources, the composition of grid levels (finest wins) and the snapshot comment line read defensively.
+helpers on hand-made inputs: the run's phases, the deviation from a correlation, coinciding measures drawn as one
+(in plain words with their settings), the kernels' sources, the composition of grid levels (finest wins), the
+snapshot comment line read exactly and the kernel's outline dashed only a pixel or more from the trajectory's sphere.
 
 Usage: /usr/bin/python3 tests/test_plots.py --imcol BUILD/bin/imcol   (run by ctest as plot_scripts)
 """
@@ -22,10 +23,10 @@ import numpy as np
 SCRIPTS = Path(__file__).resolve().parent.parent / "scripts"
 sys.path.insert(0, str(SCRIPTS))
 
-from flow_field import compose_levels, parse_comment  # noqa: E402
-from imcol_plot import deviation_at, deviation_text, kernel_label, liquid_text  # noqa: E402
+from flow_field import compose_levels, draw_bodies, parse_comment  # noqa: E402
+from imcol_plot import deviation_at, deviation_text, kernel_label, liquid_text, plt  # noqa: E402
 from plot_run import run_phases  # noqa: E402
-from plot_sweep import measure_groups  # noqa: E402
+from plot_sweep import measure_groups, sweep_title  # noqa: E402
 
 IMCOL = None  # set from --imcol
 
@@ -82,6 +83,11 @@ class RealOutputs(unittest.TestCase):
         (out / "sweep.png").unlink()
         self.script("plot_sweep.py", out)
         self.assertTrue((out / "sweep.png").exists())
+        # a sweep beside another (here itself): one legend of measures, one of solid and dashed
+        r = subprocess.run(["/usr/bin/python3", str(SCRIPTS / "plot_sweep.py"), str(out), "--compare", str(out), "--out",
+                            str(out / "compare.png")], capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(png_size(out / "compare.png"), (1800, 990))
 
     def test_history_pictures(self):
         out = self.dir / "history_sweep"
@@ -102,7 +108,8 @@ class RealOutputs(unittest.TestCase):
         self.assertGreaterEqual(len(snaps), 3)
         for snap in snaps:
             for png in (snap.with_suffix(".png"), snap.with_name(snap.stem + "_pressure.png")):
-                self.assertEqual(png_size(png)[0], 1210, png)  # 11 in at 110 dpi
+                # panels 7.5 in wide, 0.85 in left of them, colour bar and its label 1.87 in right: 10.22 in at 110 dpi
+                self.assertEqual(png_size(png)[0], 1124, png)
                 self.assertGreater(png.stat().st_size, 50000)
 
 
@@ -128,7 +135,12 @@ class Helpers(unittest.TestCase):
         self.assertEqual([g[0] for g in groups], [["e_fit_distance", "e_instant"], ["e_fit_time"], ["e_peak_rebound"]])
         self.assertTrue(groups[0][1].startswith("imcol's e: "))
         self.assertIn("identical here", groups[0][1])
-        self.assertIn("Yang & Hunt 2006", groups[1][1])
+        self.assertEqual(groups[1][1], "e from lines fitted over 10 ms (Yang & Hunt 2006)")  # the default window
+        # a set gap in plain words with the sweep's value, no key name; colours fixed per measure
+        at_gap = measure_groups([dict(r, e_at_gap=str(float(r["e"]) - 0.05)) for r in rows], {"e_is": "joseph_2001",
+                                                                          "overrides": {"measure.at_gap": 0.25}})
+        self.assertIn((["e_at_gap"], "e from the speeds at a set gap (0.25 D)", "v", "-.", "C3"), at_gap)
+        self.assertFalse(any("measure." in g[1] for g in at_gap))
 
     def test_run_without_contact_is_one_phase(self):
         self.assertEqual(run_phases({"contact": None}, 0.0, 1.0), [("the whole run", 0.0, 1.0)])
@@ -142,6 +154,15 @@ class Helpers(unittest.TestCase):
                                       "viscosity_Pa_s": 0.006, "density_kg_m3": 1126.0}),
                          "glycerol-water 50 wt% at 20 °C, μ = 6 mPa s, ρ = 1126 kg/m³")
         self.assertEqual(liquid_text({"viscosity_Pa_s": 0.0, "density_kg_m3": 0.0}), "no liquid")
+        self.assertEqual(liquid_text({"viscosity_Pa_s": None, "density_kg_m3": 1200.0}), "a liquid of ρ = 1200 kg/m³")
+
+    def test_compared_sweeps_title_names_bodies_and_liquid(self):
+        meta = {"scene": "default", "scene_file": "data/scenes/default.toml", "vary": "viscosity", "from": 0.42, "to": 0.0033,
+                "points": 12, "failures": [], "effects": ["drag", "added_mass"]}
+        title = sweep_title(meta, [(None, dict(meta, effects=["drag", "added_mass", "flow"]))])
+        self.assertEqual(title, "default: 12.7 mm steel sphere onto a zerodur wall in a liquid of ρ = 1200 kg/m³\n"
+                                "e against St, viscosity from 0.42 to 0.0033 Pa s, 12 points in each of 2 sweeps; "
+                                "effects: drag, added mass; the dashed sweep adds the flow solver (coupled)")
 
     def test_levels_composed_finest_wins(self):
         # level 0: h = 0.1 over [0, 1] x [0, 2], f = r + z; level 1: h = 0.2 over [0, 2] x [-1, 3], f = r + z + 100
@@ -157,21 +178,43 @@ class Helpers(unittest.TestCase):
         np.testing.assert_allclose(F[:4], rq[:4] + zq[:4] + np.array([0, 0, 100, 100]), atol=1e-12)  # bilinear: exact
         self.assertTrue(np.isnan(F[4]))
 
-    def test_comment_line_read_defensively(self):
-        base = ("contact, t = 0.0289 s; level 0 is the finest; psi is the total Stokes streamfunction (m^3/s); "
-                "z_shift = 0.00957 m; spheres (z, d) = 0.003 0.0127 0.0161 0.0127")
-        info = parse_comment(base)
-        self.assertEqual(info["spheres"], [(0.003, 0.0127), (0.0161, 0.0127)])
-        self.assertNotIn("gap_m", info)
-        self.assertNotIn("true_spheres", info)
-        info = parse_comment(base + "; true spheres (z, d) = 0.0031 0.0127 0.0162 0.0127; true gap = 8.06e-05 m (0.0134 D)")
-        self.assertEqual(info["true_spheres"], [(0.0031, 0.0127), (0.0162, 0.0127)])
-        self.assertEqual(info["gap_m"], 8.06e-05)
-        info = parse_comment(base + "; trajectory z = 0.0031 0.0162; gap_m = 1e-4")  # centres only: the kernel's D
-        self.assertEqual(info["true_spheres"], [(0.0031, 0.0127), (0.0162, 0.0127)])
-        self.assertEqual(info["gap_m"], 1e-4)
-        self.assertNotIn("gap_m", parse_comment(base + "; true gap = 0.0134 D"))  # no length in m: no gap
-        self.assertEqual(parse_comment("t = 1 s; spheres (z, d) = garbled"), {})
+    def test_snapshot_comment_line_read_exactly(self):
+        head = ("contact, t = 0.0243052814 s; level 0 is the finest; psi is the total Stokes streamfunction (m^3/s); "
+                "z_shift = 0.00957212327 m; spheres (z, d) = 0.00302368577 0.0127 0.0161205608 0.0127")
+        line = head + ("; trajectory spheres (z, d) = 0.00309574946 0.0127 0.0160484995 0.0127; "
+                       "gap = 0.000252750079 m = 0.019901581 D")
+        info = parse_comment(line)
+        self.assertEqual(info["spheres"], [(0.00302368577, 0.0127), (0.0161205608, 0.0127)])
+        self.assertEqual(info["true_spheres"], [(0.00309574946, 0.0127), (0.0160484995, 0.0127)])
+        self.assertEqual((info["gap_m"], info["gap_D"]), (0.000252750079, 0.019901581))
+        self.assertEqual(info["z_shift_m"], 0.00957212327)
+        # one sphere, exponents, no gap part (no wall, no pair); a file written before the trajectory part
+        one = parse_comment("t = 3.45 s; z_shift = 0 m; spheres (z, d) = -0.003375 0.006; "
+                            "trajectory spheres (z, d) = -3.08061785e-03 6e-03")
+        self.assertEqual(one["true_spheres"], [(-0.00308061785, 0.006)])
+        self.assertNotIn("gap_m", one)
+        old = parse_comment(head)
+        self.assertNotIn("true_spheres", old)
+        self.assertNotIn("gap_m", old)
+        # a label naming a gap is not the gap; a garbled part is left out
+        self.assertNotIn("gap_m", parse_comment("gap 1 D, t = 0.0121526407 s; spheres (z, d) = -0.0089 0.006"))
+        self.assertEqual(parse_comment("t = 1 s; spheres (z, d) = garbled; gap = 2 D"), {})
+
+    def test_kernel_outline_drawn_only_a_pixel_away(self):
+        fig, ax = plt.subplots(figsize=(5, 2.5), dpi=100)  # 4 mm over about 400 pixels: a pixel is ~0.01 mm
+        ax.set_xlim(-4.0, 0.0)
+        ax.set_ylim(-2.0, 2.0)
+        kernel, wall = [(-3.375e-3, 6e-3)], 0.0
+        self.assertTrue(draw_bodies(ax, kernel, [(-3.08e-3, 6e-3)], wall, -4e-3, 1e-3))
+        dashed = [c for c in ax.patches if isinstance(c, plt.Circle) and not c.get_fill()]
+        self.assertEqual(len(dashed), 1)
+        self.assertAlmostEqual(dashed[0].center[0], -3.375)  # the kernel's, dashed; the trajectory's filled
+        filled = [c for c in ax.patches if isinstance(c, plt.Circle) and c.get_fill()]
+        self.assertEqual(len(filled), 1)
+        self.assertAlmostEqual(filled[0].center[0], -3.08)
+        self.assertFalse(draw_bodies(ax, kernel, [(-3.375e-3 + 2e-6, 6e-3)], wall, -4e-3, 1e-3))  # 0.002 mm: under a pixel
+        self.assertFalse(draw_bodies(ax, kernel, None, wall, -4e-3, 1e-3))
+        plt.close(fig)
 
 
 if __name__ == "__main__":
