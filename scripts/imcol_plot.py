@@ -90,6 +90,11 @@ def kernel_colour(kernel: str) -> str:
     return KERNEL_COLOURS[kernel]
 
 
+# The effects (scene key `effects`) in plain words.
+EFFECT_WORDS = {"added_mass": "added mass", "elastic": "elastic contact", "history": "history force",
+                "flow": "the flow solver (coupled)", "lubrication": "lubrication", "drag": "drag"}
+
+
 # The force columns of trajectory.csv by what they are (the sphere's number follows the name: f_drag1, f_drag2).
 FORCE_NAMES = {"f_drag": "drag", "f_lub": "lubrication", "f_am": "added mass", "f_contact": "contact", "f_hist": "history",
                "f_grav": "gravity", "f_sim": "simulated f_SIM", "f_thr": "theory f_THR"}

@@ -10,7 +10,7 @@ import json
 import math
 import sys
 
-from imcol_plot import (FORCE_NAMES, bodies_text, figure_legend, force_label, liquid_text, out_dir, plt, read_rows, save_png,
+from imcol_plot import (EFFECT_WORDS, FORCE_NAMES, bodies_text, figure_legend, force_label, liquid_text, out_dir, plt, read_rows, save_png,
                         scene_bodies)
 
 
@@ -167,10 +167,11 @@ def mark_events(axes, summary, col) -> None:
 
 def run_title(summary) -> str:
     """The scene, its bodies and liquid; impact speed, St, Re and e; the effects."""
-    head = summary["scene"]
-    what = ", ".join(x for x in (bodies_text(scene_bodies(summary.get("scene_file"))), liquid_text(summary.get("fluid"))) if x)
-    if what:
-        head += ": " + what.replace(", μ", " (μ", 1).replace(" kg/m³", " kg/m³)", 1) if "μ" in what else ": " + what
+    bodies, liquid = bodies_text(scene_bodies(summary.get("scene_file"))), liquid_text(summary.get("fluid"))
+    if "μ" in liquid and not liquid.startswith("a liquid"):  # a named liquid: its values in brackets
+        liquid = liquid.replace(", μ", " (μ", 1).replace(" kg/m³", " kg/m³)", 1)
+    joined = bodies + (" in " if bodies and liquid and liquid != "no liquid" else ", " if bodies and liquid else "") + liquid
+    head = summary["scene"] + (": " + joined if joined else "")
     bounces = summary.get("bounces") or []
     u = abs(bounces[0]["impact_velocity_m_s"]) if bounces and bounces[0].get("impact_velocity_m_s") is not None else None
     nums = [f"impact speed {u:.3g} m/s" if u is not None else None]
@@ -181,7 +182,7 @@ def run_title(summary) -> str:
         nums.append(f"Re = {summary['Re']:.3g}")
     e = summary.get("e")
     nums.append(f"e = {e:.3f} ({summary.get('e_is')})" if e is not None else "no e")
-    return head + "\n" + ", ".join(x for x in nums if x) + "; effects: " + ", ".join(summary["effects"])
+    return head + "\n" + ", ".join(x for x in nums if x) + "; effects: " + ", ".join(EFFECT_WORDS.get(x, x) for x in summary["effects"])
 
 
 def main() -> int:

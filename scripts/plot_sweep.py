@@ -13,7 +13,7 @@ import math
 import sys
 from pathlib import Path
 
-from imcol_plot import (bodies_text, deviation_text, has_e, liquid_text, plt, positions, read_rows, read_scene, save_png,
+from imcol_plot import (EFFECT_WORDS, bodies_text, deviation_text, has_e, liquid_text, plt, positions, read_rows, read_scene, save_png,
                         scene_bodies, scene_fluid)
 
 SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li_2010_table_6_1.csv"
@@ -221,7 +221,7 @@ def plot_legendre(ax, folder: Path, meta, others=()) -> bool:
         rows, xs, pts = got
         who = sweep_label(m) if others else e_is_text(m)
         ax.semilogx(*zip(*pts), marker="o", ls=ls, mfc=mfc, color="C0", ms=5, lw=1.8 if ls == "-" else 1.2,
-                    label="imcol's e / e$_{dry}$: " + who)
+                    label="imcol: e / e$_{dry}$, " + who)
         mark_failed(ax, rows, xs)
         drawn.append(pts)
     if not drawn:
@@ -230,7 +230,7 @@ def plot_legendre(ax, folder: Path, meta, others=()) -> bool:
     lo, hi = min(finite), max(finite)
     xs_c = [lo * (hi / lo) ** (i / 199) for i in range(200)] if hi > lo else [lo]
     ax.semilogx(xs_c, [math.exp(-LEGENDRE_ST_C / x) for x in xs_c], "k:", lw=1.6,
-                label=r"Legendre et al. (2006): $e/e_{dry} = \exp(-35/St_L)$, a correlation of experiments")
+                label=r"Legendre et al. (2006): $\exp(-35/St_L)$, fitted to experiments")
     pts = drawn[0]
     text = deviation_text("Legendre (2006)", [x for x, _ in pts], [y for _, y in pts],
                           [math.exp(-LEGENDRE_ST_C / x) for x, _ in pts], "St$_L$")
@@ -242,7 +242,7 @@ def plot_legendre(ax, folder: Path, meta, others=()) -> bool:
     ax.set_ylabel(r"e / e$_{dry}$")
     ax.set_ylim(-0.02, 1.05)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="center right")  # e / e_dry is high at large St_L and low at small
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1), frameon=False)  # below, as the left panel's
     return True
 
 
@@ -254,11 +254,6 @@ def draw_seed_table(ax) -> None:
     for i, r in enumerate(sorted(seed, key=lambda r: float(r["St_B"]))):
         ax.annotate(f"run {r['run']}", (float(r["St_B"]), float(r["e"])), fontsize=7,
                     xytext=(4, 8 if i % 2 else -12), textcoords="offset points")
-
-
-# The effects (scene key `effects`) in plain words.
-EFFECT_WORDS = {"added_mass": "added mass", "elastic": "elastic contact", "history": "history force",
-                "flow": "the flow solver (coupled)", "lubrication": "lubrication", "drag": "drag"}
 
 
 def sweep_title(meta, others) -> str:
