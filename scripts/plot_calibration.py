@@ -54,13 +54,13 @@ def plot_trajectory(ax, folder, meta):
     tau = b.get("tau_s")
     title = "%s: measured and fitted" % meta["scene"]
     if b.get("ok"):
-        title += " (rms %.3g um%s)" % (b["rms"] * 1e6, ", tau = %.3g ms" % (tau * 1e3) if tau is not None else "")
+        title += " (rms %.3g µm%s)" % (b["rms"] * 1e6, ", τ = %.3g ms" % (tau * 1e3) if tau is not None else "")
     ax.set_title(title, fontsize=10)
     ax.legend(fontsize=7, loc="best")
 
 
 def plot_residuals(ax, folder, meta):
-    """Measured minus fitted z of each column at the measured times (um), the window shaded: what the fit leaves."""
+    """Measured minus fitted z of each column at the measured times (µm), the window shaded: what the fit leaves."""
     m = meta["measurement"]
     measured = read_rows(folder / "measured.csv")
     best = read_rows(folder / "best.csv")
@@ -83,7 +83,7 @@ def plot_residuals(ax, folder, meta):
             res.append((num(r, col) - (zb[j] + f * (zb[j + 1] - zb[j]))) * 1e6)
         ax.plot(ts, res, ".", ms=2, color="C%d" % i, label="%s measured - fitted" % col)
     ax.set_xlabel("t (ms, the measurement's clock)")
-    ax.set_ylabel("residual (um)")
+    ax.set_ylabel("residual (µm)")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7, loc="best")
 
@@ -137,7 +137,11 @@ def plot_profile(ax, meta, k, evaluations):
     ax.set_xlim(p["lo"], p["hi"])
     if log:
         ax.set_xscale("log")
-    ax.set_yscale("log")
+    lo_y, hi_y = ax.get_ylim()
+    if lo_y > 0 and hi_y > 3 * lo_y:  # a log axis only where the objective spans more than a factor of 3
+        ax.set_yscale("log")
+    else:  # a narrow range: linear, the power of ten once at the top
+        ax.ticklabel_format(axis="y", style="sci", scilimits=(0, 0), useMathText=True)
     ax.set_xlabel(key)
     ax.set_ylabel("objective (%s)" % meta["objective"]["unit"])
     ax.grid(True, which="both", alpha=0.3)

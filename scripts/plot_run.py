@@ -1,14 +1,17 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: BSD-3-Clause
-"""Plot one imcol run: positions, velocities and force terms against time, and the first collision's energy budget.
+"""Plot one imcol run: positions and velocities against time, the force terms on linear axes per phase (approach,
+contact, rebound), and the first collision's energy budget; one legend; the scene's parameters in the title.
 
 Usage: /usr/bin/python3 scripts/plot_run.py OUT_DIR   (writes OUT_DIR/trajectory.png)
 Needs Debian's python3-matplotlib (importable from /usr/bin/python3 only).
 """
 import json
+import math
 import sys
 
-from imcol_plot import FORCE_NAMES, force_label, out_dir, plt, read_rows, save_png
+from imcol_plot import (EFFECT_WORDS, FORCE_NAMES, bodies_text, figure_legend, force_label, liquid_text, out_dir, plt, read_rows, save_png,
+                        scene_bodies)
 
 
 def draw_e_fits(ax, ax_u, summary) -> None:
@@ -72,7 +75,116 @@ def draw_energy_budget(ax, summary) -> None:
                  f"closes to {worst:.1g} of it", fontsize=9)
 
 
-# One function (85 lines): the panels of trajectory.png share the figure, its time axis and the summary read once.
+def run_phases(summary, t0: float, t1: float) -> list:
+    """The run's phases around its first contact (summary `contact`): [(name, start, end)] in s, approach up to the
+    contact, the contact up to separation (or the end), the rebound after it; one phase for a run without contact."""
+    contact = summary.get("contact") or {}
+    tc, ts = contact.get("t_contact_s"), contact.get("t_separation_s")
+    if tc is None or not t0 < tc < t1:
+        return [("the whole run", t0, t1)]
+    phases = [("approach", t0, tc)]
+    if ts is None or ts >= t1:
+        return phases + [("contact (to the end of the run)", tc, t1)]
+    return phases + [("contact", tc, ts), ("rebound" if len(summary.get("bounces") or []) < 2 else "after the first separation", ts, t1)]
+
+
+def phase_slice(t, t0: float, t1: float) -> slice:
+    """The samples of t (sorted) in [t0, t1], with one neighbour on each side so that the phases join."""
+    i = next((k for k, x in enumerate(t) if x >= t0), len(t))
+    j = next((k for k, x in enumerate(t) if x > t1), len(t))
+    return slice(max(i - 1, 0), min(j + 1, len(t)))
+
+
+def draw_phase_row(fig, cells, t, series, phases, ylabel: str, right=None) -> list:
+    """One linear panel per phase in `cells` (GridSpec cells): series [(values, style)], each panel over its own
+    phase and y range; `right`: series drawn on a twin axis of their own (the contact force, 100 x larger)."""
+    axes = []
+    for k, (name, a, b) in enumerate(phases):
+        ax = fig.add_subplot(cells[k])
+        sl = phase_slice(t, a, b)
+        tt = [1e3 * x for x in t[sl]]
+        for values, style in series:
+            ax.plot(tt, values[sl], **style)
+        if right and any(abs(v) > 0.01 * max(map(abs, values)) for values, _ in right for v in values[sl]):  # its own axis
+            tw = ax.twinx()
+            for values, style in right:
+                tw.plot(tt, values[sl], **style)
+            tw.set_ylabel("contact force (N), right axis", fontsize=8)
+            tw.tick_params(labelsize=8)
+        elif right:  # no contact in the phase: the contact force is 0, drawn with the others
+            for values, style in right:
+                ax.plot(tt, values[sl], **style)
+        ax.axhline(0, color="k", lw=0.5)
+        ax.set_xlim(tt[0], tt[-1])
+        n = max(1, math.ceil(-math.log10(max(1e3 * (b - a), 1e-9))) + 1)  # decimals that tell the ends apart
+        ax.set_title(f"{name}: {1e3 * a:.{n}f}–{1e3 * b:.{n}f} ms", fontsize=9)
+        ax.set_xlabel("t (ms)")
+        ax.tick_params(labelsize=8)
+        axes.append(ax)
+    axes[0].set_ylabel(ylabel)
+    return axes
+
+
+def force_series(col, pair: bool, coupled: bool):
+    """The force columns as (values, style): (fluid terms, the contact force)."""
+    term_colour = {stem: f"C{i}" for i, stem in enumerate(FORCE_NAMES)}
+    fluid, contact = [], []
+    for k in col:
+        if k.startswith("f_") and not k.startswith(("f_sim", "f_thr")):
+            stem = k.rstrip("0123456789")
+            style = dict(color=term_colour.get(stem), ls="--" if k.endswith("2") else "-", lw=1.2, label=force_label(k, pair))
+            (contact if stem == "f_contact" else fluid).append((col[k], style))
+    sim = []
+    if coupled:
+        for k, ls in (("f_sim1", "-"), ("f_thr1", "--"), ("f_sim2", "-"), ("f_thr2", "--")):
+            if k in col:
+                sim.append((col[k], dict(ls=ls, color="C0" if k.endswith("1") else "C3",
+                                         label=force_label(k, pair) + (" (flow kernel)" if "sim" in k else " (analytic)"))))
+    return fluid, contact, sim
+
+
+def mark_events(axes, summary, col) -> None:
+    """Contact and separation (and every later contact) as vertical lines; rebound apexes on the position panel."""
+    contact = summary.get("contact") or {}
+    for key, label, ls in (("t_contact_s", "contact (gap = δ_SS)", ":"), ("t_separation_s", "separation", "--")):
+        if contact.get(key) is not None:
+            for a in axes:
+                a.axvline(1e3 * contact[key], color="grey", lw=0.8, ls=ls, label=label)
+    bounces = summary.get("bounces") or []
+    if len(bounces) < 2:
+        return
+    for b in bounces[1:]:
+        for a in axes:
+            a.axvline(1e3 * b["t_contact_s"], color="red", lw=0.6, ls=":", label="later contacts")
+    tz = {round(t, 12): z for t, z in zip(col["t"], col["z1"])}
+    apex = [b for b in bounces if b.get("t_separation_s") is not None and b.get("t_apex_s") is not None]
+    ts = [1e3 * b["t_apex_s"] for b in apex]
+    zs = [1e3 * tz.get(round(b["t_apex_s"], 12), float("nan")) for b in apex]
+    axes[0].plot(ts, zs, "v", color="k", ms=6, label="apexes (largest gap before next contact)")
+    for b, t, z in zip(apex, ts, zs):
+        axes[0].annotate("%.2f mm" % (1e3 * b["apex_gap_m"]), (t, z), fontsize=7, xytext=(3, 5), textcoords="offset points")
+
+
+def run_title(summary) -> str:
+    """The scene, its bodies and liquid; impact speed, St, Re and e; the effects."""
+    bodies, liquid = bodies_text(scene_bodies(summary.get("scene_file"))), liquid_text(summary.get("fluid"))
+    if "μ" in liquid and not liquid.startswith("a liquid"):  # a named liquid: its values in brackets
+        liquid = liquid.replace(", μ", " (μ", 1).replace(" kg/m³", " kg/m³)", 1)
+    joined = bodies + (" in " if bodies and liquid and liquid != "no liquid" else ", " if bodies and liquid else "") + liquid
+    head = summary["scene"] + (": " + joined if joined else "")
+    bounces = summary.get("bounces") or []
+    u = abs(bounces[0]["impact_velocity_m_s"]) if bounces and bounces[0].get("impact_velocity_m_s") is not None else None
+    nums = [f"impact speed {u:.3g} m/s" if u is not None else None]
+    st, st62 = summary.get("St"), summary.get("St_B_eq_6_2")
+    if st is not None:
+        nums.append(f"St_B = {st:.3g} (Table 6.1; eq. 6.2: {st62:.3g})" if st62 is not None else f"St = {st:.3g}")
+    if summary.get("Re") is not None:
+        nums.append(f"Re = {summary['Re']:.3g}")
+    e = summary.get("e")
+    nums.append(f"e = {e:.3f} ({summary.get('e_is')})" if e is not None else "no e")
+    return head + "\n" + ", ".join(x for x in nums if x) + "; effects: " + ", ".join(EFFECT_WORDS.get(x, x) for x in summary["effects"])
+
+
 def main() -> int:
     out = out_dir(__doc__)
     if out is None:
@@ -80,82 +192,37 @@ def main() -> int:
     rows = read_rows(out / "trajectory.csv")
     summary = json.loads((out / "summary.json").read_text())
     col = {k: [float(r[k]) for r in rows] for k in rows[0]}
+    coupled, pair = "H" in col, "z2" in col  # coupled: f_SIM against f_THR in a row of their own
+    budget = bool(summary.get("energy_budget"))
+    phases = run_phases(summary, col["t"][0], col["t"][-1])
+    heights = [1, 1, 1.15] + [1.15] * coupled + [0.85] * budget
+    fig = plt.figure(figsize=(13.5, 3.0 * sum(heights) + 0.6))
+    gs = fig.add_gridspec(len(heights), len(phases), height_ratios=heights)
+    ax_z, ax_u = fig.add_subplot(gs[0, :]), fig.add_subplot(gs[1, :])
+    ax_u.sharex(ax_z)
     t_ms = [1e3 * x for x in col["t"]]
-
-    coupled = "H" in col  # the flow effect: f_SIM against f_THR and the blend in a panel of their own
-    pair = "z2" in col
-    n_time = 4 if coupled else 3
-    budget = bool(summary.get("energy_budget"))  # a panel of its own below the time axis (none for a free sphere)
-    fig, ax_all = plt.subplots(n_time + budget, 1, figsize=(10.5, 3.25 * n_time + 3.25 * budget),
-                               gridspec_kw={"height_ratios": [1] * n_time + [0.8] * budget})
-    ax, ax_energy = list(ax_all[:n_time]), (ax_all[n_time] if budget else None)
-    for a in ax[1:]:
-        a.sharex(ax[0])
-    for a in ax[:-1]:
-        a.tick_params(labelbottom=False)
-    # One colour per force term, the same for both spheres (sphere 2 dashed); one colour per sphere for z and u.
-    term_colour = {stem: f"C{i}" for i, stem in enumerate(FORCE_NAMES)}
-    term_colour.update({"f_sim": "C0", "f_thr": "C1"})
-    for m, k in enumerate(("z1", "z2")):
-        if k in col:
-            ax[0].plot(t_ms, [1e3 * v for v in col[k]], color=f"C{m}", label=f"sphere {m + 1}")
-    ax[0].set_ylabel("centre position z (mm)")
-    for m, k in enumerate(("u1", "u2")):
-        if k in col:
-            ax[1].plot(t_ms, col[k], color=f"C{m}", label=f"sphere {m + 1}")
-    ax[1].set_ylabel("velocity u (m/s)")
-    for k in col:
-        if k.startswith("f_") and not k.startswith(("f_sim", "f_thr")):
-            stem = k.rstrip("0123456789")
-            ax[2].plot(t_ms, col[k], color=term_colour.get(stem), ls="--" if k.endswith("2") else "-", label=force_label(k, pair))
-    ax[2].set_yscale("symlog", linthresh=1e-4)
-    ax[2].set_ylabel("force acting (N)" + (": fluid terms x H" if coupled else ""))
-    if coupled:
-        for k, ls in (("f_sim1", "-"), ("f_thr1", "--"), ("f_sim2", "-"), ("f_thr2", "--")):
-            if k in col:
-                colour = "C0" if k.endswith("1") else "C3"
-                ax[3].plot(t_ms, col[k], ls=ls, color=colour, label=force_label(k, pair) + (" (flow kernel)" if "sim" in k else " (analytic)"))
-        ax[3].set_yscale("symlog", linthresh=1e-4)
-        ax[3].set_ylabel("fluid force (N)")
-        h = ax[3].twinx()
-        h.plot(t_ms, col["H"], color="k", lw=0.8, label="H (weight of f_THR)")
-        h.set_ylim(-0.05, 1.05)
-        h.set_ylabel("H")
-        h.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.09, 0.3))
-    ax[-1].set_xlabel("t (ms)")
-    contact = summary.get("contact") or {}
-    marks = (("t_contact_s", "contact (gap = delta_SS)", ":"), ("t_separation_s", "separation", "--"))
-    for key, label, ls in marks:
-        if contact.get(key) is not None:
-            for a in ax:
-                a.axvline(1e3 * contact[key], color="grey", lw=0.8, ls=ls, label=label)
-    # Every contact (summary `bounces`): contacts as vertical lines, apexes as markers on the position.
-    bounces = summary.get("bounces") or []
-    if len(bounces) > 1:
-        for i, b in enumerate(bounces):
-            for a in ax:
-                a.axvline(1e3 * b["t_contact_s"], color="red", lw=0.6, ls=":", label="contacts" if i == 0 and a is ax[0] else None)
-        tz = {round(t, 12): z for t, z in zip(col["t"], col["z1"])}
-        bounces = [b for b in bounces if b.get("t_separation_s") is not None]  # apexes of the rebounds
-        ax_t = [1e3 * b["t_apex_s"] for b in bounces if b.get("t_apex_s") is not None]
-        ax_z = [1e3 * tz.get(round(b["t_apex_s"], 12), float("nan")) for b in bounces if b.get("t_apex_s") is not None]
-        ax[0].plot(ax_t, ax_z, "v", color="k", ms=6, label="apexes (largest gap before the next contact)")
-        for b, t, z in zip(bounces, ax_t, ax_z):
-            ax[0].annotate("%.2f mm" % (1e3 * b["apex_gap_m"]), (t, z), fontsize=7, xytext=(3, 5), textcoords="offset points")
-    draw_e_fits(ax[0], ax[1], summary)
+    for m, (kz, ku) in enumerate((("z1", "u1"), ("z2", "u2"))):
+        if kz in col:
+            style = dict(color="k", ls="--" if m else "-", label=f"sphere {m + 1}: position, velocity")
+            ax_z.plot(t_ms, [1e3 * v for v in col[kz]], **style)
+            ax_u.plot(t_ms, col[ku], **style)
+    ax_z.set_ylabel("centre position z (mm)")
+    ax_u.set_ylabel("velocity u (m/s)")
+    ax_u.set_xlabel("t (ms)")
+    fluid, contact, sim = force_series(col, pair, coupled)
+    ax_f = draw_phase_row(fig, [gs[2, k] for k in range(len(phases))], col["t"], fluid, phases, "force on the sphere (N)" + (": fluid terms × H" if coupled else ""),
+                          right=contact)
+    ax_s = draw_phase_row(fig, [gs[3, k] for k in range(len(phases))], col["t"], sim, phases, "fluid force (N)") if coupled else []
+    mark_events([ax_z, ax_u] + ax_f + ax_s, summary, col)
+    draw_e_fits(ax_z, ax_u, summary)
+    ax_e = fig.add_subplot(gs[-1, :]) if budget else None
     if budget:
-        draw_energy_budget(ax_energy, summary)
-    for a in ax + ([ax_energy] if budget else []):  # beside the panel (and the H axis), so that no legend hides a curve
-        a.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.09 if coupled else 1.01, 1.0))
+        draw_energy_budget(ax_e, summary)
+    for a in [ax_z, ax_u] + ax_f + ax_s + ([ax_e] if budget else []):
         a.grid(alpha=0.3)
-    e = summary.get("e")
-    st = summary.get("St")
-    title = f"{summary['scene']}: e = {e:.3f} ({summary.get('e_is')})" if e is not None else summary["scene"]
-    if st is not None:
-        st62 = summary.get("St_B_eq_6_2")
-        title += f", St_B = {st:.1f} (Table 6.1; eq. 6.2: {st62:.1f})" if st62 is not None else f", St = {st:.1f}"
-    ax[0].set_title(title + "\neffects: " + ", ".join(summary["effects"]), fontsize=10)
-    fig.tight_layout()
+    fig.suptitle(run_title(summary), fontsize=10)
+    fig.tight_layout(rect=(0, 0, 0.78, 0.97))
+    figure_legend(fig, fig.axes, bbox_to_anchor=(0.78, 0.93))  # every panel's labels once, in the panels' order
     save_png(fig, out / "trajectory.png", dpi=100)
     print(f"wrote {out / 'trajectory.png'}")
     return 0

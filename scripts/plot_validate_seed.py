@@ -15,7 +15,7 @@ from imcol_plot import out_dir, plt, save_png, read_rows
 
 # Only the gap law differs between the models (docs/model-notes.md, "Pairs").
 MODELS = {"seed": ("seed's gap law", "C0"),
-          "asymptotic": ("asymptotic gap law (exact as h -> 0)", "C1")}
+          "asymptotic": ("asymptotic gap law (exact as h → 0)", "C1")}
 # The approach speed each row ran at (CSV column speed_set; a CSV without it has V_Io rows only).
 SPEED_SETS = {"V_Io": ("at the printed approach speed V_Io", "^"),
               "St_B": ("at the speed giving the printed St_B", "o")}
@@ -56,8 +56,8 @@ def main() -> int:
     rows = read_rows(folder / "validate_seed.csv")
     coupled = bool(rows) and "e_reduced_order" in rows[0]
     fig, axes = plt.subplots(1, 2, figsize=(11, 6.2), sharey=True)
-    panels = ((axes[0], "St_B_table_6_1", "St_B_table_6_1_reduced_order", 1.0, "St_B, seed Table 6.1 convention (half of eq. 6.2)"),
-              (axes[1], "St_B_eq_6_2", "St_B_eq_6_2_reduced_order", 2.0, "St_B, eq. (6.2): m* U_rel / (6 pi mu a*^2)"))
+    panels = ((axes[0], "St_B_table_6_1", "St_B_table_6_1_reduced_order", 1.0, r"St$_B$, seed Table 6.1 convention (half of eq. 6.2)"),
+              (axes[1], "St_B_eq_6_2", "St_B_eq_6_2_reduced_order", 2.0, r"St$_B$, eq. (6.2): $m^* U_{rel}\,/\,(6\pi\mu a^{*2})$"))
     seed = {}
     for r in rows:
         seed[r["run"]] = (float(r["St_B_seed"]), float(r["e_seed"]))
@@ -76,7 +76,7 @@ def main() -> int:
     # The legend below both panels (inside, it would hide the points at large St_B).
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, fontsize=7, loc="lower center", ncol=2, frameon=False)
-    fig.suptitle("imcol validate seed%s: e against St_B in both conventions" % (" --flow" if coupled else ""), fontsize=10)
+    fig.suptitle("imcol validate seed%s: e against St$_B$ in both conventions" % (" --flow" if coupled else ""), fontsize=10)
     fig.tight_layout(rect=(0, 0.02 + 0.035 * ((len(labels) + 1) // 2), 1, 1))
     save_png(fig, folder / "validate_seed.png")
     return 0
