@@ -248,3 +248,14 @@ def scene_fluid(scene_file) -> Optional[dict]:
     fl = scene.get("fluid", {})
     return {"name": fl.get("fluid"), "mass_fraction": fl.get("mass_fraction"), "temperature_C": fl.get("temperature"),
             "viscosity_Pa_s": fl.get("viscosity"), "density_kg_m3": fl.get("density")}
+
+
+def sweep_scene_text(meta) -> str:
+    """'default: 12.7 mm steel sphere onto a zerodur wall in …' from a sweep's json (scene, scene_file, vary): the
+    swept quantity left out (a diameter sweep names no bodies; a viscosity or density sweep no μ or ρ)."""
+    bodies = bodies_text(scene_bodies(meta.get("scene_file"))) if meta["vary"] != "diameter" else ""
+    fluid = scene_fluid(meta.get("scene_file"))
+    if fluid and meta["vary"] in ("viscosity", "density"):  # swept: the scene's value is not the sweep's
+        fluid[{"viscosity": "viscosity_Pa_s", "density": "density_kg_m3"}[meta["vary"]]] = None
+    liquid = liquid_text(fluid)
+    return meta["scene"] + (": " + bodies if bodies else "") + (" in " + liquid if liquid else "")

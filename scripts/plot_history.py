@@ -16,7 +16,7 @@ from collections import defaultdict
 from matplotlib import ticker
 
 from imcol_plot import (KERNEL_MARKS, has_e, kernel_colour, kernel_label, kernel_style, out_dir, plt, positions, read_rows,
-                        save_png)
+                        save_png, sweep_scene_text)
 
 # Line style per evaluator: the sums of exponentials solid and dotted, the direct quadrature (reference) dashed.
 STYLE = {"soe-step": "-", "soe": ":", "direct": "--", "-": "-"}
@@ -170,8 +170,8 @@ def plot_sweep(out) -> int:
     ax_d.set_title(f"each kernel's e minus {ref_name}'s at the same point", fontsize=9)
     ax_d.grid(alpha=0.3, which="both")
     ax.set_ylabel(f"coefficient of restitution e ({meta.get('e_is') or 'e'})")
-    ax.set_title(f"{meta['scene']}: e against St per history kernel ({meta['vary']} from {meta['from']:g} to {meta['to']:g}, "
-                 f"{meta['points']} points)", fontsize=10)
+    ax.set_title(f"{sweep_scene_text(meta)}\ne against St per history kernel ({meta['vary']} from {meta['from']:g} to "
+                 f"{meta['to']:g}, {meta['points']} points)", fontsize=10)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), title="history kernel (source)", title_fontsize=8)
     fig.tight_layout()

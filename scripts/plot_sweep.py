@@ -13,8 +13,8 @@ import math
 import sys
 from pathlib import Path
 
-from imcol_plot import (EFFECT_WORDS, bodies_text, deviation_text, has_e, liquid_text, plt, positions, read_rows, read_scene, save_png,
-                        scene_bodies, scene_fluid)
+from imcol_plot import (EFFECT_WORDS, deviation_text, has_e, plt, positions, read_rows, read_scene, save_png,
+                        sweep_scene_text)
 
 SEED_TABLE = Path(__file__).resolve().parent.parent / "data" / "reference" / "li_2010_table_6_1.csv"
 # Legendre, Zenit, Daniel & Guiraud (2006), Chem. Eng. Sci. 61, 3543: e/e_dry = exp(-35/St_L),
@@ -258,15 +258,10 @@ def draw_seed_table(ax) -> None:
 
 def sweep_title(meta, others) -> str:
     """The scene, its bodies and liquid (from the scene file), what is swept over which range, and the failures."""
-    bodies = bodies_text(scene_bodies(meta.get("scene_file"))) if meta["vary"] != "diameter" else ""
-    fluid = scene_fluid(meta.get("scene_file"))
-    if fluid and meta["vary"] in ("viscosity", "density"):  # swept: the scene's value is not the sweep's
-        fluid[{"viscosity": "viscosity_Pa_s", "density": "density_kg_m3"}[meta["vary"]]] = None
-    liquid = liquid_text(fluid)
     unit = {"velocity": "m/s", "viscosity": "Pa s", "diameter": "m", "density": "kg/m³"}.get(meta["vary"], "")
     n_fail = len(meta["failures"]) + sum(len(m["failures"]) for _, m in others)
     what = "%d points" % meta["points"] + ("" if not others else " in each of %d sweeps" % (1 + len(others)))
-    head = meta["scene"] + (": " + bodies if bodies else "") + (" in " + liquid if liquid else "")
+    head = sweep_scene_text(meta)
     if meta.get("overrides"):
         head += " (scene changed: " + ", ".join(f"{k} = {v}" for k, v in meta["overrides"].items()) + ")"
     effects = meta.get("effects", [])
