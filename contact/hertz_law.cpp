@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -51,10 +53,9 @@ double tsuji_min_e() {
   return e;
 }
 
-double tsuji_alpha(double e) {
-  if (!(e > 0 && e <= 1)) throw std::domain_error("tsuji_alpha: e must be in (0, 1]");
-  if (e == 1) return 0;
-  if (e < tsuji_min_e()) throw std::domain_error("tsuji_alpha: e below what alpha <= 20 gives");
+namespace {
+/// The root of tsuji_impact(α).e = e (e in [tsuji_min_e(), 1)).
+double solve_tsuji_alpha(double e) {
   // e(α) falls monotonically. Bracket the root next to the closed-form estimate, then Illinois steps.
   const double L = std::log(e);
   auto f = [e](double a) { return integrate(a).e - e; };
@@ -79,6 +80,37 @@ double tsuji_alpha(double e) {
     if (std::abs(fc) < 1e-12) break;  // the integration itself is good to ~1e-9
   }
   return b;
+}
+
+/// α by e, computed once per e in a process (a sweep builds one law per point with the same e_dry). Bounded: a
+/// process that meets more than kMaxCached values of e starts again.
+class AlphaCache {
+ public:
+  double get(double e) {
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      if (auto it = alpha_.find(e); it != alpha_.end()) return it->second;
+    }
+    const double a = solve_tsuji_alpha(e);  // outside the lock: a few ms, the same value in every thread
+    std::lock_guard<std::mutex> lock(m_);
+    if (alpha_.size() >= kMaxCached) alpha_.clear();
+    alpha_.emplace(e, a);
+    return a;
+  }
+
+ private:
+  static constexpr std::size_t kMaxCached = 4096;
+  std::mutex m_;
+  std::map<double, double> alpha_;
+};
+}  // namespace
+
+double tsuji_alpha(double e) {
+  if (!(e > 0 && e <= 1)) throw std::domain_error("tsuji_alpha: e must be in (0, 1]");
+  if (e == 1) return 0;
+  if (e < tsuji_min_e()) throw std::domain_error("tsuji_alpha: e below what alpha <= 20 gives");
+  static AlphaCache cache;
+  return cache.get(e);
 }
 
 HertzLaw::HertzLaw(const ContactPair& pair) : p_(pair) {

@@ -22,7 +22,8 @@ struct TsujiImpact {
   double e = 1, t_contact = 0, x_max = 0;
 };
 TsujiImpact tsuji_impact(double alpha);
-/// α with tsuji_impact(α).e = e (0 < e ≤ 1; 0 for e = 1); a std::domain_error below tsuji_min_e().
+/// α with tsuji_impact(α).e = e (0 < e ≤ 1; 0 for e = 1); a std::domain_error below tsuji_min_e(). Each e is
+/// solved once per process (a few ms) and remembered: the Hertz law's setup in a sweep costs it once. Thread-safe.
 double tsuji_alpha(double e);
 /// The smallest e tsuji_alpha reaches (α = 20).
 double tsuji_min_e();

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "contact/formulas.hpp"
 #include "contact/hertz_law.hpp"
@@ -161,4 +163,23 @@ TEST(ContactLaws, ImmersedDefaultSceneWithBothLaws) {
     EXPECT_LE(e, e_dry);
   }
   EXPECT_EQ(hertz.summary_json["contact"]["law"].get<std::string>(), "hertz");
+}
+
+// α(e) is solved once per e and remembered: threads asking at once for values not yet known all get the root, the
+// same double, and a later call returns it again.
+TEST(ContactLaws, TsujiAlphaRememberedAcrossThreads) {
+  const std::vector<double> es = {0.8123, 0.6345, 0.4567};
+  std::vector<std::vector<double>> got(8, std::vector<double>(es.size()));
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < got.size(); ++k)
+    threads.emplace_back([&, k] {
+      for (std::size_t i = 0; i < es.size(); ++i) got[k][i] = contact::tsuji_alpha(es[(i + k) % es.size()]);
+    });
+  for (auto& t : threads) t.join();
+  for (std::size_t k = 0; k < got.size(); ++k)
+    for (std::size_t i = 0; i < es.size(); ++i) {
+      const double e = es[(i + k) % es.size()];
+      EXPECT_EQ(got[k][i], contact::tsuji_alpha(e)) << "thread " << k << ", e = " << e;
+      EXPECT_NEAR(contact::tsuji_impact(got[k][i]).e, e, 1e-10) << "e = " << e;
+    }
 }
