@@ -16,14 +16,14 @@ Coarse coupled runs (a sphere onto a wall, gondret_st27; a pair, gg3462) and a c
 The output folder holds flow.py, the same as data/paraview/flow.py, and it byte-compiles.
 Needs /usr/bin/python3 with VTK's Python module (python3-vtk9, or ParaView's) and python3-numpy.
 """
-import argparse
 import csv
 import py_compile
-import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
 from pathlib import Path
+
+from imcol_script_args import imcol_and_data, run as run_checked
 
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -236,20 +236,14 @@ def check_folder(out, data, coupled=True):
 
 
 def run(cmd):
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        fail(f"{' '.join(cmd)} exited {p.returncode}: {p.stderr.strip()}")
+    run_checked(cmd, fail)
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--imcol", required=True)
-    ap.add_argument("--data", required=True, help="the data folder (data/)")
-    a = ap.parse_args()
-    data = Path(a.data)
+    imcol, data = imcol_and_data(__doc__)
     with tempfile.TemporaryDirectory(prefix="imcol_vtkf_") as tmp:
         out = Path(tmp) / "wall"
-        run([a.imcol, "run", str(data / "scenes/coupled/gondret_st27.toml"), "--out", str(out), "--no-plot", "--quiet",
+        run([imcol, "run", str(data / "scenes/coupled/gondret_st27.toml"), "--out", str(out), "--no-plot", "--quiet",
              "--set", "flow.cells_per_diameter=8", "--set", "solver.t_end=0.04", "--set", 'flow.fields_format="vtk"',
              "--set", "flow.dt=2e-4", "--set", "output.dt=2e-4"])  # trajectory.csv has a row at every flow step
         check_folder(out, data)
@@ -257,11 +251,11 @@ def main():
         pair = Path(tmp) / "gg3462.toml"  # its flow step fixed instead of its Courant number (dt and cfl exclude each other)
         text = (data / "scenes/coupled/gg3462.toml").read_text()
         pair.write_text("\n".join(ln for ln in text.splitlines() if not ln.startswith("cfl =")) + "\n")
-        run([a.imcol, "run", str(pair), "--out", str(out), "--no-plot", "--quiet", "--set", "flow.cells_per_diameter=8",
+        run([imcol, "run", str(pair), "--out", str(out), "--no-plot", "--quiet", "--set", "flow.cells_per_diameter=8",
              "--set", 'flow.fields_format="vtk"', "--set", "flow.dt=6e-3", "--set", "output.dt=6e-3"])
         check_folder(out, data)
         out = Path(tmp) / "flow"  # prescribed motion, the sphere above its wall
-        run([a.imcol, "flow", str(data / "scenes/flow/sphere_wall_approach_re0.1.toml"), "--out", str(out), "--no-plot",
+        run([imcol, "flow", str(data / "scenes/flow/sphere_wall_approach_re0.1.toml"), "--out", str(out), "--no-plot",
              "--cells", "8", "--levels", "3", "--t-end", "0.5", "--dt", "0.05"])
         check_folder(out, data, coupled=False)
     print("vtk_fields: OK")

@@ -13,14 +13,14 @@ CSV's; the `finer` cell field marks exactly the cells a finer level covers; the 
 spheres and the wall are where the CSV's comment line and summary.json put them.
 Needs /usr/bin/python3 with python3-meshio and python3-numpy.
 """
-import argparse
 import json
 import re
-import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
 from pathlib import Path
+
+from imcol_script_args import imcol_and_data, run as run_checked
 
 import meshio
 import numpy as np
@@ -128,7 +128,6 @@ def check_folder(out, wall_z):
         n_levels = int(rows[:, 0].max()) + 1
         if len(levels) != n_levels:
             fail(f"{vtm.name}: {len(levels)} level datasets, the CSV has {n_levels} levels")
-        prev_geom = None
         for lv, ds in enumerate(levels):
             mesh = meshio.read(vtm.parent / ds.get("file"))
             sel = rows[rows[:, 0] == lv]
@@ -177,35 +176,29 @@ def check_folder(out, wall_z):
 
 
 def run(cmd):
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        fail(f"{' '.join(cmd)} exited {p.returncode}: {p.stderr.strip()}")
+    run_checked(cmd, fail)
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--imcol", required=True)
-    ap.add_argument("--data", required=True, help="the data folder (data/)")
-    a = ap.parse_args()
-    data = Path(a.data)
+    imcol, data = imcol_and_data(__doc__)
     with tempfile.TemporaryDirectory(prefix="imcol_vtk_") as tmp:
         tmp = Path(tmp)
         # coupled, two spheres: the named moments and a snapshot every 10 ms from t = 0
         out = tmp / "coupled"
-        run([a.imcol, "run", str(data / "scenes/coupled/gg3462.toml"), "--out", str(out), "--no-plot", "--quiet",
+        run([imcol, "run", str(data / "scenes/coupled/gg3462.toml"), "--out", str(out), "--no-plot", "--quiet",
              "--set", "flow.cells_per_diameter=8", "--set", "flow.fields_every=0.01"])
         if len(list((out / "vtk").glob("fields_*.vtm"))) < 3:
             fail("coupled: fewer than 3 regular snapshots with flow.fields_every = 0.01 over 60 ms")
         check_folder(out, None)
         # a flow scene with a wall, coarse, in the kernel's frame
         out = tmp / "flow"
-        run([a.imcol, "flow", str(data / "scenes/flow/sphere_wall_approach_re0.1.toml"), "--out", str(out), "--no-plot",
+        run([imcol, "flow", str(data / "scenes/flow/sphere_wall_approach_re0.1.toml"), "--out", str(out), "--no-plot",
              "--cells", "8", "--levels", "3", "--t-end", "0.5", "--dt", "0.05"])
         wall = json.loads((out / "summary.json").read_text())["wall"]["position"]
         check_folder(out, wall)
         # CSV only: no VTK files
         out = tmp / "csv_only"
-        run([a.imcol, "run", str(data / "scenes/coupled/gg3462.toml"), "--out", str(out), "--no-plot", "--quiet",
+        run([imcol, "run", str(data / "scenes/coupled/gg3462.toml"), "--out", str(out), "--no-plot", "--quiet",
              "--set", "flow.cells_per_diameter=8", "--set", 'flow.fields_format="csv"'])
         if (out / "vtk").exists() or (out / "flow.pvd").exists() or not (out / "flow_end.csv").is_file():
             fail("flow.fields_format = \"csv\" must write the CSV snapshots and no VTK files")
