@@ -5,31 +5,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "model/pair.hpp"
 #include "study/dem_lookup.hpp"
 
 namespace imcol::study {
 
-namespace {
-
-double sphere_mass(const SphereSpec& s) { return s.density * M_PI * s.diameter * s.diameter * s.diameter / 6; }
-
-}  // namespace
-
 std::optional<HookeContact> hooke_contact(const Scene& s, double char_vel) {
   if (s.spheres.empty() || !s.has_target()) return std::nullopt;
-  const SphereSpec& i = s.spheres[0];
-  const Solid& j = s.two_spheres() ? static_cast<const Solid&>(s.spheres[1]) : static_cast<const Solid&>(*s.wall);
-  HookeContact c;
-  c.m_eff = sphere_mass(i);
-  c.r_eff = i.diameter / 2;
-  if (s.two_spheres()) {
-    const double mj = sphere_mass(s.spheres[1]), rj = s.spheres[1].diameter / 2;
-    c.m_eff = c.m_eff * mj / (c.m_eff + mj);
-    c.r_eff = c.r_eff * rj / (c.r_eff + rj);
-  }
-  c.Y_eff = hooke_Y_eff(i.youngs_modulus, i.poisson_ratio, j.youngs_modulus, j.poisson_ratio);
-  c.char_vel = char_vel;
-  return c;
+  const model::PairGeometry pg(s);  // m*, r*, and Y* = E* (the same definition: global_properties.cpp's Yeff)
+  return HookeContact{pg.m_star, pg.a_star, pg.E_star, char_vel};
 }
 
 namespace {

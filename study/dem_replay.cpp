@@ -7,8 +7,6 @@
 
 namespace imcol::study {
 
-double hooke_Y_eff(double E_i, double nu_i, double E_j, double nu_j) { return 1 / ((1 - nu_i * nu_i) / E_i + (1 - nu_j * nu_j) / E_j); }
-
 double hooke_k_n(const HookeContact& c) {
   const double sqrt_r = std::sqrt(c.r_eff);
   return 16. / 15. * sqrt_r * c.Y_eff * std::pow(15. * c.m_eff * c.char_vel * c.char_vel / (16. * sqrt_r * c.Y_eff), 0.2);

@@ -2,7 +2,7 @@
 #pragma once
 // A 1-D replay of LIGGGHTS-PUBLIC's `hooke` normal contact (src/normal_model_hooke.h; the SI unit style,
 // nktv2p = 1) for a head-on impact: a re-implementation of its normal force from the source, not LIGGGHTS.
-//   Y*  = 1 / ((1 − ν_i²)/E_i + (1 − ν_j²)/E_j)                                   Pa  (global_properties.cpp, Yeff)
+//   Y*  = 1 / ((1 − ν_i²)/E_i + (1 − ν_j²)/E_j)                                   Pa  (global_properties.cpp, Yeff; contact::effective_modulus)
 //   k_n = 16/15 √r* Y* (15 m* V_c² / (16 √r* Y*))^(1/5)                            N/m (V_c: characteristicVelocity)
 //   γ_n = √(4 m* k_n L² / (L² + π²))                                               kg/s
 //   F_n = k_n δ_n − γ_n v_n                                                        N, along e_n (repulsive > 0)
@@ -29,8 +29,6 @@ struct HookeContact {
   double char_vel = 0;  // m/s, characteristicVelocity
 };
 
-/// Y* of two materials (Pa).
-double hooke_Y_eff(double E_i, double nu_i, double E_j, double nu_j);
 /// k_n (N/m).
 double hooke_k_n(const HookeContact& c);
 /// γ_n for L = ln e (kg/s); the limit 2√(m* k_n) where L² is not finite.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "contact/formulas.hpp"
 #include "study/dem_lookup.hpp"
 #include "study/dem_replay.hpp"
 #include "study/dem_replay_fit.hpp"
@@ -19,7 +20,7 @@ HookeContact dem_replay_glass_steel() {
   HookeContact c;
   c.m_eff = 2540 * M_PI * 0.002 * 0.002 * 0.002 / 6;
   c.r_eff = 0.001;
-  c.Y_eff = hooke_Y_eff(60e9, 0.23, 190e9, 0.27);
+  c.Y_eff = imcol::contact::effective_modulus(60e9, 0.23, 190e9, 0.27);
   c.char_vel = 1.0;
   return c;
 }
@@ -54,7 +55,7 @@ double dem_replay_small_damping_e(double St0, double St_c, double e_max, bool si
 
 TEST(DemReplay, HookeStiffnessScalesAsItsFormula) {
   // Y* of glass on steel by hand; k_n ∝ Y*^(4/5) V_c^(2/5) m*^(1/5) r*^(2/5).
-  EXPECT_NEAR(hooke_Y_eff(60e9, 0.23, 190e9, 0.27), 1 / ((1 - 0.0529) / 60e9 + (1 - 0.0729) / 190e9), 1e-3);
+  EXPECT_NEAR(imcol::contact::effective_modulus(60e9, 0.23, 190e9, 0.27), 1 / ((1 - 0.0529) / 60e9 + (1 - 0.0729) / 190e9), 1e-3);
   HookeContact c = dem_replay_glass_steel();
   const double k = hooke_k_n(c);
   c.Y_eff *= 2;
