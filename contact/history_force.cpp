@@ -213,12 +213,21 @@ void SphereHistory::share_steps_with(const SphereHistory* twin) {
   twin_ = twin && twin->stepwise() && twin->soe_ == soe_ ? twin : nullptr;
 }
 
+int SphereHistory::slot_for(double dt) const {
+  int lru = 0;
+  for (int k = 0; k < kSlots; ++k) {
+    if (cache_[k].dt == dt) return k;
+    if (cache_[k].used < cache_[lru].used) lru = k;
+  }
+  return lru;
+}
+
 bool SphereHistory::in_step(double t, double U) const {
   const double dt = t - tn_;
   if (!(dt > 0) || np_ == 0) return false;
   const auto& lam = soe_->rates();
   if (cache_[cur_].dt != dt) {
-    cur_ = 1 - cur_;
+    cur_ = slot_for(dt);
     StepCache& c = cache_[cur_];
     if (c.dt != dt) {
       const StepCache* shared = nullptr;  // an equal sphere's values at the same Δ
@@ -244,31 +253,59 @@ bool SphereHistory::in_step(double t, double U) const {
       c.z_gen = -1;
     }
   }
+  cache_[cur_].used = ++uses_;
   if (StepCache& c = cache_[cur_]; c.z_gen != z_gen_) {
     for (std::size_t i = 0; i < lam.size(); ++i) c.ez[i] = c.e[i] * z_[i];
+    c.q_at = horner(pq_.data(), np_ - 1, dt);
+    c.w_at = horner(pw_.data(), np_, dt);
     if (fixed_weights_) {
       double sum = 0;
       for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * c.ez[i];
       c.sums[0] = sum;
+      c.a = c.b = 0;
+      for (int j = 0; j < np_; ++j) {
+        if (j + 1 < np_) c.a += (j + 1) * pq_[j + 1] * c.sums[j + 1];
+        c.b += (j + 1) * pw_[j + 1] * c.sums[j + 1];
+      }
     }
     c.z_gen = z_gen_;
   }
-  // P through (Δ, U), (0, U_n), (t_(n−1) − t_n, U_(n−1)), ...: Newton divided differences, then monomials in σ.
-  const int m = np_;  // degree
-  std::array<double, kPoints + 1> s{}, c{};
-  s[0] = dt, c[0] = U, s[1] = 0, c[1] = pu_[0];
-  for (int k = 1; k < m; ++k) s[k + 1] = pt_[k] - tn_, c[k + 1] = pu_[k];
-  for (int k = 1; k <= m; ++k)
-    for (int i = m; i >= k; --i) c[i] = (c[i] - c[i - 1]) / (s[i] - s[i - k]);
-  std::array<double, kPoints + 1> a{};  // a(σ) = Σ a_j σ^j, by Horner on the Newton form
-  a[0] = c[m];
-  for (int k = m - 1; k >= 0; --k) {
-    for (int j = m - k; j >= 1; --j) a[j] = a[j - 1] - s[k] * a[j];
-    a[0] = c[k] - s[k] * a[0];
-  }
-  nd_ = m;
-  for (int j = 0; j < m; ++j) d_[j] = (j + 1) * a[j + 1];
+  // P = Q + ((U − Q(Δ))/ω(Δ)) ω: the step's own part Q and ω (step_polynomial) and the current (t, U).
+  const StepCache& c = cache_[cur_];
+  c_now_ = (U - c.q_at) / c.w_at;
   return true;
+}
+
+void SphereHistory::step_polynomial() {
+  // Q through the accepted points (s_k, U_k), s_k = t_k − t_n (s_1 = 0), by Newton divided differences, in monomials;
+  // ω(σ) = Π_k (σ − s_k). P' = Q' + c ω' with c = (U − Q(Δ))/ω(Δ) for the current (t, U).
+  const int m = np_;
+  std::array<double, kPoints> sk{}, dd{};
+  for (int k = 0; k < m; ++k) sk[k] = pt_[k] - tn_, dd[k] = pu_[k];
+  for (int k = 1; k < m; ++k)
+    for (int i = m - 1; i >= k; --i) dd[i] = (dd[i] - dd[i - 1]) / (sk[i] - sk[i - k]);
+  pq_.fill(0.0);
+  pq_[0] = dd[m - 1];
+  for (int k = m - 2; k >= 0; --k) {
+    for (int j = m - 1 - k; j >= 1; --j) pq_[j] = pq_[j - 1] - sk[k] * pq_[j];
+    pq_[0] = dd[k] - sk[k] * pq_[0];
+  }
+  pw_.fill(0.0);
+  pw_[0] = 1;
+  for (int k = 0; k < m; ++k) {
+    for (int j = k + 1; j >= 1; --j) pw_[j] = pw_[j - 1] - sk[k] * pw_[j];
+    pw_[0] = -sk[k] * pw_[0];
+  }
+}
+
+double SphereHistory::horner(const double* c, int degree, double x) {
+  double v = degree >= 0 ? c[degree] : 0.0;
+  for (int j = degree - 1; j >= 0; --j) v = v * x + c[j];
+  return v;
+}
+
+double SphereHistory::in_step_slope(int j) const {
+  return (j + 1 < np_ ? (j + 1) * pq_[j + 1] : 0.0) + c_now_ * (j + 1) * pw_[j + 1];
 }
 
 double SphereHistory::memory_sum(double t, double U, std::span<const double> w) const {
@@ -278,11 +315,7 @@ double SphereHistory::memory_sum(double t, double U, std::span<const double> w) 
     return sum;
   }
   const StepCache& c = cache_[cur_];
-  if (fixed_weights_) {  // Re-independent weights: the sums in_step cached
-    double sum = c.sums[0];
-    for (int j = 0; j < nd_; ++j) sum += d_[j] * c.sums[j + 1];
-    return sum;
-  }
+  if (fixed_weights_) return c.sums[0] + c.a + c_now_ * c.b;  // Re-independent weights: the sums in_step cached
   modes_in_step(c, zs_);
   double sum = 0;
   for (std::size_t i = 0; i < z_.size(); ++i) sum += w[i] * zs_[i];
@@ -293,8 +326,8 @@ void SphereHistory::modes_in_step(const StepCache& c, std::span<double> out) con
   // z_i = e^(−λ_i Δ) z_i + Σ_j d_j M_ij, the sum over j in order, a column of M at a time.
   const std::size_t n = out.size();
   std::fill(out.begin(), out.end(), 0.0);
-  for (int j = 0; j < nd_; ++j) {
-    const double dj = d_[j], *Mj = &c.m[j * n];
+  for (int j = 0; j < np_; ++j) {
+    const double dj = in_step_slope(j), *Mj = &c.m[j * n];
     for (std::size_t i = 0; i < n; ++i) out[i] += dj * Mj[i];
   }
   for (std::size_t i = 0; i < n; ++i) out[i] += c.ez[i];
@@ -316,6 +349,7 @@ void SphereHistory::advance_memory(double t, double U, bool restart) {
   pt_[0] = t;
   pu_[0] = U;
   tn_ = t;
+  step_polynomial();
   ++z_gen_;  // e and M stay valid for their Δ
 }
 

@@ -100,7 +100,7 @@ class SphereHistory {
 
  private:
   double jump_term(double t, double Re) const;  // the start-up jump's share of ∫ U' K (U(0) K(t), soe: minus its exponentials)
-  /// soe-step: E_i = e^(−λ_i Δ), M_ij (j < kPoints) at Δ = t − t_n, and P' coefficients d for (t, U); false if Δ ≤ 0.
+  /// soe-step: E_i = e^(−λ_i Δ), M_ij (j < kPoints) at Δ = t − t_n, and P's coefficient c for (t, U); false if Δ ≤ 0.
   bool in_step(double t, double U) const;
   /// soe-step: Σ w_i z_i(t) with the in-step polynomial through (t, U).
   double memory_sum(double t, double U, std::span<const double> w) const;
@@ -126,23 +126,38 @@ class SphereHistory {
   static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints
   std::array<double, kPoints> pt_{}, pu_{};  // accepted (t_j, U_j), most recent first (pt_[0] = t_n)
   int np_ = 0;
-  // One Δ (two are kept: the step's end and an output sample in it). e, M and their Basset sums depend on Δ
-  // alone and outlive a step (CVODE often keeps h); ez and sums[0] follow the modes z_ (generation z_gen).
+  // One Δ. kSlots are kept, the least recently used replaced: a step's end Δ = h, the energy quadrature's interior
+  // nodes (h/2 for Simpson) and an output sample in it. e, M and their Basset sums depend on Δ alone and outlive a
+  // step (CVODE often keeps h); ez and sums[0] follow the modes z_ (generation z_gen).
   struct StepCache {
     double dt = -1;
     long z_gen = -1;
+    long used = 0;                      // when last used (uses_), for the replacement
     std::vector<double> e, ez, m;       // e^(−λ_i Δ), e^(−λ_i Δ) z_i; M_ij at [j · modes + i]
     std::array<double, kPoints + 1> sums{};  // Basset: Σ w_i e^(−λ_i Δ) z_i, Σ w_i M_ij
+    double q_at = 0, w_at = 1;          // Q(Δ), ω(Δ)
+    double a = 0, b = 0;                // Basset: Σ_j Q'_j Σ_i w_i M_ij and Σ_j ω'_j Σ_i w_i M_ij
   };
   long z_gen_ = 0;                      // bumped whenever z_ changes
-  mutable std::array<StepCache, 2> cache_;
+  static constexpr int kSlots = 4;
+  mutable std::array<StepCache, kSlots> cache_;
   mutable int cur_ = 0;                 // the slot in_step filled or found last
+  mutable long uses_ = 0;
+  /// The slot holding Δ = dt, or the least recently used one.
+  int slot_for(double dt) const;
   const SphereHistory* twin_ = nullptr; // an equal sphere (same exponentials) whose e and M are reused
   void fill_step(StepCache& c, double dt) const;
-  /// soe-step: every z_i(t) = e^(−λ_i Δ) z_i + Σ_j d_j M_ij into out (after in_step).
+  /// soe-step: every z_i(t) = e^(−λ_i Δ) z_i + Σ_j P'_j M_ij into out (after in_step).
   void modes_in_step(const StepCache& c, std::span<double> out) const;
-  mutable std::array<double, kPoints> d_{};  // P'(σ) = Σ_j d_j σ^j
-  mutable int nd_ = 0;
+  // The in-step polynomial P = Q + c ω: Q through the accepted points and ω(σ) = Π_k (σ − s_k), in monomials of σ
+  // (step_polynomial, once per accepted step); c = (U − Q(Δ))/ω(Δ) from the current (t, U) (in_step).
+  std::array<double, kPoints> pq_{};
+  std::array<double, kPoints + 1> pw_{};
+  mutable double c_now_ = 0;
+  void step_polynomial();
+  /// P'(σ) = Σ_j slope_j σ^j, j < np_.
+  double in_step_slope(int j) const;
+  static double horner(const double* c, int degree, double x);
 };
 
 }  // namespace imcol::contact

@@ -115,6 +115,7 @@ class CollisionModel : public DynamicalSystem {
   double a_star() const { return pair_.a_star; }
   double m_star() const { return pair_.m_star; }
   double e_dry() const { return pair_.e_dry; }
+  const PairGeometry& geometry() const { return pair_; }
   double delta_ss_m() const { return delta_ss_m_; }
   double radius(int m) const { return a_[m]; }
   double mass(int m) const { return pair_.mp[m]; }

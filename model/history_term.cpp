@@ -7,6 +7,7 @@
 
 #include "contact/formulas.hpp"
 #include "core/errors.hpp"
+#include "model/impact_speed.hpp"
 
 namespace imcol::model {
 
@@ -36,7 +37,8 @@ HistoryTerm::HistoryTerm(const Scene& sc, const PairGeometry& p) : wall_(sc, p),
 }
 
 // The viscous and particle relaxation times of each sphere and, with a target, the time to cross the contact zone
-// and the Hertz contact time.
+// and the Hertz contact time at the larger of the initial speed and the impact speed's bound (a sphere released
+// from rest meets its target at the speed gravity gave it).
 double HistoryTerm::fastest_time(const Scene& sc, const PairGeometry& p) {
   double t_fast = std::numeric_limits<double>::infinity();
   const double nu = p.mu / p.rho_f;
@@ -44,11 +46,13 @@ double HistoryTerm::fastest_time(const Scene& sc, const PairGeometry& p) {
     t_fast = std::min(t_fast, p.a[m] * p.a[m] / nu);
     t_fast = std::min(t_fast, (p.mp[m] + 0.5 * p.mf[m]) / (6 * pi * p.mu * p.a[m]));
   }
-  if (p.has_target()) t_fast = std::min(t_fast, p.delta_ss_m / p.u_ref);
-  if (p.has_target() && sc.has(Effect::elastic) && p.u_rel0 > 0) {
+  if (!p.has_target()) return t_fast;
+  const double u_impact = std::max(p.u_rel0, impact_speed_bound(sc, p));
+  t_fast = std::min(t_fast, p.delta_ss_m / std::max(p.u_ref, u_impact));
+  if (sc.has(Effect::elastic) && u_impact > 0) {
     // t_c ∝ U^(-1/5) through U² in the indentation: a speed whose square underflows gives t_c = 0 (the reader's
     // bound |U| >= 1e-30 keeps it positive).
-    const double t_c = hertz_contact_time(p.m_star, p.u_rel0, p.E_star, p.a_star);
+    const double t_c = hertz_contact_time(p.m_star, u_impact, p.E_star, p.a_star);
     if (!(t_c > 0))
       throw InputError(sc.path, "sphere[0].velocity",
                        "an approach speed of " + fmt_number(p.u_rel0) + " m/s is too small for the Hertz contact time to be computed (got " +

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "core/errors.hpp"
+#include "model/impact_speed.hpp"
 
 namespace imcol::run {
 
@@ -24,36 +25,12 @@ struct FlowColumn {
 };
 constexpr FlowColumn kFlowColumns[] = {{"f_sim", &SphereForces::f_sim}, {"f_thr", &SphereForces::f_thr}};
 
-/// Terminal speed (m/s) of sphere m under gravity alone with the scene's steady drag law (MODEL.md §2.1).
-double terminal_speed(const Scene& sc, std::size_t m) {
-  const auto& sp = sc.spheres[m];
-  const DragLaw law = sc.drag.law;
-  return contact::terminal_speed(sp.diameter, sp.density, sc.fluid->density, sc.fluid->viscosity, sc.gravity,
-                                 [law](double re) { return contact::drag_factor(law, re); });
-}
-
-/// An upper bound of the impact speed (m/s): the initial approach plus a fall over the initial gap at the buoyant
-/// acceleration of the densest contrast (no drag, no added mass), for either sphere; with drag, no sphere is faster than
-/// the larger of its initial and its terminal speed.
-double impact_speed_bound(const model::CollisionModel& model, const Scene& sc) {
-  double u = std::abs(model.initial_u_rel());
-  if (!sc.has(Effect::gravity)) return u;
-  const double rho_f = sc.fluid ? sc.fluid->density : 0.0;
-  double g = 0, u_drag = 0;
-  for (std::size_t m = 0; m < model.n_spheres(); ++m) {
-    g += std::abs(sc.gravity) * std::abs(1 - rho_f / sc.spheres[m].density);
-    if (sc.fluid && sc.has(Effect::drag)) u_drag += std::max(std::abs(sc.spheres[m].velocity), terminal_speed(sc, m));
-  }
-  u += std::sqrt(2 * g * std::max(0.0, model.initial_gap()));
-  return sc.fluid && sc.has(Effect::drag) ? std::min(u, std::max(u_drag, std::abs(model.initial_u_rel()))) : u;
-}
-
 }  // namespace
 
 double measure_interval(const model::CollisionModel& model, const Scene& sc) {
   const double dt = sc.output.dt;
   if (!model.has_target()) return dt;
-  const double u = impact_speed_bound(model, sc);
+  const double u = model::impact_speed_bound(sc, model.geometry());
   if (!(u > 0)) return dt;
   // The contact_ends window; for a start inside the contact zone, which shortens the zone to the initial gap, at most the
   // time to cross that gap: the liquid film there can brake the rebound within a small part of the window.
