@@ -190,22 +190,25 @@ void SphereHistory::fill_step(StepCache& c, double dt) const {
   for (int j = 1; j <= kPoints; ++j) dp[j] = dp[j - 1] * dt;
   const auto& lam = soe_->rates();
   const std::size_t n = lam.size();
-  for (std::size_t i = 0; i < n; ++i) {
+  // The rates ascend: the series below `split`, the exponentials from it (two branch-free loops).
+  const auto split = static_cast<std::size_t>(std::lower_bound(lam.begin(), lam.end(), 0.5 / dt) - lam.begin());
+  for (std::size_t i = 0; i < split; ++i) {
     const double x = lam[i] * dt;
+    double sum = kTopSeries[kTopTerms - 1];  // Horner: truncation 1.2e-15 relative at x = 1/2
+    for (int k = kTopTerms - 2; k >= 0; --k) sum = kTopSeries[k] - x * sum;
     std::array<double, kPoints> M;
-    if (x >= 0.5) {
-      const double e = x > 40 ? 0.0 : std::exp(-x), il = inv_rate_[i];  // e^(−40) z is below rounding
-      c.e[i] = e;
-      M[0] = (1 - e) * il;
-      for (int j = 1; j < kPoints; ++j) M[j] = (dp[j] - j * M[j - 1]) * il;
-    } else {
-      double sum = kTopSeries[kTopTerms - 1];  // Horner: truncation 1.2e-15 relative at x = 1/2
-      for (int k = kTopTerms - 2; k >= 0; --k) sum = kTopSeries[k] - x * sum;
-      M[top] = dp[top + 1] * sum;
-      for (int j = top; j > 0; --j) M[j - 1] = (dp[j] - lam[i] * M[j]) * inv[j];
-      c.e[i] = 1 - lam[i] * M[0];
-    }
+    M[top] = dp[top + 1] * sum;
+    for (int j = top; j > 0; --j) M[j - 1] = (dp[j] - lam[i] * M[j]) * inv[j];
+    c.e[i] = 1 - lam[i] * M[0];
     for (int j = 0; j < kPoints; ++j) c.m[j * n + i] = M[j];
+  }
+  for (std::size_t i = split; i < n; ++i) {
+    const double x = lam[i] * dt;
+    const double e = x > 40 ? 0.0 : std::exp(-x), il = inv_rate_[i];  // e^(−40) z is below rounding
+    c.e[i] = e;
+    double M = (1 - e) * il;
+    c.m[i] = M;
+    for (int j = 1; j < kPoints; ++j) c.m[j * n + i] = M = (dp[j] - j * M) * il;
   }
 }
 
@@ -240,14 +243,8 @@ bool SphereHistory::in_step(double t, double U) const {
         c.sums = shared->sums;
       } else {
         fill_step(c, dt);
-        if (fixed_weights_) {
-          for (int j = 0; j < kPoints; ++j) {
-            double sum = 0;
-            const double* Mj = &c.m[j * lam.size()];
-            for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * Mj[i];
-            c.sums[j + 1] = sum;
-          }
-        }
+        if (fixed_weights_)
+          for (int j = 0; j < kPoints; ++j) c.sums[j + 1] = dot(w_.data(), &c.m[j * lam.size()], lam.size());
       }
       c.dt = dt;
       c.z_gen = -1;
@@ -259,9 +256,7 @@ bool SphereHistory::in_step(double t, double U) const {
     c.q_at = horner(pq_.data(), np_ - 1, dt);
     c.w_at = horner(pw_.data(), np_, dt);
     if (fixed_weights_) {
-      double sum = 0;
-      for (std::size_t i = 0; i < lam.size(); ++i) sum += w_[i] * c.ez[i];
-      c.sums[0] = sum;
+      c.sums[0] = dot(w_.data(), c.ez.data(), lam.size());
       c.a = c.b = 0;
       for (int j = 0; j < np_; ++j) {
         if (j + 1 < np_) c.a += (j + 1) * pq_[j + 1] * c.sums[j + 1];
@@ -296,6 +291,12 @@ void SphereHistory::step_polynomial() {
     for (int j = k + 1; j >= 1; --j) pw_[j] = pw_[j - 1] - sk[k] * pw_[j];
     pw_[0] = -sk[k] * pw_[0];
   }
+}
+
+double SphereHistory::dot(const double* a, const double* b, std::size_t n) {
+  double sum = 0;  // in order: a run's rounding does not depend on the vector unit
+  for (std::size_t i = 0; i < n; ++i) sum += a[i] * b[i];
+  return sum;
 }
 
 double SphereHistory::horner(const double* c, int degree, double x) {

@@ -158,6 +158,7 @@ class SphereHistory {
   /// P'(σ) = Σ_j slope_j σ^j, j < np_.
   double in_step_slope(int j) const;
   static double horner(const double* c, int degree, double x);
+  static double dot(const double* a, const double* b, std::size_t n);  // Σ a_i b_i
 };
 
 }  // namespace imcol::contact
