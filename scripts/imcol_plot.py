@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Optional
 
 import matplotlib
+import matplotlib.ticker  # noqa: F401  (re-exported)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402,F401  (re-exported)

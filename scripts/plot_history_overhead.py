@@ -33,6 +33,9 @@ def panel(ax, name, rows):
     worst = f"; at equal error with history costs {min(ratios):.2f}-{max(ratios):.2f}x" if ratios else ""
     ax.set_title(f"{name}{worst}", fontsize=9)
     ax.set_xlabel("integration time, ms (median)")
+    for axis in (ax.xaxis,):
+        axis.set_major_formatter(ip.matplotlib.ticker.FormatStrFormatter("%g"))
+        axis.set_minor_formatter(ip.matplotlib.ticker.FormatStrFormatter("%g"))
     ax.set_ylabel("|e - e_ref|")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)

@@ -113,6 +113,33 @@ class RealOutputs(unittest.TestCase):
                 self.assertGreater(png.stat().st_size, 50000)
 
 
+class HistoryOverheadPicture(unittest.TestCase):
+    """plot_history_overhead.py on a hand-made table of the benchmark's columns: one panel per scene, the ratio range
+    at equal error in its title."""
+
+    def test_one_panel_per_scene_with_the_ratio_range(self):
+        from plot_history_overhead import by_scene  # noqa: E402
+        head = "scene,rtol,err_with,ms_with,steps_with,err_without,ms_without,steps_without,ratio_equal_error\n"
+        rows = ["a,1e-6,1e-5,2.0,300,2e-5,1.0,290,1.5", "a,1e-8,1e-7,3.0,500,2e-7,2.0,480,1.25",
+                "b,1e-6,1e-6,2.5,300,1e-5,1.5,300,nan"]
+        with tempfile.TemporaryDirectory() as d:
+            csv_path, png = Path(d) / "h.csv", Path(d) / "h.png"
+            csv_path.write_text(head + "\n".join(rows) + "\n")
+            r = subprocess.run(["/usr/bin/python3", str(SCRIPTS / "plot_history_overhead.py"), str(csv_path), str(png)],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            w, h = png_size(png)
+            self.assertEqual((w, h), (1320, 540))  # two panels of 5.5 x 4.5 in at 120 dpi
+        import imcol_plot as ip  # noqa: E402
+        scenes = by_scene([dict(zip(head.strip().split(","), r.split(","))) for r in rows])
+        self.assertEqual(list(scenes), ["a", "b"])
+        fig, ax = ip.plt.subplots()
+        from plot_history_overhead import panel  # noqa: E402
+        panel(ax, "a", scenes["a"])
+        self.assertIn("1.25-1.50x", ax.get_title())
+        ip.plt.close(fig)
+
+
 class Helpers(unittest.TestCase):
     def test_deviation_from_a_correlation(self):
         st = [30.0, 100.0, 750.0]
