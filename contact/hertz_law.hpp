@@ -10,20 +10,17 @@
 // contact would otherwise pull the pair together just before separation).
 // Damping: with this form e depends on α alone, not on the impact speed. α is set so that the dimensionless problem
 //   x'' = −max(0, x^{3/2} + α x^{1/4} x'),  x(0) = 0, x'(0) = 1   (x = ξ/L, L = (m* U²/k)^{2/5}, time in L/U)
-// returns e_dry: Tsuji et al.'s α(e) relation, computed here (tsuji_alpha) rather than read off their graph. The
+// returns e_dry: Tsuji et al.'s α(e) relation, computed (contact/tsuji_impact.hpp, tabulated) rather than read off their graph. The
 // closed form α ≈ −√5 ln e / √(ln²e + π²) used by several DEM codes is the starting guess; it is off by 2e-4 in e at
 // e = 0.97 and by 0.05 at e = 0.5. A dry collision then returns e_dry (tests/test_contact_laws.cpp).
 #include "contact/contact_law.hpp"
+#include "contact/tsuji_impact.hpp"
 
 namespace imcol::contact {
 
-/// One dimensionless Tsuji impact (the problem above): restitution, contact time (units L/U), peak overlap (units L).
-struct TsujiImpact {
-  double e = 1, t_contact = 0, x_max = 0;
-};
-TsujiImpact tsuji_impact(double alpha);
-/// α with tsuji_impact(α).e = e (0 < e ≤ 1; 0 for e = 1); a std::domain_error below tsuji_min_e(). Each e is
-/// solved once per process (a few ms) and remembered: the Hertz law's setup in a sweep costs it once. Thread-safe.
+/// α with tsuji_impact(α).e = e (0 < e ≤ 1; 0 for e = 1); a std::domain_error below tsuji_min_e(). From the shipped
+/// nodes of e(α) (contact/table_data.cpp, α ≤ 20 every 0.02, written by imcol_gen_tables from tsuji_impact): a
+/// quintic interpolant inverted by bisection, a few µs; e(α) it returns is within 1e-10 of e (tests).
 double tsuji_alpha(double e);
 /// The smallest e tsuji_alpha reaches (α = 20).
 double tsuji_min_e();

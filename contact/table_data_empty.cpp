@@ -5,4 +5,5 @@
 namespace imcol::contact::table_data {
 const double brenner_nodes[brenner_n][2] = {};
 const double w_nodes[w_n][2] = {};
+const double tsuji_e_nodes[tsuji_n] = {};
 }  // namespace imcol::contact::table_data
