@@ -25,7 +25,8 @@ struct FlowSpec {
   int krylov_max_iter = 500;
   int krylov_restart = 60;
   double ring_spacing = 1.0;     // arc spacing of the body rings, cells
-  int preconditioner_bins = 4;   // GMRES: sub-cell offsets with their own preconditioner block (each costs 2N force solves)
+  int preconditioner_bins = 0;   // GMRES: sub-cell offsets with their own preconditioner block (each costs 2N force solves);
+                                 // 0: chosen from the run's steps (coupling/preconditioner_bins.hpp)
   FlowStart start = FlowStart::developed;
   double developed_distance = 1.0;  // developed: distance the faster sphere travels before t = 0, D
   double developed_time = 0;        // developed: or this time, s (> 0 overrides the distance)

@@ -11,9 +11,11 @@
 #include "core/errors.hpp"
 #include "core/timing.hpp"
 #include "coupling/divergence_watch.hpp"
+#include "coupling/preconditioner_bins.hpp"
 #include "coupling/run_cost.hpp"
 #include "coupling/step_rule.hpp"
 #include "flow/cost.hpp"
+#include "flow/fft_size.hpp"
 
 namespace imcol::coupling {
 
@@ -200,7 +202,7 @@ flow::Settings FlowCoupling::grid_settings(const StartUp& su) {
   // r_max is in units of sphere 1's D; a larger target gets the same room relative to its own size.
   const double r_finest = std::max(fs.r_max * D_, fs.r_max * 2 * a_max);
   s.nr = finest_cells(su, r_finest, 2);
-  s.nz = finest_cells(su, z_hi - z_lo, 4);
+  s.nz = flow::fft_friendly_cells(finest_cells(su, z_hi - z_lo, 4), 4);
   s.levels = fs.levels;
   s.z_center = 0.5 * (z_lo + z_hi);
   s.u_inf = -su.u_mid;
@@ -226,7 +228,7 @@ flow::Settings FlowCoupling::grid_settings(const StartUp& su) {
     const double z_start = std::min(sc_.spheres[0].position, sc_.spheres[0].position - sc_.spheres[0].velocity * su.t_pre);
     const double lo = z_start - a - fs.behind * D_, hi = sc_.wall->position + fs.ahead * D_;
     s.z_center = 0.5 * (lo + hi);
-    s.nz = finest_cells(su, hi - lo, 4);
+    s.nz = flow::fft_friendly_cells(finest_cells(su, hi - lo, 4), 4);
     s.u_inf = 0;
     s.wall_z = sc_.wall->position;
   }
@@ -296,7 +298,8 @@ void FlowCoupling::reset_step_stats() {
 void FlowCoupling::start_up() {
   const auto t0 = WallClock::now();
   const StartUp su = plan_start_up();
-  const flow::Settings s = grid_settings(su);
+  flow::Settings s = grid_settings(su);
+  s.preconditioner_bins = preconditioner_bins(s, su);
   check_cost(s, su.dt, su.n_pre, start_up_travel(su));
   start_up_began_ = t0;
   const std::array<double, 2> f = develop_flow(su, s);
@@ -308,6 +311,17 @@ void FlowCoupling::start_up() {
   reset_step_stats();  // the start-up's kernel statistics are not the run's
 }
 
+int FlowCoupling::preconditioner_bins(const flow::Settings& s, const StartUp& su) const {
+  if (sc_.flow.preconditioner_bins > 0) return sc_.flow.preconditioner_bins;
+  // The blocks of the spheres that move relative to the grid (all but a lone free sphere, which the grid follows).
+  double columns = 0;
+  if (n_ == 2 || sc_.wall)
+    for (std::size_t m = 0; m < n_; ++m) columns += 2 * flow::ring_points(s, 2 * radius_[m]);
+  return automatic_bins(double(su.n_pre) + flow_steps_to_end(su.dt), columns);
+}
+
+double FlowCoupling::flow_steps_to_end(double dt) const { return std::ceil(sc_.solver.t_end / dt * (1 - 1e-12)); }
+
 void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel) {
   CoupledCostInput in;
   in.settings = s;
@@ -317,11 +331,17 @@ void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, co
     in.moves_after.push_back(n_ == 2 || sc_.wall.has_value());  // a free sphere stays at the grid's centre
   }
   in.start_up_steps = n_pre;
-  in.steps = std::ceil(sc_.solver.t_end / dt * (1 - 1e-12));
+  in.steps = flow_steps_to_end(dt);
+  if (expected_end_ > 0) in.steps = std::min(in.steps, std::ceil(expected_end_ / dt * (1 - 1e-12)));
+  if (sc_.flow.fields && sink_) {  // the four moments (flow_coupling.hpp maybe_snapshot) and the regular ones
+    in.snapshots = 4;
+    if (sc_.flow.fields_every > 0) in.snapshots += std::floor(sc_.solver.t_end / sc_.flow.fields_every) + 1;
+  }
   const CoupledCost c = coupled_cost(in);
   stats_.est_start_up_s = c.start_up_s;
   stats_.est_blocks_s = c.blocks_s;
   stats_.est_steps_s = c.steps_s;
+  stats_.est_fields_s = c.fields_s;
   stats_.est_bytes = c.grid.bytes;
   est_before_t0_s_ = c.before_t0_s();
   if (const std::string why = flow::memory_refusal(c.grid); !why.empty())
@@ -434,6 +454,7 @@ double FlowCoupling::advance(Integrator& integ, const DivergenceWatch& watch, do
 }
 
 SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) {
+  const double cpu0 = thread_cpu_seconds();
   start_up();
   Integrator integ(model_, st, observer);
   DivergenceWatch watch(model_, sc_, integ.state(), step_);
@@ -473,6 +494,7 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
   finish_series();
+  stats_.cpu_seconds = thread_cpu_seconds() - cpu0;
   return integ.stats();
 }
 

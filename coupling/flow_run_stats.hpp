@@ -23,11 +23,12 @@ struct FlowRunStats {
   double frame_travel = 0;         // m, how far the grid moved with the spheres
   std::size_t bytes = 0;
   // Estimated before the grid was allocated (coupling/run_cost.hpp), s and B: the start-up's steps, the force
-  // system's blocks, the coupled steps up to t_end, and the solver's memory.
-  double est_start_up_s = 0, est_blocks_s = 0, est_steps_s = 0, est_bytes = 0;
-  double est_total_s() const { return est_start_up_s + est_blocks_s + est_steps_s; }
+  // system's blocks, the coupled steps to the expected end, the flow-field snapshots, and the solver's memory.
+  double est_start_up_s = 0, est_blocks_s = 0, est_steps_s = 0, est_fields_s = 0, est_bytes = 0;
+  double est_total_s() const { return est_start_up_s + est_blocks_s + est_steps_s + est_fields_s; }
   int field_snapshots = 0;         // flow-field snapshots taken
   double fields_seconds = 0;       // wall time computing and writing them, s
+  double cpu_seconds = 0;          // CPU time of the whole coupled run (start-up, steps, fields), s
 };
 
 }  // namespace imcol::coupling

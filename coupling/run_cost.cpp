@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coupling/preconditioner_bins.hpp"
+
 namespace imcol::coupling {
 
 CoupledCost coupled_cost(const CoupledCostInput& in) {
@@ -40,8 +42,13 @@ CoupledCost coupled_cost(const CoupledCostInput& in) {
     }
     wall(built_after);
   }
-  c.start_up_s = double(in.start_up_steps) * flow::step_seconds(c.grid, start_moving, flow::kStartUpGmresIterations);
-  c.steps_s = in.steps * (flow::step_seconds(c.grid, run_moving, flow::kTypicalGmresIterations) + kOdeSecondsPerStep);
+  // GMRES iterations: a_0 per moving sphere, more between the bins' offsets.
+  double moving = 0;
+  for (std::size_t m = 0; m < in.diameters.size(); ++m) moving += (in.start_up_travel[m] > 0 || in.moves_after[m]) ? 1 : 0;
+  const double a0 = kGmresIterationsPerBody * std::max(1.0, moving);
+  c.start_up_s = double(in.start_up_steps) * flow::step_seconds(c.grid, start_moving, a0);
+  c.steps_s = in.steps * (flow::step_seconds(c.grid, run_moving, a0 + bin_iterations(s.preconditioner_bins)) + kOdeSecondsPerStep);
+  c.fields_s = in.snapshots * c.grid.seconds_per_field;
   c.start_up_blocks_s = built_before;
   c.blocks_s = built_before + built_after;
   return c;

@@ -10,14 +10,12 @@
 namespace imcol::flow {
 
 namespace {
-// Measured on this kernel (coupled runs at 16 cells/D, one core): one application of Q costs ~20 ns per vertex and
-// level at 14 000 vertices, growing like V^0.7 as the levels' arrays leave the caches (45 ns at 45 000, 80 ns at
-// 100 000; taken to level off at 5×, memory bound) and down to half that on tiny grids; a step's explicit part
-// costs half an application. The dense LU ~1 ns per n³.
-constexpr double kQPerVertex = 20e-9;  // s, at kQReferenceVertices
-constexpr double kQReferenceVertices = 14e3;
-constexpr double kLuPerCube = 1e-9;    // s
-double q_per_vertex(double vertices) { return kQPerVertex * std::clamp(std::pow(vertices / kQReferenceVertices, 0.7), 0.5, 5.0); }
+// CPU time per vertex (all levels), measured on this kernel (Release, GCC 12, one core of the project's machine;
+// coupled runs at 16–32 cells/D, 6 000–100 000 vertices, docs/performance.md §7).
+constexpr double kStepPerVertex = 38e-9;   // s, a step's own work
+constexpr double kQPerVertex = 20e-9;      // s, one application of Q
+constexpr double kLuPerCube = 0.2e-9;      // s per n³ of a dense LU
+constexpr double kFieldPerVertex = 1.5e-6; // s, one flow-field snapshot (pressure solve, CSV and VTK text)
 }  // namespace
 
 CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters, bool moving) {
@@ -33,16 +31,17 @@ CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters,
   c.body_points += c.wall_points;
   const double q_bytes = 8.0 * (2 * c.body_points) * (2 * c.body_points);
   c.bytes = 100.0 * c.vertices + q_bytes * (moving ? 18.0 : 2.0);
-  c.seconds_per_q = q_per_vertex(c.vertices) * c.vertices;
-  c.seconds_explicit = 0.5 * c.seconds_per_q;
+  c.seconds_per_q = kQPerVertex * c.vertices;
+  c.seconds_explicit = kStepPerVertex * c.vertices;
   c.seconds_per_step = step_seconds(c, moving, kTypicalGmresIterations);
+  c.seconds_per_field = kFieldPerVertex * c.vertices;
   return c;
 }
 
 double ring_points(const Settings& s, double d) { return std::max(2.0, std::ceil(M_PI * 0.5 * d / (s.ring_spacing * s.h))); }
 
 double step_seconds(const CostEstimate& c, bool moving, double iterations) {
-  return c.seconds_explicit + c.seconds_per_q * (moving ? 3.0 + iterations : 2.0);
+  return c.seconds_explicit + (moving ? c.seconds_per_q * (1.0 + iterations) : 0.0);
 }
 
 double block_seconds(const CostEstimate& c, double n) { return n * c.seconds_per_q + kLuPerCube * n * n * n; }

@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// What a flow run will cost, estimated from its grid before anything is allocated (measured constants:
-// docs/flow-kernel.md "cost"). Memory ~100 bytes per vertex and level plus the force system's dense matrices (Q of
-// the body points, its LU, and up to preconditioner_bins cached blocks per moving sphere). Time, in units of one
-// application of the force operator Q (a multi-level solve pair, 2 × levels fast solves; per vertex and level its
-// cost grows with the grid as the arrays leave the caches, flow/cost.cpp):
-//   step with fixed bodies (LU):           explicit part + 2 Q       (predictor and final pass)
-//   step with moving bodies (GMRES, k it.): explicit part + (3 + k) Q (predictor, warm start, k iterations, final)
-//   a block of the force system of n unknowns (its columns by Q, then LU): n Q + n³ LU flops.
+// What a flow run will cost, estimated from its grid before anything is allocated (docs/performance.md §7). Memory
+// ~100 bytes per vertex and level plus the force system's dense matrices (Q of the body points, its LU, and up to
+// preconditioner_bins cached blocks per moving sphere). Time, from the kernel's passes over the V vertices of all
+// levels (flow/solver.hpp), each a fixed cost per vertex measured on this kernel:
+//   a step's own work (explicit part, the predictor η* and ψ*, the end-of-step pass in full): kStepPerVertex V;
+//   one application of the force operator Q (the partial passes of a force source): kQPerVertex V;
+//   step with fixed bodies (LU): the step's own work (the LU's solve is n², negligible);
+//   step with moving bodies (GMRES, k iterations): the step's own work + (1 + k) Q (the warm start's residual);
+//   a block of the force system of n unknowns (its columns by Q, then LU): n Q + kLuPerCube n³;
+//   a flow-field snapshot (the fields, CSV and VTK written): kFieldPerVertex V.
 #include <span>
 #include <string>
 
@@ -22,8 +24,9 @@ struct CostEstimate {
   double wall_points = 0;       // rings of the wall (all levels)
   double bytes = 0;             // peak memory of the solver, B
   double seconds_per_q = 0;     // one application of Q, s
-  double seconds_explicit = 0;  // a step's explicit part (advection, viscous right-hand side), s
-  double seconds_per_step = 0;  // s, a step with fixed bodies, or with moving ones at a typical GMRES count
+  double seconds_explicit = 0;  // a step's own work (explicit part, predictor, end-of-step pass), s
+  double seconds_per_step = 0;  // s, a step with fixed bodies, or with moving ones at kTypicalGmresIterations
+  double seconds_per_field = 0; // one flow-field snapshot, s
 };
 
 /// `diameters`: the spheres' (m); `moving`: bodies move relative to the grid.
@@ -32,16 +35,15 @@ CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters,
 /// Ring points of a sphere of diameter d (m) on the finest level.
 double ring_points(const Settings& s, double d);
 
-/// A step's wall time, s: fixed bodies (LU), or moving ones with `iterations` GMRES iterations.
+/// A step's time, s: fixed bodies (LU), or moving ones with `iterations` GMRES iterations.
 double step_seconds(const CostEstimate& c, bool moving, double iterations);
 
 /// Building one block of the force system with n unknowns (n applications of Q, then its LU), s.
 double block_seconds(const CostEstimate& c, double n);
 
-/// GMRES iterations per step assumed for moving bodies (measured 5–21 in coupled runs), during the coupled steps
-/// and the prescribed start-up alike.
+/// GMRES iterations per step assumed for moving bodies where nothing better is known (`imcol flow`; coupled runs:
+/// coupling/run_cost.hpp); measured 5–22.
 inline constexpr double kTypicalGmresIterations = 10;
-inline constexpr double kStartUpGmresIterations = 10;
 
 /// This machine's physical memory, B (0 if unknown).
 double physical_memory_bytes();

@@ -371,10 +371,24 @@ void Solver::set_force_rhs(const std::vector<SphereState>& next) {
   }
 }
 
-void Solver::solve_direct(const std::vector<SphereState>& next) {
-  bool same_z = fixed_z_.size() == next.size();
+bool Solver::use_direct(const std::vector<SphereState>& next, bool moved) {
+  // Bodies still from the start: the LU at once. Bodies that stopped after moving (a sphere held at the smallest
+  // gap): GMRES until the work it spent there would have built the LU (one application of Q per column).
+  ever_moved_ = ever_moved_ || moved;
+  if (moved) still_work_ = 0;
+  if (!s_.direct_when_fixed || moved) return false;
+  if (!ever_moved_ || lu_current(next)) return true;
+  return still_work_ >= static_cast<long>(2 * (pts_.size() + wall_count_));
+}
+
+bool Solver::lu_current(const std::vector<SphereState>& next) const {
+  bool same_z = lu_ && fixed_z_.size() == next.size();
   for (std::size_t k = 0; same_z && k < next.size(); ++k) same_z = fixed_z_[k] == next[k].z;
-  if (!lu_ || !same_z) {
+  return same_z;
+}
+
+void Solver::solve_direct(const std::vector<SphereState>& next) {
+  if (!lu_current(next)) {
     lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::MatrixXd>>(force_matrix());
     fixed_z_.resize(next.size());
     for (std::size_t k = 0; k < next.size(); ++k) fixed_z_[k] = next[k].z;
@@ -466,8 +480,12 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
   for (std::size_t k = 0; k < next.size(); ++k) moved = moved || next[k].z != sph_[k].z;
   if (moved || pts_.size() == 0) build_points(next);
   set_force_rhs(next);
-  if (s_.direct_when_fixed && !moved) solve_direct(next);
-  else solve_gmres(next, info);
+  if (use_direct(next, moved)) {
+    solve_direct(next);
+  } else {
+    solve_gmres(next, info);
+    if (!moved) still_work_ += info.krylov_iterations + 3;  // applications of Q: the iterations, warm start, passes
+  }
   // final_pass(g_) is current: η = η* + A⁻¹Sg and ψ = P⁻¹η on every level, u_ the velocities at the points
   for (auto& L : lv_) {
     L.eta.swap(L.etac);

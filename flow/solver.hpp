@@ -19,7 +19,8 @@
 //   η^{n+1} = η* + A⁻¹ S g,  ψ^{n+1} = ψ* + P⁻¹A⁻¹ S g   (on every level: no lagged force on the coarse levels).
 // The body forces g (ring totals, m⁴/s² = N per kg/m³) are the Lagrange multipliers of no-slip at the ring
 // points (B = E C: velocity at the points from the finest ψ). Q is close to, but not exactly, symmetric (the level
-// transfers are not adjoint), so it is LU-factorised when the bodies have not moved and solved by restarted GMRES
+// transfers are not adjoint), so it is LU-factorised when the bodies have not moved (bodies that stop after moving:
+// once GMRES has spent as many applications of Q there as the LU has columns) and solved by restarted GMRES
 // otherwise (relative residual krylov_tol; right-preconditioned by each sphere's own block of Q, factorised for
 // the sphere's sub-cell offset on the finest grid in one of 16 bins, each built the first time the sphere is
 // there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
@@ -157,6 +158,8 @@ class Solver {
   void explicit_rhs();  // Level::rhs ← the explicit part of the vorticity equation (AB2 advection, (1 − θ) viscous)
   void set_force_rhs(const std::vector<SphereState>& next);  // target_, rhs_ = target_ − Bψ*; g_ sized
   void solve_direct(const std::vector<SphereState>& next);   // g_ by the LU of Q (refactorised when the spheres move)
+  bool use_direct(const std::vector<SphereState>& next, bool moved);  // this step by the LU of Q, not GMRES
+  bool lu_current(const std::vector<SphereState>& next) const;        // the LU is Q's for these positions
   void solve_gmres(const std::vector<SphereState>& next, StepInfo& info);  // g_ by GMRES; its counts into info
   void build_preconditioner(const std::vector<SphereState>& next);          // prec_: per-sphere blocks of Q
   void sphere_forces(const std::vector<SphereState>& next, StepInfo& info);  // info.force, internal, wall_force
@@ -200,6 +203,8 @@ class Solver {
   std::function<void(long, long)> block_progress_;
   std::shared_ptr<BlockLU> wall_lu_;  // the wall's own block of Q (GMRES preconditioner), built once
   std::vector<double> fixed_z_;  // sphere positions of the factorised Q
+  bool ever_moved_ = false;      // the bodies moved relative to the grid in some step
+  long still_work_ = 0;          // applications of Q by GMRES since the bodies last moved
   std::unique_ptr<Eigen::PartialPivLU<Eigen::MatrixXd>> lu_;
   std::vector<double> u_in_;  // velocity of the fluid inside each sphere at t^n (see the convention above)
   double t_ = 0;

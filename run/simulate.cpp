@@ -81,6 +81,18 @@ struct Integration {
   double wall = 0;
 };
 
+/// When a coupled run will likely stop: the reduced-order model's own end (at rest, separated and measured, or t_end),
+/// a run of milliseconds; t_end if it fails.
+double expected_end(const Scene& sc) {
+  Scene reduced = sc;
+  reduced.effects.erase(Effect::flow);
+  try {
+    return simulate(reduced, false, Recording::kinematics, {}).summary.solver.t_final_s;
+  } catch (const std::exception&) {
+    return sc.solver.t_end;
+  }
+}
+
 /// Integrates the model alone, or coupled to the flow kernel, into the recorder.
 Integration integrate_run(CollisionModel& model, const Scene& sc, const IntegratorSettings& st, run::Recorder& rec, bool progress,
                           const flow::FileSink& fields) {
@@ -91,6 +103,7 @@ Integration integrate_run(CollisionModel& model, const Scene& sc, const Integrat
       coupling::FlowCoupling coupled(model, sc);
       if (progress) coupled.set_progress([&rec](const std::string& text) { rec.show_status(text); });
       if (fields) coupled.set_file_sink(fields);
+      coupled.set_expected_end(expected_end(sc));
       out.stats = coupled.run(st, rec);
       out.flow = coupled.stats();
     } else {

@@ -265,9 +265,9 @@ void to_json(Json& j, const FlowSummary& f) {
        {"min_gap_clamped_steps", fs.min_gap_clamped_steps}, {"frame_travel_m", fs.frame_travel},
        {"start_up_time_s", fs.pre_seconds}, {"flow_time_s", fs.flow_seconds}, {"ode_time_s", fs.ode_seconds},
        {"flow_share", f.flow_share}, {"ode_share", f.ode_share}, {"field_snapshots", fs.field_snapshots},
-       {"fields_time_s", fs.fields_seconds},
+       {"fields_time_s", fs.fields_seconds}, {"cpu_time_s", fs.cpu_seconds},
        {"estimate", {{"start_up_s", fs.est_start_up_s}, {"force_system_blocks_s", fs.est_blocks_s}, {"steps_to_t_end_s", fs.est_steps_s},
-                     {"total_s", fs.est_total_s()}, {"memory_MB", fs.est_bytes / 1e6}}}};
+                     {"fields_s", fs.est_fields_s}, {"total_s", fs.est_total_s()}, {"memory_MB", fs.est_bytes / 1e6}}}};
 }
 
 void from_json(const Json& j, FlowSummary& f) {
@@ -302,10 +302,12 @@ void from_json(const Json& j, FlowSummary& f) {
   f.ode_share = j.at("ode_share").get<double>();
   fs.field_snapshots = j.at("field_snapshots").get<int>();
   fs.fields_seconds = j.at("fields_time_s").get<double>();
+  fs.cpu_seconds = j.at("cpu_time_s").get<double>();
   const Json& est = j.at("estimate");
   fs.est_start_up_s = est.at("start_up_s").get<double>();
   fs.est_blocks_s = est.at("force_system_blocks_s").get<double>();
   fs.est_steps_s = est.at("steps_to_t_end_s").get<double>();
+  fs.est_fields_s = est.at("fields_s").get<double>();
   fs.est_bytes = est.at("memory_MB").get<double>() * 1e6;
 }
 

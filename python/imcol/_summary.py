@@ -172,6 +172,7 @@ class FlowEstimate(Block):
     start_up_s: float
     steps_to_t_end_s: float
     force_system_blocks_s: float
+    fields_s: float
     memory_MB: float
 
 
@@ -189,6 +190,7 @@ class Flow(Block):
     flow_time_s: float
     ode_time_s: float
     fields_time_s: float
+    cpu_time_s: float
     flow_share: float
     ode_share: float
     start_up_steps: int

@@ -12,9 +12,10 @@ import imcol
 from imcol import _summary
 
 UNSTABLE = {"run", "wall_time_s", "setup_time_s"}
-# The flow block's timings, and its field snapshots: the command line writes flow fields, a run from Python makes none.
-FLOW_UNSTABLE = {"flow_time_s", "ode_time_s", "fields_time_s", "start_up_time_s", "flow_share", "ode_share",
-                 "ms_per_step", "field_snapshots"}
+# The flow block's timings, and its field snapshots and their estimated cost: the command line writes flow fields, a
+# run from Python makes none (the estimate is compared below without them).
+FLOW_UNSTABLE = {"flow_time_s", "ode_time_s", "fields_time_s", "cpu_time_s", "start_up_time_s", "flow_share", "ode_share",
+                 "ms_per_step", "field_snapshots", "estimate"}
 
 
 def stable(key, d):
@@ -129,7 +130,11 @@ def test_absent_blocks_are_none(runs):
     assert "contact" not in summary and r.contact is None
     summary, r = by_name["coupled/free_fall_stokes"]
     assert r.flow.steps == summary["flow"]["steps"] and r.flow.grid.cells_per_diameter == 8
-    assert r.flow.estimate.total_s == summary["flow"]["estimate"]["total_s"]
+    cli_est = summary["flow"]["estimate"]
+    assert r.flow.estimate.fields_s == 0 and cli_est["fields_s"] > 0
+    assert r.flow.estimate.total_s == pytest.approx(cli_est["total_s"] - cli_est["fields_s"], rel=1e-12)
+    for k in ("start_up_s", "force_system_blocks_s", "steps_to_t_end_s", "memory_MB"):
+        assert getattr(r.flow.estimate, k) == cli_est[k], k
     with pytest.raises(AttributeError, match="imcol.Result has no attribute 'no_such_name'"):
         r.no_such_name
     with pytest.raises(AttributeError, match="Solver has no attribute 'no_such_name'"):

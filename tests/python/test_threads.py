@@ -8,7 +8,7 @@ import numpy as np
 import imcol
 
 TIMINGS = {"run", "wall_time_s", "setup_time_s"}
-FLOW_TIMINGS = {"ms_per_step", "start_up_time_s", "flow_time_s", "ode_time_s", "flow_share", "ode_share", "fields_time_s"}
+FLOW_TIMINGS = {"ms_per_step", "start_up_time_s", "flow_time_s", "ode_time_s", "flow_share", "ode_share", "fields_time_s", "cpu_time_s"}
 
 
 def comparable(r):

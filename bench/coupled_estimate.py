@@ -1,0 +1,55 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: BSD-3-Clause
+"""A coupled run's cost estimate against its measured CPU time (docs/performance.md §7).
+
+    python3 bench/coupled_estimate.py [--imcol build/bin/imcol] [--scenes gg3462 gondret_st27 ...]
+        [--cells 16 24 32] [--check 2]
+
+Runs `imcol run coupled/SCENE --set flow.cells_per_diameter=N --quiet --no-plot` for every shipped coupled scene
+(data/scenes/coupled/) or the ones named, at each resolution, one run at a time, and prints summary.json's
+flow.estimate.total_s, the run's own CPU time flow.cpu_time_s (start-up, steps and flow fields) and their ratio.
+With --check R the exit status is 1 when a ratio lies outside [1/R, R].
+"""
+import argparse
+import json
+import pathlib
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+
+def run_one(imcol, scene, cells, out):
+    cmd = [imcol, "run", f"coupled/{scene}", "--out", str(out), "--quiet", "--no-plot",
+           "--set", f"flow.cells_per_diameter={cells}"]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    flow = json.loads((out / "summary.json").read_text())["flow"]
+    return flow["estimate"]["total_s"], flow["cpu_time_s"], flow["steps"]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--imcol", default=str(ROOT / "build" / "bin" / "imcol"))
+    ap.add_argument("--scenes", nargs="*", default=None, help="names in data/scenes/coupled (default: all)")
+    ap.add_argument("--cells", nargs="*", type=int, default=[16, 24, 32])
+    ap.add_argument("--check", type=float, default=0, help="fail when estimate/measured is outside [1/R, R]")
+    a = ap.parse_args()
+    scenes = a.scenes or sorted(p.stem for p in (ROOT / "data" / "scenes" / "coupled").glob("*.toml"))
+    bad = []
+    print(f"{'scene':22s} {'cells/D':>7s} {'steps':>6s} {'estimate s':>11s} {'measured s':>11s} {'est/meas':>9s}")
+    with tempfile.TemporaryDirectory() as tmp:
+        for scene in scenes:
+            for cells in a.cells:
+                est, cpu, steps = run_one(a.imcol, scene, cells, pathlib.Path(tmp) / f"{scene}_{cells}")
+                ratio = est / cpu if cpu > 0 else float("inf")
+                print(f"{scene:22s} {cells:7d} {steps:6d} {est:11.3f} {cpu:11.3f} {ratio:9.2f}", flush=True)
+                if a.check and not (1 / a.check <= ratio <= a.check):
+                    bad.append(f"{scene} at {cells} cells/D: estimate {est:.3f} s, measured {cpu:.3f} s")
+    for b in bad:
+        print(f"coupled_estimate: outside {a.check}x: {b}", file=sys.stderr)
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
