@@ -17,12 +17,13 @@ cd "$(dirname "$0")/.."
 B=build-asan
 JOBS=${JOBS:-2}
 
-# Left out (ctest -E): a wall-time bound measured on the Release build, and tests that take 25-55 s each under the
-# sanitizers (on 2 busy cores) repeating flow-kernel, coupling and sweep code that the other tests reach.
+# Left out (ctest -E): a wall-time bound and the cost estimate's check (coupled_estimate), both for the Release build,
+# and tests that take 25-55 s each under the sanitizers (on 2 busy cores) repeating flow-kernel, coupling and sweep
+# code that the other tests reach.
 SKIP='^(HistorySoeKernel\.ConstructionIsFast|FlowWall\.ErrorFallsWithTheGrid|FlowWall\.QuasiSteadyForceFollowsBrenner'
 SKIP+='|Coupling\.TheDefaultFlowStepIsStableAtReynolds1000|OutputUnit\.TwoSweepsIntoOneFolderDoNotMix'
 SKIP+='|Gondret\.ShippedCasesReachTerminalSpeedBounceAndComeToRestWithERisingWithSt'
-SKIP+='|CalibrateRecovery\.DeltaSsAndEDryFromANoisyETable)$'  # 36 s: ~480 runs; mpi_calibrate's e table reaches its code
+SKIP+='|coupled_estimate|CalibrateRecovery\.DeltaSsAndEDryFromANoisyETable)$'  # 36 s: ~480 runs; mpi_calibrate's e table reaches its code
 
 # the SUNDIALS of build/ (as setup.sh configured it), else the optimised one setup.sh builds
 sundials_dir=""
