@@ -66,9 +66,10 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
     for (double l : soe_->rates()) inv_rate_.push_back(1 / l);
     for (auto& c : cache_) {
       c.e.assign(soe_->modes(), 0.0);
-      c.ez.assign(soe_->modes(), 0.0);
+      c.we.assign(soe_->modes(), 0.0);
       c.m.assign(kPoints * soe_->modes(), 0.0);
     }
+    if (fixed_weights_) fast_ = SoeFastModes(soe_->rates(), w_);
   }
 }
 
@@ -175,7 +176,7 @@ constexpr std::array<double, kTopTerms> top_series(int top) {
 }
 }  // namespace
 
-void SphereHistory::fill_step(StepCache& c, double dt) const {
+void SphereHistory::fill_step(StepCache& c, double dt, std::size_t from, std::size_t to) const {
   // M_0 = (1 − e^(−x))/λ, M_j = (Δ^j − j M_(j−1))/λ for x = λΔ ≥ 1/2; below, the top M by its series
   // M_j = Δ^(j+1) Σ_k j! (−x)^k/(j+k+1)! and the lower ones downward, M_(j−1) = (Δ^j − λ M_j)/j (stable for
   // small x), with e^(−x) = 1 − λ M_0: no exponential there.
@@ -191,8 +192,9 @@ void SphereHistory::fill_step(StepCache& c, double dt) const {
   const auto& lam = soe_->rates();
   const std::size_t n = lam.size();
   // The rates ascend: the series below `split`, the exponentials from it (two branch-free loops).
-  const auto split = static_cast<std::size_t>(std::lower_bound(lam.begin(), lam.end(), 0.5 / dt) - lam.begin());
-  for (std::size_t i = 0; i < split; ++i) {
+  const auto split =
+      std::clamp(static_cast<std::size_t>(std::lower_bound(lam.begin(), lam.end(), 0.5 / dt) - lam.begin()), from, to);
+  for (std::size_t i = from; i < split; ++i) {
     const double x = lam[i] * dt;
     double sum = kTopSeries[kTopTerms - 1];  // Horner: truncation 1.2e-15 relative at x = 1/2
     for (int k = kTopTerms - 2; k >= 0; --k) sum = kTopSeries[k] - x * sum;
@@ -202,9 +204,9 @@ void SphereHistory::fill_step(StepCache& c, double dt) const {
     c.e[i] = 1 - lam[i] * M[0];
     for (int j = 0; j < kPoints; ++j) c.m[j * n + i] = M[j];
   }
-  for (std::size_t i = split; i < n; ++i) {
+  for (std::size_t i = split; i < to; ++i) {
     const double x = lam[i] * dt;
-    const double e = x > 40 ? 0.0 : std::exp(-x), il = inv_rate_[i];  // e^(−40) z is below rounding
+    const double e = x > SoeFastModes::kFast ? 0.0 : std::exp(-x), il = inv_rate_[i];  // e^(−40) z is below rounding
     c.e[i] = e;
     double M = (1 - e) * il;
     c.m[i] = M;
@@ -214,6 +216,41 @@ void SphereHistory::fill_step(StepCache& c, double dt) const {
 
 void SphereHistory::share_steps_with(const SphereHistory* twin) {
   twin_ = twin && twin->stepwise() && twin->soe_ == soe_ ? twin : nullptr;
+}
+
+void SphereHistory::new_step(StepCache& c, double dt) const {
+  const std::size_t n = soe_->modes();
+  const StepCache* shared = nullptr;  // an equal sphere's values at the same Δ (the same kernel and weights)
+  if (twin_)
+    for (const auto& o : twin_->cache_)
+      if (o.dt == dt) shared = &o;
+  if (shared) {
+    c.fast = shared->fast;
+    c.full = shared->full;
+    const std::size_t to = c.full ? n : c.fast;
+    std::copy_n(shared->e.begin(), to, c.e.begin());
+    std::copy_n(shared->we.begin(), c.fast, c.we.begin());
+    for (std::size_t j = 0; j < kPoints; ++j) std::copy_n(shared->m.begin() + j * n, to, c.m.begin() + j * n);
+    c.sums = shared->sums;
+  } else if (fixed_weights_) {
+    fill_basset(c, dt);
+  } else {
+    fill_step(c, dt, 0, n);
+    c.fast = n;
+    c.full = true;
+  }
+  c.dt = dt;
+  c.z_gen = -1;
+}
+
+void SphereHistory::fill_basset(StepCache& c, double dt) const {
+  const std::size_t n = soe_->modes();
+  c.fast = fast_.first(dt);
+  c.full = c.fast == n;
+  fill_step(c, dt, 0, c.fast);
+  for (std::size_t i = 0; i < c.fast; ++i) c.we[i] = w_[i] * c.e[i];
+  const auto outer = fast_.sums(dt, c.fast);
+  for (std::size_t j = 0; j < kPoints; ++j) c.sums[j + 1] = dot(w_.data(), &c.m[j * n], c.fast) + outer[j];
 }
 
 int SphereHistory::slot_for(double dt) const {
@@ -228,35 +265,16 @@ int SphereHistory::slot_for(double dt) const {
 bool SphereHistory::in_step(double t, double U) const {
   const double dt = t - tn_;
   if (!(dt > 0) || np_ == 0) return false;
-  const auto& lam = soe_->rates();
   if (cache_[cur_].dt != dt) {
     cur_ = slot_for(dt);
-    StepCache& c = cache_[cur_];
-    if (c.dt != dt) {
-      const StepCache* shared = nullptr;  // an equal sphere's values at the same Δ
-      if (twin_)
-        for (const auto& o : twin_->cache_)
-          if (o.dt == dt) shared = &o;
-      if (shared) {  // the same kernel: e, M and the weighted sums of M are the twin's
-        c.e = shared->e;
-        c.m = shared->m;
-        c.sums = shared->sums;
-      } else {
-        fill_step(c, dt);
-        if (fixed_weights_)
-          for (int j = 0; j < kPoints; ++j) c.sums[j + 1] = dot(w_.data(), &c.m[j * lam.size()], lam.size());
-      }
-      c.dt = dt;
-      c.z_gen = -1;
-    }
+    if (cache_[cur_].dt != dt) new_step(cache_[cur_], dt);
   }
   cache_[cur_].used = ++uses_;
   if (StepCache& c = cache_[cur_]; c.z_gen != z_gen_) {
-    for (std::size_t i = 0; i < lam.size(); ++i) c.ez[i] = c.e[i] * z_[i];
     c.q_at = horner(pq_.data(), np_ - 1, dt);
     c.w_at = horner(pw_.data(), np_, dt);
     if (fixed_weights_) {
-      c.sums[0] = dot(w_.data(), c.ez.data(), lam.size());
+      c.sums[0] = dot(c.we.data(), z_.data(), c.fast);  // the fast modes' e^(−λΔ) is below rounding
       c.a = c.b = 0;
       for (int j = 0; j < np_; ++j) {
         if (j + 1 < np_) c.a += (j + 1) * pq_[j + 1] * c.sums[j + 1];
@@ -324,20 +342,25 @@ double SphereHistory::memory_sum(double t, double U, std::span<const double> w) 
 }
 
 void SphereHistory::modes_in_step(const StepCache& c, std::span<double> out) const {
-  // z_i = e^(−λ_i Δ) z_i + Σ_j d_j M_ij, the sum over j in order, a column of M at a time.
+  // z_i = e^(−λ_i Δ) z_i + Σ_j d_j M_ij (d_j = 0 for j ≥ np_), in one pass; out may be z_.
+  static_assert(kPoints == 3);
   const std::size_t n = out.size();
-  std::fill(out.begin(), out.end(), 0.0);
-  for (int j = 0; j < np_; ++j) {
-    const double dj = in_step_slope(j), *Mj = &c.m[j * n];
-    for (std::size_t i = 0; i < n; ++i) out[i] += dj * Mj[i];
-  }
-  for (std::size_t i = 0; i < n; ++i) out[i] += c.ez[i];
+  std::array<double, kPoints> d{};
+  for (int j = 0; j < np_; ++j) d[j] = in_step_slope(j);
+  const double *e = c.e.data(), *M0 = c.m.data(), *M1 = M0 + n, *M2 = M1 + n, *z = z_.data();
+  double* o = out.data();
+  for (std::size_t i = 0; i < n; ++i) o[i] = e[i] * z[i] + (d[0] * M0[i] + d[1] * M1[i] + d[2] * M2[i]);
 }
 
 void SphereHistory::advance_memory(double t, double U, bool restart) {
   if (!stepwise()) return;
   if (in_step(t, U)) {
-    modes_in_step(cache_[cur_], z_);  // reads e^(−λΔ) z from the cache, not z_
+    StepCache& c = cache_[cur_];
+    if (!c.full) {  // Basset: the fast modes too (e = 0, no exponential)
+      fill_step(c, c.dt, c.fast, soe_->modes());
+      c.full = true;
+    }
+    modes_in_step(c, z_);
   } else if (np_ > 0 && !restart) {
     return;  // not a new time
   }

@@ -13,7 +13,8 @@
 //          P the polynomial through the last (up to kPoints = 3) accepted (t_j, U_j) and the current (t, U), integrated
 //          exactly (M_j = ∫_0^Δ σ^j e^(−λ(Δ−σ)) dσ); advance_memory() moves t_n to each accepted step.
 //          A restart (event) forgets the earlier points, where U' may jump. O(1) per evaluation at a
-//          known Δ (Basset), O(modes) exponentials per new Δ.
+//          known Δ (Basset); per new Δ, O(modes with λΔ ≤ 40) (Basset's faster modes in closed form,
+//          contact/soe_fast_modes.hpp); O(modes) per accepted step.
 //  direct  product integration on its own fixed grid t_k = kΔ (the integrator stops on it): U piecewise
 //          linear through the grid values and the current U(t), each segment integrated exactly against K
 //          (HistoryKernel::integral). O(t/Δ) per evaluation, O(N²) per run; second order in Δ for smooth U.
@@ -32,6 +33,7 @@
 #include <vector>
 
 #include "contact/history_kernel.hpp"
+#include "contact/soe_fast_modes.hpp"
 
 namespace imcol::contact {
 
@@ -123,17 +125,19 @@ class SphereHistory {
   std::vector<double> inv_rate_;        // 1/λ_i
   mutable std::vector<double> zs_;      // scratch: the modes inside a step (finite-Re kernels)
   double tn_ = 0;
-  static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints
+  static constexpr int kPoints = SoeFastModes::kPoints;  // accepted points kept: P of degree ≤ kPoints
   std::array<double, kPoints> pt_{}, pu_{};  // accepted (t_j, U_j), most recent first (pt_[0] = t_n)
   int np_ = 0;
   // One Δ. kSlots are kept, the least recently used replaced: a step's end Δ = h, the energy quadrature's interior
   // nodes (h/2 for Simpson) and an output sample in it. e, M and their Basset sums depend on Δ alone and outlive a
-  // step (CVODE often keeps h); ez and sums[0] follow the modes z_ (generation z_gen).
+  // step (CVODE often keeps h); sums[0] follows the modes z_ (generation z_gen).
   struct StepCache {
     double dt = -1;
     long z_gen = -1;
     long used = 0;                      // when last used (uses_), for the replacement
-    std::vector<double> e, ez, m;       // e^(−λ_i Δ), e^(−λ_i Δ) z_i; M_ij at [j · modes + i]
+    std::vector<double> e, we, m;       // e^(−λ_i Δ), Basset's w_i e^(−λ_i Δ); M_ij at [j · modes + i]
+    std::size_t fast = 0;               // Basset: e, we, M kept for the modes below `fast` only, until `full`
+    bool full = false;                  // e and M for every mode (advance_memory, Re-dependent weights)
     std::array<double, kPoints + 1> sums{};  // Basset: Σ w_i e^(−λ_i Δ) z_i, Σ w_i M_ij
     double q_at = 0, w_at = 1;          // Q(Δ), ω(Δ)
     double a = 0, b = 0;                // Basset: Σ_j Q'_j Σ_i w_i M_ij and Σ_j ω'_j Σ_i w_i M_ij
@@ -146,8 +150,14 @@ class SphereHistory {
   /// The slot holding Δ = dt, or the least recently used one.
   int slot_for(double dt) const;
   const SphereHistory* twin_ = nullptr; // an equal sphere (same exponentials) whose e and M are reused
-  void fill_step(StepCache& c, double dt) const;
-  /// soe-step: every z_i(t) = e^(−λ_i Δ) z_i + Σ_j P'_j M_ij into out (after in_step).
+  /// e and M of the modes [from, to) at Δ = dt.
+  void fill_step(StepCache& c, double dt, std::size_t from, std::size_t to) const;
+  /// A new Δ in slot c: the twin's values, or Basset's slower modes and sums, or every mode (Re-dependent weights).
+  void new_step(StepCache& c, double dt) const;
+  /// Basset: the slower modes one by one, the fast ones in closed form.
+  void fill_basset(StepCache& c, double dt) const;
+  SoeFastModes fast_;                   // Basset's fast modes
+  /// soe-step: every z_i(t) = e^(−λ_i Δ) z_i + Σ_j P'_j M_ij into out (after in_step; c full); out may be z_.
   void modes_in_step(const StepCache& c, std::span<double> out) const;
   // The in-step polynomial P = Q + c ω: Q through the accepted points and ω(σ) = Π_k (σ − s_k), in monomials of σ
   // (step_polynomial, once per accepted step); c = (U − Q(Δ))/ω(Δ) from the current (t, U) (in_step).
