@@ -54,7 +54,8 @@ class FlowCoupling {
   /// Where the flow-field files go as they are made (flow/field_series.hpp): names relative to the output folder.
   /// Without a sink (sweeps, comparisons) no flow fields are computed, whatever flow.fields says.
   void set_file_sink(flow::FileSink sink) { sink_ = std::move(sink); }
-  /// When the run will likely stop (s; the reduced-order model's end): the cost estimate counts the steps to there.
+  /// When the run will likely stop (s; the reduced-order model's end): the cost estimate and the automatic
+  /// preconditioner bins count the steps to there.
   void set_expected_end(double t) { expected_end_ = t; }
 
  private:
@@ -82,7 +83,7 @@ class FlowCoupling {
   flow::Settings grid_settings(const StartUp& su);  // the kernel's grid; places the frame
   std::array<double, 2> start_up_travel(const StartUp& su) const;  // each sphere's travel relative to the grid, m
   int preconditioner_bins(const flow::Settings& s, const StartUp& su) const;  // flow.preconditioner_bins, or chosen
-  double flow_steps_to_end(double dt) const;  // coupled flow steps up to t_end
+  double flow_steps_to_end(double dt) const;  // coupled flow steps to the expected end (at most to t_end)
   Predicted prescribed(double t) const;  // the spheres on their initial paths at t < 0
   std::array<double, 2> develop_flow(const StartUp& su, const flow::Settings& s);  // builds the kernel; its last f
   void reset_step_stats();

@@ -15,7 +15,7 @@ namespace {
 constexpr double kStepPerVertex = 38e-9;   // s, a step's own work
 constexpr double kQPerVertex = 20e-9;      // s, one application of Q
 constexpr double kLuPerCube = 0.2e-9;      // s per n³ of a dense LU
-constexpr double kFieldPerVertex = 1.5e-6; // s, one flow-field snapshot (pressure solve, CSV and VTK text)
+constexpr double kFieldPerVertex = 1.1e-6; // s, one flow-field snapshot (pressure solve, CSV text, VTK)
 }  // namespace
 
 CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters, bool moving) {

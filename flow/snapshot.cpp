@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/number_text.hpp"
 #include "flow/bodies.hpp"
@@ -14,20 +16,26 @@ namespace {
 
 void write_level(std::string& os, int l, const LevelFields& L) {
   const auto& g = L.g;
-  for (int i = 0; i <= g.nr; ++i)
+  std::vector<std::string> z_text(g.nz + 1);  // ",z" of each line j, the same on every line i
+  for (int j = 0; j <= g.nz; ++j) {
+    z_text[j] += ',';
+    append_number(z_text[j], L.z(j), 9);
+  }
+  for (int i = 0; i <= g.nr; ++i) {
+    std::string head = std::to_string(l);  // "level,r"
+    head += ',';
+    append_number(head, L.r(i), 9);
     for (int j = 0; j <= g.nz; ++j) {
       const std::size_t k = g.at(i, j);
-      os += std::to_string(l);
-      os += ',';
-      append_number(os, L.r(i), 9);
-      os += ',';
-      append_number(os, L.z(j), 9);
+      os += head;
+      os += z_text[j];
       for (const auto& f : L.fields) {
         os += ',';
         append_number(os, f.values[k], 9);
       }
       os += '\n';
     }
+  }
 }
 
 /// The comment line's tail: the spheres where the trajectory has them and the true surface gap (with a wall or a pair).

@@ -400,7 +400,7 @@ void Solver::solve_direct(const std::vector<SphereState>& next) {
 
 void Solver::build_preconditioner(const std::vector<SphereState>& next) {
   // Each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of preconditioner_bins
-  // bins, built the first time a sphere is there): the rings' pattern relative to the grid repeats when a sphere
+  // bins centred on the offset of the sphere's first block, each built the first time a sphere is there): the rings' pattern relative to the grid repeats when a sphere
   // moves by whole cells, and the multi-level Q is nearly translation invariant.
   prec_.clear();
   const LevelGeometry& G = lv_[0].g;
@@ -412,8 +412,11 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
     const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
     const double x = (next[b].z - G.z0) / G.h;
     const int bins = s_.preconditioner_bins;
-    const int bin = static_cast<int>(std::lround((x - std::floor(x)) * bins)) % bins;
     if (prec_cache_.size() < next.size()) prec_cache_.resize(next.size());
+    if (prec_origin_.size() < next.size()) prec_origin_.resize(next.size(), std::nan(""));
+    if (std::isnan(prec_origin_[b])) prec_origin_[b] = x - std::floor(x);
+    const double u = x - prec_origin_[b];  // offset from the first block's
+    const int bin = static_cast<int>(std::lround((u - std::floor(u)) * bins)) % bins;
     auto& slot = prec_cache_[b];
     if (slot.size() != static_cast<std::size_t>(bins)) slot.assign(bins, nullptr);
     if (!slot[bin] || slot[bin]->rows() != n) {

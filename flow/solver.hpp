@@ -22,7 +22,8 @@
 // transfers are not adjoint), so it is LU-factorised when the bodies have not moved (bodies that stop after moving:
 // once GMRES has spent as many applications of Q there as the LU has columns) and solved by restarted GMRES
 // otherwise (relative residual krylov_tol; right-preconditioned by each sphere's own block of Q, factorised for
-// the sphere's sub-cell offset on the finest grid in one of 16 bins, each built the first time the sphere is
+// the sphere's sub-cell offset on the finest grid in one of 16 bins (centred on the offset of the sphere's first
+// block, so that a sphere at constant speed revisits the bins' centres), each built the first time the sphere is
 // there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
 // multi-level Q is nearly translation invariant; warm start extrapolated from the last two steps' forces).
 // Force on sphere s (N, along +z): F_s = −ρ Σ_{k∈s} g_z,k + ρ V_s (U_s^{n+1} − u_in,s^n)/Δt, the second term the
@@ -196,6 +197,7 @@ class Solver {
   struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; };
   std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
   std::vector<std::vector<std::shared_ptr<BlockLU>>> prec_cache_;  // [sphere][offset bin]
+  std::vector<double> prec_origin_;    // per sphere: the sub-cell offset of its first block, the centre of bin 0
   long prec_builds_ = 0;
   std::vector<BodyPoints> wall_pts_;  // per level
   std::vector<PointRows> Bw_;         // per level: velocity at its wall points
