@@ -125,7 +125,8 @@ class SphereHistory {
   std::vector<double> inv_rate_;        // 1/λ_i
   mutable std::vector<double> zs_;      // scratch: the modes inside a step (finite-Re kernels)
   double tn_ = 0;
-  static constexpr int kPoints = SoeFastModes::kPoints;  // accepted points kept: P of degree ≤ kPoints
+  static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints
+  static_assert(kPoints == SoeFastModes::kPoints, "the fast modes' M_j are those of the in-step polynomial");
   std::array<double, kPoints> pt_{}, pu_{};  // accepted (t_j, U_j), most recent first (pt_[0] = t_n)
   int np_ = 0;
   // One Δ. kSlots are kept, the least recently used replaced: a step's end Δ = h, the energy quadrature's interior

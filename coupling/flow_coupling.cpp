@@ -320,10 +320,11 @@ int FlowCoupling::preconditioner_bins(const flow::Settings& s, const StartUp& su
   return automatic_bins(double(su.n_pre) + flow_steps_to_end(su.dt), columns);
 }
 
-double FlowCoupling::flow_steps_to_end(double dt) const {
-  const double end = expected_end_ > 0 ? std::min(expected_end_, sc_.solver.t_end) : sc_.solver.t_end;
-  return std::ceil(end / dt * (1 - 1e-12));
+double FlowCoupling::run_end() const {
+  return expected_end_ > 0 ? std::min(expected_end_, sc_.solver.t_end) : sc_.solver.t_end;
 }
+
+double FlowCoupling::flow_steps_to_end(double dt) const { return std::ceil(run_end() / dt * (1 - 1e-12)); }
 
 void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel) {
   CoupledCostInput in;
@@ -337,7 +338,7 @@ void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, co
   in.steps = flow_steps_to_end(dt);
   if (sc_.flow.fields && sink_) {  // the four moments (flow_coupling.hpp maybe_snapshot) and the regular ones
     in.snapshots = 4;
-    if (sc_.flow.fields_every > 0) in.snapshots += std::floor(sc_.solver.t_end / sc_.flow.fields_every) + 1;
+    if (sc_.flow.fields_every > 0) in.snapshots += std::floor(run_end() / sc_.flow.fields_every) + 1;
   }
   const CoupledCost c = coupled_cost(in);
   stats_.est_start_up_s = c.start_up_s;

@@ -83,7 +83,8 @@ class FlowCoupling {
   flow::Settings grid_settings(const StartUp& su);  // the kernel's grid; places the frame
   std::array<double, 2> start_up_travel(const StartUp& su) const;  // each sphere's travel relative to the grid, m
   int preconditioner_bins(const flow::Settings& s, const StartUp& su) const;  // flow.preconditioner_bins, or chosen
-  double flow_steps_to_end(double dt) const;  // coupled flow steps to the expected end (at most to t_end)
+  double run_end() const;                      // s: the expected end, at most t_end
+  double flow_steps_to_end(double dt) const;  // coupled flow steps to run_end()
   Predicted prescribed(double t) const;  // the spheres on their initial paths at t < 0
   std::array<double, 2> develop_flow(const StartUp& su, const flow::Settings& s);  // builds the kernel; its last f
   void reset_step_stats();

@@ -400,8 +400,9 @@ void Solver::solve_direct(const std::vector<SphereState>& next) {
 
 void Solver::build_preconditioner(const std::vector<SphereState>& next) {
   // Each sphere's own block of Q, factorised for its sub-cell offset on the finest grid (one of preconditioner_bins
-  // bins centred on the offset of the sphere's first block, each built the first time a sphere is there): the rings' pattern relative to the grid repeats when a sphere
-  // moves by whole cells, and the multi-level Q is nearly translation invariant.
+  // bins centred on the offset of the sphere's first block, each built the first time a sphere is there): the rings'
+  // pattern relative to the grid repeats when a sphere moves by whole cells, and the multi-level Q is nearly
+  // translation invariant.
   prec_.clear();
   const LevelGeometry& G = lv_[0].g;
   auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) { return std::make_shared<BlockLU>(diagonal_block_of_Q(o, n)); };

@@ -22,9 +22,9 @@
 // transfers are not adjoint), so it is LU-factorised when the bodies have not moved (bodies that stop after moving:
 // once GMRES has spent as many applications of Q there as the LU has columns) and solved by restarted GMRES
 // otherwise (relative residual krylov_tol; right-preconditioned by each sphere's own block of Q, factorised for
-// the sphere's sub-cell offset on the finest grid in one of 16 bins (centred on the offset of the sphere's first
-// block, so that a sphere at constant speed revisits the bins' centres), each built the first time the sphere is
-// there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
+// the sphere's sub-cell offset on the finest grid in one of flow.preconditioner_bins bins (centred on the offset of
+// the sphere's first block, so that a sphere at constant speed revisits the bins' centres), each built the first
+// time the sphere is there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
 // multi-level Q is nearly translation invariant; warm start extrapolated from the last two steps' forces).
 // Force on sphere s (N, along +z): F_s = −ρ Σ_{k∈s} g_z,k + ρ V_s (U_s^{n+1} − u_in,s^n)/Δt, the second term the
 // momentum change of the fluid inside the sphere. Convention: before the first step the fluid inside moves with
