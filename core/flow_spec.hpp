@@ -20,6 +20,8 @@ struct FlowSpec {
   double cfl = 0;                // dt = cfl h / U_ref (U_ref: coupling/reference_speed.hpp) when dt = 0; 0: cfl(Re, N) of
                                  // coupling/step_rule.hpp (0.5 up to Re N = 5600: Re 175 at 32 cells/D; 0.21 at Re 1000)
   double tau_p_fraction = 0.2;   // and dt ≤ this × τ_p = (m + ½ m_f)/(6π μ a), the smallest over the spheres, when dt = 0
+  bool adaptive_step = true;     // re-choose dt as the run goes on, U_ref from the present state (coupling/adaptive_step.hpp);
+                                 // only when dt = 0
   double theta = 0.5;            // implicit weight of the viscous term (0.5 Crank–Nicolson)
   double krylov_tol = 1e-8;      // GMRES relative residual of the force system
   int krylov_max_iter = 500;

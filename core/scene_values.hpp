@@ -145,6 +145,7 @@ inline void put_flow(Lines& o, const Scene& sc) {
   o.put("flow.dt", num(f.dt));
   o.put("flow.cfl", num(f.cfl));
   o.put("flow.tau_p_fraction", num(f.tau_p_fraction));
+  o.put("flow.adaptive_step", f.adaptive_step ? "true" : "false");
   o.put("flow.theta", num(f.theta));
   o.put("flow.krylov_tol", num(f.krylov_tol));
   o.put("flow.krylov_max_iter", std::to_string(f.krylov_max_iter));

@@ -12,6 +12,7 @@
 #include "core/timing.hpp"
 #include "coupling/divergence_watch.hpp"
 #include "coupling/preconditioner_bins.hpp"
+#include "coupling/reference_speed.hpp"
 #include "coupling/run_cost.hpp"
 #include "coupling/step_rule.hpp"
 #include "flow/cost.hpp"
@@ -113,7 +114,9 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   stats_.max_krylov_iterations = std::max(stats_.max_krylov_iterations, info.krylov_iterations);
   stats_.max_krylov_residual = std::max(stats_.max_krylov_residual, info.krylov_residual);
   stats_.max_slip = std::max(stats_.max_slip, info.slip);
-  stats_.max_courant = std::max(stats_.max_courant, kernel_->max_courant());
+  const double courant = kernel_->max_courant();
+  stats_.max_courant = std::max(stats_.max_courant, courant);
+  u_fluid_ = courant * stats_.h / dt;
   // Lab force: the frame's buoyancy-like term ρ V a_frame (flow/solver.hpp set_stream); then the model's added mass
   // estimate is removed with the kernel's own acceleration of the sphere over the step.
   const model::AddedMassMatrix M = model_.implicit_added_mass(p.gap);
@@ -139,6 +142,7 @@ FlowCoupling::StartUp FlowCoupling::plan_start_up() {
   const FlowStep step = flow_step(sc_, su.h);
   su.dt = step.dt;
   step_ = step;
+  adapt_.emplace(sc_, su.h, step);
   stats_.cfl = step.cfl;
   double t_pre = su.dt;  // impulsive: one prescribed step
   if (fs.start == FlowStart::developed) {
@@ -321,10 +325,23 @@ int FlowCoupling::preconditioner_bins(const flow::Settings& s, const StartUp& su
 }
 
 double FlowCoupling::run_end() const {
-  return expected_end_ > 0 ? std::min(expected_end_, sc_.solver.t_end) : sc_.solver.t_end;
+  return expected_.end > 0 ? std::min(expected_.end, sc_.solver.t_end) : sc_.solver.t_end;
 }
 
-double FlowCoupling::flow_steps_to_end(double dt) const { return std::ceil(run_end() / dt * (1 - 1e-12)); }
+double FlowCoupling::flow_steps_to_end(double dt) const {
+  const double end = run_end();
+  const auto& e = expected_;
+  if (!adapt_ || !adapt_->active() || e.t.size() < 2) return std::ceil(end / dt * (1 - 1e-12));
+  // Each stretch of the path at the rule's step for what the spheres could still reach there (the fluid's own speed
+  // is not known before the run).
+  double steps = 0;
+  for (std::size_t i = 0; i + 1 < e.t.size() && e.t[i] < end; ++i) {
+    const double U = reference_speed(sc_, std::span<const double>(e.z[i].data(), n_), std::span<const double>(e.u[i].data(), n_)).u;
+    steps += (std::min(e.t[i + 1], end) - e.t[i]) / adapt_->rule(U);
+  }
+  if (e.t.back() < end) steps += (end - e.t.back()) / dt;
+  return std::ceil(steps);
+}
 
 void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel) {
   CoupledCostInput in;
@@ -461,16 +478,23 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
   start_up();
   Integrator integ(model_, st, observer);
   DivergenceWatch watch(model_, sc_, integ.state(), step_);
-  const double dt = stats_.dt;
   // The start-up's last force is the one the spheres first feel: a kernel that diverged while the flow developed
   // shows here, before the integrator turns it into an impossible impact.
-  watch.check_kernel_force(0.0, dt, acting(start_force_, integ.state()), integ.state());
+  watch.check_kernel_force(0.0, stats_.dt, acting(start_force_, integ.state()), integ.state());
   double t = 0;
   long n = 0;
+  double t_base = 0, t_target = 0;  // the flow times are t_base + k Δt since the step last changed
+  long n_base = 0;
+  stats_.dt_min = stats_.dt_max = stats_.dt;
   note_trajectory(integ.state());
   start_series();
   while (!integ.finished()) {
-    const double t1 = static_cast<double>(n + 1) * dt;
+    const double dt_old = kernel_->settings().dt, dt = next_step(integ.state());
+    if (dt != dt_old) {
+      t_base = t_target;
+      n_base = n;
+    }
+    const double t1 = t_target = t_base + static_cast<double>(n + 1 - n_base) * dt;
     const Predicted p = predict(t, integ.state(), dt);
     const auto f1 = step_kernel(p, dt);
     watch.check_kernel_force(t, dt, acting(f1, integ.state()), integ.state());
@@ -497,8 +521,20 @@ SolverStats FlowCoupling::run(const IntegratorSettings& st, Observer& observer) 
       throw SolverError("coupling: the integrator stopped at t = " + std::to_string(t) + " s before the flow step's end");
   }
   finish_series();
+  stats_.dt_min = adapt_->dt_min();
+  stats_.dt_max = adapt_->dt_max();
+  stats_.step_changes = adapt_->changes();
   stats_.cpu_seconds = thread_cpu_seconds() - cpu0;
   return integ.stats();
+}
+
+double FlowCoupling::next_step(std::span<const double> y) {
+  if (!adapt_->active()) return kernel_->settings().dt;
+  std::array<double, 2> z{}, u{};
+  model_.sphere_states(y, z, u);
+  const double dt = adapt_->next(std::span<const double>(z.data(), n_), std::span<const double>(u.data(), n_), u_fluid_);
+  kernel_->set_dt(dt);
+  return dt;
 }
 
 std::array<double, 2> FlowCoupling::acting(const std::array<double, 2>& f, std::span<const double> y) const {

@@ -31,6 +31,7 @@
 #include "core/timing.hpp"
 #include "core/work_scope.hpp"
 #include "core/scene.hpp"
+#include "coupling/adaptive_step.hpp"
 #include "coupling/flow_run_stats.hpp"
 #include "coupling/step_rule.hpp"
 #include "flow/field_series.hpp"
@@ -40,6 +41,14 @@
 namespace imcol::coupling {
 
 class DivergenceWatch;
+
+/// The reduced-order model's run of the same scene (run/simulate.cpp): when it ended, and the spheres' path, along
+/// which the cost estimate and the automatic preconditioner bins count the adaptive flow steps.
+struct ExpectedRun {
+  double end = 0;                           // s; 0: unknown (t_end)
+  std::vector<double> t;                    // s
+  std::vector<std::array<double, 2>> z, u;  // the spheres' centres (m) and velocities (m/s) at t
+};
 
 class FlowCoupling {
  public:
@@ -54,9 +63,9 @@ class FlowCoupling {
   /// Where the flow-field files go as they are made (flow/field_series.hpp): names relative to the output folder.
   /// Without a sink (sweeps, comparisons) no flow fields are computed, whatever flow.fields says.
   void set_file_sink(flow::FileSink sink) { sink_ = std::move(sink); }
-  /// When the run will likely stop (s; the reduced-order model's end): the cost estimate and the automatic
-  /// preconditioner bins count the steps to there.
-  void set_expected_end(double t) { expected_end_ = t; }
+  /// How the run will likely go (the reduced-order model's run): the cost estimate and the automatic preconditioner
+  /// bins count the steps to its end, with flow.adaptive_step along its path.
+  void set_expected_run(ExpectedRun r) { expected_ = std::move(r); }
 
  private:
   struct Predicted {
@@ -67,6 +76,7 @@ class FlowCoupling {
   double gap_of(const std::array<double, 2>& z) const;  // surface gap to the target sphere or the wall; ∞ if none
   std::vector<flow::SphereState> frame_spheres(const Predicted& p, double frame_z, double frame_u);
   std::array<double, 2> step_kernel(const Predicted& p, double dt);
+  double next_step(std::span<const double> y);  // the coming flow step (adaptive), set in the kernel
   /// The start-up before t = 0 (impulsive or developed): the grid is built and the flow developed with the spheres
   /// on their initial paths.
   void start_up();
@@ -84,7 +94,8 @@ class FlowCoupling {
   std::array<double, 2> start_up_travel(const StartUp& su) const;  // each sphere's travel relative to the grid, m
   int preconditioner_bins(const flow::Settings& s, const StartUp& su) const;  // flow.preconditioner_bins, or chosen
   double run_end() const;                      // s: the expected end, at most t_end
-  double flow_steps_to_end(double dt) const;  // coupled flow steps to run_end()
+  /// Coupled flow steps to run_end(): of dt, or with the adaptive step the rule's along the expected path.
+  double flow_steps_to_end(double dt) const;
   Predicted prescribed(double t) const;  // the spheres on their initial paths at t < 0
   std::array<double, 2> develop_flow(const StartUp& su, const flow::Settings& s);  // builds the kernel; its last f
   void reset_step_stats();
@@ -117,6 +128,8 @@ class FlowCoupling {
   std::array<double, 2> f_rest_{};           // f_rest at the last flow time
   std::array<double, 2> start_force_{};      // f_rest at the end of the start-up
   FlowStep step_;                            // the flow step and how it was chosen (coupling/step_rule.hpp)
+  std::optional<AdaptiveStep> adapt_;        // the step as the run goes on
+  double u_fluid_ = 0;                       // the fluid's largest speed after the last flow step, m/s
   bool have_f_rest_ = false;
   FlowRunStats stats_;
   flow::FileSink sink_;
@@ -127,7 +140,7 @@ class FlowCoupling {
   StopToken stop_ = this_thread_work().stop;  // checked before every flow step and force-system column
   WallClock::time_point start_up_began_{};
   double est_before_t0_s_ = 0;  // estimated start-up and its blocks, s
-  double expected_end_ = 0;     // s; 0: t_end
+  ExpectedRun expected_;        // the reduced-order model's run
   bool snap_gap_ = false, snap_contact_ = false, snap_after_ = false;
 };
 

@@ -9,7 +9,9 @@ namespace imcol::coupling {
 struct FlowRunStats {
   long steps = 0;             // coupled flow steps
   long pre_steps = 0;         // prescribed steps before t = 0 (start-up)
-  double dt = 0;              // flow step, s
+  double dt = 0;              // flow step, s (the first, with flow.adaptive_step)
+  double dt_min = 0, dt_max = 0;  // the shortest and longest coupled flow steps, s
+  long step_changes = 0;      // times the adaptive step changed (coupling/adaptive_step.hpp)
   double h = 0;               // finest spacing, m
   int nr = 0, nz = 0, levels = 0, cells_per_diameter = 0;
   double flow_seconds = 0, ode_seconds = 0, pre_seconds = 0;  // wall time in the kernel, in CVODE/IDA, in the start-up

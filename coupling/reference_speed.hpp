@@ -10,6 +10,7 @@
 //             without end, and the frame that follows its midpoint sees its speed as the far stream).
 // U_ref = max_m U_m: it bounds the speeds the kernel's grid sees (a wall scene: the sphere's; a pair, in the frame of
 // its midpoint: the midpoint's speed and half the relative speed).
+#include <span>
 #include <string>
 
 #include "core/scene.hpp"
@@ -22,6 +23,9 @@ struct ReferenceSpeed {
 };
 
 ReferenceSpeed reference_speed(const Scene& sc);
+/// The same bound from the spheres' present centres z (m) and velocities u (m/s) instead of the scene's initial ones:
+/// what they can still reach (coupling/adaptive_step.hpp).
+ReferenceSpeed reference_speed(const Scene& sc, std::span<const double> z, std::span<const double> u);
 
 /// Terminal speed (m/s) of a sphere of diameter D (m), density rho_p in a fluid rho_f, mu (Pa s), |g| (m/s²), on the
 /// standard drag curve; 0 when rho_p = rho_f.

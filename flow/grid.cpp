@@ -93,31 +93,43 @@ const FastSolver::Plans& FastSolver::plans_for(int rows) const {
 }
 
 void FastSolver::build_tables() {
+  lower_.assign(ops_.size(), {});
+  upper_.assign(ops_.size(), {});
+  inv_den_.assign(ops_.size(), {});
+  for (std::size_t k = 0; k < ops_.size(); ++k) build_table(static_cast<int>(k));
+}
+
+void FastSolver::build_table(int k_op) {
+  const Op& op = ops_[static_cast<std::size_t>(k_op)];
   const double ih2 = 1.0 / (g_.h * g_.h);
-  for (const Op& op : ops_) {
-    std::vector<double> lower(n_ + 1), upper(n_ + 1), inv_den(static_cast<std::size_t>(n_) * m_);
+  std::vector<double> lower(n_ + 1), upper(n_ + 1), inv_den(static_cast<std::size_t>(n_) * m_);
+  for (int ii = 0; ii < n_; ++ii) {
+    const int i = ii + 1;
+    lower[ii] = ii == 0 ? 0.0 : op.b * (i / (i - 0.5)) * ih2;
+    upper[ii] = op.b * (i / (i + 0.5)) * ih2;
+  }
+  for (int k = 0; k < m_; ++k) {
+    const double lam = (2 * std::cos(M_PI * (k + 1) / (m_ + 1)) - 2) * ih2;
+    double cprev = 0;
     for (int ii = 0; ii < n_; ++ii) {
       const int i = ii + 1;
-      lower[ii] = ii == 0 ? 0.0 : op.b * (i / (i - 0.5)) * ih2;
-      upper[ii] = op.b * (i / (i + 0.5)) * ih2;
+      const double cplus = i / (i + 0.5), cminus = i / (i - 0.5);
+      const double diag = op.a + op.b * (-(cplus + cminus) * ih2 + lam);
+      const double den = diag - lower[ii] * cprev;
+      if (den == 0) throw std::runtime_error("FastSolver: singular operator");
+      inv_den[static_cast<std::size_t>(ii) * m_ + k] = 1.0 / den;
+      cprev = upper[ii] / den;
     }
-    for (int k = 0; k < m_; ++k) {
-      const double lam = (2 * std::cos(M_PI * (k + 1) / (m_ + 1)) - 2) * ih2;
-      double cprev = 0;
-      for (int ii = 0; ii < n_; ++ii) {
-        const int i = ii + 1;
-        const double cplus = i / (i + 0.5), cminus = i / (i - 0.5);
-        const double diag = op.a + op.b * (-(cplus + cminus) * ih2 + lam);
-        const double den = diag - lower[ii] * cprev;
-        if (den == 0) throw std::runtime_error("FastSolver: singular operator");
-        inv_den[static_cast<std::size_t>(ii) * m_ + k] = 1.0 / den;
-        cprev = upper[ii] / den;
-      }
-    }
-    lower_.push_back(std::move(lower));
-    upper_.push_back(std::move(upper));
-    inv_den_.push_back(std::move(inv_den));
   }
+  lower_[static_cast<std::size_t>(k_op)] = std::move(lower);
+  upper_[static_cast<std::size_t>(k_op)] = std::move(upper);
+  inv_den_[static_cast<std::size_t>(k_op)] = std::move(inv_den);
+}
+
+void FastSolver::set_op(int k, Op op) {
+  if (k < 0 || k >= static_cast<int>(ops_.size())) throw std::out_of_range("FastSolver::set_op: no such operator");
+  ops_[static_cast<std::size_t>(k)] = op;
+  build_table(k);
 }
 
 FastSolver::~FastSolver() { release(); }

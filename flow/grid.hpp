@@ -68,6 +68,8 @@ class FastSolver {
 
   /// Solves op[k] x = f with the boundary values already stored in x (full-size arrays; f's boundary ignored).
   void solve(int op, const std::vector<double>& f, std::vector<double>& x);
+  /// Replaces op[k] (its Thomas factors rebuilt; the transforms are kept).
+  void set_op(int k, Op op);
   /// x = op_chain[n−1]⁻¹ ⋯ op_chain[0]⁻¹ f with zero boundary values, for each chained result:
   /// out[m] receives the product of the first m+1 inverses (one transform pair in all).
   void solve_chain(const std::vector<int>& chain, const std::vector<double>& f, const std::vector<std::vector<double>*>& out);
@@ -113,6 +115,7 @@ class FastSolver {
   void substitute_row(int op, int ii);            // its back substitution on row ii (row ii + 1 final)
   void chain(int op, double s, const std::vector<double>& f, const std::vector<double>& x, int phys_rows, bool keep_modes);
   void build_tables();                         // per op: the Thomas factors of every mode
+  void build_table(int op);                    // op's Thomas factors
   void release();                              // plans and buffers
   LevelGeometry g_;
   std::vector<Op> ops_;

@@ -76,10 +76,10 @@ std::size_t Solver::bytes() const {
   if (lu_) b += static_cast<std::size_t>(lu_->matrixLU().size()) * sizeof(double);
   for (const auto& B : Bw_) b += B.val.size() * (sizeof(double) + sizeof(int));
   for (const auto& L : lv_) b += L.eta_modes.size() * sizeof(double);
-  if (wall_lu_) b += static_cast<std::size_t>(wall_lu_->matrixLU().size()) * sizeof(double);
+  if (wall_block_.lu) b += static_cast<std::size_t>(wall_block_.lu->matrixLU().size()) * sizeof(double);
   for (const auto& bins : prec_cache_)
     for (const auto& blk : bins)
-      if (blk) b += static_cast<std::size_t>(blk->matrixLU().size()) * sizeof(double);
+      if (blk.lu) b += static_cast<std::size_t>(blk.lu->matrixLU().size()) * sizeof(double);
   return b;
 }
 
@@ -341,7 +341,8 @@ void Solver::explicit_rhs() {
   const double dt = s_.dt, nu = s_.nu, th = s_.theta;
   for (Level& L : lv_) {
     nonlinear(L, s_.u_inf, nl_);
-    const double ab_new = n_ == 0 ? 1.0 : 1.5, ab_old = n_ == 0 ? 0.0 : -0.5;
+    const double r = n_ == 0 ? 0.0 : dt / dt_last_;  // 1 at a constant step: 1.5, −0.5
+    const double ab_new = 1 + 0.5 * r, ab_old = -0.5 * r;
     // interior only (the solves and coarsify read no boundary values of rhs)
     const double* eta = L.eta.data();
     const double* nn = nl_.data();
@@ -382,7 +383,7 @@ bool Solver::use_direct(const std::vector<SphereState>& next, bool moved) {
 }
 
 bool Solver::lu_current(const std::vector<SphereState>& next) const {
-  bool same_z = lu_ && fixed_z_.size() == next.size();
+  bool same_z = lu_ && lu_dt_ == s_.dt && fixed_z_.size() == next.size();
   for (std::size_t k = 0; same_z && k < next.size(); ++k) same_z = fixed_z_[k] == next[k].z;
   return same_z;
 }
@@ -390,6 +391,7 @@ bool Solver::lu_current(const std::vector<SphereState>& next) const {
 void Solver::solve_direct(const std::vector<SphereState>& next) {
   if (!lu_current(next)) {
     lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::MatrixXd>>(force_matrix());
+    lu_dt_ = s_.dt;
     fixed_z_.resize(next.size());
     for (std::size_t k = 0; k < next.size(); ++k) fixed_z_[k] = next[k].z;
   }
@@ -419,23 +421,35 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
     const double u = x - prec_origin_[b];  // offset from the first block's
     const int bin = static_cast<int>(std::lround((u - std::floor(u)) * bins)) % bins;
     auto& slot = prec_cache_[b];
-    if (slot.size() != static_cast<std::size_t>(bins)) slot.assign(bins, nullptr);
-    if (!slot[bin] || slot[bin]->rows() != n) {
-      slot[bin] = block_of_Q(o, n);
+    if (slot.size() != static_cast<std::size_t>(bins)) slot.assign(bins, {});
+    if (!block_current(slot[bin], n)) {
+      slot[bin] = {block_of_Q(o, n), s_.dt};
       ++prec_builds_;
     }
-    prec_.push_back({o, n, slot[bin]});
+    prec_.push_back({o, n, slot[bin].lu, slot[bin].dt / s_.dt});
     k = e;
   }
   if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the whole run
     const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
     const Eigen::Index nw = static_cast<Eigen::Index>(2 * wall_count_);
-    if (!wall_lu_ || wall_lu_->rows() != nw) {
-      wall_lu_ = block_of_Q(ns, nw);
+    if (!block_current(wall_block_, nw)) {
+      wall_block_ = {block_of_Q(ns, nw), s_.dt};
       ++prec_builds_;
     }
-    prec_.push_back({ns, nw, wall_lu_});
+    prec_.push_back({ns, nw, wall_block_.lu, wall_block_.dt / s_.dt});
   }
+}
+
+bool Solver::block_current(const CachedBlock& c, Eigen::Index n) const {
+  const double h = lv_[0].g.h;
+  return c.lu && c.lu->rows() == n && s_.theta * s_.nu * std::abs(s_.dt - c.dt) / (h * h) <= kBlockViscousChange;
+}
+
+void Solver::set_dt(double dt) {
+  if (!(dt > 0) || !std::isfinite(dt)) throw std::invalid_argument("flow: dt must be > 0");
+  if (dt == s_.dt) return;
+  s_.dt = dt;
+  for (Level& L : lv_) L.fast->set_op(1, {1.0, -s_.theta * s_.nu * dt});
 }
 
 void Solver::solve_gmres(const std::vector<SphereState>& next, StepInfo& info) {
@@ -503,6 +517,7 @@ StepInfo Solver::step(const std::vector<SphereState>& next) {
   sphere_forces(next, info);
   sph_ = next;
   t_ += s_.dt;
+  dt_last_ = s_.dt;
   ++n_;
   check_finite(info);
   return info;
@@ -526,7 +541,7 @@ void Solver::check_finite(const StepInfo& info) const {
 
 void Solver::precondition(const Eigen::Ref<const Eigen::VectorXd>& r, Eigen::VectorXd& z) const {
   z.resize(r.size());
-  for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.lu->solve(r.segment(blk.offset, blk.size));
+  for (const auto& blk : prec_) z.segment(blk.offset, blk.size) = blk.scale * blk.lu->solve(r.segment(blk.offset, blk.size));
 }
 
 // One piece: the restarts, the Arnoldi process and the Givens updates share H_, e_, the basis and the counts.

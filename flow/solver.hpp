@@ -104,6 +104,9 @@ struct Level {
   std::vector<double> eta_modes;             // the predictor's η* in mode space (before coarsify)
 };
 
+/// The change of the viscous factor θνΔΔt/h² beyond which a preconditioner block built for another step is rebuilt.
+inline constexpr double kBlockViscousChange = 0.05;
+
 class Solver {
  public:
   Solver(const Settings& s, std::vector<SphereState> spheres);
@@ -118,6 +121,12 @@ class Solver {
   /// Sets the wall's surface velocity (along +z) for the coming steps; with a wall, set_stream and set_wall_velocity
   /// move together (a translating frame moves the wall's surface and the far fluid alike).
   void set_wall_velocity(double u) { s_.wall_velocity = u; }
+  /// Sets the step Δt (s) for the coming steps: the viscous operator is refactorised, AB2 takes the ratio of the new
+  /// step to the last (η^{n+1} = … + Δt_n((1 + r/2) N^n − (r/2) N^{n−1}), r = Δt_n/Δt_{n−1}), the LU of Q is rebuilt
+  /// when next used, and the preconditioner blocks are kept, scaled by the ratio of the steps (Q = Δt × an operator
+  /// that depends on Δt only through (I − θνΔt E²)⁻¹): a block is rebuilt when θν|Δt − Δt_block|/h² exceeds
+  /// kBlockViscousChange.
+  void set_dt(double dt);
   double time() const { return t_; }
   long steps() const { return n_; }
   long preconditioner_blocks_built() const { return prec_builds_; }  // GMRES preconditioner blocks factorised so far
@@ -194,17 +203,21 @@ class Solver {
   PointRows B_;                 // velocity at the sphere points from the finest ψ
   Eigen::VectorXd g_, g_prev_;  // ring forces of the last two steps (warm start)
   using BlockLU = Eigen::PartialPivLU<Eigen::MatrixXd>;
-  struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; };
+  struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; double scale; };  // scale: Δt_block/Δt
+  struct CachedBlock { std::shared_ptr<BlockLU> lu; double dt = 0; };  // a block of Q and the step it was built for
+  bool block_current(const CachedBlock& c, Eigen::Index n) const;    // built, of size n, for a step close to Δt
   std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
-  std::vector<std::vector<std::shared_ptr<BlockLU>>> prec_cache_;  // [sphere][offset bin]
+  std::vector<std::vector<CachedBlock>> prec_cache_;  // [sphere][offset bin]
   std::vector<double> prec_origin_;    // per sphere: the sub-cell offset of its first block, the centre of bin 0
   long prec_builds_ = 0;
   std::vector<BodyPoints> wall_pts_;  // per level
   std::vector<PointRows> Bw_;         // per level: velocity at its wall points
   std::size_t wall_count_ = 0;        // wall points over all levels
   std::function<void(long, long)> block_progress_;
-  std::shared_ptr<BlockLU> wall_lu_;  // the wall's own block of Q (GMRES preconditioner), built once
+  CachedBlock wall_block_;            // the wall's own block of Q (GMRES preconditioner), built once per step size
   std::vector<double> fixed_z_;  // sphere positions of the factorised Q
+  double lu_dt_ = 0;             // the step of the factorised Q
+  double dt_last_ = 0;           // the last step taken, s (AB2's ratio)
   bool ever_moved_ = false;      // the bodies moved relative to the grid in some step
   long still_work_ = 0;          // applications of Q by GMRES since the bodies last moved
   std::unique_ptr<Eigen::PartialPivLU<Eigen::MatrixXd>> lu_;

@@ -81,15 +81,42 @@ struct Integration {
   double wall = 0;
 };
 
-/// When a coupled run will likely stop: the reduced-order model's own end (at rest, separated and measured, or t_end),
-/// a run of milliseconds; t_end if it fails.
-double expected_end(const Scene& sc) {
+/// The spheres' path in trajectory rows: t, and z_m, u_m from the columns "z1", "u1" (and "z2", "u2").
+coupling::ExpectedRun path_of(const RunResult& r, std::size_t spheres) {
+  coupling::ExpectedRun e;
+  auto column = [&](const std::string& name) {
+    const auto it = std::find(r.columns.begin(), r.columns.end(), name);
+    return it == r.columns.end() ? std::string::npos : static_cast<std::size_t>(it - r.columns.begin());
+  };
+  std::array<std::size_t, 2> zc{}, uc{};
+  for (std::size_t m = 0; m < spheres; ++m) {
+    const std::string k = std::to_string(m + 1);
+    zc[m] = column(std::string("z").append(k));
+    uc[m] = column(std::string("u").append(k));
+    if (zc[m] == std::string::npos || uc[m] == std::string::npos) return e;
+  }
+  for (const auto& row : r.rows) {
+    e.t.push_back(row[0]);
+    std::array<double, 2> z{}, u{};
+    for (std::size_t m = 0; m < spheres; ++m) z[m] = row[zc[m]], u[m] = row[uc[m]];
+    e.z.push_back(z);
+    e.u.push_back(u);
+  }
+  return e;
+}
+
+/// How a coupled run will likely go: the reduced-order model's own run (its end: at rest, separated and measured, or
+/// t_end; and its path), a run of milliseconds; t_end and no path if it fails.
+coupling::ExpectedRun expected_run(const Scene& sc) {
   Scene reduced = sc;
   reduced.effects.erase(Effect::flow);
   try {
-    return simulate(reduced, false, Recording::kinematics, {}).summary.solver.t_final_s;
+    const RunResult r = simulate(reduced, false, Recording::kinematics, {});
+    coupling::ExpectedRun e = path_of(r, sc.spheres.size());
+    e.end = r.summary.solver.t_final_s;
+    return e;
   } catch (const std::exception&) {
-    return sc.solver.t_end;
+    return {sc.solver.t_end, {}, {}, {}};
   }
 }
 
@@ -103,7 +130,7 @@ Integration integrate_run(CollisionModel& model, const Scene& sc, const Integrat
       coupling::FlowCoupling coupled(model, sc);
       if (progress) coupled.set_progress([&rec](const std::string& text) { rec.show_status(text); });
       if (fields) coupled.set_file_sink(fields);
-      coupled.set_expected_end(expected_end(sc));
+      coupled.set_expected_run(expected_run(sc));
       out.stats = coupled.run(st, rec);
       out.flow = coupled.stats();
     } else {

@@ -151,7 +151,11 @@ std::string human_summary(const RunSummary& s) {
   if (s.flow) {
     const FlowSummary& f = *s.flow;
     os << "  flow: " << f.stats.cells_per_diameter << " cells/D, " << f.stats.levels << " levels, " << f.stats.steps << " flow steps of "
-       << std::setprecision(3) << 1e3 * f.stats.dt << " ms, " << f.ms_per_step << " ms per step, " << f.krylov_iterations_per_step
+       << std::setprecision(3) << 1e3 * f.stats.dt_min;
+    if (f.stats.dt_max > f.stats.dt_min)
+      os << "–" << 1e3 * f.stats.dt_max << " ms (adaptive, " << f.stats.step_changes << " changes, first " << 1e3 * f.stats.dt << " ms)";
+    else os << " ms";
+    os << ", " << f.ms_per_step << " ms per step, " << f.krylov_iterations_per_step
        << " GMRES iterations per step; of the wall time " << std::setprecision(2) << 100 * f.flow_share << " % in the flow kernel, "
        << 100 * f.stats.pre_seconds / s.wall_time_s << " % in its start-up (" << f.stats.pre_steps << " steps, " << to_string(f.start) << ")\n";
   }

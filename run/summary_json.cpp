@@ -257,7 +257,7 @@ void to_json(Json& j, const FlowSummary& f) {
   const coupling::FlowRunStats& fs = f.stats;
   j = {{"grid", {{"cells_per_diameter", fs.cells_per_diameter}, {"h_m", fs.h}, {"nr", fs.nr}, {"nz", fs.nz},
                  {"levels", fs.levels}, {"memory_MB", fs.bytes / 1e6}}},
-       {"dt_s", fs.dt}, {"cfl", fs.cfl}, {"max_courant", fs.max_courant}, {"max_energy_ratio", fs.max_energy_ratio},
+       {"dt_s", fs.dt}, {"dt_min_s", fs.dt_min}, {"dt_max_s", fs.dt_max}, {"step_changes", fs.step_changes}, {"cfl", fs.cfl}, {"max_courant", fs.max_courant}, {"max_energy_ratio", fs.max_energy_ratio},
        {"start", to_string(f.start)}, {"start_up_steps", fs.pre_steps}, {"force_in_step", to_string(f.force_in_step)},
        {"steps", fs.steps}, {"ms_per_step", f.ms_per_step}, {"krylov_iterations", fs.krylov_iterations},
        {"krylov_iterations_per_step", f.krylov_iterations_per_step}, {"max_krylov_iterations", fs.max_krylov_iterations},
@@ -280,6 +280,9 @@ void from_json(const Json& j, FlowSummary& f) {
   fs.levels = g.at("levels").get<int>();
   fs.bytes = static_cast<std::size_t>(std::llround(g.at("memory_MB").get<double>() * 1e6));
   fs.dt = j.at("dt_s").get<double>();
+  fs.dt_min = j.at("dt_min_s").get<double>();
+  fs.dt_max = j.at("dt_max_s").get<double>();
+  fs.step_changes = j.at("step_changes").get<long>();
   fs.cfl = j.at("cfl").get<double>();
   fs.max_courant = j.at("max_courant").get<double>();
   fs.max_energy_ratio = j.at("max_energy_ratio").get<double>();

@@ -184,6 +184,9 @@ class Flow(Block):
     estimate: FlowEstimate
     steps: int
     dt_s: float
+    dt_min_s: float
+    dt_max_s: float
+    step_changes: int
     cfl: float
     max_courant: float
     ms_per_step: float
