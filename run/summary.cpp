@@ -106,6 +106,20 @@ std::string fluid_line(const FluidSpec& f) {
   return os.str();
 }
 
+/// "flow: 16 cells/D, 4 levels, 3316 flow steps of 0.09–3.39 ms (adaptive, …), … in its start-up (106 steps, developed)"
+std::string flow_line(const FlowSummary& f, double wall_time_s) {
+  std::ostringstream os;
+  os << "flow: " << f.stats.cells_per_diameter << " cells/D, " << f.stats.levels << " levels, " << f.stats.steps << " flow steps of "
+     << std::setprecision(3) << 1e3 * f.stats.dt_min;
+  if (f.stats.dt_max > f.stats.dt_min)
+    os << "–" << 1e3 * f.stats.dt_max << " ms (adaptive, " << f.stats.step_changes << " changes, first " << 1e3 * f.stats.dt << " ms)";
+  else os << " ms";
+  os << ", " << f.ms_per_step << " ms per step, " << f.krylov_iterations_per_step << " GMRES iterations per step; of the wall time "
+     << std::setprecision(2) << 100 * f.flow_share << " % in the flow kernel, " << 100 * f.stats.pre_seconds / wall_time_s
+     << " % in its start-up (" << f.stats.pre_steps << " steps, " << to_string(f.start) << ")";
+  return os.str();
+}
+
 std::string human_summary(const RunSummary& s) {
   std::ostringstream os;
   auto num = [](const std::optional<double>& v, int prec = 4) {
@@ -148,17 +162,7 @@ std::string human_summary(const RunSummary& s) {
     os << "; peak |f_H| = " << num(s.max_history_force_N) << " N; " << sol.stats.linear_solver << " linear solver, state size "
        << sol.stats.state_size << "\n";
   }
-  if (s.flow) {
-    const FlowSummary& f = *s.flow;
-    os << "  flow: " << f.stats.cells_per_diameter << " cells/D, " << f.stats.levels << " levels, " << f.stats.steps << " flow steps of "
-       << std::setprecision(3) << 1e3 * f.stats.dt_min;
-    if (f.stats.dt_max > f.stats.dt_min)
-      os << "–" << 1e3 * f.stats.dt_max << " ms (adaptive, " << f.stats.step_changes << " changes, first " << 1e3 * f.stats.dt << " ms)";
-    else os << " ms";
-    os << ", " << f.ms_per_step << " ms per step, " << f.krylov_iterations_per_step
-       << " GMRES iterations per step; of the wall time " << std::setprecision(2) << 100 * f.flow_share << " % in the flow kernel, "
-       << 100 * f.stats.pre_seconds / s.wall_time_s << " % in its start-up (" << f.stats.pre_steps << " steps, " << to_string(f.start) << ")\n";
-  }
+  if (s.flow) os << "  " << flow_line(*s.flow, s.wall_time_s) << "\n";
   if (s.bounces_mode == BouncesMode::all && !s.bounces.empty()) {
     os << "  bounces: contact   t_contact (s)   impact (m/s)   e       apex gap (mm)   t_apex (s)\n";
     for (const Bounce& b : s.bounces)

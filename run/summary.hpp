@@ -28,6 +28,8 @@ FlowSummary flow_summary(const coupling::FlowRunStats& fs, const Scene& sc, doub
 
 /// One line on the liquid: "fluid: glycerol-water, w = 0.5, 20 °C: rho = 1126.1 kg/m3 (Volk & Kähler (2018)), mu = ..."
 std::string fluid_line(const FluidSpec& f);
+/// The text summary's flow line: grid, steps (the adaptive range), cost per step, shares of the wall time (s).
+std::string flow_line(const FlowSummary& f, double wall_time_s);
 
 /// What `imcol run` prints.
 std::string human_summary(const RunSummary& s);

@@ -280,9 +280,9 @@ void from_json(const Json& j, FlowSummary& f) {
   fs.levels = g.at("levels").get<int>();
   fs.bytes = static_cast<std::size_t>(std::llround(g.at("memory_MB").get<double>() * 1e6));
   fs.dt = j.at("dt_s").get<double>();
-  fs.dt_min = j.at("dt_min_s").get<double>();
-  fs.dt_max = j.at("dt_max_s").get<double>();
-  fs.step_changes = j.at("step_changes").get<long>();
+  fs.dt_min = j.value("dt_min_s", fs.dt);  // summaries before 0.15.0: a fixed step
+  fs.dt_max = j.value("dt_max_s", fs.dt);
+  fs.step_changes = j.value("step_changes", 0L);
   fs.cfl = j.at("cfl").get<double>();
   fs.max_courant = j.at("max_courant").get<double>();
   fs.max_energy_ratio = j.at("max_energy_ratio").get<double>();
