@@ -24,8 +24,9 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   if (r.has("cfl")) r.in_range("cfl", f.cfl, 0.0, 1.0, true, false);  // absent: 0, the step rule's cfl(Re, N)
   if (r.has("dt") && r.has("tau_p_fraction")) r.fail("tau_p_fraction", "give either dt or tau_p_fraction, not both");
   r.number_in("tau_p_fraction", f.tau_p_fraction, 0.0, 1e6, true, false);
-  if (r.has("dt") && r.has("adaptive_step")) r.fail("adaptive_step", "applies only without dt (a given dt is kept for the whole run)");
   f.adaptive_step = r.boolean("adaptive_step", f.adaptive_step);
+  if (r.has("dt") && r.has("adaptive_step") && f.adaptive_step)
+    r.fail("adaptive_step", "applies only without dt (a given dt is kept for the whole run)");
   r.number_in("theta", f.theta, 0.5, 1.0, false, false);
   r.number_in("krylov_tol", f.krylov_tol, 1e-14, 0.1, false, false);
   int_in("krylov_max_iter", f.krylov_max_iter, 1, 100000);

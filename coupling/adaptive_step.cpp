@@ -19,19 +19,25 @@ AdaptiveStep::AdaptiveStep(const Scene& sc, double h, const FlowStep& first)
   active_ = active_ && cfl_ > 0;  // a step set by τ_p or the viscous limit at rest stays
 }
 
+bool AdaptiveStep::separating(std::span<const double> u) const {
+  if (sc_.spheres.size() == 2) return u[1] > u[0];  // the gap z2 − z1 − a1 − a2 grows
+  if (sc_.wall) return u[0] < 0;                     // the wall lies at larger z (gap = z_wall − z − a)
+  return true;                                       // no contact ahead
+}
+
 double AdaptiveStep::rule(double u) const {
   const double dt = u > 0 ? cfl_ * h_ / u : cap_;
   return std::min({dt, tau_cap_, cap_});
 }
 
-double AdaptiveStep::next(std::span<const double> z, std::span<const double> u, double u_fluid) {
+double AdaptiveStep::next(std::span<const double> z, std::span<const double> u, double u_fluid, bool blended) {
   if (!active_) return dt_;
   ++steady_;
   const double u_e = reference_speed(sc_, z, u).u;
   double dt = dt_;
   if (const double shorter = rule(u_e); shorter < (1 - kShrinkTolerance) * dt_) {
     dt = shorter;
-  } else if (steady_ >= kSteadySteps) {
+  } else if (steady_ >= kSteadySteps && !blended && separating(u)) {
     const double target = rule(std::max(u_e, u_fluid / kFluidToSphereSpeed));
     if (target >= kGrowFrom * dt_) dt = std::min(target, kGrowBy * dt_);
   }

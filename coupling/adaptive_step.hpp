@@ -9,8 +9,10 @@
 // gravity the fall to the wall, capped by the terminal speed). cfl_0 is the rule's value at the initial Re, at most
 // the value at any later, slower Re: the stability margin of the first step is kept. Never longer than the viscous
 // step ½h²/ν unless the first step was (Crank–Nicolson damps the grid's shortest modes poorly beyond it).
-// The step shrinks at once when U(t) asks for a shorter one. It grows only after kSteadySteps steps at the present
-// one, when the step for max(U(t), u_f/2) is kGrowFrom times it or more, by kGrowBy at most at a time (AB2 with a
+// The step shrinks at once when U(t) asks for a shorter one. It grows only while the spheres move apart beyond the
+// blend's reach (H = 0, gap ≥ 2 δ_SL): every approach and rebound runs at the step of the last apex, the first bounce
+// at the first step, where the measures of e read the rebound (a step grown right after the first rebound moved
+// gondret_st100's e, fit_distance/joseph_2001, by 0.0035); after kSteadySteps steps at the present one, when the step for max(U(t), u_f/2) is kGrowFrom times it or more, by kGrowBy at most at a time (AB2 with a
 // variable step stays stable for ratios below 1 + √2); u_f is the fluid's largest speed on the finest level after the
 // last step (relative to the grid): a rebounding sphere runs into the wake of its approach, where the fluid moved at
 // 5 U (gondret_st742, first rebound; with u_f/4 here the fluid's Courant number reached 1.65 against the fixed step's
@@ -34,11 +36,13 @@ class AdaptiveStep {
   /// The first step `first` (flow_step(sc, h)); adaptive when flow.adaptive_step and the rule (not flow.dt) gave it.
   AdaptiveStep(const Scene& sc, double h, const FlowStep& first);
   bool active() const { return active_; }
-  /// The step (s) for the coming flow step from the spheres' present centres z (m) and velocities u (m/s), and the
-  /// fluid's largest speed u_fluid (m/s) after the last step.
-  double next(std::span<const double> z, std::span<const double> u, double u_fluid);
+  /// The step (s) for the coming flow step from the spheres' present centres z (m) and velocities u (m/s), the
+  /// fluid's largest speed u_fluid (m/s) after the last step, and whether the gap is within the blend's reach (H > 0).
+  double next(std::span<const double> z, std::span<const double> u, double u_fluid, bool blended = false);
   /// The rule's step for a reference speed u (m/s), capped as above.
   double rule(double u) const;
+  /// Whether the spheres move apart (the gap to the target or the wall grows; always without one).
+  bool separating(std::span<const double> u) const;
   double dt() const { return dt_; }
   double dt_min() const { return dt_min_; }
   double dt_max() const { return dt_max_; }

@@ -12,7 +12,6 @@
 #include "core/timing.hpp"
 #include "coupling/divergence_watch.hpp"
 #include "coupling/preconditioner_bins.hpp"
-#include "coupling/reference_speed.hpp"
 #include "coupling/run_cost.hpp"
 #include "coupling/step_rule.hpp"
 #include "flow/cost.hpp"
@@ -332,15 +331,20 @@ double FlowCoupling::flow_steps_to_end(double dt) const {
   const double end = run_end();
   const auto& e = expected_;
   if (!adapt_ || !adapt_->active() || e.t.size() < 2) return std::ceil(end / dt * (1 - 1e-12));
-  // Each stretch of the path at the rule's step for what the spheres could still reach there (the fluid's own speed
-  // is not known before the run).
-  double steps = 0;
-  for (std::size_t i = 0; i + 1 < e.t.size() && e.t[i] < end; ++i) {
-    const double U = reference_speed(sc_, std::span<const double>(e.z[i].data(), n_), std::span<const double>(e.u[i].data(), n_)).u;
-    steps += (std::min(e.t[i + 1], end) - e.t[i]) / adapt_->rule(U);
+  // The adaptive step's own choices along the path (the sample at or before each flow time; the fluid's own speed is
+  // not known before the run), to its end, then steps of the last one.
+  AdaptiveStep a(sc_, stats_.h > 0 ? stats_.h : D_ / sc_.flow.cells_per_diameter, step_);
+  double t = 0, steps = 0;
+  std::size_t i = 0;
+  while (t < end && steps < 1e8) {
+    while (i + 1 < e.t.size() && e.t[i + 1] <= t) ++i;
+    if (i + 1 >= e.t.size()) break;
+    const auto z = std::span<const double>(e.z[i].data(), n_), u = std::span<const double>(e.u[i].data(), n_);
+    t += a.next(z, u, 0.0, model_.blend(gap_of(e.z[i])) > 0);
+    ++steps;
   }
-  if (e.t.back() < end) steps += (end - e.t.back()) / dt;
-  return std::ceil(steps);
+  if (t < end) steps += std::ceil((end - t) / a.dt());
+  return steps;
 }
 
 void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel) {
@@ -532,7 +536,8 @@ double FlowCoupling::next_step(std::span<const double> y) {
   if (!adapt_->active()) return kernel_->settings().dt;
   std::array<double, 2> z{}, u{};
   model_.sphere_states(y, z, u);
-  const double dt = adapt_->next(std::span<const double>(z.data(), n_), std::span<const double>(u.data(), n_), u_fluid_);
+  const bool blended = model_.blend(gap_of(z)) > 0;
+  const double dt = adapt_->next(std::span<const double>(z.data(), n_), std::span<const double>(u.data(), n_), u_fluid_, blended);
   kernel_->set_dt(dt);
   return dt;
 }

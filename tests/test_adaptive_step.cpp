@@ -98,6 +98,10 @@ TEST(AdaptiveStep, ASlowerSphereGetsALongerStepGrowingByAtMostKGrowByAtATime) {
   EXPECT_EQ(a.changes(), 0);
   // Rebounded at a third of the speed from the wall (no fall left): U = u0/3, the rule's step 3 Δt_0.
   const double z_wall = sc.wall->position - 0.5 * D, u = -u0 / 3;
+  std::array<double, 1> toward{u0 / 3};
+  EXPECT_FALSE(a.separating(toward));  // moving toward the wall at that speed the step would not grow
+  coupling::AdaptiveStep approaching(sc, h, first);
+  EXPECT_EQ(adaptive_steps(approaching, z_wall, u0 / 3, 40), first.dt);
   std::array<double, 1> zz{z_wall}, uu{u};
   const double target = a.rule(coupling::reference_speed(sc, zz, uu).u);
   EXPECT_NEAR(target, first.cfl * h / (u0 / 3), 1e-12 * target);
@@ -133,6 +137,7 @@ TEST(AdaptiveStep, AGivenStepOrTheKeyOffKeepsTheFirstStep) {
     EXPECT_EQ(adaptive_steps(a, sc.wall->position - sc.spheres[0].diameter, 0.01, 50), first.dt);
   }
   EXPECT_THROW(adaptive_scene({{"flow.dt", "1e-4"}, {"flow.adaptive_step", "true"}}), InputError);
+  EXPECT_NO_THROW(adaptive_scene({{"flow.dt", "1e-4"}, {"flow.adaptive_step", "false"}}));
 }
 
 TEST(AdaptiveStep, TheKernelAfterAStepChangeStaysCloserToTheFineRunThanAllCoarseSteps) {
@@ -149,9 +154,9 @@ TEST(AdaptiveStep, TheKernelAfterAStepChangeStaysCloserToTheFineRunThanAllCoarse
   EXPECT_NE(changed, coarse);
   // θνΔΔt/h² = 0.5 · 0.05 · 0.02 · 64 = 0.032 ≤ kBlockViscousChange: the blocks are reused, scaled.
   EXPECT_EQ(blocks_changed, blocks_fine);
-  // A change ten times larger rebuilds them.
+  // A change beyond it (0.5 · 0.05 · 0.78 · 64 = 1.25) rebuilds them.
   long blocks_big = 0;
-  held_sphere_force(20, dt, 2, 11 * dt, &blocks_big);
+  held_sphere_force(20, dt, 2, 40 * dt, &blocks_big);
   EXPECT_GT(blocks_big, blocks_fine);
 }
 
