@@ -12,10 +12,11 @@
 // The step shrinks at once when U(t) asks for a shorter one. It grows only while the spheres move apart beyond the
 // blend's reach (H = 0, gap ≥ 2 δ_SL): every approach and rebound runs at the step of the last apex, the first bounce
 // at the first step, where the measures of e read the rebound (a step grown right after the first rebound moved
-// gondret_st100's e, fit_distance/joseph_2001, by 0.0035); after kSteadySteps steps at the present one, when the step for max(U(t), u_f/2) is kGrowFrom times it or more, by kGrowBy at most at a time (AB2 with a
-// variable step stays stable for ratios below 1 + √2); u_f is the fluid's largest speed on the finest level after the
-// last step (relative to the grid): a rebounding sphere runs into the wake of its approach, where the fluid moved at
-// 5 U (gondret_st742, first rebound; with u_f/4 here the fluid's Courant number reached 1.65 against the fixed step's
+// gondret_st100's e, fit_distance/joseph_2001, by 0.0035). It grows after kSteadySteps steps at the present one, when
+// the step for max(U(t), u_f/2) is kGrowFrom times it or more, by kGrowBy at most at a time (AB2 with a variable step
+// stays stable for ratios below 1 + √2); u_f is the fluid's largest speed on the finest level after the last step
+// (relative to the grid): a rebounding sphere runs into the wake of its approach, where the fluid moved at 5 U
+// (gondret_st742, first rebound; with u_f/4 here the fluid's Courant number reached 1.65 against the fixed step's
 // 1.23). The fluid's speed does not shrink the step: the squeezed film exceeds 4 U briefly at every contact, where the
 // first step's margin holds (shrinking there moved gondret_st742's e by 0.003).
 #include <span>
