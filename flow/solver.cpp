@@ -429,7 +429,7 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
     prec_.push_back({o, n, slot[bin].lu, slot[bin].dt / s_.dt});
     k = e;
   }
-  if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the whole run
+  if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the run (set_dt: scaled)
     const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
     const Eigen::Index nw = static_cast<Eigen::Index>(2 * wall_count_);
     if (!block_current(wall_block_, nw)) {

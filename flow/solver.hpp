@@ -7,7 +7,8 @@
 // Unknowns per level: η = rω at vertices (m/s) and the disturbance streamfunction ψ (m³/s), E²ψ = −η; the
 // total streamfunction is ψ + ½U∞r² (a uniform stream U∞ along +z carries no vorticity). Vorticity transport
 //   ∂η/∂t = −r[∂z(u_z ω) + ∂r(u_r ω)] + ν E²η + (force term),
-// viscous term θ-implicit (θ = ½: Crank–Nicolson), advection Adams–Bashforth-2 (Euler on the first step).
+// viscous term θ-implicit (θ = ½: Crank–Nicolson), advection Adams–Bashforth-2 (Euler on the first step; the step may
+// change between steps, set_dt).
 //
 // Levels (Colonius & Taira 2008, §3.3): ℓ = 0 finest (spacing h), level ℓ has spacing 2^ℓ h and the same nr × nz
 // cells, all centred on z_center. Every elliptic solve is multi-level: the right-hand side of each finer level
@@ -42,7 +43,8 @@
 // levels (the plate's force there is 1–9 % off the sphere's: docs/flow-kernel.md).
 // Coarse rings spread and interpolate on their own level (B_ℓ from that level's ψ); the force system grows by the
 // wall's unknowns (ordering: sphere points, then the wall level by level). The wall's own block of Q never changes:
-// it is LU-factorised once and preconditions GMRES for moving spheres next to each sphere's block.
+// it is LU-factorised once (set_dt keeps it, scaled) and preconditions GMRES for moving spheres next to each
+// sphere's block.
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
