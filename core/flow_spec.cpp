@@ -32,6 +32,7 @@ void read_flow_spec(TableReader& r, FlowSpec& f) {
   int_in("krylov_max_iter", f.krylov_max_iter, 1, 100000);
   int_in("krylov_restart", f.krylov_restart, 2, 1000);
   int_in("preconditioner_bins", f.preconditioner_bins, 0, 64);
+  int_in("block_probe_stride", f.block_probe_stride, 0, 1000);
   r.number_in("ring_spacing", f.ring_spacing, 0.25, 2.0, false, false);
   r.choice("start", f.start);
   if (r.has("developed_distance") && r.has("developed_time")) r.fail("developed_time", "give either developed_distance or developed_time, not both");

@@ -29,6 +29,8 @@ struct FlowSpec {
   double ring_spacing = 1.0;     // arc spacing of the body rings, cells
   int preconditioner_bins = 0;   // GMRES: sub-cell offsets with their own preconditioner block (each costs 2N force solves);
                                  // 0: chosen from the run's steps (coupling/preconditioner_bins.hpp)
+  int block_probe_stride = 12;   // GMRES: a later block is the first one of its sphere radius plus the change of the force
+                                 // system probed at every stride-th ring point (2 × stride force solves); 0: each in full
   FlowStart start = FlowStart::developed;
   double developed_distance = 1.0;  // developed: distance the faster sphere travels before t = 0, D
   double developed_time = 0;        // developed: or this time, s (> 0 overrides the distance)

@@ -26,7 +26,8 @@ inline const Keys measure = {"window", "instant_gap", "stall_fraction", "bounces
                              "ends_distance", "ends_speed_change", "ends_tolerance", "samples_per_window", "disagreement",
                              "max_samples", "energy_budget"};
 inline const Keys flow = {"cells_per_diameter", "levels", "r_max", "ahead", "behind", "dt", "cfl", "tau_p_fraction", "adaptive_step", "theta",
-                          "krylov_tol", "krylov_max_iter", "krylov_restart", "preconditioner_bins", "ring_spacing", "start",
+                          "krylov_tol", "krylov_max_iter", "krylov_restart", "preconditioner_bins", "block_probe_stride",
+                          "ring_spacing", "start",
                           "developed_distance", "developed_time", "force_in_step", "added_mass_estimate", "min_gap_cells",
                           "energy_margin", "speed_jump", "speed_jump_floor", "max_wall_hours", "fields", "fields_format",
                           "fields_every"};

@@ -152,6 +152,7 @@ inline void put_flow(Lines& o, const Scene& sc) {
   o.put("flow.krylov_restart", std::to_string(f.krylov_restart));
   o.put("flow.ring_spacing", num(f.ring_spacing));
   o.put("flow.preconditioner_bins", std::to_string(f.preconditioner_bins));
+  o.put("flow.block_probe_stride", std::to_string(f.block_probe_stride));
   o.put("flow.start", to_string(f.start));
   o.put("flow.developed_distance", num(f.developed_distance));
   o.put("flow.developed_time", num(f.developed_time));

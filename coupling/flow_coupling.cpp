@@ -214,6 +214,7 @@ flow::Settings FlowCoupling::grid_settings(const StartUp& su) {
   s.krylov_restart = fs.krylov_restart;
   s.ring_spacing = fs.ring_spacing;
   s.preconditioner_bins = fs.preconditioner_bins;
+  s.block_probe_stride = fs.block_probe_stride;
   stats_.dt = su.dt;
   stats_.h = su.h;
   stats_.nr = s.nr;
@@ -316,10 +317,11 @@ void FlowCoupling::start_up() {
 
 int FlowCoupling::preconditioner_bins(const flow::Settings& s, const StartUp& su) const {
   if (sc_.flow.preconditioner_bins > 0) return sc_.flow.preconditioner_bins;
-  // The blocks of the spheres that move relative to the grid (all but a lone free sphere, which the grid follows).
+  // The later blocks of the spheres that move relative to the grid (all but a lone free sphere, which the grid
+  // follows): each bin costs their applications of Q.
   double columns = 0;
   if (n_ == 2 || sc_.wall)
-    for (std::size_t m = 0; m < n_; ++m) columns += 2 * flow::ring_points(s, 2 * radius_[m]);
+    for (std::size_t m = 0; m < n_; ++m) columns += flow::later_block_applications(s, flow::ring_points(s, 2 * radius_[m]));
   return automatic_bins(double(su.n_pre) + flow_steps_to_end(su.dt), columns);
 }
 

@@ -4,7 +4,7 @@
 // default, chooses them). A moving sphere's block of Q is factorised at the first sub-cell offset it visits in each
 // of b bins; at the block's own offset GMRES takes ~a iterations a step, at an offset up to 1/(2b) cell away
 // ~a + c b^−0.6 (c ≈ 17–18 on gg3462 at 32 cells/D and gondret_st742 at 16, b = 1 … 64). Over S flow steps and M
-// block columns (2 × the ring points of each moving sphere, one application of Q each) the work
+// applications of Q per bin (each moving sphere's later block: flow/cost.hpp later_block_applications) the work
 //   S (3 + a + c b^−0.6) + b M
 // is least at b* = (0.6 c S / M)^(1/1.6), taken as the nearest power of two in [4, 64] (4: a prescribed start-up
 // at constant speed visits 2–4 offsets per cell, each its own block).
@@ -13,7 +13,8 @@ namespace imcol::coupling {
 /// Extra GMRES iterations a step at b bins are kGmresBinIterations × b^−0.6.
 inline constexpr double kGmresBinIterations = 17.5;
 
-/// b* above for `steps` flow steps (start-up and coupled) and `block_columns` columns of all moving spheres' blocks.
+/// b* above for `steps` flow steps (start-up and coupled) and `block_columns` applications of Q per bin (all moving
+/// spheres' later blocks).
 int automatic_bins(double steps, double block_columns);
 
 /// The GMRES iterations a step at `bins` bins beyond those at the exact offset.

@@ -17,6 +17,18 @@ CoupledCost coupled_cost(const CoupledCostInput& in) {
   c.grid = flow::estimate_cost(s, in.diameters, start_moving || run_moving);
   const double bins = std::max(1, s.preconditioner_bins);
   double built_before = 0, built_after = 0;
+  // `count` blocks of sphere m: the first of its diameter column by column, the later ones probed.
+  std::vector<double> built_diameters;
+  auto sphere_blocks = [&](std::size_t m, double count) {
+    const double d = in.diameters[m], points = flow::ring_points(s, d), n = 2 * points;
+    double t = 0;
+    if (count > 0 && std::find(built_diameters.begin(), built_diameters.end(), d) == built_diameters.end()) {
+      built_diameters.push_back(d);
+      t += flow::block_seconds(c.grid, n);
+      count -= 1;
+    }
+    return t + std::max(0.0, count) * flow::block_seconds(c.grid, n, flow::later_block_applications(s, points));
+  };
   bool wall_block = false;
   auto wall = [&](double& into) {
     if (c.grid.wall_points > 0 && !wall_block) into += flow::block_seconds(c.grid, 2 * c.grid.wall_points);
@@ -29,7 +41,7 @@ CoupledCost coupled_cost(const CoupledCostInput& in) {
     for (std::size_t m = 0; m < in.diameters.size(); ++m) {
       if (!(in.start_up_travel[m] > 0)) continue;
       const double visited = std::min(bins, 1 + std::floor(bins * in.start_up_travel[m] / s.h));
-      built_before += visited * flow::block_seconds(c.grid, 2 * flow::ring_points(s, in.diameters[m]));
+      built_before += sphere_blocks(m, visited);
     }
     wall(built_before);
   }
@@ -38,7 +50,7 @@ CoupledCost coupled_cost(const CoupledCostInput& in) {
     for (std::size_t m = 0; m < in.diameters.size(); ++m) {
       if (!in.moves_after[m]) continue;
       const double before = in.start_up_travel[m] > 0 ? std::min(bins, 1 + std::floor(bins * in.start_up_travel[m] / s.h)) : 0;
-      built_after += (bins - before) * flow::block_seconds(c.grid, 2 * flow::ring_points(s, in.diameters[m]));
+      built_after += sphere_blocks(m, bins - before);
     }
     wall(built_after);
   }

@@ -8,7 +8,8 @@
 //   force system blocks: with the bodies still relative to the grid one LU of the whole force system (2 × all ring
 //               points); with moving spheres one preconditioner block (2 × the sphere's ring points) per sub-cell
 //               offset bin the sphere visits (flow.preconditioner_bins; a sphere that travels d relative to the grid
-//               visits min(bins, 1 + bins d/h) of them), plus the wall's own block once;
+//               visits min(bins, 1 + bins d/h) of them), the first of each sphere diameter column by column and the
+//               later ones probed (flow/cost.hpp later_block_applications), plus the wall's own block once;
 //   steps       the coupled steps to the expected end, each with a_0 + bin_iterations(bins) GMRES iterations
 //               (coupling/preconditioner_bins.hpp) when the spheres move relative to the grid, plus the ODE's share;
 //   fields      the flow-field snapshots (4, plus one per flow.fields_every) when a file sink takes them.

@@ -44,7 +44,15 @@ double step_seconds(const CostEstimate& c, bool moving, double iterations) {
   return c.seconds_explicit + (moving ? c.seconds_per_q * (1.0 + iterations) : 0.0);
 }
 
-double block_seconds(const CostEstimate& c, double n) { return n * c.seconds_per_q + kLuPerCube * n * n * n; }
+double block_seconds(const CostEstimate& c, double n) { return block_seconds(c, n, n); }
+
+double block_seconds(const CostEstimate& c, double n, double applications) {
+  return applications * c.seconds_per_q + kLuPerCube * n * n * n;
+}
+
+double later_block_applications(const Settings& s, double points) {
+  return s.block_probe_stride > 0 ? 2 * std::min(points, static_cast<double>(s.block_probe_stride)) : 2 * points;
+}
 
 std::string memory_refusal(const CostEstimate& c) {
   const double phys = physical_memory_bytes();

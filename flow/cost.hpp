@@ -8,7 +8,8 @@
 //   one application of the force operator Q (the partial passes of a force source): kQPerVertex V;
 //   step with fixed bodies (LU): the step's own work (the LU's solve is n², negligible);
 //   step with moving bodies (GMRES, k iterations): the step's own work + (1 + k) Q (the warm start's residual);
-//   a block of the force system of n unknowns (its columns by Q, then LU): n Q + kLuPerCube n³;
+//   a block of the force system of n unknowns (its columns by Q, then LU): n Q + kLuPerCube n³; a sphere's later
+//   preconditioner blocks (probed from the first of its radius): 2 min(points, block_probe_stride) Q + kLuPerCube n³;
 //   a flow-field snapshot (the fields, CSV and VTK written): kFieldPerVertex V.
 #include <span>
 #include <string>
@@ -40,6 +41,12 @@ double step_seconds(const CostEstimate& c, bool moving, double iterations);
 
 /// Building one block of the force system with n unknowns (n applications of Q, then its LU), s.
 double block_seconds(const CostEstimate& c, double n);
+/// The same block built from `applications` applications of Q (a probed block: later_block_applications), s.
+double block_seconds(const CostEstimate& c, double n, double applications);
+
+/// Applications of Q that a sphere's later preconditioner block takes (one of its radius already built): 2 ×
+/// min(points, block_probe_stride), or 2 × points with block_probe_stride = 0 (flow/solver.hpp).
+double later_block_applications(const Settings& s, double points);
 
 /// GMRES iterations per step assumed for moving bodies where nothing better is known (`imcol flow`; coupled runs:
 /// coupling/run_cost.hpp); measured 5–22.

@@ -22,6 +22,7 @@ Solver::Solver(const Settings& s, std::vector<SphereState> spheres) : s_(s), sph
   if (s.levels < 1) throw std::invalid_argument("flow: levels must be >= 1");
   if (!(s.theta >= 0.5 && s.theta <= 1)) throw std::invalid_argument("flow: theta must be in [0.5, 1]");
   if (s.preconditioner_bins < 1) throw std::invalid_argument("flow: preconditioner_bins must be >= 1");
+  if (s.block_probe_stride < 0) throw std::invalid_argument("flow: block_probe_stride must be >= 0");
   if (!(s.krylov_tol > 0) || s.krylov_max_iter < 1) throw std::invalid_argument("flow: krylov_tol must be > 0, krylov_max_iter >= 1");
   for (int l = 0; l < s.levels; ++l) {
     Level L;
@@ -80,6 +81,7 @@ std::size_t Solver::bytes() const {
   for (const auto& bins : prec_cache_)
     for (const auto& blk : bins)
       if (blk.lu) b += static_cast<std::size_t>(blk.lu->matrixLU().size()) * sizeof(double);
+  for (const auto& r : ref_blocks_) b += static_cast<std::size_t>(r.q.size()) * sizeof(double);
   return b;
 }
 
@@ -296,6 +298,7 @@ void Solver::spread_source(const Eigen::VectorXd& g) {
 }
 
 void Solver::apply_Q_into(const Eigen::VectorXd& g, Eigen::VectorXd& out) {
+  ++q_applications_;
   spread_source(g);
   pass_viscous(&Level::src, &Level::etac, true);
   pass_streamfunction(&Level::etac, &Level::psic, true, false);
@@ -332,6 +335,34 @@ Eigen::MatrixXd Solver::diagonal_block_of_Q(Eigen::Index o, Eigen::Index n) {
     e[o + c] = 0.0;
     if (block_progress_) block_progress_(static_cast<long>(c + 1), static_cast<long>(n));
   }
+  return blk;
+}
+
+Eigen::MatrixXd Solver::corrected_block_of_Q(Eigen::Index o, const Eigen::MatrixXd& base, int stride) {
+  const Eigen::Index n = base.rows(), np = n / 2;
+  const Eigen::Index m = static_cast<Eigen::Index>(2 * (pts_.size() + wall_count_));
+  if (stride < 1 || n % 2 != 0 || base.cols() != n || o < 0 || o + n > m)
+    throw std::invalid_argument("flow: corrected_block_of_Q needs stride >= 1 and a square block of whole points inside Q");
+  const Eigen::Index sd = std::min<Eigen::Index>(stride, np);
+  Eigen::MatrixXd blk = base;
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(m), el(n), q;
+  long done = 0;
+  for (int comp = 0; comp < 2; ++comp)
+    for (Eigen::Index c = 0; c < sd; ++c) {
+      e.setZero();
+      el.setZero();
+      for (Eigen::Index k = c; k < np; k += sd) e[o + 2 * k + comp] = el[2 * k + comp] = 1.0;
+      apply_Q_into(e, q);
+      const Eigen::VectorXd d = q.segment(o, n) - base * el;  // the change, summed over this probe's points
+      const Eigen::Index last = c + sd * ((np - 1 - c) / sd);
+      for (Eigen::Index i = 0; i < np; ++i) {
+        const double near = std::round(static_cast<double>(i - c) / static_cast<double>(sd));
+        const Eigen::Index k = std::clamp(c + sd * static_cast<Eigen::Index>(near), c, last);
+        blk(2 * i, 2 * k + comp) += d[2 * i];
+        blk(2 * i + 1, 2 * k + comp) += d[2 * i + 1];
+      }
+      if (block_progress_) block_progress_(++done, static_cast<long>(2 * sd));
+    }
   return blk;
 }
 
@@ -407,7 +438,6 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
   // translation invariant.
   prec_.clear();
   const LevelGeometry& G = lv_[0].g;
-  auto block_of_Q = [&](Eigen::Index o, Eigen::Index n) { return std::make_shared<BlockLU>(diagonal_block_of_Q(o, n)); };
   for (std::size_t k = 0; k < pts_.size();) {
     std::size_t e = k;
     while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
@@ -423,7 +453,7 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
     auto& slot = prec_cache_[b];
     if (slot.size() != static_cast<std::size_t>(bins)) slot.assign(bins, {});
     if (!block_current(slot[bin], n)) {
-      slot[bin] = {block_of_Q(o, n), s_.dt};
+      slot[bin] = {sphere_block(o, n, next[b].radius), s_.dt};
       ++prec_builds_;
     }
     prec_.push_back({o, n, slot[bin].lu, slot[bin].dt / s_.dt});
@@ -433,16 +463,29 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
     const Eigen::Index ns = static_cast<Eigen::Index>(2 * pts_.size());
     const Eigen::Index nw = static_cast<Eigen::Index>(2 * wall_count_);
     if (!block_current(wall_block_, nw)) {
-      wall_block_ = {block_of_Q(ns, nw), s_.dt};
+      wall_block_ = {std::make_shared<BlockLU>(diagonal_block_of_Q(ns, nw)), s_.dt};
       ++prec_builds_;
     }
     prec_.push_back({ns, nw, wall_block_.lu, wall_block_.dt / s_.dt});
   }
 }
 
-bool Solver::block_current(const CachedBlock& c, Eigen::Index n) const {
+bool Solver::close_step(double dt_block) const {
   const double h = lv_[0].g.h;
-  return c.lu && c.lu->rows() == n && s_.theta * s_.nu * std::abs(s_.dt - c.dt) / (h * h) <= kBlockViscousChange;
+  return s_.theta * s_.nu * std::abs(s_.dt - dt_block) / (h * h) <= kBlockViscousChange;
+}
+
+bool Solver::block_current(const CachedBlock& c, Eigen::Index n) const { return c.lu && c.lu->rows() == n && close_step(c.dt); }
+
+std::shared_ptr<Solver::BlockLU> Solver::sphere_block(Eigen::Index o, Eigen::Index n, double radius) {
+  auto ref = std::find_if(ref_blocks_.begin(), ref_blocks_.end(), [&](const ReferenceBlock& r) { return r.radius == radius; });
+  if (s_.block_probe_stride > 0 && ref != ref_blocks_.end() && ref->q.rows() == n && close_step(ref->dt))
+    return std::make_shared<BlockLU>(corrected_block_of_Q(o, ref->q * (s_.dt / ref->dt), s_.block_probe_stride));
+  Eigen::MatrixXd q = diagonal_block_of_Q(o, n);
+  auto lu = std::make_shared<BlockLU>(q);
+  if (ref == ref_blocks_.end()) ref = ref_blocks_.insert(ref_blocks_.end(), ReferenceBlock{radius, {}, 0});
+  *ref = {radius, std::move(q), s_.dt};
+  return lu;
 }
 
 void Solver::set_dt(double dt) {

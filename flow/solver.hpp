@@ -26,7 +26,10 @@
 // the sphere's sub-cell offset on the finest grid in one of flow.preconditioner_bins bins (centred on the offset of
 // the sphere's first block, so that a sphere at constant speed revisits the bins' centres), each built the first
 // time the sphere is there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
-// multi-level Q is nearly translation invariant; warm start extrapolated from the last two steps' forces).
+// multi-level Q is nearly translation invariant; warm start extrapolated from the last two steps' forces). Only the first
+// block of each sphere radius is built column by column; the later ones are it plus the change of Q probed at every
+// block_probe_stride-th ring point (Curtis, Powell & Reid, IMA J. Appl. Math. 13 (1974): the change between two
+// offsets is concentrated near the diagonal, where the spreading and interpolation stencils overlap).
 // Force on sphere s (N, along +z): F_s = −ρ Σ_{k∈s} g_z,k + ρ V_s (U_s^{n+1} − u_in,s^n)/Δt, the second term the
 // momentum change of the fluid inside the sphere. Convention: before the first step the fluid inside moves with
 // the initial flow (ψ = 0, so u_in = U∞, the stream); after every step no-slip makes it move with the sphere
@@ -75,6 +78,9 @@ struct Settings {
   double ring_spacing = 1.0;  // arc spacing of the body rings, units of h
   bool direct_when_fixed = true;  // LU of Q while the bodies stay put
   int preconditioner_bins = 16;   // GMRES: sub-cell offsets per finest cell with their own preconditioner block
+  int block_probe_stride = 12;    // GMRES: a sphere's later preconditioner blocks are the first one of its radius plus
+                                  // the change probed at every stride-th ring point (2 × stride applications of Q);
+                                  // 0: every block column by column (2 per ring point)
   bool measure_plans = false;     // FFTW_MEASURE instead of FFTW_ESTIMATE
   // Optional plane no-slip wall z = wall_z normal to the axis (immersed points, see "Wall" above). Its surface moves
   // along +z at wall_velocity (normally 0; the plate itself stays at wall_z). No sphere may cross the plane.
@@ -134,6 +140,7 @@ class Solver {
   double time() const { return t_; }
   long steps() const { return n_; }
   long preconditioner_blocks_built() const { return prec_builds_; }  // GMRES preconditioner blocks factorised so far
+  long q_applications() const { return q_applications_; }  // applications of Q so far (GMRES, blocks, LU columns)
   /// Called after each column of a force-system block built (an LU of Q or a preconditioner block: each column one
   /// application of Q) with the columns done and the block's size: a progress display for long builds.
   void set_block_progress(std::function<void(long, long)> f) { block_progress_ = std::move(f); }
@@ -162,6 +169,11 @@ class Solver {
   /// The dense Q (see above) for the current body points, column by column: one application of apply_Q_into per
   /// unknown (2 per sphere and wall point).
   Eigen::MatrixXd force_matrix();
+  /// base + the change Q − base probed on Q's diagonal block at offset o (size base.rows(): one sphere's ring points
+  /// in order, r and z): 2 × stride applications of Q, each of the sum of the unit vectors of one component at every
+  /// stride-th point; each row of the result is credited to the column of the probed point nearest to it. Exact
+  /// (up to rounding) when stride ≥ the sphere's points.
+  Eigen::MatrixXd corrected_block_of_Q(Eigen::Index o, const Eigen::MatrixXd& base, int stride);
 
  private:
   // Passes of a step. The predictor η* = A⁻¹rhs (full), ψ* = P⁻¹η* only on the lines the body points and the finer
@@ -209,7 +221,14 @@ class Solver {
   using BlockLU = Eigen::PartialPivLU<Eigen::MatrixXd>;
   struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; double scale; };  // scale: Δt_block/Δt
   struct CachedBlock { std::shared_ptr<BlockLU> lu; double dt = 0; };  // a block of Q and the step it was built for
+  bool close_step(double dt_block) const;  // a block built for dt_block serves Δt (scaled): kBlockViscousChange
   bool block_current(const CachedBlock& c, Eigen::Index n) const;    // built, of size n, for a step close to Δt
+  /// A sphere's block of Q at offset o, size n: column by column the first time for this radius (it becomes the
+  /// reference), else the reference scaled to Δt and corrected by probing (block_probe_stride).
+  std::shared_ptr<BlockLU> sphere_block(Eigen::Index o, Eigen::Index n, double radius);
+  struct ReferenceBlock { double radius = 0; Eigen::MatrixXd q; double dt = 0; };
+  std::vector<ReferenceBlock> ref_blocks_;  // per sphere radius: its first block of Q built column by column
+  long q_applications_ = 0;
   std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
   std::vector<std::vector<CachedBlock>> prec_cache_;  // [sphere][offset bin]
   std::vector<double> prec_origin_;    // per sphere: the sub-cell offset of its first block, the centre of bin 0

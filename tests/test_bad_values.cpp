@@ -97,6 +97,7 @@ const std::map<std::string, std::set<std::string>> kAllowed = {
     {"flow.energy_margin", {"0"}},          // no margin: any energy beyond the supply ends the run
     {"flow.fields_every", {"0"}},           // only the named moments
     {"flow.preconditioner_bins", {"0"}},    // 0 = chosen from the run's steps
+    {"flow.block_probe_stride", {"0"}},     // 0 = every block column by column
 };
 
 /// The keys of the template, the inline material properties its comment lists and `h_c` (asymptotic only), and the

@@ -114,7 +114,7 @@ TEST(SceneValues, EveryFlowKeyChangesTheText) {
       {{"flow.cells_per_diameter", "24"}, {"flow.levels", "3"}, {"flow.r_max", "1.5"}, {"flow.ahead", "1.0"},
        {"flow.behind", "1.5"}, {"flow.cfl", "0.4"}, {"flow.tau_p_fraction", "0.3"}, {"flow.theta", "0.6"},
        {"flow.krylov_tol", "1e-7"}, {"flow.krylov_max_iter", "400"}, {"flow.krylov_restart", "50"}, {"flow.ring_spacing", "1.5"},
-       {"flow.preconditioner_bins", "2"}, {"flow.start", "\"impulsive\""}, {"flow.developed_distance", "2.0"},
+       {"flow.preconditioner_bins", "2"}, {"flow.block_probe_stride", "8"}, {"flow.start", "\"impulsive\""}, {"flow.developed_distance", "2.0"},
        {"flow.developed_time", "0.01"}, {"flow.force_in_step", "\"held\""},
        {"flow.min_gap_cells", "2.0"}, {"flow.energy_margin", "0.5"}, {"flow.speed_jump", "4.0"}, {"flow.speed_jump_floor", "0.6"},
        {"flow.max_wall_hours", "2.0"}, {"flow.fields", "false"}, {"flow.fields_format", "\"csv\""}, {"flow.fields_every", "0.01"}});
