@@ -110,6 +110,8 @@ std::array<double, 2> FlowCoupling::step_kernel(const Predicted& p, double dt) {
   }
   stats_.flow_seconds += seconds_since(t0);
   stats_.krylov_iterations += info.krylov_iterations;
+  stats_.q_applications = kernel_->q_applications();
+  stats_.preconditioner_blocks = kernel_->preconditioner_blocks_built();
   stats_.max_krylov_iterations = std::max(stats_.max_krylov_iterations, info.krylov_iterations);
   stats_.max_krylov_residual = std::max(stats_.max_krylov_residual, info.krylov_residual);
   stats_.max_slip = std::max(stats_.max_slip, info.slip);

@@ -17,6 +17,9 @@ struct FlowRunStats {
   double flow_seconds = 0, ode_seconds = 0, pre_seconds = 0;  // wall time in the kernel, in CVODE/IDA, in the start-up
   long krylov_iterations = 0;
   int max_krylov_iterations = 0;
+  // Over the whole run, start-up included: applications of the force operator Q (GMRES iterations, warm starts,
+  // preconditioner block columns and probes, LU columns) and the preconditioner blocks built.
+  long q_applications = 0, preconditioner_blocks = 0;
   double max_krylov_residual = 0, max_slip = 0;  // m/s
   double cfl = 0;                  // Courant number of U_ref that gave dt (0: flow.dt given)
   double max_courant = 0;          // the fluid's largest advective Courant number (flow/solver.hpp max_courant)

@@ -261,6 +261,7 @@ void to_json(Json& j, const FlowSummary& f) {
        {"start", to_string(f.start)}, {"start_up_steps", fs.pre_steps}, {"force_in_step", to_string(f.force_in_step)},
        {"steps", fs.steps}, {"ms_per_step", f.ms_per_step}, {"krylov_iterations", fs.krylov_iterations},
        {"krylov_iterations_per_step", f.krylov_iterations_per_step}, {"max_krylov_iterations", fs.max_krylov_iterations},
+       {"q_applications", fs.q_applications}, {"preconditioner_blocks", fs.preconditioner_blocks},
        {"max_krylov_residual", fs.max_krylov_residual}, {"max_slip_m_s", fs.max_slip},
        {"min_gap_clamped_steps", fs.min_gap_clamped_steps}, {"frame_travel_m", fs.frame_travel},
        {"start_up_time_s", fs.pre_seconds}, {"flow_time_s", fs.flow_seconds}, {"ode_time_s", fs.ode_seconds},
@@ -294,6 +295,8 @@ void from_json(const Json& j, FlowSummary& f) {
   fs.krylov_iterations = j.at("krylov_iterations").get<long>();
   f.krylov_iterations_per_step = j.at("krylov_iterations_per_step").get<double>();
   fs.max_krylov_iterations = j.at("max_krylov_iterations").get<int>();
+  fs.q_applications = j.value("q_applications", 0L);  // summaries before 0.16.0: not counted
+  fs.preconditioner_blocks = j.value("preconditioner_blocks", 0L);
   fs.max_krylov_residual = j.at("max_krylov_residual").get<double>();
   fs.max_slip = j.at("max_slip_m_s").get<double>();
   fs.min_gap_clamped_steps = j.at("min_gap_clamped_steps").get<long>();

@@ -201,6 +201,8 @@ class Flow(Block):
     krylov_iterations: int
     krylov_iterations_per_step: float
     max_krylov_iterations: int
+    q_applications: int
+    preconditioner_blocks: int
     max_krylov_residual: float
     max_slip_m_s: float
     max_energy_ratio: float
