@@ -38,6 +38,7 @@ TEST(CoupledCost, AxialCellsAreSevenSmoothMultiplesOfFour) {
 TEST(CoupledCost, BinsGrowWithTheStepsAndStayInRange) {
   using imcol::coupling::automatic_bins;
   EXPECT_EQ(automatic_bins(92, 204), 4);     // gg3462: 92 steps, two spheres of 51 ring points
+  EXPECT_EQ(automatic_bins(28, 48), 4);      // gg3462 probed: 28 coupled steps, two later blocks of 24 applications
   EXPECT_EQ(automatic_bins(9000, 52), 64);   // gondret_st742: ~9 000 steps, one sphere of 26
   EXPECT_EQ(automatic_bins(600, 52), 16);    // gondret_st27
   EXPECT_EQ(automatic_bins(1e9, 1), 64);
