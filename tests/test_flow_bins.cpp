@@ -4,18 +4,14 @@
 #include <gtest/gtest.h>
 
 #include "flow/solver.hpp"
+#include "flow_settings.hpp"
 
 namespace {
 
 imcol::flow::Settings bins_test_settings() {
-  imcol::flow::Settings s;  // D = 1, Re = 1; finest level r < 1.5 D, −0.5 D < z < 4.5 D
-  s.nu = 1.0;
-  s.dt = 0.01;
-  s.h = 1.0 / 8;
-  s.nr = 12;
-  s.nz = 40;
-  s.levels = 2;
-  s.z_center = -0.5 + 0.5 * s.nz * s.h;
+  // D = 1, Re = 1, fluid at rest; finest level r < 1.5 D, −0.5 D < z < 4.5 D at 8 cells/D (13 ring points a sphere)
+  imcol::flow::Settings s = imcol::flow::test_setup::stream_settings(1.0, 8, 2, 1.5, -0.5, 4.5, 0.01, 0.5);
+  s.u_inf = 0.0;
   s.krylov_tol = 1e-8;
   s.preconditioner_bins = 4;
   return s;
