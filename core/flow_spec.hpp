@@ -28,8 +28,9 @@ struct FlowSpec {
   int krylov_max_iter = 500;
   int krylov_restart = 60;
   double ring_spacing = 1.0;     // arc spacing of the body rings, cells
-  int preconditioner_bins = 0;   // GMRES: sub-cell offsets with their own preconditioner block (each costs 2N force solves);
-                                 // 0: chosen from the run's steps (coupling/preconditioner_bins.hpp)
+  int preconditioner_bins = 0;   // GMRES: sub-cell offsets with their own preconditioner block (each probed: 2 ×
+                                 // block_probe_stride force solves); 0: chosen from the coupled steps
+                                 // (coupling/preconditioner_bins.hpp)
   int block_probe_stride = 12;   // GMRES: a later block is the first one of its sphere radius plus the change of the force
                                  // system probed at every stride-th ring point (2 × stride force solves); 0: each in full
   FlowStart start = FlowStart::developed;
