@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 
 #include "flow/solver.hpp"
 #include "flow_settings.hpp"
@@ -66,7 +65,8 @@ TEST(BlockProbe, CorrectsTheBlockOfAnotherOffset) {
 
 TEST(BlockProbe, SameForcesFromFewerForceSolves) {
   // Two spheres approaching across several cells: GMRES converges to the same forces with probed blocks, and the run
-  // applies Q fewer times in all (blocks and iterations) than with every block built column by column.
+  // applies Q fewer times in all (blocks and iterations) than with every block built column by column (483 against
+  // 532 at stride 8).
   auto run = [](int stride) {
     auto st = probe_test_settings();
     st.block_probe_stride = stride;
@@ -85,7 +85,6 @@ TEST(BlockProbe, SameForcesFromFewerForceSolves) {
   };
   const auto [f_full, q_full, blocks_full] = run(0);
   const auto [f_probe, q_probe, blocks_probe] = run(8);
-  std::printf("Q applications: %ld full, %ld probed\n", q_full, q_probe);
   EXPECT_EQ(blocks_probe, blocks_full);
   EXPECT_GE(blocks_full, 8);  // 2 spheres × 4 bins
   EXPECT_LT(q_probe, q_full);
