@@ -324,7 +324,7 @@ int FlowCoupling::preconditioner_bins(const flow::Settings& s, const StartUp& su
   double columns = 0;
   if (n_ == 2 || sc_.wall)
     for (std::size_t m = 0; m < n_; ++m) columns += flow::later_block_applications(s, flow::ring_points(s, 2 * radius_[m]));
-  return automatic_bins(flow_steps_to_end(su.dt), columns);  // the start-up's steps revisit the blocks' own offsets
+  return automatic_bins(flow_steps_to_end(su.dt), columns, s.krylov_tol);  // the start-up's steps revisit the blocks' own offsets
 }
 
 double FlowCoupling::run_end() const {

@@ -57,9 +57,9 @@ CoupledCost coupled_cost(const CoupledCostInput& in) {
   // GMRES iterations: a_0 per moving sphere, more between the bins' offsets.
   double moving = 0;
   for (std::size_t m = 0; m < in.diameters.size(); ++m) moving += (in.start_up_travel[m] > 0 || in.moves_after[m]) ? 1 : 0;
-  const double a0 = kGmresIterationsPerBody * std::max(1.0, moving);
+  const double a0 = kGmresIterationsPerBody * krylov_tolerance_factor(s.krylov_tol) * std::max(1.0, moving);
   c.start_up_s = double(in.start_up_steps) * flow::step_seconds(c.grid, start_moving, a0);
-  c.steps_s = in.steps * (flow::step_seconds(c.grid, run_moving, a0 + bin_iterations(s.preconditioner_bins)) + kOdeSecondsPerStep);
+  c.steps_s = in.steps * (flow::step_seconds(c.grid, run_moving, a0 + bin_iterations(s.preconditioner_bins, s.krylov_tol)) + kOdeSecondsPerStep);
   c.fields_s = in.snapshots * c.grid.seconds_per_field;
   c.start_up_blocks_s = built_before;
   c.blocks_s = built_before + built_after;

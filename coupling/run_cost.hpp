@@ -4,13 +4,13 @@
 //   start-up    n_pre prescribed steps before t = 0 (flow.developed_distance or developed_time over Δt); with moving
 //               spheres each takes a_0 GMRES iterations (a_0 = 5 per moving sphere, with or without the wall: a
 //               prescribed constant speed revisits the sub-cell offsets whose blocks were built, so the blocks are
-//               exact);
+//               exact; at flow.krylov_tol 1e-8, scaled to the run's by krylov_tolerance_factor);
 //   force system blocks: with the bodies still relative to the grid one LU of the whole force system (2 × all ring
 //               points); with moving spheres one preconditioner block (2 × the sphere's ring points) per sub-cell
 //               offset bin the sphere visits (flow.preconditioner_bins; a sphere that travels d relative to the grid
 //               visits min(bins, 1 + bins d/h) of them), the first of each sphere diameter column by column and the
 //               later ones probed (flow/cost.hpp later_block_applications), plus the wall's own block once;
-//   steps       the coupled steps to the expected end, each with a_0 + bin_iterations(bins) GMRES iterations
+//   steps       the coupled steps to the expected end, each with a_0 + bin_iterations(bins, tol) GMRES iterations
 //               (coupling/preconditioner_bins.hpp) when the spheres move relative to the grid, plus the ODE's share;
 //   fields      the flow-field snapshots (4, plus one per flow.fields_every) when a file sink takes them.
 // The expected end is the reduced-order model's (at rest, separated and measured, or t_end): the coupled run's own
@@ -48,7 +48,7 @@ CoupledCost coupled_cost(const CoupledCostInput& in);
 inline constexpr double kOdeSecondsPerStep = 1e-4;
 
 /// GMRES iterations a step with each moving sphere's block at its exact sub-cell offset, per moving sphere
-/// (measured ~10 for a pair, 4–5 for a sphere and the wall).
+/// (measured at flow.krylov_tol 1e-8: ~10 for a pair, 4–5 for a sphere and the wall).
 inline constexpr double kGmresIterationsPerBody = 5;
 
 }  // namespace imcol::coupling

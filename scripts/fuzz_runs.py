@@ -69,7 +69,7 @@ NUMBERS = {  # (table, key): a typical value (docs/scene-reference.md, docs/coup
     ("output", "dt"): 1e-4,
     ("flow", "cfl"): 0.5, ("flow", "tau_p_fraction"): 0.2, ("flow", "developed_distance"): 1.0,
     ("flow", "developed_time"): 0.005, ("flow", "energy_margin"): 0.25, ("flow", "speed_jump"): 3.0,
-    ("flow", "speed_jump_floor"): 0.5, ("flow", "krylov_restart"): 30, ("flow", "krylov_tol"): 1e-6,
+    ("flow", "speed_jump_floor"): 0.5, ("flow", "krylov_restart"): 30, ("flow", "krylov_tol"): 1e-4,
     ("flow", "ring_spacing"): 1.0, ("flow", "r_max"): 1.0, ("flow", "theta"): 0.5, ("flow", "min_gap_cells"): 3.0,
     ("flow", "dt"): 1e-3,
     ("fluid", "mass_fraction"): 0.5, ("fluid", "temperature"): 20.0,

@@ -37,13 +37,37 @@ TEST(CoupledCost, AxialCellsAreSevenSmoothMultiplesOfFour) {
 
 TEST(CoupledCost, BinsGrowWithTheStepsAndStayInRange) {
   using imcol::coupling::automatic_bins;
-  EXPECT_EQ(automatic_bins(92, 204), 4);     // gg3462: 92 steps, two spheres of 51 ring points
-  EXPECT_EQ(automatic_bins(28, 48), 4);      // gg3462 probed: 28 coupled steps, two later blocks of 24 applications
-  EXPECT_EQ(automatic_bins(9000, 52), 64);   // gondret_st742: ~9 000 steps, one sphere of 26
-  EXPECT_EQ(automatic_bins(600, 52), 16);    // gondret_st27
-  EXPECT_EQ(automatic_bins(1e9, 1), 64);
-  EXPECT_EQ(automatic_bins(0, 52), 4);
-  EXPECT_GT(imcol::coupling::bin_iterations(4), imcol::coupling::bin_iterations(64));
+  constexpr double tol = 1e-8;  // the tolerance the iteration constants were measured at
+  EXPECT_EQ(automatic_bins(92, 204, tol), 4);     // gg3462: 92 steps, two spheres of 51 ring points
+  EXPECT_EQ(automatic_bins(28, 48, tol), 4);      // gg3462 probed: 28 coupled steps, two later blocks of 24 applications
+  EXPECT_EQ(automatic_bins(9000, 52, tol), 64);   // gondret_st742: ~9 000 steps, one sphere of 26
+  EXPECT_EQ(automatic_bins(600, 52, tol), 16);    // gondret_st27
+  EXPECT_EQ(automatic_bins(1e9, 1, tol), 64);
+  EXPECT_EQ(automatic_bins(0, 52, tol), 4);
+  EXPECT_GT(imcol::coupling::bin_iterations(4, tol), imcol::coupling::bin_iterations(64, tol));
+  // At the default 1e-4 the same runs keep their bins: fewer iterations per bin, but the powers of two round alike.
+  EXPECT_EQ(automatic_bins(9000, 52, 1e-4), 64);
+  EXPECT_EQ(automatic_bins(600, 52, 1e-4), 16);
+  EXPECT_EQ(automatic_bins(28, 48, 1e-4), 4);
+}
+
+TEST(CoupledCost, IterationsScaleWithTheDecadesTheResidualFalls) {
+  using imcol::coupling::krylov_tolerance_factor;
+  EXPECT_DOUBLE_EQ(krylov_tolerance_factor(1e-8), 1.0);
+  EXPECT_NEAR(krylov_tolerance_factor(1e-4) / krylov_tolerance_factor(1e-6), 5.0 / 7.0, 1e-12);
+  EXPECT_NEAR(krylov_tolerance_factor(1e-3) / krylov_tolerance_factor(1e-6), 4.0 / 7.0, 1e-12);
+  EXPECT_DOUBLE_EQ(krylov_tolerance_factor(1.0), 1.0 / 9.0);  // one iteration's worth, never less
+  EXPECT_NEAR(imcol::coupling::bin_iterations(4, 1e-4) / imcol::coupling::bin_iterations(4, 1e-8), 5.0 / 9.0, 1e-12);
+  // The estimate's steps shrink with the tolerance, the rest of it does not.
+  auto in = coupled_cost_pair_input();
+  in.settings.krylov_tol = 1e-8;
+  const auto tight = imcol::coupling::coupled_cost(in);
+  in.settings.krylov_tol = 1e-4;
+  const auto loose = imcol::coupling::coupled_cost(in);
+  EXPECT_LT(loose.steps_s, tight.steps_s);
+  EXPECT_LT(loose.start_up_s, tight.start_up_s);
+  EXPECT_DOUBLE_EQ(loose.blocks_s, tight.blocks_s);
+  EXPECT_DOUBLE_EQ(loose.fields_s, tight.fields_s);
 }
 
 TEST(CoupledCost, TheTotalIsItsPartsAndEachPartGrowsWithItsCount) {
