@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Numbers as text for CSV files and scene overrides: printf's %.<digits>g (what a stream with setprecision(digits) writes).
-// Up to 12 digits the significant digits come from one scaling by an exact power of ten and an integer rounding,
-// several times faster than std::to_chars with a precision; a value whose scaled form lies within
-// rounding error of a rounding tie or of a power of ten, and every other case (0, inf, nan, very large or small
-// magnitudes, more digits) is written by std::to_chars, so the text is %.<digits>g's in every case.
+// Up to 12 digits the significant digits come from a scaling by one or two tabled powers of ten (10^k, |k| ≤ 44: a
+// few roundings) and an integer rounding, several times faster than std::to_chars with a precision; a value whose
+// scaled form lies within 16 units of its last place of a rounding tie or of a power of ten, and every other case
+// (inf, nan, subnormals, magnitudes beyond ~1e±36, more digits) is written by std::to_chars, so the text is
+// %.<digits>g's in every case.
 #include <charconv>
 #include <string>
 
