@@ -24,7 +24,7 @@ struct FlowSpec {
                                  // only when dt = 0
   double theta = 0.5;            // implicit weight of the viscous term (0.5 Crank–Nicolson)
   double krylov_tol = 1e-4;      // GMRES relative residual of the force system (1e-6 in 0.16.0, 1e-8 before: e within
-                                 // 1.2e-6 of 1e-6 on the shipped coupled scenes, docs/coupling.md)
+                                 // 1.0e-6 of 1e-6 on the shipped coupled scenes, docs/coupling.md)
   int krylov_max_iter = 500;
   int krylov_restart = 60;
   double ring_spacing = 1.0;     // arc spacing of the body rings, cells

@@ -45,7 +45,7 @@ TEST(CoupledCost, BinsGrowWithTheStepsAndStayInRange) {
   EXPECT_EQ(automatic_bins(1e9, 1, tol), 64);
   EXPECT_EQ(automatic_bins(0, 52, tol), 4);
   EXPECT_GT(imcol::coupling::bin_iterations(4, tol), imcol::coupling::bin_iterations(64, tol));
-  // At the default 1e-4 the same runs keep their bins: fewer iterations per bin, but the powers of two round alike.
+  // At the default 1e-4 these counts give the same bins: fewer iterations per bin, but the powers of two round alike.
   EXPECT_EQ(automatic_bins(9000, 52, 1e-4), 64);
   EXPECT_EQ(automatic_bins(600, 52, 1e-4), 16);
   EXPECT_EQ(automatic_bins(28, 48, 1e-4), 4);
