@@ -457,6 +457,8 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
       ++prec_builds_;
     }
     prec_.push_back({o, n, slot[bin].lu, slot[bin].dt / s_.dt});
+    if (prec_bin_.size() < next.size()) prec_bin_.resize(next.size(), 0);
+    prec_bin_[b] = bin;
     k = e;
   }
   if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the run (set_dt: scaled)
@@ -497,16 +499,56 @@ void Solver::set_dt(double dt) {
 
 void Solver::solve_gmres(const std::vector<SphereState>& next, StepInfo& info) {
   build_preconditioner(next);
-  if (g_prev_.size() == g_.size()) {  // warm start: linear extrapolation of the last two steps' forces
+  warm_start();
+  const auto [it, res] = gmres(rhs_);
+  keep_offset_forces();
+  info.krylov_iterations = it;
+  info.krylov_residual = res;
+}
+
+void Solver::warm_start() {
+  if (g_prev_.size() == g_.size()) {  // linear extrapolation of the last two steps' forces
     t1_ = g_;
     g_ = 2 * g_ - g_prev_;
     g_prev_.swap(t1_);
   } else {
     g_prev_ = g_;
   }
-  const auto [it, res] = gmres(rhs_);
-  info.krylov_iterations = it;
-  info.krylov_residual = res;
+  if (!s_.warm_start_by_offset) return;
+  const double t_new = t_ + s_.dt;
+  const auto ns = static_cast<Eigen::Index>(2 * pts_.size());
+  for (const auto& blk : prec_) {
+    if (blk.offset >= ns) continue;  // the wall's block
+    const auto b = static_cast<std::size_t>(pts_.body[blk.offset / 2]);
+    if (b >= offset_forces_.size() || static_cast<std::size_t>(prec_bin_[b]) >= offset_forces_[b].size()) continue;
+    const OffsetForces& f = offset_forces_[b][prec_bin_[b]];
+    if (f.last.size() != blk.size) continue;
+    // Linear in time through the bin's last two steps while they are no further apart than this one from the last
+    // (a sphere at constant speed: equally spaced); else the last alone.
+    const double ratio = f.t_last > f.t_before ? (t_new - f.t_last) / (f.t_last - f.t_before) : -1;
+    auto seg = g_.segment(blk.offset, blk.size);
+    if (f.before.size() == blk.size && ratio >= 0 && ratio <= 1.5)
+      seg = f.last + (f.last - f.before) * ratio;
+    else
+      seg = f.last;
+  }
+}
+
+void Solver::keep_offset_forces() {
+  if (!s_.warm_start_by_offset) return;
+  const auto ns = static_cast<Eigen::Index>(2 * pts_.size());
+  if (offset_forces_.size() < sph_.size()) offset_forces_.resize(sph_.size());
+  for (const auto& blk : prec_) {
+    if (blk.offset >= ns) continue;
+    const int b = pts_.body[blk.offset / 2];
+    auto& bins = offset_forces_[b];
+    if (bins.size() != static_cast<std::size_t>(s_.preconditioner_bins)) bins.assign(s_.preconditioner_bins, {});
+    OffsetForces& f = bins[prec_bin_[b]];
+    f.before.swap(f.last);
+    f.t_before = f.t_last;
+    f.last = g_.segment(blk.offset, blk.size);
+    f.t_last = t_ + s_.dt;
+  }
 }
 
 void Solver::sphere_forces(const std::vector<SphereState>& next, StepInfo& info) {

@@ -26,7 +26,10 @@
 // the sphere's sub-cell offset on the finest grid in one of flow.preconditioner_bins bins (centred on the offset of
 // the sphere's first block, so that a sphere at constant speed revisits the bins' centres), each built the first
 // time the sphere is there and reused: the rings' pattern relative to the grid repeats when a sphere moves by whole cells and the
-// multi-level Q is nearly translation invariant; warm start extrapolated from the last two steps' forces). Only the first
+// multi-level Q is nearly translation invariant; warm start: each sphere's ring forces extrapolated linearly in time
+// from its last two steps in the same offset bin, since the forces follow the rings' sub-cell offset (from the last
+// two steps alone they leave a residual of 0.4–4 times the right-hand side, from the same offset 0.5–5 %); the wall's,
+// and a sphere's before it has a step in the bin, from the last two steps). Only the first
 // block of each sphere radius is built column by column; the later ones are it plus the change of Q probed at every
 // block_probe_stride-th ring point (Curtis, Powell & Reid, IMA J. Appl. Math. 13 (1974): the change between two
 // offsets is concentrated near the diagonal, where the spreading and interpolation stencils overlap).
@@ -78,6 +81,8 @@ struct Settings {
   double ring_spacing = 1.0;  // arc spacing of the body rings, units of h
   bool direct_when_fixed = true;  // LU of Q while the bodies stay put
   int preconditioner_bins = 16;   // GMRES: sub-cell offsets per finest cell with their own preconditioner block
+  bool warm_start_by_offset = true;  // GMRES warm start of a sphere's ring forces from its last steps at the same
+                                     // sub-cell offset bin (false: from the last two steps, whatever their offsets)
   int block_probe_stride = 12;    // GMRES: a sphere's later preconditioner blocks are the first one of its radius plus
                                   // the change probed at every stride-th ring point (2 × stride applications of Q);
                                   // 0: every block column by column (2 per ring point)
@@ -187,6 +192,8 @@ class Solver {
   bool use_direct(const std::vector<SphereState>& next, bool moved);  // this step by the LU of Q, not GMRES
   bool lu_current(const std::vector<SphereState>& next) const;        // the LU is Q's for these positions
   void solve_gmres(const std::vector<SphereState>& next, StepInfo& info);  // g_ by GMRES; its counts into info
+  void warm_start();         // g_ ← the forces extrapolated to this step (see "warm start" above)
+  void keep_offset_forces();  // each sphere's ring forces of this step, by its offset bin, for later warm starts
   void build_preconditioner(const std::vector<SphereState>& next);          // prec_: per-sphere blocks of Q
   void sphere_forces(const std::vector<SphereState>& next, StepInfo& info);  // info.force, internal, wall_force
   void build_points(const std::vector<SphereState>& sp);
@@ -232,6 +239,10 @@ class Solver {
   std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
   std::vector<std::vector<CachedBlock>> prec_cache_;  // [sphere][offset bin]
   std::vector<double> prec_origin_;    // per sphere: the sub-cell offset of its first block, the centre of bin 0
+  std::vector<int> prec_bin_;          // per sphere: its offset bin in this step
+  /// A sphere's ring forces at the last two steps it spent in one offset bin, and their times.
+  struct OffsetForces { Eigen::VectorXd last, before; double t_last = 0, t_before = 0; };
+  std::vector<std::vector<OffsetForces>> offset_forces_;  // [sphere][offset bin]
   long prec_builds_ = 0;
   std::vector<BodyPoints> wall_pts_;  // per level
   std::vector<PointRows> Bw_;         // per level: velocity at its wall points

@@ -71,6 +71,10 @@ TEST(BlockProbe, SameForcesFromFewerForceSolves) {
     auto st = probe_test_settings();
     st.block_probe_stride = stride;
     st.krylov_tol = 1e-11;
+    // Both runs start GMRES from the last two steps' forces, so that only the blocks differ. From the same offset
+    // each run starts from its own earlier solves, and their forces differ by up to 2e-8 at this tolerance, the
+    // solve's floor here (1e-12 does not converge: 5.7e-12 after 1000 iterations).
+    st.warm_start_by_offset = false;
     std::vector<imcol::flow::SphereState> sp{{0.5, 1.0, 0.0}, {0.5, 2.6, 0.0}};
     imcol::flow::Solver s(st, sp);
     std::vector<double> forces;
