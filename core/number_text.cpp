@@ -44,8 +44,7 @@ bool significant_digits(double a, int digits, std::uint64_t& n, int& exp10) {
     const int p = digits - 1 - exp10;
     if (p > 2 * kMaxPow || -p > 2 * kMaxPow) return false;
     const double y = scaled(a, p);
-
-    const double err = y * 0x1p-49;                                // 16 units of y's last place
+    const double err = y * 0x1p-49;  // 16 units of y's last place
     if (y < lo - err) { --exp10; continue; }
     if (y >= hi + err) { ++exp10; continue; }
     if (std::fabs(y - lo) <= err || std::fabs(y - hi) <= err) return false;

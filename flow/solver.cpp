@@ -456,9 +456,10 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
       slot[bin] = {sphere_block(o, n, next[b].radius), s_.dt};
       ++prec_builds_;
     }
-    prec_.push_back({o, n, slot[bin].lu, slot[bin].dt / s_.dt});
-    if (prec_bin_.size() < next.size()) prec_bin_.resize(next.size(), 0);
-    prec_bin_[b] = bin;
+    if (offset_forces_.size() < next.size()) offset_forces_.resize(next.size());
+    auto& forces = offset_forces_[b];
+    if (forces.size() != static_cast<std::size_t>(bins)) forces.assign(bins, {});
+    prec_.push_back({o, n, slot[bin].lu, slot[bin].dt / s_.dt, &forces[bin]});
     k = e;
   }
   if (wall_count_ > 0) {  // the wall's own block: it never moves, so one factorisation serves the run (set_dt: scaled)
@@ -468,7 +469,7 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
       wall_block_ = {std::make_shared<BlockLU>(diagonal_block_of_Q(ns, nw)), s_.dt};
       ++prec_builds_;
     }
-    prec_.push_back({ns, nw, wall_block_.lu, wall_block_.dt / s_.dt});
+    prec_.push_back({ns, nw, wall_block_.lu, wall_block_.dt / s_.dt, nullptr});
   }
 }
 
@@ -516,13 +517,9 @@ void Solver::warm_start() {
   }
   if (!s_.warm_start_by_offset) return;
   const double t_new = t_ + s_.dt;
-  const auto ns = static_cast<Eigen::Index>(2 * pts_.size());
   for (const auto& blk : prec_) {
-    if (blk.offset >= ns) continue;  // the wall's block
-    const auto b = static_cast<std::size_t>(pts_.body[blk.offset / 2]);
-    if (b >= offset_forces_.size() || static_cast<std::size_t>(prec_bin_[b]) >= offset_forces_[b].size()) continue;
-    const OffsetForces& f = offset_forces_[b][prec_bin_[b]];
-    if (f.last.size() != blk.size) continue;
+    if (!blk.forces || blk.forces->last.size() != blk.size) continue;  // the wall's block, or a bin not yet visited
+    const OffsetForces& f = *blk.forces;
     // Linear in time through the bin's last two steps while they are no further apart than this one from the last
     // (a sphere at constant speed: equally spaced); else the last alone.
     const double ratio = f.t_last > f.t_before ? (t_new - f.t_last) / (f.t_last - f.t_before) : -1;
@@ -536,14 +533,9 @@ void Solver::warm_start() {
 
 void Solver::keep_offset_forces() {
   if (!s_.warm_start_by_offset) return;
-  const auto ns = static_cast<Eigen::Index>(2 * pts_.size());
-  if (offset_forces_.size() < sph_.size()) offset_forces_.resize(sph_.size());
   for (const auto& blk : prec_) {
-    if (blk.offset >= ns) continue;
-    const int b = pts_.body[blk.offset / 2];
-    auto& bins = offset_forces_[b];
-    if (bins.size() != static_cast<std::size_t>(s_.preconditioner_bins)) bins.assign(s_.preconditioner_bins, {});
-    OffsetForces& f = bins[prec_bin_[b]];
+    if (!blk.forces) continue;
+    OffsetForces& f = *blk.forces;
     f.before.swap(f.last);
     f.t_before = f.t_last;
     f.last = g_.segment(blk.offset, blk.size);

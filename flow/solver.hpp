@@ -226,7 +226,10 @@ class Solver {
   PointRows B_;                 // velocity at the sphere points from the finest ψ
   Eigen::VectorXd g_, g_prev_;  // ring forces of the last two steps (warm start)
   using BlockLU = Eigen::PartialPivLU<Eigen::MatrixXd>;
-  struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; double scale; };  // scale: Δt_block/Δt
+  /// scale: Δt_block/Δt; forces: a sphere's ring forces at its last two steps in this block's offset bin (the wall's
+  /// block: none).
+  struct OffsetForces { Eigen::VectorXd last, before; double t_last = 0, t_before = 0; };
+  struct Block { Eigen::Index offset, size; std::shared_ptr<BlockLU> lu; double scale; OffsetForces* forces; };
   struct CachedBlock { std::shared_ptr<BlockLU> lu; double dt = 0; };  // a block of Q and the step it was built for
   bool close_step(double dt_block) const;  // a block built for dt_block serves Δt (scaled): kBlockViscousChange
   bool block_current(const CachedBlock& c, Eigen::Index n) const;    // built, of size n, for a step close to Δt
@@ -239,10 +242,7 @@ class Solver {
   std::vector<Block> prec_;            // GMRES preconditioner of this step: per-sphere blocks of Q
   std::vector<std::vector<CachedBlock>> prec_cache_;  // [sphere][offset bin]
   std::vector<double> prec_origin_;    // per sphere: the sub-cell offset of its first block, the centre of bin 0
-  std::vector<int> prec_bin_;          // per sphere: its offset bin in this step
-  /// A sphere's ring forces at the last two steps it spent in one offset bin, and their times.
-  struct OffsetForces { Eigen::VectorXd last, before; double t_last = 0, t_before = 0; };
-  std::vector<std::vector<OffsetForces>> offset_forces_;  // [sphere][offset bin]
+  std::vector<std::vector<OffsetForces>> offset_forces_;  // [sphere][offset bin]: the warm start's forces
   long prec_builds_ = 0;
   std::vector<BodyPoints> wall_pts_;  // per level
   std::vector<PointRows> Bw_;         // per level: velocity at its wall points
