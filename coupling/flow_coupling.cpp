@@ -314,6 +314,7 @@ void FlowCoupling::start_up() {
   f_rest_ = f;
   start_force_ = f;
   stats_.pre_seconds = seconds_since(t0);
+  stats_.pre_q_applications = kernel_->q_applications();
   reset_step_stats();  // the start-up's kernel statistics are not the run's
 }
 
@@ -351,6 +352,18 @@ double FlowCoupling::flow_steps_to_end(double dt) const {
   return steps;
 }
 
+double FlowCoupling::snapshots_to_end() const {
+  const auto& e = expected_;
+  double gap = std::numeric_limits<double>::infinity();
+  for (const auto& z : e.z) gap = std::min(gap, gap_of(z));
+  double n = 1;                                      // the end's
+  if (e.z.empty() || gap <= D_) n += 1;              // gap 1 D (unknown path: counted)
+  if (e.z.empty() || e.t_contact) n += 1;            // contact
+  if (e.z.empty() || (e.t_separation && *e.t_separation + sc_.measure.window <= run_end())) n += 1;  // after separation
+  if (sc_.flow.fields_every > 0) n += std::floor(run_end() / sc_.flow.fields_every) + 1;
+  return n;
+}
+
 void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, const std::array<double, 2>& travel) {
   CoupledCostInput in;
   in.settings = s;
@@ -361,16 +374,16 @@ void FlowCoupling::check_cost(const flow::Settings& s, double dt, long n_pre, co
   }
   in.start_up_steps = n_pre;
   in.steps = flow_steps_to_end(dt);
-  if (sc_.flow.fields && sink_) {  // the four moments (flow_coupling.hpp maybe_snapshot) and the regular ones
-    in.snapshots = 4;
-    if (sc_.flow.fields_every > 0) in.snapshots += std::floor(run_end() / sc_.flow.fields_every) + 1;
-  }
+  if (sc_.flow.fields && sink_) in.snapshots = snapshots_to_end();
   const CoupledCost c = coupled_cost(in);
   stats_.est_start_up_s = c.start_up_s;
   stats_.est_blocks_s = c.blocks_s;
   stats_.est_steps_s = c.steps_s;
   stats_.est_fields_s = c.fields_s;
   stats_.est_bytes = c.grid.bytes;
+  stats_.est_q_applications = c.q_applications;
+  stats_.est_steps = in.steps;
+  stats_.est_field_snapshots = in.snapshots;
   est_before_t0_s_ = c.before_t0_s();
   if (const std::string why = flow::memory_refusal(c.grid); !why.empty())
     throw InputError(sc_.path, "flow.cells_per_diameter", "the flow grid " + why + ": use fewer cells per diameter or levels");

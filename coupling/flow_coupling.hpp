@@ -46,6 +46,7 @@ class DivergenceWatch;
 /// which the cost estimate and the automatic preconditioner bins count the adaptive flow steps.
 struct ExpectedRun {
   double end = 0;                           // s; 0: unknown (t_end)
+  std::optional<double> t_contact, t_separation;  // s, the model's first δ_SS crossings
   std::vector<double> t;                    // s
   std::vector<std::array<double, 2>> z, u;  // the spheres' centres (m) and velocities (m/s) at t
 };
@@ -96,6 +97,8 @@ class FlowCoupling {
   double run_end() const;                      // s: the expected end, at most t_end
   /// Coupled flow steps to run_end(): of dt, or with the adaptive step the rule's along the expected path.
   double flow_steps_to_end(double dt) const;
+  /// Flow-field snapshots a file sink will take (maybe_snapshot, finish_series) along the expected path.
+  double snapshots_to_end() const;
   Predicted prescribed(double t) const;  // the spheres on their initial paths at t < 0
   std::array<double, 2> develop_flow(const StartUp& su, const flow::Settings& s);  // builds the kernel; its last f
   void reset_step_stats();

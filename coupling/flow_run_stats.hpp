@@ -20,6 +20,7 @@ struct FlowRunStats {
   // Over the whole run, start-up included: applications of the force operator Q (GMRES iterations, warm starts,
   // preconditioner block columns and probes, LU columns) and the preconditioner blocks built.
   long q_applications = 0, preconditioner_blocks = 0;
+  long pre_q_applications = 0;     // of q_applications, those of the start-up
   double max_krylov_residual = 0, max_slip = 0;  // m/s
   double cfl = 0;                  // Courant number of U_ref that gave dt (0: flow.dt given)
   double max_courant = 0;          // the fluid's largest advective Courant number (flow/solver.hpp max_courant)
@@ -30,6 +31,7 @@ struct FlowRunStats {
   // Estimated before the grid was allocated (coupling/run_cost.hpp), s and B: the start-up's steps, the force
   // system's blocks, the coupled steps to the expected end, the flow-field snapshots, and the solver's memory.
   double est_start_up_s = 0, est_blocks_s = 0, est_steps_s = 0, est_fields_s = 0, est_bytes = 0;
+  double est_q_applications = 0, est_steps = 0, est_field_snapshots = 0;  // the counts behind those times
   double est_total_s() const { return est_start_up_s + est_blocks_s + est_steps_s + est_fields_s; }
   int field_snapshots = 0;         // flow-field snapshots taken
   double fields_seconds = 0;       // wall time computing and writing them, s

@@ -38,14 +38,15 @@ struct CoupledCost {
   double steps_s = 0;           // the coupled steps to the expected end
   double fields_s = 0;          // the flow-field snapshots
   double start_up_blocks_s = 0; // the part of blocks_s built during the start-up
+  double q_applications = 0;    // applications of Q over the whole run (GMRES, warm starts' residuals, blocks)
   double total_s() const { return start_up_s + blocks_s + steps_s + fields_s; }
   double before_t0_s() const { return start_up_s + start_up_blocks_s; }
 };
 
 CoupledCost coupled_cost(const CoupledCostInput& in);
 
-/// ODE integration (CVODE/IDA, events, recording) per coupled flow step, s (measured 0.015–0.5 ms).
-inline constexpr double kOdeSecondsPerStep = 1e-4;
+/// ODE integration (CVODE/IDA, events, recording) per coupled flow step, s (measured 7–140 µs, most 20–60 µs).
+inline constexpr double kOdeSecondsPerStep = 2.2e-5;
 
 /// GMRES iterations a step with each moving sphere's block at its exact sub-cell offset, per moving sphere
 /// (measured at flow.krylov_tol 1e-8: ~10 for a pair, 4–5 for a sphere and the wall).

@@ -10,12 +10,14 @@
 namespace imcol::flow {
 
 namespace {
-// CPU time per vertex (all levels), measured on this kernel (Release, GCC 12, one core of the project's machine;
-// coupled runs at 16–32 cells/D, 6 000–100 000 vertices, docs/performance.md §7).
-constexpr double kStepPerVertex = 38e-9;   // s, a step's own work
-constexpr double kQPerVertex = 20e-9;      // s, one application of Q
+// CPU time per vertex (all levels), fitted to the run's own counts of steps, applications of Q and snapshots over the
+// 39 shipped coupled runs at 16–32 cells/D (6 600–56 000 vertices; Release, GCC 12, one core of the project's machine;
+// docs/performance.md §7), then raised by 10 % to centre the estimate's scatter on the measured times. One application
+// of Q costs 6–16 ns a vertex as the axial FFT's size is 2, 3, 5 or 7-smooth.
+constexpr double kStepPerVertex = 36e-9;   // s, a step's own work
+constexpr double kQPerVertex = 10.5e-9;    // s, one application of Q
 constexpr double kLuPerCube = 0.2e-9;      // s per n³ of a dense LU
-constexpr double kFieldPerVertex = 1.1e-6; // s, one flow-field snapshot (pressure solve, CSV text, VTK)
+constexpr double kFieldPerVertex = 0.8e-6; // s, one flow-field snapshot (pressure solve, CSV text, VTK)
 }  // namespace
 
 CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters, bool moving) {

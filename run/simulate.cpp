@@ -114,9 +114,15 @@ coupling::ExpectedRun expected_run(const Scene& sc) {
     const RunResult r = simulate(reduced, false, Recording::kinematics, {});
     coupling::ExpectedRun e = path_of(r, sc.spheres.size());
     e.end = r.summary.solver.t_final_s;
+    if (r.summary.contact) {
+      e.t_contact = r.summary.contact->t_contact_s;
+      e.t_separation = r.summary.contact->t_separation_s;
+    }
     return e;
   } catch (const std::exception&) {
-    return {sc.solver.t_end, {}, {}, {}};
+    coupling::ExpectedRun e;
+    e.end = sc.solver.t_end;
+    return e;
   }
 }
 

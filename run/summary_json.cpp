@@ -261,14 +261,15 @@ void to_json(Json& j, const FlowSummary& f) {
        {"start", to_string(f.start)}, {"start_up_steps", fs.pre_steps}, {"force_in_step", to_string(f.force_in_step)},
        {"steps", fs.steps}, {"ms_per_step", f.ms_per_step}, {"krylov_iterations", fs.krylov_iterations},
        {"krylov_iterations_per_step", f.krylov_iterations_per_step}, {"max_krylov_iterations", fs.max_krylov_iterations},
-       {"q_applications", fs.q_applications}, {"preconditioner_blocks", fs.preconditioner_blocks},
+       {"q_applications", fs.q_applications}, {"start_up_q_applications", fs.pre_q_applications}, {"preconditioner_blocks", fs.preconditioner_blocks},
        {"max_krylov_residual", fs.max_krylov_residual}, {"max_slip_m_s", fs.max_slip},
        {"min_gap_clamped_steps", fs.min_gap_clamped_steps}, {"frame_travel_m", fs.frame_travel},
        {"start_up_time_s", fs.pre_seconds}, {"flow_time_s", fs.flow_seconds}, {"ode_time_s", fs.ode_seconds},
        {"flow_share", f.flow_share}, {"ode_share", f.ode_share}, {"field_snapshots", fs.field_snapshots},
        {"fields_time_s", fs.fields_seconds}, {"cpu_time_s", fs.cpu_seconds},
        {"estimate", {{"start_up_s", fs.est_start_up_s}, {"force_system_blocks_s", fs.est_blocks_s}, {"steps_to_t_end_s", fs.est_steps_s},
-                     {"fields_s", fs.est_fields_s}, {"total_s", fs.est_total_s()}, {"memory_MB", fs.est_bytes / 1e6}}}};
+                     {"fields_s", fs.est_fields_s}, {"total_s", fs.est_total_s()}, {"memory_MB", fs.est_bytes / 1e6},
+                     {"q_applications", fs.est_q_applications}, {"steps", fs.est_steps}, {"field_snapshots", fs.est_field_snapshots}}}};
 }
 
 void from_json(const Json& j, FlowSummary& f) {
@@ -296,6 +297,7 @@ void from_json(const Json& j, FlowSummary& f) {
   f.krylov_iterations_per_step = j.at("krylov_iterations_per_step").get<double>();
   fs.max_krylov_iterations = j.at("max_krylov_iterations").get<int>();
   fs.q_applications = j.value("q_applications", 0L);  // summaries before 0.16.0: not counted
+  fs.pre_q_applications = j.value("start_up_q_applications", 0L);  // before 0.18.0
   fs.preconditioner_blocks = j.value("preconditioner_blocks", 0L);
   fs.max_krylov_residual = j.at("max_krylov_residual").get<double>();
   fs.max_slip = j.at("max_slip_m_s").get<double>();
@@ -315,6 +317,9 @@ void from_json(const Json& j, FlowSummary& f) {
   fs.est_steps_s = est.at("steps_to_t_end_s").get<double>();
   fs.est_fields_s = est.at("fields_s").get<double>();
   fs.est_bytes = est.at("memory_MB").get<double>() * 1e6;
+  fs.est_q_applications = est.value("q_applications", 0.0);  // summaries before 0.18.0: not given
+  fs.est_steps = est.value("steps", 0.0);
+  fs.est_field_snapshots = est.value("field_snapshots", 0.0);
 }
 
 }  // namespace imcol
