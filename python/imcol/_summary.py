@@ -174,6 +174,9 @@ class FlowEstimate(Block):
     force_system_blocks_s: float
     fields_s: float
     memory_MB: float
+    q_applications: float
+    steps: float
+    field_snapshots: float
 
 
 class Flow(Block):
@@ -202,6 +205,7 @@ class Flow(Block):
     krylov_iterations_per_step: float
     max_krylov_iterations: int
     q_applications: int
+    start_up_q_applications: int
     preconditioner_blocks: int
     max_krylov_residual: float
     max_slip_m_s: float
