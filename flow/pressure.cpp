@@ -7,6 +7,7 @@
 #include <memory>
 #include <new>
 #include <stdexcept>
+#include <vector>
 
 #include "flow/ib.hpp"
 
@@ -57,6 +58,8 @@ class CellPoisson {
     }
   }
   ~CellPoisson() { release(); }
+  /// This solver is the one for g (its size and spacing: what the plans and the tables depend on).
+  bool fits(const LevelGeometry& g) const { return g.nr == nr_ && g.nz == nz_ && g.h == g_.h; }
   CellPoisson(const CellPoisson&) = delete;
   CellPoisson& operator=(const CellPoisson&) = delete;
 
@@ -103,6 +106,18 @@ class CellPoisson {
   fftw_plan fwd_ = nullptr, bwd_ = nullptr;
   std::vector<double> lower_, upper_, inv_den_, cp_;
 };
+
+/// The solver for level g: each thread keeps those of the last levels it solved (a run's snapshots solve the same
+/// levels again; planning and the tables cost more than a solve).
+CellPoisson& cell_poisson(const LevelGeometry& g) {
+  constexpr std::size_t kKept = 16;
+  thread_local std::vector<std::unique_ptr<CellPoisson>> kept;
+  for (auto& p : kept)
+    if (p->fits(g)) return *p;
+  if (kept.size() >= kKept) kept.erase(kept.begin());
+  kept.push_back(std::make_unique<CellPoisson>(g));
+  return *kept.back();
+}
 
 /// Cubic Lagrange weights at t ∈ [0, 1) for the nodes −1, 0, 1, 2.
 void cubic_weights(double t, double w[4]) {
@@ -159,7 +174,7 @@ std::vector<CellField> solve_axisymmetric_poisson(const std::vector<LevelGeometr
       x.top[i] = bc(g.r(i + 0.5), g.z(g.nz));
     }
     for (int j = 0; j < g.nz; ++j) x.outer[j] = bc(g.r(g.nr), g.z(j + 0.5));
-    CellPoisson(g).solve(rhs[l], x);
+    cell_poisson(g).solve(rhs[l], x);
   }
   return out;
 }

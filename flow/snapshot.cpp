@@ -65,6 +65,10 @@ std::string snapshot_csv(const Solver& s, const std::vector<LevelFields>& levels
     for (const auto& fld : levels.front().fields) os << ',' << fld.column;
   os << "\n";
   std::string out = os.str();
+  // Room for every line up front (17 bytes a number at 9 digits, "-d.dddddddde-ddd,"): no reallocation and copy as it grows.
+  std::size_t bytes = out.size();
+  for (const auto& L : levels) bytes += std::size_t(L.g.nr + 1) * std::size_t(L.g.nz + 1) * (4 + 17 * (2 + L.fields.size()));
+  out.reserve(bytes);
   for (std::size_t l = 0; l < levels.size(); ++l) write_level(out, static_cast<int>(l), levels[l]);
   return out;
 }

@@ -55,10 +55,8 @@ class Appended {
     if (components > 1) os << " NumberOfComponents=\"" << components << "\"";
     os << " format=\"appended\" offset=\"" << blob_.size() << "\"/>\n";
     const std::uint64_t bytes = v.size() * sizeof(T);
-    const std::size_t at = blob_.size();
-    blob_.resize(at + sizeof bytes + bytes);
-    std::memcpy(blob_.data() + at, &bytes, sizeof bytes);
-    if (bytes) std::memcpy(blob_.data() + at + sizeof bytes, v.data(), bytes);
+    blob_.append(reinterpret_cast<const char*>(&bytes), sizeof bytes);  // appended, not resized: no zero fill first
+    if (bytes) blob_.append(reinterpret_cast<const char*>(v.data()), bytes);
     return os.str();
   }
   const std::string& blob() const { return blob_; }
@@ -236,9 +234,11 @@ std::string level_vtu(const std::vector<LevelFields>& levels, std::size_t level,
   if (!pd.first_scalar.empty()) os << " Scalars=\"" << pd.first_scalar << "\"";
   os << ">\n" << pd.xml << "</PointData>\n<CellData Scalars=\"level\">\n" << cell_data << "</CellData>\n<Points>\n" << points
      << "</Points>\n<Cells>\n" << cells << "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+  static constexpr char kTail[] = "\n</AppendedData>\n</VTKFile>\n";
   std::string out = os.str();
+  out.reserve(out.size() + ap.blob().size() + sizeof kTail);
   out += ap.blob();
-  out += "\n</AppendedData>\n</VTKFile>\n";
+  out += kTail;
   return out;
 }
 
