@@ -13,7 +13,8 @@ flow.q_applications; a ratio that does not depend on the machine).
 With --check R the exit status is 1 when a ratio lies outside [1/R, R]. With --relative the ratios are first divided
 by their median, the machine's speed against the one the estimate's unit costs were measured on (flow/cost.hpp),
 taken in the same run: the check is then on what the estimate counts, on any machine or build. With --check-q R the
-exit status is 1 when the estimated applications of Q over the run's own lie outside [1/R, R].
+exit status is 1 when the estimated applications of Q over the run's own lie outside [1/R, R], or when the estimated
+flow-field snapshots are not those the run took.
 """
 import argparse
 import json
@@ -32,7 +33,8 @@ def run_one(imcol, scene, cells, out):
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     flow = json.loads((out / "summary.json").read_text())["flow"]
     q = flow["estimate"]["q_applications"] / flow["q_applications"] if flow["q_applications"] else 1.0
-    return flow["estimate"]["total_s"], flow["cpu_time_s"], flow["steps"], q
+    snaps = (round(flow["estimate"]["field_snapshots"]), flow["field_snapshots"])
+    return flow["estimate"]["total_s"], flow["cpu_time_s"], flow["steps"], q, snaps
 
 
 def main():
@@ -47,17 +49,21 @@ def main():
     a = ap.parse_args()
     scenes = a.scenes or sorted(p.stem for p in (ROOT / "data" / "scenes" / "coupled").glob("*.toml"))
     rows, qs, bad_q = [], [], []
-    print(f"{'scene':22s} {'cells/D':>7s} {'steps':>6s} {'estimate s':>11s} {'measured s':>11s} {'est/meas':>9s} {'Q est/meas':>10s}")
+    print(f"{'scene':22s} {'cells/D':>7s} {'steps':>6s} {'estimate s':>11s} {'measured s':>11s} {'est/meas':>9s} {'Q est/meas':>10s} "
+          f"{'snapshots':>9s}")
     with tempfile.TemporaryDirectory() as tmp:
         for scene in scenes:
             for cells in a.cells:
-                est, cpu, steps, q = run_one(a.imcol, scene, cells, pathlib.Path(tmp) / f"{scene}_{cells}")
+                est, cpu, steps, q, snaps = run_one(a.imcol, scene, cells, pathlib.Path(tmp) / f"{scene}_{cells}")
                 ratio = est / cpu if cpu > 0 else float("inf")
                 rows.append((scene, cells, est, cpu, ratio))
                 qs.append(q)
                 if a.check_q and not (1 / a.check_q <= q <= a.check_q):
                     bad_q.append(f"{scene} at {cells} cells/D: applications of Q estimated over made {q:.2f}")
-                print(f"{scene:22s} {cells:7d} {steps:6d} {est:11.3f} {cpu:11.3f} {ratio:9.2f} {q:10.2f}", flush=True)
+                if a.check_q and snaps[0] != snaps[1]:
+                    bad_q.append(f"{scene} at {cells} cells/D: {snaps[0]} flow-field snapshots estimated, {snaps[1]} taken")
+                print(f"{scene:22s} {cells:7d} {steps:6d} {est:11.3f} {cpu:11.3f} {ratio:9.2f} {q:10.2f} {snaps[0]:4d}/{snaps[1]:<4d}",
+                      flush=True)
     print(f"est/meas {min(r[4] for r in rows):.2f}–{max(r[4] for r in rows):.2f} (median "
           f"{statistics.median(r[4] for r in rows):.2f}); Q est/meas {min(qs):.2f}–{max(qs):.2f}")
     scale = statistics.median(r[4] for r in rows) if a.relative else 1.0
