@@ -12,7 +12,9 @@
 //               later ones probed (flow/cost.hpp later_block_applications), plus the wall's own block once;
 //   steps       the coupled steps to the expected end, each with a_0 + bin_iterations(bins, tol) GMRES iterations
 //               (coupling/preconditioner_bins.hpp) when the spheres move relative to the grid, plus the ODE's share;
-//   fields      the flow-field snapshots (4, plus one per flow.fields_every) when a file sink takes them.
+//   fields      the flow-field snapshots a file sink takes along the expected path (FlowCoupling::snapshots_to_end).
+// Each part is also counted (applications of Q, steps, snapshots: flow.estimate in summary.json), so that the counts
+// can be checked against the run's own apart from the machine (bench/coupled_estimate.py --check-q).
 // The expected end is the reduced-order model's (at rest, separated and measured, or t_end): the coupled run's own
 // differs by its flow force; t_end is the bound.
 #include <vector>
