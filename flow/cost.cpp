@@ -14,7 +14,8 @@ namespace {
 // 39 shipped coupled runs at 16–32 cells/D (6 600–56 000 vertices; Release, GCC 12, one core of the project's machine;
 // docs/performance.md §7), then raised by 10 % to centre the estimate's scatter on the measured times. One application
 // of Q costs 6–16 ns a vertex as the axial FFT's size is 2, 3, 5 or 7-smooth.
-constexpr double kStepPerVertex = 36e-9;   // s, a step's own work
+constexpr double kStepPerVertex = 30e-9;   // s, a step's own work, bodies still relative to the grid (fitted 25–30)
+constexpr double kMovingStepPerVertex = 36e-9;  // s, the same with bodies moving on it (their point rows rebuilt)
 constexpr double kQPerVertex = 10.5e-9;    // s, one application of Q
 constexpr double kLuPerCube = 0.2e-9;      // s per n³ of a dense LU
 constexpr double kFieldPerVertex = 0.8e-6; // s, one flow-field snapshot (pressure solve, CSV text, VTK)
@@ -34,7 +35,7 @@ CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters,
   const double q_bytes = 8.0 * (2 * c.body_points) * (2 * c.body_points);
   c.bytes = 100.0 * c.vertices + q_bytes * (moving ? 18.0 : 2.0);
   c.seconds_per_q = kQPerVertex * c.vertices;
-  c.seconds_explicit = kStepPerVertex * c.vertices;
+  c.seconds_explicit = (moving ? kMovingStepPerVertex : kStepPerVertex) * c.vertices;
   c.seconds_per_step = step_seconds(c, moving, kTypicalGmresIterations);
   c.seconds_per_field = kFieldPerVertex * c.vertices;
   return c;

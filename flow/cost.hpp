@@ -4,7 +4,8 @@
 // ~100 bytes per vertex and level plus the force system's dense matrices (Q of the body points, its LU, and up to
 // preconditioner_bins cached blocks per moving sphere). Time, from the kernel's passes over the V vertices of all
 // levels (flow/solver.hpp), each a fixed cost per vertex measured on this kernel:
-//   a step's own work (explicit part, the predictor η* and ψ*, the end-of-step pass in full): kStepPerVertex V;
+//   a step's own work (explicit part, the predictor η* and ψ*, the end-of-step pass in full): kStepPerVertex V, or
+//   kMovingStepPerVertex V with bodies moving relative to the grid (their point rows rebuilt every step);
 //   one application of the force operator Q (the partial passes of a force source): kQPerVertex V;
 //   step with fixed bodies (LU): the step's own work (the LU's solve is n², negligible);
 //   step with moving bodies (GMRES, k iterations): the step's own work + (1 + k) Q (the warm start's residual);
