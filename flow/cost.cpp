@@ -13,7 +13,7 @@ namespace {
 // CPU time per vertex (all levels), fitted to the run's own counts of steps, applications of Q and snapshots over the
 // 39 shipped coupled runs at 16–32 cells/D (6 600–56 000 vertices; Release, GCC 12, one core of the project's machine;
 // docs/performance.md §7), then raised by 10 % to centre the estimate's scatter on the measured times. One application
-// of Q costs 6–16 ns a vertex as the axial FFT's size is 2, 3, 5 or 7-smooth.
+// of Q costs 6–16 ns a vertex from scene to scene (not from the axial FFT's factors): that spread is the estimate's.
 constexpr double kStepPerVertex = 30e-9;   // s, a step's own work, bodies still relative to the grid (fitted 25–30)
 constexpr double kMovingStepPerVertex = 36e-9;  // s, the same with bodies moving on it (their point rows rebuilt)
 constexpr double kQPerVertex = 10.5e-9;    // s, one application of Q
