@@ -43,8 +43,10 @@ CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters,
 
 double ring_points(const Settings& s, double d) { return std::max(2.0, std::ceil(M_PI * 0.5 * d / (s.ring_spacing * s.h))); }
 
+double step_applications(bool moving, double iterations) { return moving ? 1.0 + iterations : 0.0; }
+
 double step_seconds(const CostEstimate& c, bool moving, double iterations) {
-  return c.seconds_explicit + (moving ? c.seconds_per_q * (1.0 + iterations) : 0.0);
+  return c.seconds_explicit + c.seconds_per_q * step_applications(moving, iterations);
 }
 
 double block_seconds(const CostEstimate& c, double n) { return block_seconds(c, n, n); }

@@ -37,6 +37,8 @@ CostEstimate estimate_cost(const Settings& s, std::span<const double> diameters,
 /// Ring points of a sphere of diameter d (m) on the finest level.
 double ring_points(const Settings& s, double d);
 
+/// A step's applications of Q: none with fixed bodies (LU), 1 + `iterations` with moving ones (the warm start's residual).
+double step_applications(bool moving, double iterations);
 /// A step's time, s: fixed bodies (LU), or moving ones with `iterations` GMRES iterations.
 double step_seconds(const CostEstimate& c, bool moving, double iterations);
 

@@ -438,15 +438,16 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
   // translation invariant.
   prec_.clear();
   const LevelGeometry& G = lv_[0].g;
+  const int bins = s_.preconditioner_bins;
+  if (prec_cache_.size() < next.size()) prec_cache_.resize(next.size());
+  if (prec_origin_.size() < next.size()) prec_origin_.resize(next.size(), std::nan(""));
+  if (offset_forces_.size() < next.size()) offset_forces_.resize(next.size());
   for (std::size_t k = 0; k < pts_.size();) {
     std::size_t e = k;
     while (e < pts_.size() && pts_.body[e] == pts_.body[k]) ++e;
     const int b = pts_.body[k];
     const Eigen::Index o = static_cast<Eigen::Index>(2 * k), n = static_cast<Eigen::Index>(2 * (e - k));
     const double x = (next[b].z - G.z0) / G.h;
-    const int bins = s_.preconditioner_bins;
-    if (prec_cache_.size() < next.size()) prec_cache_.resize(next.size());
-    if (prec_origin_.size() < next.size()) prec_origin_.resize(next.size(), std::nan(""));
     if (std::isnan(prec_origin_[b])) prec_origin_[b] = x - std::floor(x);
     const double u = x - prec_origin_[b];  // offset from the first block's
     const int bin = static_cast<int>(std::lround((u - std::floor(u)) * bins)) % bins;
@@ -456,7 +457,6 @@ void Solver::build_preconditioner(const std::vector<SphereState>& next) {
       slot[bin] = {sphere_block(o, n, next[b].radius), s_.dt};
       ++prec_builds_;
     }
-    if (offset_forces_.size() < next.size()) offset_forces_.resize(next.size());
     auto& forces = offset_forces_[b];
     if (forces.size() != static_cast<std::size_t>(bins)) forces.assign(bins, {});
     prec_.push_back({o, n, slot[bin].lu, slot[bin].dt / s_.dt, &forces[bin]});
