@@ -50,7 +50,10 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
       D_(2 * a),
       nu_(mu / rho_f),
       U0_(U0),
-      min_lag_(opt.min_lag) {
+      min_lag_(opt.min_lag),
+      interpolate_(opt.interpolate_outputs),
+      output_rtol_(opt.output_rtol),
+      output_atol_(opt.output_atol) {
   if (direct()) {
     step_ = opt.direct_step;
     grid_u_.push_back(U0);  // U(0+)
@@ -67,6 +70,7 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
     for (auto& c : cache_) {
       c.e.assign(soe_->modes(), 0.0);
       c.we.assign(soe_->modes(), 0.0);
+      c.wle.assign(soe_->modes(), 0.0);
       c.m.assign(kPoints * soe_->modes(), 0.0);
     }
     if (fixed_weights_) fast_ = SoeFastModes(soe_->rates(), w_);
@@ -156,6 +160,7 @@ SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std:
 }
 
 void SphereHistory::reset_memory(double t, std::span<const double> z) {
+  window_ = left_ok_ = false;
   z_.assign(z.begin(), z.end());
   tn_ = t;
   np_ = 0;
@@ -230,6 +235,8 @@ void SphereHistory::new_step(StepCache& c, double dt) const {
     const std::size_t to = c.full ? n : c.fast;
     std::copy_n(shared->e.begin(), to, c.e.begin());
     std::copy_n(shared->we.begin(), c.fast, c.we.begin());
+    std::copy_n(shared->wle.begin(), c.fast, c.wle.begin());
+    c.we_sum = shared->we_sum;
     for (std::size_t j = 0; j < kPoints; ++j) std::copy_n(shared->m.begin() + j * n, to, c.m.begin() + j * n);
     c.sums = shared->sums;
   } else if (fixed_weights_) {
@@ -248,7 +255,13 @@ void SphereHistory::fill_basset(StepCache& c, double dt) const {
   c.fast = fast_.first(dt);
   c.full = c.fast == n;
   fill_step(c, dt, 0, c.fast);
-  for (std::size_t i = 0; i < c.fast; ++i) c.we[i] = w_[i] * c.e[i];
+  const auto& lam = soe_->rates();
+  c.we_sum = 0;
+  for (std::size_t i = 0; i < c.fast; ++i) {
+    c.we[i] = w_[i] * c.e[i];
+    c.wle[i] = c.we[i] * lam[i];
+    c.we_sum += c.we[i];
+  }
   const auto outer = fast_.sums(dt, c.fast);
   for (std::size_t j = 0; j < kPoints; ++j) c.sums[j + 1] = dot(w_.data(), &c.m[j * n], c.fast) + outer[j];
 }
@@ -262,15 +275,14 @@ int SphereHistory::slot_for(double dt) const {
   return lru;
 }
 
-bool SphereHistory::in_step(double t, double U) const {
-  const double dt = t - tn_;
-  if (!(dt > 0) || np_ == 0) return false;
+const SphereHistory::StepCache& SphereHistory::step_at(double dt) const {
   if (cache_[cur_].dt != dt) {
     cur_ = slot_for(dt);
     if (cache_[cur_].dt != dt) new_step(cache_[cur_], dt);
   }
-  cache_[cur_].used = ++uses_;
-  if (StepCache& c = cache_[cur_]; c.z_gen != z_gen_) {
+  StepCache& c = cache_[cur_];
+  c.used = ++uses_;
+  if (c.z_gen != z_gen_) {
     c.q_at = horner(pq_.data(), np_ - 1, dt);
     c.w_at = horner(pw_.data(), np_, dt);
     if (fixed_weights_) {
@@ -283,10 +295,32 @@ bool SphereHistory::in_step(double t, double U) const {
     }
     c.z_gen = z_gen_;
   }
+  return c;
+}
+
+bool SphereHistory::in_step(double t, double U) const {
+  const double dt = t - tn_;
+  if (!(dt > 0) || np_ == 0) return false;
   // P = Q + ((U − Q(Δ))/ω(Δ)) ω: the step's own part Q and ω (step_polynomial) and the current (t, U).
-  const StepCache& c = cache_[cur_];
+  const StepCache& c = step_at(dt);
   c_now_ = (U - c.q_at) / c.w_at;
   return true;
+}
+
+std::array<double, SphereHistory::kPoints> SphereHistory::slopes_through(const double* s, const double* u, int m) {
+  // Newton's divided differences, expanded into monomials c_j; the slopes are (j + 1) c_(j+1).
+  std::array<double, kPoints + 1> dd{}, c{};
+  for (int k = 0; k < m; ++k) dd[k] = u[k];
+  for (int k = 1; k < m; ++k)
+    for (int i = m - 1; i >= k; --i) dd[i] = (dd[i] - dd[i - 1]) / (s[i] - s[i - k]);
+  c[0] = dd[m - 1];
+  for (int k = m - 2; k >= 0; --k) {
+    for (int j = m - 1 - k; j >= 1; --j) c[j] = c[j - 1] - s[k] * c[j];
+    c[0] = dd[k] - s[k] * c[0];
+  }
+  std::array<double, kPoints> d{};
+  for (int j = 0; j + 1 < m; ++j) d[j] = (j + 1) * c[j + 1];
+  return d;
 }
 
 void SphereHistory::step_polynomial() {
@@ -323,11 +357,12 @@ double SphereHistory::horner(const double* c, int degree, double x) {
   return v;
 }
 
-double SphereHistory::in_step_slope(int j) const {
-  return (j + 1 < np_ ? (j + 1) * pq_[j + 1] : 0.0) + c_now_ * (j + 1) * pw_[j + 1];
+double SphereHistory::in_step_slope(int j, double c) const {
+  return (j + 1 < np_ ? (j + 1) * pq_[j + 1] : 0.0) + c * (j + 1) * pw_[j + 1];
 }
 
 double SphereHistory::memory_sum(double t, double U, std::span<const double> w) const {
+  if (window_ && t < acc_t_ && t > tn_) return output_sum(t - tn_);  // an output inside the accepted step
   if (!in_step(t, U)) {
     double sum = 0;
     for (std::size_t i = 0; i < z_.size(); ++i) sum += w[i] * z_[i];
@@ -352,17 +387,89 @@ void SphereHistory::modes_in_step(const StepCache& c, std::span<double> out) con
   for (std::size_t i = 0; i < n; ++i) o[i] = e[i] * z[i] + (d[0] * M0[i] + d[1] * M1[i] + d[2] * M2[i]);
 }
 
+void SphereHistory::accept_step(double t, double U) {
+  if (!stepwise() || !fixed_weights_ || np_ == 0 || !(t > tn_)) return;
+  window_ = true;
+  acc_t_ = t;
+  acc_u_ = U;
+  outputs_.reset();
+  outputs_built_ = false;
+}
+
+StepOutputs::End SphereHistory::end_of(const StepCache& c, double cf) const {
+  // S = Σ w e z + Σ_j P'_j Σ w M_j; S' = Σ w (P' − λ z) = −Σ w λ e z + P'_0 Σ w e + Σ_(j≥1) j P'_j Σ w M_(j−1),
+  // with λ M_0 = 1 − e and λ M_j = Δ^j − j M_(j−1) (the weights' sum cancels).
+  StepOutputs::End e;
+  e.value = c.sums[0] + c.a + cf * c.b;
+  e.slope = in_step_slope(0, cf) * c.we_sum - dot(c.wle.data(), z_.data(), c.fast);
+  for (int j = 1; j < np_; ++j) e.slope += j * in_step_slope(j, cf) * c.sums[j];
+  return e;
+}
+
+double SphereHistory::check_lag(double h) const {
+  double best = 0.5 * h;
+  double dist = INFINITY;
+  for (const auto& c : cache_)
+    if (c.dt >= StepOutputs::kCheckFrom * h && c.dt <= (1 - StepOutputs::kCheckFrom) * h && std::abs(c.dt - 0.5 * h) < dist)
+      best = c.dt, dist = std::abs(c.dt - 0.5 * h);
+  return best;
+}
+
+void SphereHistory::build_outputs() const {
+  outputs_built_ = true;
+  const double h = acc_t_ - tn_;
+  const StepCache& ce = step_at(h);
+  out_cf_ = (acc_u_ - ce.q_at) / ce.w_at;  // P through the accepted end
+  if (!interpolate_ || !left_ok_) return;
+  const StepOutputs::End end = end_of(ce, out_cf_);
+  const double dc = check_lag(h);
+  const StepCache& cc = step_at(dc);
+  const double sc = cc.sums[0] + cc.a + out_cf_ * cc.b;
+  const double scale = std::max({std::abs(left_.value), std::abs(sc), std::abs(end.value)});
+  const double tol = output_rtol_ * scale + output_atol_;
+  // Beyond the solver's tolerance, the memory's own error in the step: its value at Δc with the polynomial one degree
+  // lower (the oldest point left out). The interpolant adds no more than that.
+  double own = 0;
+  if (np_ >= 2 && StepOutputs::estimate(h, left_, end, dc, sc) > tol) {
+    std::array<double, kPoints + 1> sk{}, uk{};
+    for (int k = 0; k + 1 < np_; ++k) sk[k] = pt_[k] - tn_, uk[k] = pu_[k];
+    sk[np_ - 1] = h, uk[np_ - 1] = acc_u_;
+    const auto d = slopes_through(sk.data(), uk.data(), np_);
+    double low = cc.sums[0];
+    for (int j = 0; j + 1 < np_; ++j) low += d[j] * cc.sums[j + 1];
+    own = std::abs(sc - low);
+  }
+  outputs_.emplace(h, left_, end, dc, sc, std::max(tol, own));
+  outputs_end_ = end;
+}
+
+double SphereHistory::output_sum(double dt) const {
+  if (!outputs_built_) build_outputs();
+  if (outputs_ && outputs_->accepted()) {
+    ++interpolated_;
+    return outputs_->value(dt);
+  }
+  ++exact_outputs_;
+  const StepCache& c = step_at(dt);
+  return c.sums[0] + c.a + out_cf_ * c.b;
+}
+
 void SphereHistory::advance_memory(double t, double U, bool restart) {
   if (!stepwise()) return;
-  if (in_step(t, U)) {
+  const bool built_end = window_ && outputs_built_ && outputs_;  // the interpolant's end: the next step's start
+  window_ = false;
+  const bool moved = in_step(t, U);
+  if (!moved && np_ > 0 && !restart) return;  // not a new time
+  // The end's value and slope start the next step's interpolant (not across a restart: U' may jump there).
+  left_ok_ = moved && !restart && fixed_weights_ && interpolate_;
+  if (left_ok_) left_ = built_end && t == acc_t_ ? outputs_end_ : end_of(cache_[cur_], c_now_);
+  if (moved) {
     StepCache& c = cache_[cur_];
     if (!c.full) {  // Basset: the fast modes too (e = 0, no exponential)
       fill_step(c, c.dt, c.fast, soe_->modes());
       c.full = true;
     }
     modes_in_step(c, z_);
-  } else if (np_ > 0 && !restart) {
-    return;  // not a new time
   }
   if (restart || np_ == 0) {
     np_ = 1;

@@ -28,12 +28,14 @@
 // only down to min_lag: its error there is that of holding U' constant over the last min_lag.
 #include <array>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "contact/history_kernel.hpp"
 #include "contact/soe_fast_modes.hpp"
+#include "contact/step_outputs.hpp"
 
 namespace imcol::contact {
 
@@ -46,6 +48,11 @@ struct HistoryOptions {
   bool impulsive = false;
   bool initial_re = false;     // finite-Re kernels: Re frozen at |U(0)|
   double direct_step = 0;      // s (resolved, > 0) for the direct evaluator
+  // soe-step, Basset: outputs inside an accepted step (rows, the energy quadrature's middle) see the memory along the
+  // step's own polynomial; with interpolate_outputs, from the step's interpolant (contact/step_outputs.hpp) where its
+  // error estimate is below output_rtol |S| + output_atol [m/s] or the memory's own error in the step.
+  bool interpolate_outputs = false;
+  double output_rtol = 0, output_atol = 0;
 };
 
 /// The sum-of-exponentials kernel for these options, built once per process and per (kernel, D, ν, min_lag,
@@ -87,6 +94,13 @@ class SphereHistory {
   /// An accepted step (restart = false) or a restart to t with velocity U: the modes move to t with the
   /// polynomial of that step; a restart keeps only (t, U) as the next polynomial's history.
   void advance_memory(double t, double U, bool restart);
+  /// The step to (t, U) is accepted; until advance_memory, evaluations inside it are its outputs (rows, the energy
+  /// quadrature's middle). With fixed weights they take the memory along the step's polynomial through (t, U): from
+  /// the step's interpolant where it is accurate (interpolate_outputs), else exactly.
+  void accept_step(double t, double U);
+  /// Outputs of accepted steps so far: from the interpolant, and evaluated exactly (counted by accept_step's windows).
+  long interpolated_outputs() const { return interpolated_; }
+  long exact_outputs() const { return exact_outputs_; }
   /// soe-step: reuse `twin`'s e^(−λΔ), M and their weighted sums at the same Δ when both have the same exponentials
   /// (equal spheres share one cached kernel).
   void share_steps_with(const SphereHistory* twin);
@@ -137,6 +151,8 @@ class SphereHistory {
     long z_gen = -1;
     long used = 0;                      // when last used (uses_), for the replacement
     std::vector<double> e, we, m;       // e^(−λ_i Δ), Basset's w_i e^(−λ_i Δ); M_ij at [j · modes + i]
+    std::vector<double> wle;            // Basset: w_i λ_i e^(−λ_i Δ)
+    double we_sum = 0;                  // Basset: Σ w_i e^(−λ_i Δ)
     std::size_t fast = 0;               // Basset: e, we, M kept for the modes below `fast` only, until `full`
     bool full = false;                  // e and M for every mode (advance_memory, Re-dependent weights)
     std::array<double, kPoints + 1> sums{};  // Basset: Σ w_i e^(−λ_i Δ) z_i, Σ w_i M_ij
@@ -150,6 +166,8 @@ class SphereHistory {
   mutable long uses_ = 0;
   /// The slot holding Δ = dt, or the least recently used one.
   int slot_for(double dt) const;
+  /// The slot at Δ = dt > 0 (found or filled), its sums those of the current modes; it becomes cur_.
+  const StepCache& step_at(double dt) const;
   const SphereHistory* twin_ = nullptr; // an equal sphere (same exponentials) whose e and M are reused
   /// e and M of the modes [from, to) at Δ = dt.
   void fill_step(StepCache& c, double dt, std::size_t from, std::size_t to) const;
@@ -166,8 +184,31 @@ class SphereHistory {
   std::array<double, kPoints + 1> pw_{};
   mutable double c_now_ = 0;
   void step_polynomial();
-  /// P'(σ) = Σ_j slope_j σ^j, j < np_.
-  double in_step_slope(int j) const;
+  /// P'(σ) = Σ_j slope_j σ^j, j < np_ (P's coefficient c: c_now_, or the one given).
+  double in_step_slope(int j) const { return in_step_slope(j, c_now_); }
+  double in_step_slope(int j, double c) const;
+  /// The slopes P'_j (σ^j) of the polynomial through (s_k, u_k), k < m ≤ kPoints (σ = t − t_n).
+  static std::array<double, kPoints> slopes_through(const double* s, const double* u, int m);
+  // Outputs inside the accepted step (accept_step .. advance_memory), Basset's fixed weights only.
+  /// S and S' at the step's end Δ = dt from slot c with P's coefficient cf (before the modes move).
+  StepOutputs::End end_of(const StepCache& c, double cf) const;
+  /// The step's polynomial through the accepted end and, with interpolate_outputs, its interpolant: at the first output.
+  void build_outputs() const;
+  /// Σ w_i z_i at Δ = dt inside the accepted step (an output).
+  double output_sum(double dt) const;
+  /// The interior lag where the interpolant is checked: a kept Δ in [h/4, 3h/4] nearest h/2, else h/2.
+  double check_lag(double h) const;
+  bool interpolate_ = false;
+  double output_rtol_ = 0, output_atol_ = 0;
+  mutable double out_cf_ = 0;            // P's coefficient c through the accepted end
+  bool window_ = false;                  // between accept_step and advance_memory
+  double acc_t_ = 0, acc_u_ = 0;         // the accepted step's end
+  StepOutputs::End left_{};              // S, S' at t_n: the end of the step before
+  bool left_ok_ = false;                 // false at the start and after a restart (U' may jump there)
+  mutable StepOutputs::End outputs_end_{};  // the accepted end's, when the interpolant was built
+  mutable std::optional<StepOutputs> outputs_;
+  mutable bool outputs_built_ = false;
+  mutable long interpolated_ = 0, exact_outputs_ = 0;
   static double horner(const double* c, int degree, double x);
   static double dot(const double* a, const double* b, std::size_t n);  // Σ a_i b_i
 };

@@ -409,6 +409,7 @@ void read_history(Reader& top, Scene& sc) {
   r.choice("wall_correction", h.wall_correction);
   h.direct_step = r.number("direct_step", 0.0);
   if (h.direct_step != 0) r.positive("direct_step", h.direct_step);  // 0 = automatic
+  h.interpolate_outputs = r.boolean("interpolate_outputs", h.interpolate_outputs);
   if (h.min_lag > 0 && h.horizon > 0 && h.horizon < 10 * h.min_lag)
     r.fail("horizon", "must be at least 10 × min_lag (" + fmt_number(h.min_lag) + " s)");
   r.finish();

@@ -122,6 +122,7 @@ struct Scene {
     HistoryReynolds reynolds = HistoryReynolds::instantaneous;  // Re of a finite-Re kernel: instantaneous |U| | initial |U(0)|
     WallCorrection wall_correction = WallCorrection::none;  // K_H: none (1) | added-mass (1 + 3W(δ**), choice)
     double direct_step = 0;            // s; the direct evaluator's fixed step; 0 = automatic
+    bool interpolate_outputs = true;   // soe-step, Basset: outputs inside a step from its interpolant where accurate
   } history;
   struct Solver {
     IntegratorMethod integrator = IntegratorMethod::cvode;  // cvode | ida

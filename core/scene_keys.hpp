@@ -19,7 +19,7 @@ inline const Keys lubrication = {"model", "cutoff", "h_c", "limit", "roughness"}
 inline const Keys added_mass = {"model", "dw_floor"};
 inline const Keys contact = {"delta_ss", "delta_sl", "e_dry", "beta", "law"};
 inline const Keys history = {"kernel", "evaluator", "tolerance", "modes", "min_lag", "horizon", "start", "reynolds",
-                             "wall_correction", "direct_step"};
+                             "wall_correction", "direct_step", "interpolate_outputs"};
 inline const Keys solver = {"integrator", "linear_solver", "krylov_tol", "rtol", "atol", "t_end", "max_step", "max_steps",
                             "step_budget"};
 inline const Keys measure = {"window", "instant_gap", "stall_fraction", "bounces", "fit_distance", "at_gap", "e",

@@ -101,6 +101,7 @@ inline void put_history(Lines& o, const Scene& sc) {
   o.put("history.reynolds", to_string(h.reynolds));
   o.put("history.wall_correction", to_string(h.wall_correction));
   o.put("history.direct_step", num(h.direct_step));
+  o.put("history.interpolate_outputs", h.interpolate_outputs ? "true" : "false");
 }
 
 inline void put_solver(Lines& o, const Scene& sc) {

@@ -72,6 +72,9 @@ class DynamicalSystem {
   /// restart = true, at t = 0 and at each re-initialisation: a system that keeps state outside y (memory
   /// advanced step by step) updates it here. Samples inside the step come before the call.
   virtual void at_step(double /*t*/, std::span<const double> /*y*/, bool /*restart*/) {}
+  /// Called once a step to (t, y) is accepted, before its samples and quadratures and before at_step: evaluations
+  /// inside the step from here to at_step are outputs (the solver's own trial evaluations are over).
+  virtual void step_accepted(double /*t*/, std::span<const double> /*y*/) {}
 
   /// Quadratures carried beside the state (integrals q' = w(t, y) the solution does not depend on, such as the work of
   /// each force): their number and integrands. They take no part in the error test or the Newton iteration.
@@ -91,7 +94,8 @@ class Observer {
   virtual void quadratures(std::span<const double> q) { (void)q; }
   /// After each accepted solver step: the steps taken so far in this run (for a progress display).
   virtual void stepped(long steps) { (void)steps; }
-  /// After each accepted solver step that ends without an event: its end (t, y), after the system's at_step.
+  /// After each accepted solver step that ends without an event: its end (t, y), before the system's at_step (an
+  /// output of the step, as its samples).
   virtual void step_end(double t, std::span<const double> y) { (void)t, (void)y; }
 };
 

@@ -799,6 +799,8 @@ double Integrator::advance(double t_target) {
       // The solver has stepped past t_limit (an event or a sample moved the stop time back, which CVODE's
       // stop time cannot follow): the samples and the state at t_limit come from its interpolant.
       t_new = t_limit;
+      be->interpolate(t_new, m.yi.get());
+      sys.step_accepted(t_new, view(m.yi.get()));
       m.integrate_quadratures_to(t_new);
       if (m.emit_outputs(t_new, false)) continue;
       be->interpolate(t_new, m.y.get());
@@ -811,6 +813,7 @@ double Integrator::advance(double t_target) {
       flag = be->step(tout, t_limit, m.y.get(), t_new);
       if (flag < 0) m.fail(flag);
       if (m.cb.error) m.rethrow_model_error();
+      sys.step_accepted(t_new, view(m.y.get()));
       m.integrate_quadratures(t_new, m.y.get());
       m.observer.stepped(++m.steps_taken);
       const double sampled = m.t_sampled;
@@ -822,8 +825,8 @@ double Integrator::advance(double t_target) {
       if (m.on_roots()) break;
       continue;
     }
-    sys.at_step(t, view(m.y.get()), false);  // the step to t is accepted (its samples are taken)
     m.observer.step_end(t, view(m.y.get()));
+    sys.at_step(t, view(m.y.get()), false);  // the step to t is accepted (its samples are taken)
     const double t_eps_new = 1e-12 * std::max(1.0, std::abs(t));
     if (t >= bp - t_eps_new) {
       sys.at_breakpoint(t, view(m.y.get()));

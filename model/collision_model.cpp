@@ -162,8 +162,19 @@ void CollisionModel::initial_state(std::span<double> y) const {
 }
 
 void CollisionModel::at_step(double t, std::span<const double> y, bool restart) {
+  end_.open = false;
   const Evaluation ev = kinematic_state(y);
   for (const auto& term : terms_) term->at_step(t, ev, restart);
+}
+
+void CollisionModel::step_accepted(double t, std::span<const double> y) {
+  if (keep_step_ends_) {
+    end_.open = true;
+    end_.t = t;
+    end_.y.assign(y.begin(), y.end());
+    end_.ev.reset();
+  }
+  if (history_) history_->step_accepted(t, kinematic_state(y));
 }
 
 void CollisionModel::kinematics(std::span<const double> y, Evaluation& ev) const {
@@ -273,6 +284,12 @@ std::array<double, 2> CollisionModel::total_forces(const Evaluation& ev) const {
 }
 
 Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
+  if (!end_.open || t != end_.t || !std::equal(y.begin(), y.end(), end_.y.begin(), end_.y.end())) return evaluate_at(t, y);
+  if (!end_.ev) end_.ev = evaluate_at(t, y);
+  return *end_.ev;
+}
+
+Evaluation CollisionModel::evaluate_at(double t, std::span<const double> y) const {
   Evaluation ev;
   kinematics(y, ev);
   forces(t, y, ev);
@@ -480,6 +497,7 @@ void CollisionModel::observe(double t, const Evaluation& ev) {
 }
 
 EventAction CollisionModel::on_roots(std::span<const std::size_t> found, double t, std::span<double> y) {
+  end_.open = false;  // the events change the phase and the law
   // Handle in a fixed order so that coincident roots (e.g. instant_gap == delta_ss) are deterministic.
   const auto kinds = armed_kind_;
   const auto specs = armed_;

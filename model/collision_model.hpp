@@ -70,11 +70,15 @@ class CollisionModel : public DynamicalSystem {
   double next_breakpoint(double t) const override;
   void at_breakpoint(double t, std::span<const double> y) override;
   void at_step(double t, std::span<const double> y, bool restart) override;  // the terms' step hooks (soe-step memory)
+  void step_accepted(double t, std::span<const double> y) override;
   bool modal_structure(double t, std::span<const double> y, ModalStructure& s) const override;
 
   // ---- Coupling seam (flow effect, MODEL.md (6.10), §5) ----
   /// The simulated force for the coming flow step; the right-hand side uses it from now on.
-  void set_simulated_force(const SimulatedForce& f) { sim_ = f; }
+  void set_simulated_force(const SimulatedForce& f) {
+    sim_ = f;
+    end_.open = false;
+  }
   /// H(δ/δ_SL): smoothstep on [0, 2], 1 at contact, ½ at δ_SL, 0 beyond 2δ_SL (and for a free sphere).
   double blend(double gap) const;
   /// The added mass kept implicit at this gap, including the estimate that stands for f_SIM's (§5).
@@ -88,7 +92,10 @@ class CollisionModel : public DynamicalSystem {
   std::array<double, 2> accelerations_without_contact(double t, std::span<const double> y) const;
 
   // ---- Physics, for reporting ----
+  /// The model at (t, y). With keep_step_ends, at the end of an accepted step (step_accepted .. at_step) it is
+  /// evaluated once and kept for the outputs there (the energy quadrature's end, a row at every step).
   Evaluation evaluate(double t, std::span<const double> y) const;
+  void keep_step_ends(bool on) { keep_step_ends_ = on; }
   /// Adds a rule that measures the run or ends it (model/watcher.hpp; run/ adds them before integrating) and re-arms
   /// the roots. The watcher must outlive the integration.
   void watch(EventWatcher& w);
@@ -151,6 +158,15 @@ class CollisionModel : public DynamicalSystem {
   /// Forces without the added-mass acceleration terms: each term's slots, then m_eff in registration order, then the
   /// flow blend (MODEL.md (6.10), §5); fills ev.f, ev.m_eff and ev.m_couple of a fresh ev (kinematics() done).
   void forces(double t, std::span<const double> y, Evaluation& ev) const;
+  Evaluation evaluate_at(double t, std::span<const double> y) const;
+  struct EndOfStep {
+    bool open = false;
+    double t = 0;
+    std::vector<double> y;
+    std::optional<Evaluation> ev;
+  };
+  mutable EndOfStep end_;  // the accepted step's end and its evaluation, once made
+  bool keep_step_ends_ = false;
   /// f_THR of sphere m from an evaluated state (forces() done) and the accelerations.
   double analytic_fluid_force(const Evaluation& ev, const std::array<double, 2>& a, std::size_t m) const;
   void freeze_contact(double t, double u_rel);
@@ -173,7 +189,7 @@ class CollisionModel : public DynamicalSystem {
   std::size_t states_ = 0;   // the terms' states, after the core states
   std::vector<const ForceTerm*> stateful_;  // the terms with states, in registration order (their rhs and residual rows)
   double term_step_cap_ = std::numeric_limits<double>::infinity();  // the terms' cap on the step (direct history grid), s
-  const HistoryTerm* history_ = nullptr;  // among terms_, or null: its options and memories, for reporting
+  HistoryTerm* history_ = nullptr;  // among terms_, or null: its options and memories (reporting, the accepted steps)
   AddedMassForm added_mass_;        // the model's own added mass, also the flow blend's estimate
   std::optional<FlowBlend> flow_;   // with the flow effect
   bool coupled_ = false;     // the flow effect: f_SL = H f_THR + (1 − H) f_SIM

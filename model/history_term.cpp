@@ -22,6 +22,11 @@ HistoryTerm::HistoryTerm(const Scene& sc, const PairGeometry& p) : wall_(sc, p),
   o.modes = static_cast<int>(h.modes);
   o.impulsive = h.start == HistoryStart::impulsive;
   o.initial_re = h.reynolds == HistoryReynolds::initial;
+  // Outputs inside a step are interpolated to the solver's own accuracy (rtol of the memory sum, and the memory's
+  // velocity floor of CollisionModel::absolute_tolerances) or to the memory's own error in that step, if larger.
+  o.interpolate_outputs = h.interpolate_outputs;
+  o.output_rtol = sc.solver.rtol;
+  o.output_atol = std::max(sc.solver.atol, sc.solver.rtol) * p.u_ref;
   kh_added_mass_ = h.wall_correction == WallCorrection::added_mass && p.has_target();
   const double t_fast = fastest_time(sc, p);
   o.horizon = h.horizon > 0 ? h.horizon : sc.solver.t_end;
@@ -176,6 +181,11 @@ void HistoryTerm::at_breakpoint(double t, const Evaluation& ev) {
 void HistoryTerm::at_step(double t, const Evaluation& ev, bool restart) {
   if (opt_.evaluator != HistoryEvaluator::soe_step) return;
   for (std::size_t m = 0; m < n_spheres_; ++m) h_[m]->advance_memory(t, ev.u[m], restart);
+}
+
+void HistoryTerm::step_accepted(double t, const Evaluation& ev) {
+  if (opt_.evaluator != HistoryEvaluator::soe_step) return;
+  for (std::size_t m = 0; m < n_spheres_; ++m) h_[m]->accept_step(t, ev.u[m]);
 }
 
 bool HistoryTerm::modal_structure(const Evaluation& ev, std::size_t core, ModalStructure& s) const {

@@ -85,6 +85,7 @@ Recorder::Recorder(model::CollisionModel& model, const Scene& sc, bool progress,
   };
   contact_slot_ = first(model::ForceKind::contact);  // the contact law's term
   history_slot_ = first(model::ForceKind::history);
+  model.keep_step_ends(contact_rows_on_);  // a row at every step near contact: its evaluation is the quadrature's
   if (forces_ && sc.has(Effect::flow)) columns_.push_back("H");
   columns_.push_back("event");
 }
