@@ -124,7 +124,8 @@ double SphereHistory::apply_start(double K_H, double m_eff, std::span<double> z)
 }
 
 SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std::span<const double> z) const {
-  const double Re = reynolds(U);
+  const bool jump = impulsive_ && U0_ != 0;
+  const double Re = jump || !fixed_weights_ || direct() ? reynolds(U) : 0.0;  // Basset's weights do not depend on Re
   const double cK = c_ * K_H;
   Term term;
   if (soe_) {
@@ -136,7 +137,7 @@ SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std:
     } else {
       for (std::size_t i = 0; i < w_.size(); ++i) sum += w_[i] * z[i];
     }
-    term.force = -cK * (sum + jump_term(t, Re));
+    term.force = -cK * (jump ? sum + jump_term(t, Re) : sum);
     term.mass = cK * kappa;
     return term;
   }

@@ -115,8 +115,9 @@ std::span<const double> HistoryTerm::memory(std::span<const double> y, std::size
 }
 
 void HistoryTerm::add(const TermInput& in, Evaluation& ev) const {
+  const double kh = K_H(ev.gap);
   for (std::size_t m = 0; m < n_spheres_; ++m) {
-    const auto term = h_[m]->evaluate(in.t, ev.u[m], K_H(ev.gap), memory(in.y, m));
+    const auto term = h_[m]->evaluate(in.t, ev.u[m], kh, memory(in.y, m));
     ev.f[m].term[slot()] = term.force;
     ev.f[m].mass[slot()] = term.mass;
   }
