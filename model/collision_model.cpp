@@ -174,7 +174,8 @@ void CollisionModel::step_accepted(double t, std::span<const double> y) {
     end_.y.assign(y.begin(), y.end());
     end_.ev.reset();
   }
-  if (history_) history_->step_accepted(t, kinematic_state(y));
+  const Evaluation ev = kinematic_state(y);
+  for (const auto& term : terms_) term->step_accepted(t, ev);
 }
 
 void CollisionModel::kinematics(std::span<const double> y, Evaluation& ev) const {

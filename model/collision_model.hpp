@@ -189,7 +189,7 @@ class CollisionModel : public DynamicalSystem {
   std::size_t states_ = 0;   // the terms' states, after the core states
   std::vector<const ForceTerm*> stateful_;  // the terms with states, in registration order (their rhs and residual rows)
   double term_step_cap_ = std::numeric_limits<double>::infinity();  // the terms' cap on the step (direct history grid), s
-  HistoryTerm* history_ = nullptr;  // among terms_, or null: its options and memories (reporting, the accepted steps)
+  const HistoryTerm* history_ = nullptr;  // among terms_, or null: its options and memories, for reporting
   AddedMassForm added_mass_;        // the model's own added mass, also the flow blend's estimate
   std::optional<FlowBlend> flow_;   // with the flow effect
   bool coupled_ = false;     // the flow effect: f_SL = H f_THR + (1 − H) f_SIM

@@ -86,6 +86,8 @@ class ForceTerm {
   virtual void at_breakpoint(double t, const Evaluation& ev) { (void)t, (void)ev; }
   /// After each accepted step (restart: the first after a re-initialisation).
   virtual void at_step(double t, const Evaluation& ev, bool restart) { (void)t, (void)ev, (void)restart; }
+  /// A step to (t, ev) is accepted; the outputs inside it follow (rows, the energy quadrature), then at_step.
+  virtual void step_accepted(double t, const Evaluation& ev) { (void)t, (void)ev; }
 
  protected:
   Choices choices_;

@@ -47,8 +47,7 @@ class HistoryTerm : public ForceTerm {
   double next_breakpoint() const override;
   void at_breakpoint(double t, const Evaluation& ev) override;
   void at_step(double t, const Evaluation& ev, bool restart) override;
-  /// A step to (t, ev) is accepted; its outputs follow, then at_step (soe-step: the memory's outputs in the step).
-  void step_accepted(double t, const Evaluation& ev);
+  void step_accepted(double t, const Evaluation& ev) override;  // soe-step: the memory's outputs inside the step
   bool modal_structure(const Evaluation& ev, std::size_t core, ModalStructure& s) const override;
 
  private:
