@@ -463,7 +463,7 @@ void SphereHistory::advance_memory(double t, double U, bool restart) {
   if (!moved && np_ > 0 && !restart) return;  // not a new time
   // The end's value and slope start the next step's interpolant (not across a restart: U' may jump there).
   left_ok_ = moved && !restart && fixed_weights_ && interpolate_;
-  if (left_ok_) left_ = built_end && t == acc_t_ ? outputs_end_ : end_of(cache_[cur_], c_now_);
+  if (left_ok_) left_ = built_end && t == acc_t_ && U == acc_u_ ? outputs_end_ : end_of(cache_[cur_], c_now_);
   if (moved) {
     StepCache& c = cache_[cur_];
     if (!c.full) {  // Basset: the fast modes too (e = 0, no exponential)

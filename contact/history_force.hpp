@@ -14,7 +14,9 @@
 //          exactly (M_j = ∫_0^Δ σ^j e^(−λ(Δ−σ)) dσ); advance_memory() moves t_n to each accepted step.
 //          A restart (event) forgets the earlier points, where U' may jump. O(1) per evaluation at a
 //          known Δ (Basset); per new Δ, O(modes with λΔ ≤ 40) (Basset's faster modes in closed form,
-//          contact/soe_fast_modes.hpp); O(modes) per accepted step.
+//          contact/soe_fast_modes.hpp); O(modes) per accepted step. Outputs inside an accepted step (accept_step ..
+//          advance_memory) take P through the accepted end and, where accurate, the step's interpolant
+//          (contact/step_outputs.hpp): O(1) each.
 //  direct  product integration on its own fixed grid t_k = kΔ (the integrator stops on it): U piecewise
 //          linear through the grid values and the current U(t), each segment integrated exactly against K
 //          (HistoryKernel::integral). O(t/Δ) per evaluation, O(N²) per run; second order in Δ for smooth U.
