@@ -45,6 +45,12 @@ void put_effects_and_model(RunSummary& s, const CollisionModel& model, const Sce
   HistorySummary h{sc.history.kernel, sc.history.evaluator, std::nullopt};
   if (model.history(0) && model.history_options().evaluator != HistoryEvaluator::direct) h.modes = static_cast<long>(model.history(0)->modes());
   s.history = h;
+  // soe-step: how the memory's outputs inside accepted steps were taken (docs/model-notes.md).
+  long interpolated = 0, exact = 0;
+  for (std::size_t m = 0; m < model.n_spheres(); ++m)
+    if (const auto* hm = model.history(m)) interpolated += hm->interpolated_outputs(), exact += hm->exact_outputs();
+  if (interpolated + exact > 0)
+    s.model.push_back({"history.outputs", std::to_string(interpolated) + " interpolated, " + std::to_string(exact) + " exact"});
 }
 
 /// The events in the order they happened (summary.json's `events`).

@@ -154,6 +154,10 @@ TEST(StepOutputs, ARunsTrajectoryDoesNotMoveAndItsRowsKeepTheExactHistoryForce) 
                                  {{"solver.rtol", "1e-6"}, {"history.interpolate_outputs", interpolate ? "true" : "false"}}));
     };
     const RunResult a = run(true), b = run(false);
+    // The model block says how the outputs were taken.
+    const std::string said_a = a.summary_json["model"]["history.outputs"], said_b = b.summary_json["model"]["history.outputs"];
+    EXPECT_EQ(said_a.rfind("0 interpolated", 0), std::string::npos) << said_a;
+    EXPECT_EQ(said_b.rfind("0 interpolated, ", 0), 0u) << said_b;
     EXPECT_EQ(a.summary_json["e"].get<double>(), b.summary_json["e"].get<double>());
     EXPECT_EQ(a.summary_json["solver"]["steps"].get<long>(), b.summary_json["solver"]["steps"].get<long>());
     ASSERT_EQ(a.rows.size(), b.rows.size());
