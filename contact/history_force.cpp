@@ -70,7 +70,6 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
     for (auto& c : cache_) {
       c.e.assign(soe_->modes(), 0.0);
       c.we.assign(soe_->modes(), 0.0);
-      c.wle.assign(soe_->modes(), 0.0);
       c.m.assign(kPoints * soe_->modes(), 0.0);
     }
     if (fixed_weights_) fast_ = SoeFastModes(soe_->rates(), w_);
@@ -236,8 +235,6 @@ void SphereHistory::new_step(StepCache& c, double dt) const {
     const std::size_t to = c.full ? n : c.fast;
     std::copy_n(shared->e.begin(), to, c.e.begin());
     std::copy_n(shared->we.begin(), c.fast, c.we.begin());
-    std::copy_n(shared->wle.begin(), c.fast, c.wle.begin());
-    c.we_sum = shared->we_sum;
     for (std::size_t j = 0; j < kPoints; ++j) std::copy_n(shared->m.begin() + j * n, to, c.m.begin() + j * n);
     c.sums = shared->sums;
   } else if (fixed_weights_) {
@@ -256,13 +253,7 @@ void SphereHistory::fill_basset(StepCache& c, double dt) const {
   c.fast = fast_.first(dt);
   c.full = c.fast == n;
   fill_step(c, dt, 0, c.fast);
-  const auto& lam = soe_->rates();
-  c.we_sum = 0;
-  for (std::size_t i = 0; i < c.fast; ++i) {
-    c.we[i] = w_[i] * c.e[i];
-    c.wle[i] = c.we[i] * lam[i];
-    c.we_sum += c.we[i];
-  }
+  for (std::size_t i = 0; i < c.fast; ++i) c.we[i] = w_[i] * c.e[i];
   const auto outer = fast_.sums(dt, c.fast);
   for (std::size_t j = 0; j < kPoints; ++j) c.sums[j + 1] = dot(w_.data(), &c.m[j * n], c.fast) + outer[j];
 }
@@ -308,9 +299,9 @@ bool SphereHistory::in_step(double t, double U) const {
   return true;
 }
 
-std::array<double, SphereHistory::kPoints> SphereHistory::slopes_through(const double* s, const double* u, int m) {
-  // Newton's divided differences, expanded into monomials c_j; the slopes are (j + 1) c_(j+1).
-  std::array<double, kPoints + 1> dd{}, c{};
+std::array<double, SphereHistory::kPoints> SphereHistory::monomials_through(const double* s, const double* u, int m) {
+  // Newton's divided differences, expanded into monomials.
+  std::array<double, kPoints> dd{}, c{};
   for (int k = 0; k < m; ++k) dd[k] = u[k];
   for (int k = 1; k < m; ++k)
     for (int i = m - 1; i >= k; --i) dd[i] = (dd[i] - dd[i - 1]) / (s[i] - s[i - k]);
@@ -319,25 +310,16 @@ std::array<double, SphereHistory::kPoints> SphereHistory::slopes_through(const d
     for (int j = m - 1 - k; j >= 1; --j) c[j] = c[j - 1] - s[k] * c[j];
     c[0] = dd[k] - s[k] * c[0];
   }
-  std::array<double, kPoints> d{};
-  for (int j = 0; j + 1 < m; ++j) d[j] = (j + 1) * c[j + 1];
-  return d;
+  return c;
 }
 
 void SphereHistory::step_polynomial() {
-  // Q through the accepted points (s_k, U_k), s_k = t_k − t_n (s_1 = 0), by Newton divided differences, in monomials;
-  // ω(σ) = Π_k (σ − s_k). P' = Q' + c ω' with c = (U − Q(Δ))/ω(Δ) for the current (t, U).
+  // Q through the accepted points (s_k, U_k), s_k = t_k − t_n (s_1 = 0), in monomials; ω(σ) = Π_k (σ − s_k).
+  // P' = Q' + c ω' with c = (U − Q(Δ))/ω(Δ) for the current (t, U).
   const int m = np_;
-  std::array<double, kPoints> sk{}, dd{};
-  for (int k = 0; k < m; ++k) sk[k] = pt_[k] - tn_, dd[k] = pu_[k];
-  for (int k = 1; k < m; ++k)
-    for (int i = m - 1; i >= k; --i) dd[i] = (dd[i] - dd[i - 1]) / (sk[i] - sk[i - k]);
-  pq_.fill(0.0);
-  pq_[0] = dd[m - 1];
-  for (int k = m - 2; k >= 0; --k) {
-    for (int j = m - 1 - k; j >= 1; --j) pq_[j] = pq_[j - 1] - sk[k] * pq_[j];
-    pq_[0] = dd[k] - sk[k] * pq_[0];
-  }
+  std::array<double, kPoints> sk{};
+  for (int k = 0; k < m; ++k) sk[k] = pt_[k] - tn_;
+  pq_ = monomials_through(sk.data(), pu_.data(), m);
   pw_.fill(0.0);
   pw_[0] = 1;
   for (int k = 0; k < m; ++k) {
@@ -400,9 +382,15 @@ void SphereHistory::accept_step(double t, double U) {
 StepOutputs::End SphereHistory::end_of(const StepCache& c, double cf) const {
   // S = Σ w e z + Σ_j P'_j Σ w M_j; S' = Σ w (P' − λ z) = −Σ w λ e z + P'_0 Σ w e + Σ_(j≥1) j P'_j Σ w M_(j−1),
   // with λ M_0 = 1 − e and λ M_j = Δ^j − j M_(j−1) (the weights' sum cancels).
+  const auto& lam = soe_->rates();
+  double wlez = 0, we = 0;
+  for (std::size_t i = 0; i < c.fast; ++i) {
+    wlez += c.we[i] * lam[i] * z_[i];
+    we += c.we[i];
+  }
   StepOutputs::End e;
   e.value = c.sums[0] + c.a + cf * c.b;
-  e.slope = in_step_slope(0, cf) * c.we_sum - dot(c.wle.data(), z_.data(), c.fast);
+  e.slope = in_step_slope(0, cf) * we - wlez;
   for (int j = 1; j < np_; ++j) e.slope += j * in_step_slope(j, cf) * c.sums[j];
   return e;
 }
@@ -432,12 +420,12 @@ void SphereHistory::build_outputs() const {
   // lower (the oldest point left out). The interpolant adds no more than that.
   double own = 0;
   if (np_ >= 2 && StepOutputs::estimate(h, left_, end, dc, sc) > tol) {
-    std::array<double, kPoints + 1> sk{}, uk{};
+    std::array<double, kPoints> sk{}, uk{};
     for (int k = 0; k + 1 < np_; ++k) sk[k] = pt_[k] - tn_, uk[k] = pu_[k];
     sk[np_ - 1] = h, uk[np_ - 1] = acc_u_;
-    const auto d = slopes_through(sk.data(), uk.data(), np_);
-    double low = cc.sums[0];
-    for (int j = 0; j + 1 < np_; ++j) low += d[j] * cc.sums[j + 1];
+    const auto c = monomials_through(sk.data(), uk.data(), np_);
+    double low = cc.sums[0];  // + Σ_j P'_j Σ w M_j, P'_j = (j + 1) c_(j+1)
+    for (int j = 0; j + 1 < np_; ++j) low += (j + 1) * c[j + 1] * cc.sums[j + 1];
     own = std::abs(sc - low);
   }
   outputs_.emplace(h, left_, end, dc, sc, std::max(tol, own));

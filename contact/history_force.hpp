@@ -153,8 +153,6 @@ class SphereHistory {
     long z_gen = -1;
     long used = 0;                      // when last used (uses_), for the replacement
     std::vector<double> e, we, m;       // e^(−λ_i Δ), Basset's w_i e^(−λ_i Δ); M_ij at [j · modes + i]
-    std::vector<double> wle;            // Basset: w_i λ_i e^(−λ_i Δ)
-    double we_sum = 0;                  // Basset: Σ w_i e^(−λ_i Δ)
     std::size_t fast = 0;               // Basset: e, we, M kept for the modes below `fast` only, until `full`
     bool full = false;                  // e and M for every mode (advance_memory, Re-dependent weights)
     std::array<double, kPoints + 1> sums{};  // Basset: Σ w_i e^(−λ_i Δ) z_i, Σ w_i M_ij
@@ -189,8 +187,8 @@ class SphereHistory {
   /// P'(σ) = Σ_j slope_j σ^j, j < np_ (P's coefficient c: c_now_, or the one given).
   double in_step_slope(int j) const { return in_step_slope(j, c_now_); }
   double in_step_slope(int j, double c) const;
-  /// The slopes P'_j (σ^j) of the polynomial through (s_k, u_k), k < m ≤ kPoints (σ = t − t_n).
-  static std::array<double, kPoints> slopes_through(const double* s, const double* u, int m);
+  /// The monomial coefficients (in σ = t − t_n) of the polynomial through (s_k, u_k), k < m ≤ kPoints.
+  static std::array<double, kPoints> monomials_through(const double* s, const double* u, int m);
   // Outputs inside the accepted step (accept_step .. advance_memory), Basset's fixed weights only.
   /// S and S' at the step's end Δ = dt from slot c with P's coefficient cf (before the modes move).
   StepOutputs::End end_of(const StepCache& c, double cf) const;

@@ -616,12 +616,6 @@ struct Integrator::Impl {
     give_quadratures(quad.value());
     observer.sample(t_s, view(y.get()), false);
   }
-  /// Integrates the quadratures from t to t1 within the last step, the state at t1 from the solver's interpolant.
-  void integrate_quadratures_to(double t1) {
-    if (!quad.active()) return;
-    be->interpolate(t1, yi.get());
-    integrate_quadratures(t1, yi.get());
-  }
   /// Integrates the quadratures over the last step, from t to t1 (y1 = y(t1)).
   void integrate_quadratures(double t1, N_Vector y1) {
     if (!quad.active() || !(t1 > t)) return;
@@ -801,7 +795,7 @@ double Integrator::advance(double t_target) {
       t_new = t_limit;
       be->interpolate(t_new, m.yi.get());
       sys.step_accepted(t_new, view(m.yi.get()));
-      m.integrate_quadratures_to(t_new);
+      m.integrate_quadratures(t_new, m.yi.get());
       if (m.emit_outputs(t_new, false)) continue;
       be->interpolate(t_new, m.y.get());
     } else {
