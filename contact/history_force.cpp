@@ -66,6 +66,7 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
   if (stepwise()) {
     z_.assign(soe_->modes(), impulsive_ ? U0 : 0.0);
     zs_.assign(soe_->modes(), 0.0);
+    z_next_.assign(soe_->modes(), 0.0);
     for (double l : soe_->rates()) inv_rate_.push_back(1 / l);
     for (auto& c : cache_) {
       c.e.assign(soe_->modes(), 0.0);
@@ -74,6 +75,7 @@ SphereHistory::SphereHistory(const HistoryOptions& opt, double a, double mu, dou
     }
     if (fixed_weights_) fast_ = SoeFastModes(soe_->rates(), w_);
   }
+  lean_ = stepwise() && fixed_weights_ && !(impulsive_ && U0_ != 0);
 }
 
 double SphereHistory::reynolds(double U) const { return std::abs(initial_re_ ? U0_ : U) * D_ / nu_; }
@@ -122,7 +124,7 @@ double SphereHistory::apply_start(double K_H, double m_eff, std::span<double> z)
   return dU;
 }
 
-SphereHistory::Term SphereHistory::evaluate(double t, double U, double K_H, std::span<const double> z) const {
+SphereHistory::Term SphereHistory::evaluate_general(double t, double U, double K_H, std::span<const double> z) const {
   const bool jump = impulsive_ && U0_ != 0;
   const double Re = jump || !fixed_weights_ || direct() ? reynolds(U) : 0.0;  // Basset's weights do not depend on Re
   const double cK = c_ * K_H;
@@ -245,7 +247,7 @@ void SphereHistory::new_step(StepCache& c, double dt) const {
     c.full = true;
   }
   c.dt = dt;
-  c.z_gen = -1;
+  c.z_gen = c.sum0_gen = -1;
 }
 
 void SphereHistory::fill_basset(StepCache& c, double dt) const {
@@ -278,7 +280,8 @@ const SphereHistory::StepCache& SphereHistory::step_at(double dt) const {
     c.q_at = horner(pq_.data(), np_ - 1, dt);
     c.w_at = horner(pw_.data(), np_, dt);
     if (fixed_weights_) {
-      c.sums[0] = dot(c.we.data(), z_.data(), c.fast);  // the fast modes' e^(−λΔ) is below rounding
+      if (c.sum0_gen != z_gen_) c.sums[0] = dot(c.we.data(), z_.data(), c.fast);  // the fast modes' e^(−λΔ): 0
+      c.sum0_gen = z_gen_;
       c.a = c.b = 0;
       for (int j = 0; j < np_; ++j) {
         if (j + 1 < np_) c.a += (j + 1) * pq_[j + 1] * c.sums[j + 1];
@@ -299,9 +302,12 @@ bool SphereHistory::in_step(double t, double U) const {
   return true;
 }
 
-std::array<double, SphereHistory::kPoints> SphereHistory::monomials_through(const double* s, const double* u, int m) {
-  // Newton's divided differences, expanded into monomials.
-  std::array<double, kPoints> dd{}, c{};
+namespace {
+// Newton's divided differences through m points, expanded into monomials (m a constant: the loops unroll).
+template <int m, std::size_t n>
+std::array<double, n> newton_monomials(const double* s, const double* u) {
+  static_assert(m >= 1 && m <= static_cast<int>(n));
+  std::array<double, n> dd{}, c{};
   for (int k = 0; k < m; ++k) dd[k] = u[k];
   for (int k = 1; k < m; ++k)
     for (int i = m - 1; i >= k; --i) dd[i] = (dd[i] - dd[i - 1]) / (s[i] - s[i - k]);
@@ -313,18 +319,41 @@ std::array<double, SphereHistory::kPoints> SphereHistory::monomials_through(cons
   return c;
 }
 
+// Π_(k<m) (σ − s_k) in monomials of σ.
+template <int m, std::size_t n>
+std::array<double, n> node_polynomial(const double* s) {
+  static_assert(m >= 0 && m < static_cast<int>(n));
+  std::array<double, n> p{};
+  p[0] = 1;
+  for (int k = 0; k < m; ++k) {
+    for (int j = k + 1; j >= 1; --j) p[j] = p[j - 1] - s[k] * p[j];
+    p[0] = -s[k] * p[0];
+  }
+  return p;
+}
+}  // namespace
+
+std::array<double, SphereHistory::kPoints> SphereHistory::monomials_through(const double* s, const double* u, int m) {
+  static_assert(kPoints == 3);
+  switch (m) {
+    case 1: return newton_monomials<1, kPoints>(s, u);
+    case 2: return newton_monomials<2, kPoints>(s, u);
+    case 3: return newton_monomials<3, kPoints>(s, u);
+    default: return {};
+  }
+}
+
 void SphereHistory::step_polynomial() {
   // Q through the accepted points (s_k, U_k), s_k = t_k − t_n (s_1 = 0), in monomials; ω(σ) = Π_k (σ − s_k).
   // P' = Q' + c ω' with c = (U − Q(Δ))/ω(Δ) for the current (t, U).
-  const int m = np_;
   std::array<double, kPoints> sk{};
-  for (int k = 0; k < m; ++k) sk[k] = pt_[k] - tn_;
-  pq_ = monomials_through(sk.data(), pu_.data(), m);
-  pw_.fill(0.0);
-  pw_[0] = 1;
-  for (int k = 0; k < m; ++k) {
-    for (int j = k + 1; j >= 1; --j) pw_[j] = pw_[j - 1] - sk[k] * pw_[j];
-    pw_[0] = -sk[k] * pw_[0];
+  for (int k = 0; k < np_; ++k) sk[k] = pt_[k] - tn_;
+  pq_ = monomials_through(sk.data(), pu_.data(), np_);
+  switch (np_) {
+    case 1: pw_ = node_polynomial<1, kPoints + 1>(sk.data()); break;
+    case 2: pw_ = node_polynomial<2, kPoints + 1>(sk.data()); break;
+    case 3: pw_ = node_polynomial<3, kPoints + 1>(sk.data()); break;
+    default: pw_ = node_polynomial<0, kPoints + 1>(sk.data());
   }
 }
 
@@ -359,24 +388,61 @@ double SphereHistory::memory_sum(double t, double U, std::span<const double> w) 
   return sum;
 }
 
-void SphereHistory::modes_in_step(const StepCache& c, std::span<double> out) const {
-  // z_i = e^(−λ_i Δ) z_i + Σ_j d_j M_ij (d_j = 0 for j ≥ np_), in one pass; out may be z_.
+inline void SphereHistory::modes_at(const StepCache& c, double cf, std::span<double> out) const {
+  // z_i = e^(−λ_i Δ) z_i + Σ_j d_j M_ij (d_j = 0 for j ≥ np_), out apart from z_ (a vector loop).
   static_assert(kPoints == 3);
   const std::size_t n = out.size();
   std::array<double, kPoints> d{};
-  for (int j = 0; j < np_; ++j) d[j] = in_step_slope(j);
-  const double *e = c.e.data(), *M0 = c.m.data(), *M1 = M0 + n, *M2 = M1 + n, *z = z_.data();
-  double* o = out.data();
+  for (int j = 0; j < np_; ++j) d[j] = in_step_slope(j, cf);
+  const double *__restrict e = c.e.data(), *__restrict M0 = c.m.data(), *__restrict M1 = M0 + n, *__restrict M2 = M1 + n,
+               *__restrict z = z_.data();
+  double* __restrict o = out.data();
   for (std::size_t i = 0; i < n; ++i) o[i] = e[i] * z[i] + (d[0] * M0[i] + d[1] * M1[i] + d[2] * M2[i]);
 }
 
+double SphereHistory::modes_in_step(const StepCache& c, std::span<double> out) const {
+  // With Basset's weights also Σ w_i e^(−λ_i Δ) z_i(t) in order (as step_at's dot): CVODE often keeps h, and the next
+  // step asks it.
+  modes_at(c, c_now_, out);
+  return fixed_weights_ ? dot(c.we.data(), out.data(), c.fast) : 0.0;
+}
+
 void SphereHistory::accept_step(double t, double U) {
+  next_ok_ = false;
   if (!stepwise() || !fixed_weights_ || np_ == 0 || !(t > tn_)) return;
   window_ = true;
   acc_t_ = t;
   acc_u_ = U;
   outputs_.reset();
   outputs_built_ = false;
+  step_end(t, U);
+}
+
+void SphereHistory::step_end(double t, double U) {
+  // One pass over the modes: those at the end (advance_memory takes them), S' there and Σ w e z of the new modes.
+  step_at(t - tn_);
+  StepCache& c = cache_[cur_];
+  out_cf_ = (U - c.q_at) / c.w_at;  // P through the accepted end
+  const std::size_t n = soe_->modes();
+  if (!c.full) {  // the fast modes too (e = 0, no exponential)
+    fill_step(c, c.dt, c.fast, n);
+    c.full = true;
+  }
+  modes_at(c, out_cf_, z_next_);
+  // In order, as end_of and step_at's dot.
+  const double *we = c.we.data(), *lam = soe_->rates().data(), *z = z_.data(), *o = z_next_.data();
+  double wlez = 0, wes = 0, sum0 = 0;
+  for (std::size_t i = 0; i < c.fast; ++i) {
+    wlez += we[i] * lam[i] * z[i];
+    wes += we[i];
+    sum0 += we[i] * o[i];
+  }
+  outputs_end_.value = c.sums[0] + c.a + out_cf_ * c.b;
+  outputs_end_.slope = in_step_slope(0, out_cf_) * wes - wlez;
+  for (int j = 1; j < np_; ++j) outputs_end_.slope += j * in_step_slope(j, out_cf_) * c.sums[j];
+  next_ok_ = true;
+  next_gen_ = z_gen_;
+  next_sum0_ = sum0;
 }
 
 StepOutputs::End SphereHistory::end_of(const StepCache& c, double cf) const {
@@ -407,10 +473,8 @@ double SphereHistory::check_lag(double h) const {
 void SphereHistory::build_outputs() const {
   outputs_built_ = true;
   const double h = acc_t_ - tn_;
-  const StepCache& ce = step_at(h);
-  out_cf_ = (acc_u_ - ce.q_at) / ce.w_at;  // P through the accepted end
   if (!interpolate_ || !left_ok_) return;
-  const StepOutputs::End end = end_of(ce, out_cf_);
+  const StepOutputs::End end = outputs_end_;  // step_end's
   const double dc = check_lag(h);
   const StepCache& cc = step_at(dc);
   const double sc = cc.sums[0] + cc.a + out_cf_ * cc.b;
@@ -429,7 +493,6 @@ void SphereHistory::build_outputs() const {
     own = std::abs(sc - low);
   }
   outputs_.emplace(h, left_, end, dc, sc, std::max(tol, own));
-  outputs_end_ = end;
 }
 
 double SphereHistory::output_sum(double dt) const {
@@ -445,20 +508,32 @@ double SphereHistory::output_sum(double dt) const {
 
 void SphereHistory::advance_memory(double t, double U, bool restart) {
   if (!stepwise()) return;
-  const bool built_end = window_ && outputs_built_ && outputs_;  // the interpolant's end: the next step's start
-  window_ = false;
-  const bool moved = in_step(t, U);
+  // The accepted step's end (step_end) when this is that time and velocity and the modes have not moved since.
+  const bool at_end = window_ && next_ok_ && t == acc_t_ && U == acc_u_ && next_gen_ == z_gen_;
+  window_ = next_ok_ = false;
+  const bool moved = in_step(t, U);  // at_end: true (accept_step saw Δ > 0 and a polynomial)
   if (!moved && np_ > 0 && !restart) return;  // not a new time
   // The end's value and slope start the next step's interpolant (not across a restart: U' may jump there).
   left_ok_ = moved && !restart && fixed_weights_ && interpolate_;
-  if (left_ok_) left_ = built_end && t == acc_t_ && U == acc_u_ ? outputs_end_ : end_of(cache_[cur_], c_now_);
+  if (left_ok_) left_ = at_end ? outputs_end_ : end_of(cache_[cur_], c_now_);
   if (moved) {
     StepCache& c = cache_[cur_];
-    if (!c.full) {  // Basset: the fast modes too (e = 0, no exponential)
-      fill_step(c, c.dt, c.fast, soe_->modes());
-      c.full = true;
+    double sum0 = 0;
+    if (at_end) {
+      z_.swap(z_next_);
+      sum0 = next_sum0_;
+    } else {
+      if (!c.full) {  // Basset: the fast modes too (e = 0, no exponential)
+        fill_step(c, c.dt, c.fast, soe_->modes());
+        c.full = true;
+      }
+      sum0 = modes_in_step(c, zs_);
+      z_.swap(zs_);
     }
-    modes_in_step(c, z_);
+    if (fixed_weights_) {
+      c.sums[0] = sum0;
+      c.sum0_gen = z_gen_ + 1;  // the generation these modes get below
+    }
   }
   if (restart || np_ == 0) {
     np_ = 1;

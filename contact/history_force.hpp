@@ -77,7 +77,10 @@ class SphereHistory {
     double force = 0;  // F_explicit [N] (already times K_H)
     double mass = 0;   // m_H [kg]: f_H = force − mass·dU/dt
   };
-  Term evaluate(double t, double U, double K_H, std::span<const double> z) const;
+  Term evaluate(double t, double U, double K_H, std::span<const double> z) const {
+    if (lean_) return {-c_ * K_H * lean_sum(t, U), c_ * K_H * kappa_};
+    return evaluate_general(t, U, K_H, z);
+  }
   /// z_i' = U' − λ_i z_i.
   void state_rhs(double accel, std::span<const double> z, std::span<double> dz) const;
   /// Current weights c K_H w_i(Re) (force per unit z_i) [kg/s], for the preconditioner.
@@ -117,6 +120,25 @@ class SphereHistory {
   const SoeKernel* soe() const { return soe_.get(); }
 
  private:
+  Term evaluate_general(double t, double U, double K_H, std::span<const double> z) const;
+  /// Basset soe-step without a start-up jump (lean_): memory_sum, taking the slot in_step found last and the step's
+  /// interpolant without a call where they serve.
+  double lean_sum(double t, double U) const {
+    const double dt = t - tn_;
+    if (window_ && t < acc_t_ && dt > 0) {
+      if (outputs_built_ && outputs_ && outputs_->accepted()) {
+        ++interpolated_;
+        return outputs_->value(dt);
+      }
+      return output_sum(dt);
+    }
+    StepCache& c = cache_[cur_];
+    if (!(c.dt == dt && c.z_gen == z_gen_ && dt > 0 && np_ > 0)) return memory_sum(t, U, w_);
+    c.used = ++uses_;
+    c_now_ = (U - c.q_at) / c.w_at;
+    return c.sums[0] + c.a + c_now_ * c.b;
+  }
+  bool lean_ = false;  // Basset's kernel, soe-step, no start-up jump
   double jump_term(double t, double Re) const;  // the start-up jump's share of ∫ U' K (U(0) K(t), soe: minus its exponentials)
   /// soe-step: E_i = e^(−λ_i Δ), M_ij (j < kPoints) at Δ = t − t_n, and P's coefficient c for (t, U); false if Δ ≤ 0.
   bool in_step(double t, double U) const;
@@ -139,7 +161,7 @@ class SphereHistory {
   // soe-step
   std::vector<double> z_;               // modes at t_n
   std::vector<double> inv_rate_;        // 1/λ_i
-  mutable std::vector<double> zs_;      // scratch: the modes inside a step (finite-Re kernels)
+  mutable std::vector<double> zs_;      // scratch: the modes inside a step (finite-Re kernels), the advance's new modes
   double tn_ = 0;
   static constexpr int kPoints = 3;     // accepted points kept: P of degree ≤ kPoints
   static_assert(kPoints == SoeFastModes::kPoints, "the fast modes' M_j are those of the in-step polynomial");
@@ -151,6 +173,7 @@ class SphereHistory {
   struct StepCache {
     double dt = -1;
     long z_gen = -1;
+    long sum0_gen = -1;                 // Basset: sums[0] is that of the modes of this generation
     long used = 0;                      // when last used (uses_), for the replacement
     std::vector<double> e, we, m;       // e^(−λ_i Δ), Basset's w_i e^(−λ_i Δ); M_ij at [j · modes + i]
     std::size_t fast = 0;               // Basset: e, we, M kept for the modes below `fast` only, until `full`
@@ -176,8 +199,11 @@ class SphereHistory {
   /// Basset: the slower modes one by one, the fast ones in closed form.
   void fill_basset(StepCache& c, double dt) const;
   SoeFastModes fast_;                   // Basset's fast modes
-  /// soe-step: every z_i(t) = e^(−λ_i Δ) z_i + Σ_j P'_j M_ij into out (after in_step; c full); out may be z_.
-  void modes_in_step(const StepCache& c, std::span<double> out) const;
+  /// soe-step: every z_i = e^(−λ_i Δ) z_i + Σ_j P'_j M_ij at slot c's Δ (c full), P's coefficient cf, into out (not z_).
+  void modes_at(const StepCache& c, double cf, std::span<double> out) const;
+  /// modes_at with the coefficient in_step found (c_now_); returns Σ_(i < c.fast) w_i e^(−λ_i Δ) out_i (Basset; 0
+  /// otherwise): c's sums[0] for the modes in `out`.
+  double modes_in_step(const StepCache& c, std::span<double> out) const;
   // The in-step polynomial P = Q + c ω: Q through the accepted points and ω(σ) = Π_k (σ − s_k), in monomials of σ
   // (step_polynomial, once per accepted step); c = (U − Q(Δ))/ω(Δ) from the current (t, U) (in_step).
   std::array<double, kPoints> pq_{};
@@ -198,6 +224,12 @@ class SphereHistory {
   double output_sum(double dt) const;
   /// The interior lag where the interpolant is checked: a kept Δ in [h/4, 3h/4] nearest h/2, else h/2.
   double check_lag(double h) const;
+  /// At accept_step (Basset): the modes at the step's end into z_next_, S and S' there (outputs_end_), P's c (out_cf_).
+  void step_end(double t, double U);
+  std::vector<double> z_next_;           // the modes at the accepted end, taken by advance_memory
+  bool next_ok_ = false;                 // z_next_ and next_sum0_ are those of (acc_t_, acc_u_) from modes z_gen next_gen_
+  long next_gen_ = -1;
+  double next_sum0_ = 0;                 // Σ_(slow) w_i e_i z_next_i in the slot of the step's Δ
   bool interpolate_ = false;
   double output_rtol_ = 0, output_atol_ = 0;
   mutable double out_cf_ = 0;            // P's coefficient c through the accepted end
@@ -205,7 +237,7 @@ class SphereHistory {
   double acc_t_ = 0, acc_u_ = 0;         // the accepted step's end
   StepOutputs::End left_{};              // S, S' at t_n: the end of the step before
   bool left_ok_ = false;                 // false at the start and after a restart (U' may jump there)
-  mutable StepOutputs::End outputs_end_{};  // the accepted end's, when the interpolant was built
+  StepOutputs::End outputs_end_{};       // S, S' at the accepted end (step_end)
   mutable std::optional<StepOutputs> outputs_;
   mutable bool outputs_built_ = false;
   mutable long interpolated_ = 0, exact_outputs_ = 0;
