@@ -14,6 +14,14 @@ namespace imcol::run {
 
 using model::CollisionModel;
 
+void Track::reserve(std::size_t n, bool energies) {
+  for (auto* v : {&t, &gap, &u, &z1, &u1, &z2, &u2}) v->reserve(n);
+  if (!energies) return;
+  work.reserve(n);
+  ke_spheres.reserve(n);
+  ke_added.reserve(n);
+}
+
 double Track::cross(std::size_t i, double g) const {
   const double w = (g - gap[i - 1]) / (gap[i] - gap[i - 1]);
   return t[i - 1] + w * (t[i] - t[i - 1]);

@@ -24,6 +24,8 @@ struct Track {
   /// and of the added mass (½ Uᵀ M_a U), J: the energy budget's samples (empty where the run kept none).
   std::vector<std::array<double, model::kForceKinds>> work;
   std::vector<double> ke_spheres, ke_added;
+  /// Room for n samples (with the energy budget's when `energies`).
+  void reserve(std::size_t n, bool energies);
   /// Time where the gap crosses g between samples i−1 and i (linear).
   double cross(std::size_t i, double g) const;
   /// U_rel where the gap crosses g between samples i−1 and i (linear).

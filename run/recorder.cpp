@@ -86,6 +86,9 @@ Recorder::Recorder(model::CollisionModel& model, const Scene& sc, bool progress,
   contact_slot_ = first(model::ForceKind::contact);  // the contact law's term
   history_slot_ = first(model::ForceKind::history);
   model.keep_step_ends(contact_rows_on_);  // a row at every step near contact: its evaluation is the quadrature's
+  // The samples up to t_end (events add a few; a run that would take more than kReserved grows as it goes).
+  constexpr double kReserved = 1 << 16;
+  track_.reserve(static_cast<std::size_t>(std::min(sc.solver.t_end / sample_dt_, kReserved)) + 8, model.quadrature_size() > 0);
   if (forces_ && sc.has(Effect::flow)) columns_.push_back("H");
   columns_.push_back("event");
 }
