@@ -284,10 +284,15 @@ std::array<double, 2> CollisionModel::total_forces(const Evaluation& ev) const {
   return g;
 }
 
-Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
-  if (!end_.open || t != end_.t || !std::equal(y.begin(), y.end(), end_.y.begin(), end_.y.end())) return evaluate_at(t, y);
+const Evaluation* CollisionModel::kept_end(double t, std::span<const double> y) const {
+  if (!end_.open || t != end_.t || !std::equal(y.begin(), y.end(), end_.y.begin(), end_.y.end())) return nullptr;
   if (!end_.ev) end_.ev = evaluate_at(t, y);
-  return *end_.ev;
+  return &*end_.ev;
+}
+
+Evaluation CollisionModel::evaluate(double t, std::span<const double> y) const {
+  if (const Evaluation* kept = kept_end(t, y)) return *kept;
+  return evaluate_at(t, y);
 }
 
 Evaluation CollisionModel::evaluate_at(double t, std::span<const double> y) const {
@@ -357,7 +362,7 @@ void CollisionModel::residual(double t, std::span<const double> y, std::span<con
 std::size_t CollisionModel::quadrature_size() const { return scene_.measure.energy_budget ? kForceKinds : 0; }
 
 void CollisionModel::quadrature_rhs(double t, std::span<const double> y, std::span<double> qdot) {
-  const auto p = force_powers(evaluate(t, y), n_spheres_, slots_);
+  const auto p = with_evaluation(t, y, [&](const Evaluation& ev) { return force_powers(ev, n_spheres_, slots_); });
   std::copy(p.begin(), p.end(), qdot.begin());
 }
 

@@ -95,6 +95,12 @@ class CollisionModel : public DynamicalSystem {
   /// The model at (t, y). With keep_step_ends, at the end of an accepted step (step_accepted .. at_step) it is
   /// evaluated once and kept for the outputs there (the energy quadrature's end, a row at every step).
   Evaluation evaluate(double t, std::span<const double> y) const;
+  /// f(evaluate(t, y)) without copying the kept step end.
+  template <class F>
+  decltype(auto) with_evaluation(double t, std::span<const double> y, F&& f) const {
+    if (const Evaluation* kept = kept_end(t, y)) return f(*kept);
+    return f(evaluate_at(t, y));
+  }
   void keep_step_ends(bool on) { keep_step_ends_ = on; }
   /// Adds a rule that measures the run or ends it (model/watcher.hpp; run/ adds them before integrating) and re-arms
   /// the roots. The watcher must outlive the integration.
@@ -106,6 +112,8 @@ class CollisionModel : public DynamicalSystem {
   bool observes_accelerations() const;
   /// The positions, velocities and gap at y, without forces.
   Evaluation kinematic_state(std::span<const double> y) const;
+  /// Its gap alone, m (infinite without a target).
+  double gap_of(std::span<const double> y) const { return has_target() ? y[0] : std::numeric_limits<double>::infinity(); }
   std::size_t n_spheres() const { return n_spheres_; }
   bool has_target() const { return target_ != Target::none; }
   bool has_wall() const { return target_ == Target::wall; }
@@ -166,6 +174,8 @@ class CollisionModel : public DynamicalSystem {
     std::optional<Evaluation> ev;
   };
   mutable EndOfStep end_;  // the accepted step's end and its evaluation, once made
+  /// The kept evaluation when (t, y) is the accepted step's end (made at the first call), else null.
+  const Evaluation* kept_end(double t, std::span<const double> y) const;
   bool keep_step_ends_ = false;
   /// f_THR of sphere m from an evaluated state (forces() done) and the accelerations.
   double analytic_fluid_force(const Evaluation& ev, const std::array<double, 2>& a, std::size_t m) const;

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <unistd.h>
 
 #include "core/errors.hpp"
@@ -131,35 +132,39 @@ void Recorder::sample(double t, std::span<const double> y, bool at_event) {
 }
 
 std::vector<double> Recorder::make_row(double t, const Evaluation& ev, bool at_event) {
-  std::vector<double> r;
-  r.reserve(columns_.size());
-  const bool flow = sc_.has(Effect::flow);
-  r.insert(r.end(), {t, ev.z[0], ev.u[0]});
-  const bool pair = model_.n_spheres() == 2;
-  if (model_.has_target()) r.push_back(ev.gap);
+  // The columns in the order the constructor named them.
+  std::vector<double> r(columns_.size());
+  double* p = r.data();
+  const bool flow = sc_.has(Effect::flow), pair = model_.n_spheres() == 2, target = model_.has_target();
+  *p++ = t;
+  *p++ = ev.z[0];
+  *p++ = ev.u[0];
+  if (target) *p++ = ev.gap;
   if (pair) {
-    r.push_back(ev.z[1]);
-    r.push_back(ev.u[1]);
+    *p++ = ev.z[1];
+    *p++ = ev.u[1];
   }
-  if (model_.has_target()) r.push_back(ev.u_rel);
+  if (target) *p++ = ev.u_rel;
+  const std::size_t terms = model_.terms().size();
   for (std::size_t m = 0; forces_ && m < model_.n_spheres(); ++m) {
     const auto& f = ev.f[m];
-    r.insert(r.end(), f.term.begin(), f.term.begin() + static_cast<std::ptrdiff_t>(model_.terms().size()));
-    for (const auto& c : kFlowColumns)
-      if (flow) r.push_back(f.*c.field);
-    r.push_back(f.accel);
-    max_history_ = std::max(max_history_, std::abs(history_slot_ ? f.term[*history_slot_] : 0.0));
+    p = std::copy_n(f.term.begin(), terms, p);
+    if (flow)
+      for (const auto& c : kFlowColumns) *p++ = f.*c.field;
+    *p++ = f.accel;
+    if (history_slot_) max_history_ = std::max(max_history_, std::abs(f.term[*history_slot_]));
   }
-  if (forces_ && sc_.has(Effect::flow)) r.push_back(ev.H);
-  r.push_back(at_event ? 1.0 : 0.0);
+  if (forces_ && flow) *p++ = ev.H;
+  *p++ = at_event ? 1.0 : 0.0;
+  if (p != r.data() + r.size()) throw std::logic_error("Recorder::make_row: the row does not match the columns");
   return r;
 }
 
 void Recorder::step_end(double t, std::span<const double> y) {
   if (!contact_rows_on_) return;
-  if (!(model_.kinematic_state(y).gap < contact_zone_)) return;
+  if (!(model_.gap_of(y) < contact_zone_)) return;
   if (!contact_rows_.empty() && !(t > contact_rows_.back()[0])) return;
-  contact_rows_.push_back(make_row(t, model_.evaluate(t, y), false));
+  contact_rows_.push_back(model_.with_evaluation(t, y, [&](const model::Evaluation& ev) { return make_row(t, ev, false); }));
 }
 
 void Recorder::quadratures(std::span<const double> q) {
