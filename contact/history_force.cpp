@@ -260,6 +260,12 @@ void SphereHistory::fill_basset(StepCache& c, double dt) const {
   for (std::size_t j = 0; j < kPoints; ++j) c.sums[j + 1] = dot(w_.data(), &c.m[j * n], c.fast) + outer[j];
 }
 
+void SphereHistory::fill_all_modes(StepCache& c) const {
+  if (c.full) return;
+  fill_step(c, c.dt, c.fast, soe_->modes());  // Basset's fast modes: e = 0, no exponential
+  c.full = true;
+}
+
 int SphereHistory::slot_for(double dt) const {
   int lru = 0;
   for (int k = 0; k < kSlots; ++k) {
@@ -419,15 +425,11 @@ void SphereHistory::accept_step(double t, double U) {
 }
 
 void SphereHistory::step_end(double t, double U) {
-  // One pass over the modes: those at the end (advance_memory takes them), S' there and Σ w e z of the new modes.
+  // Two passes over the modes: those at the end (advance_memory takes them), then S' there and Σ w e z of the new ones.
   step_at(t - tn_);
   StepCache& c = cache_[cur_];
   out_cf_ = (U - c.q_at) / c.w_at;  // P through the accepted end
-  const std::size_t n = soe_->modes();
-  if (!c.full) {  // the fast modes too (e = 0, no exponential)
-    fill_step(c, c.dt, c.fast, n);
-    c.full = true;
-  }
+  fill_all_modes(c);
   modes_at(c, out_cf_, z_next_);
   // In order, as end_of and step_at's dot.
   const double *we = c.we.data(), *lam = soe_->rates().data(), *z = z_.data(), *o = z_next_.data();
@@ -523,10 +525,7 @@ void SphereHistory::advance_memory(double t, double U, bool restart) {
       z_.swap(z_next_);
       sum0 = next_sum0_;
     } else {
-      if (!c.full) {  // Basset: the fast modes too (e = 0, no exponential)
-        fill_step(c, c.dt, c.fast, soe_->modes());
-        c.full = true;
-      }
+      fill_all_modes(c);
       sum0 = modes_in_step(c, zs_);
       z_.swap(zs_);
     }

@@ -198,6 +198,8 @@ class SphereHistory {
   void new_step(StepCache& c, double dt) const;
   /// Basset: the slower modes one by one, the fast ones in closed form.
   void fill_basset(StepCache& c, double dt) const;
+  /// e and M for every mode in slot c (before the memory moves by its Δ).
+  void fill_all_modes(StepCache& c) const;
   SoeFastModes fast_;                   // Basset's fast modes
   /// soe-step: every z_i = e^(−λ_i Δ) z_i + Σ_j P'_j M_ij at slot c's Δ (c full), P's coefficient cf, into out (not z_).
   void modes_at(const StepCache& c, double cf, std::span<double> out) const;
