@@ -425,26 +425,16 @@ void SphereHistory::accept_step(double t, double U) {
 }
 
 void SphereHistory::step_end(double t, double U) {
-  // Two passes over the modes: those at the end (advance_memory takes them), then S' there and Σ w e z of the new ones.
+  // The modes at the end (advance_memory takes them) and their sum at this Δ; S, S' there for the interpolants.
   step_at(t - tn_);
   StepCache& c = cache_[cur_];
   out_cf_ = (U - c.q_at) / c.w_at;  // P through the accepted end
   fill_all_modes(c);
   modes_at(c, out_cf_, z_next_);
-  // In order, as end_of and step_at's dot.
-  const double *we = c.we.data(), *lam = soe_->rates().data(), *z = z_.data(), *o = z_next_.data();
-  double wlez = 0, wes = 0, sum0 = 0;
-  for (std::size_t i = 0; i < c.fast; ++i) {
-    wlez += we[i] * lam[i] * z[i];
-    wes += we[i];
-    sum0 += we[i] * o[i];
-  }
-  outputs_end_.value = c.sums[0] + c.a + out_cf_ * c.b;
-  outputs_end_.slope = in_step_slope(0, out_cf_) * wes - wlez;
-  for (int j = 1; j < np_; ++j) outputs_end_.slope += j * in_step_slope(j, out_cf_) * c.sums[j];
+  if (interpolate_) outputs_end_ = end_of(c, out_cf_);
   next_ok_ = true;
   next_gen_ = z_gen_;
-  next_sum0_ = sum0;
+  next_sum0_ = dot(c.we.data(), z_next_.data(), c.fast);  // in order, as step_at's
 }
 
 StepOutputs::End SphereHistory::end_of(const StepCache& c, double cf) const {

@@ -121,17 +121,11 @@ class SphereHistory {
 
  private:
   Term evaluate_general(double t, double U, double K_H, std::span<const double> z) const;
-  /// Basset soe-step without a start-up jump (lean_): memory_sum, taking the slot in_step found last and the step's
-  /// interpolant without a call where they serve.
+  /// Basset soe-step without a start-up jump (lean_): memory_sum, taking the slot in_step found last without a call
+  /// where it serves.
   double lean_sum(double t, double U) const {
     const double dt = t - tn_;
-    if (window_ && t < acc_t_ && dt > 0) {
-      if (outputs_built_ && outputs_ && outputs_->accepted()) {
-        ++interpolated_;
-        return outputs_->value(dt);
-      }
-      return output_sum(dt);
-    }
+    if (window_ && t < acc_t_ && dt > 0) return output_sum(dt);
     StepCache& c = cache_[cur_];
     if (!(c.dt == dt && c.z_gen == z_gen_ && dt > 0 && np_ > 0)) return memory_sum(t, U, w_);
     c.used = ++uses_;
@@ -226,7 +220,8 @@ class SphereHistory {
   double output_sum(double dt) const;
   /// The interior lag where the interpolant is checked: a kept Δ in [h/4, 3h/4] nearest h/2, else h/2.
   double check_lag(double h) const;
-  /// At accept_step (Basset): the modes at the step's end into z_next_, S and S' there (outputs_end_), P's c (out_cf_).
+  /// At accept_step (Basset): the modes at the step's end into z_next_ and their sum, P's c (out_cf_); with
+  /// interpolate_outputs S and S' there (outputs_end_, end_of).
   void step_end(double t, double U);
   std::vector<double> z_next_;           // the modes at the accepted end, taken by advance_memory
   bool next_ok_ = false;                 // z_next_ and next_sum0_ are those of (acc_t_, acc_u_) from modes z_gen next_gen_
